@@ -1,0 +1,184 @@
+// The flattened BVH: the one layout that the CPU (double) and the GPU (float)
+// both walk.
+//
+// Layout (USED VERBATIM BY THE GLSL TRAVERSAL, do not change lightly):
+//   nodes[] : each node is two vec4, 32 bytes on the GPU (float), 64 on the
+//             CPU (double):
+//               lo = (min.x, min.y, min.z, uintBitsToFloat(index))
+//               hi = (max.x, max.y, max.z, uintBitsToFloat(count))
+//             count == 0 : interior node; its two children are siblings at
+//                          nodes[index] and nodes[index + 1]. Children always
+//                          come after their parent (index > own position).
+//             count  > 0 : leaf; its primitives are
+//                          primIndex[index .. index + count), each an ORIGINAL
+//                          primitive id (triangle id, sphere id, instance id).
+//             The root is nodes[0] (it may itself be a leaf). An empty BVH (no
+//             valid primitive) has no nodes at all: callers skip tracing.
+//   primIndex[] : uint32 original primitive ids, grouped by leaf.
+// Depth: the root has depth 0 and no node is deeper than kMaxDepth, so an
+// ordered traversal that pushes the far child and descends into the near one
+// holds at most kMaxDepth entries (one per level of the current path):
+// kMaxStackSize (64) > kMaxDepth (48) can never overflow.
+// GPU copy: packNodesForGpu() writes 8 floats per node (RGBA32F texels lo,
+// hi), boxes rounded OUTWARD and expressed relative to a local origin.
+#ifndef vtkrt_core_BVH_h
+#define vtkrt_core_BVH_h
+
+#include "vtkrt/core/AABB.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+namespace vtkrt::core
+{
+
+/// No node is deeper than this (root depth 0); builders enforce it.
+constexpr std::uint32_t kMaxDepth = 48;
+/// Traversal stack size, CPU and GLSL: >= kMaxDepth, so it never overflows.
+constexpr std::uint32_t kMaxStackSize = 64;
+static_assert(kMaxStackSize >= kMaxDepth, "the traversal stack must hold one entry per level");
+
+/// CPU node in double. Same fields, same meaning as the GPU's two vec4.
+struct BVHNode
+{
+  Vec3<double> min;
+  std::uint32_t index = 0; ///< first child (interior) or first primIndex slot (leaf)
+  Vec3<double> max;
+  std::uint32_t count = 0; ///< 0: interior; > 0: number of primitives in the leaf
+
+  bool isLeaf() const { return count > 0; }
+  AABB<double> bounds() const { return AABB<double>(min, max); }
+  void setBounds(const AABB<double>& b)
+  {
+    min = b.min;
+    max = b.max;
+  }
+  bool operator==(const BVHNode& o) const
+  {
+    return min == o.min && max == o.max && index == o.index && count == o.count;
+  }
+};
+
+/// Which builder: quality of the tree against build time.
+enum class BuildQuality
+{
+  Fast,   ///< object-median split on the largest centroid axis (dynamic data)
+  Medium, ///< binned SAH (default)
+  High,   ///< full-sweep SAH (every primitive boundary on every axis)
+};
+
+struct BuildOptions
+{
+  BuildQuality quality = BuildQuality::Medium;
+  std::uint32_t maxLeafSize = 4; ///< max primitives per leaf (>= 1)
+  unsigned numThreads = 0;       ///< 0: std::thread::hardware_concurrency()
+  std::uint32_t numBins = 32;    ///< binned SAH bins per axis
+  double traversalCost = 1.0;    ///< SAH cost of visiting an interior node
+  double intersectionCost = 1.0; ///< SAH cost of one primitive test
+};
+
+/// What a build did. Skipped primitives (empty, NaN or infinite bounds) are
+/// in no leaf; adapters split them into degenerate and non-finite.
+struct BuildStats
+{
+  std::size_t inputPrimitives = 0;
+  std::size_t builtPrimitives = 0;
+  std::size_t skippedPrimitives = 0;
+  std::size_t degeneratePrimitives = 0; ///< zero-area triangles, zero radius spheres
+  std::size_t nonFinitePrimitives = 0;  ///< NaN or infinite coordinates
+  std::size_t nodeCount = 0;
+  std::size_t leafCount = 0;
+  std::uint32_t maxDepth = 0;
+  std::uint32_t maxLeafPrimitives = 0;
+  double sahCost = 0.0; ///< sum over nodes of area/rootArea * cost
+  double buildSeconds = 0.0;
+};
+
+struct BVH
+{
+  std::vector<BVHNode> nodes;
+  std::vector<std::uint32_t> primIndex;
+  BuildStats stats;
+
+  bool empty() const { return nodes.empty(); }
+  AABB<double> bounds() const { return nodes.empty() ? AABB<double>() : nodes[0].bounds(); }
+  std::size_t memoryBytes() const
+  {
+    return nodes.capacity() * sizeof(BVHNode) + primIndex.capacity() * sizeof(std::uint32_t);
+  }
+};
+
+/// Bits of a uint32 as a float (GLSL's uintBitsToFloat).
+inline float uintBitsToFloat(std::uint32_t u)
+{
+  float f;
+  std::memcpy(&f, &u, sizeof f);
+  return f;
+}
+inline std::uint32_t floatBitsToUint(float f)
+{
+  std::uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
+}
+
+namespace detail
+{
+/// x - origin rounded outward to float. The double subtraction is correctly
+/// rounded, so it is off by at most half an ulp of the result: widening by a
+/// relative epsilon before the directed float rounding keeps the box
+/// conservative. Exact (no widening) when origin is 0.
+inline float relativeLower(double x, double origin)
+{
+  if (origin == 0.0)
+  {
+    return roundDownToFloat(x);
+  }
+  const double d = x - origin;
+  return roundDownToFloat(d - std::abs(d) * std::numeric_limits<double>::epsilon());
+}
+inline float relativeUpper(double x, double origin)
+{
+  if (origin == 0.0)
+  {
+    return roundUpToFloat(x);
+  }
+  const double d = x - origin;
+  return roundUpToFloat(d + std::abs(d) * std::numeric_limits<double>::epsilon());
+}
+} // namespace detail
+
+/// Float GPU copy of the nodes, 8 floats per node (see the layout above),
+/// boxes relative to `origin` (use the same origin for the vertices, see
+/// LocalFrame.h) and rounded outward so float traversal never misses what
+/// double traversal would hit. Ready for glBufferData into an RGBA32F
+/// texture buffer (2 texels per node).
+inline std::vector<float> packNodesForGpu(
+  const std::vector<BVHNode>& nodes, const Vec3<double>& origin = Vec3<double>(0.0))
+{
+  std::vector<float> out(nodes.size() * 8);
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+  {
+    const BVHNode& n = nodes[i];
+    float* o = out.data() + 8 * i;
+    for (int k = 0; k < 3; ++k)
+    {
+      o[k] = detail::relativeLower(n.min[k], origin[k]);
+      o[4 + k] = detail::relativeUpper(n.max[k], origin[k]);
+    }
+    o[3] = uintBitsToFloat(n.index);
+    o[7] = uintBitsToFloat(n.count);
+  }
+  return out;
+}
+
+inline std::vector<float> packNodesForGpu(const BVH& bvh, const Vec3<double>& origin = Vec3<double>(0.0))
+{
+  return packNodesForGpu(bvh.nodes, origin);
+}
+
+} // namespace vtkrt::core
+
+#endif

@@ -1,0 +1,459 @@
+// BVH builders over a generic list of primitive bounds (centroid = box
+// center), so one builder serves triangles, spheres and instances.
+//
+// Determinism: the tree depends only on the input, never on the thread count.
+// Subtrees with at least kTaskPrimitives primitives are always built into
+// their own node array and spliced into the parent's after the parent's
+// inline children; whether such a task runs on another std::thread or on the
+// calling one changes nothing in the output.
+#ifndef vtkrt_core_BVHBuild_h
+#define vtkrt_core_BVHBuild_h
+
+#include "vtkrt/core/BVH.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+namespace vtkrt::core
+{
+
+namespace detail
+{
+
+struct BuildRef
+{
+  AABB<double> box;
+  std::uint32_t id;
+  Vec3<double> centroid() const { return box.center(); }
+};
+
+/// Ceil(log2(x)) for x >= 1.
+inline std::uint32_t ceilLog2(std::uint64_t x)
+{
+  std::uint32_t r = 0;
+  while ((std::uint64_t(1) << r) < x)
+  {
+    ++r;
+  }
+  return r;
+}
+
+class Builder
+{
+public:
+  static constexpr std::uint32_t kTaskPrimitives = 16384;
+
+  Builder(std::vector<BuildRef>& refs, const BuildOptions& options)
+    : Refs(refs)
+    , Options(options)
+  {
+    if (Options.maxLeafSize < 1)
+    {
+      Options.maxLeafSize = 1;
+    }
+    Options.numBins = std::max<std::uint32_t>(2, std::min<std::uint32_t>(Options.numBins, 256));
+    unsigned threads = Options.numThreads ? Options.numThreads : std::thread::hardware_concurrency();
+    FreeThreads = static_cast<int>(std::max(1u, threads)) - 1;
+  }
+
+  std::vector<BVHNode> build()
+  {
+    std::vector<BVHNode> nodes;
+    if (Refs.empty())
+    {
+      return nodes;
+    }
+    nodes.reserve(2 * Refs.size() / std::max<std::uint32_t>(1, Options.maxLeafSize) + 1);
+    nodes.resize(1);
+    buildNode(nodes, 0, 0, static_cast<std::uint32_t>(Refs.size()), 0);
+    return nodes;
+  }
+
+private:
+  std::vector<BuildRef>& Refs;
+  BuildOptions Options;
+  std::atomic<int> FreeThreads{ 0 };
+
+  AABB<double> rangeBounds(std::uint32_t begin, std::uint32_t end, AABB<double>& centroids) const
+  {
+    AABB<double> box;
+    for (std::uint32_t i = begin; i < end; ++i)
+    {
+      box.extend(Refs[i].box);
+      centroids.extend(Refs[i].centroid());
+    }
+    return box;
+  }
+
+  /// Total order on (centroid[axis], id): makes median splits and sorts
+  /// independent of the input order's ties.
+  struct AxisLess
+  {
+    int axis;
+    bool operator()(const BuildRef& a, const BuildRef& b) const
+    {
+      const double ca = a.box.min[axis] + a.box.max[axis];
+      const double cb = b.box.min[axis] + b.box.max[axis];
+      return ca < cb || (ca == cb && a.id < b.id);
+    }
+  };
+
+  std::uint32_t medianSplit(std::uint32_t begin, std::uint32_t end, const AABB<double>& centroids)
+  {
+    const std::uint32_t mid = begin + (end - begin) / 2;
+    const Vec3<double> ext = centroids.diagonal();
+    if (ext.x > 0.0 || ext.y > 0.0 || ext.z > 0.0)
+    {
+      const int axis = centroids.largestAxis();
+      std::nth_element(Refs.begin() + begin, Refs.begin() + mid, Refs.begin() + end, AxisLess{ axis });
+    }
+    return mid;
+  }
+
+  /// Binned SAH (Wald 2007). Returns the split position, or `end` when a leaf
+  /// is cheaper (only considered when the range fits in a leaf).
+  std::uint32_t binnedSplit(std::uint32_t begin, std::uint32_t end, const AABB<double>& box,
+    const AABB<double>& centroids)
+  {
+    const std::uint32_t count = end - begin;
+    const std::uint32_t nb = Options.numBins;
+    struct Bin
+    {
+      AABB<double> box;
+      std::uint32_t count = 0;
+    };
+    double bestCost = std::numeric_limits<double>::infinity();
+    int bestAxis = -1;
+    std::uint32_t bestBin = 0;
+    std::vector<Bin> bins(nb);
+    std::vector<double> rightArea(nb);
+    std::vector<std::uint32_t> rightCount(nb);
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      const double lo = centroids.min[axis];
+      const double extent = centroids.max[axis] - lo;
+      if (!(extent > 0.0))
+      {
+        continue;
+      }
+      const double scale = nb / extent;
+      std::fill(bins.begin(), bins.end(), Bin());
+      for (std::uint32_t i = begin; i < end; ++i)
+      {
+        const std::uint32_t b = binOf(Refs[i].centroid()[axis], lo, scale, nb);
+        bins[b].box.extend(Refs[i].box);
+        bins[b].count++;
+      }
+      AABB<double> acc;
+      std::uint32_t n = 0;
+      for (std::uint32_t b = nb - 1; b > 0; --b)
+      {
+        acc.extend(bins[b].box);
+        n += bins[b].count;
+        rightArea[b] = acc.halfArea();
+        rightCount[b] = n;
+      }
+      acc = AABB<double>();
+      n = 0;
+      for (std::uint32_t b = 1; b < nb; ++b)
+      {
+        acc.extend(bins[b - 1].box);
+        n += bins[b - 1].count;
+        if (n == 0 || rightCount[b] == 0)
+        {
+          continue;
+        }
+        const double cost = acc.halfArea() * n + rightArea[b] * rightCount[b];
+        if (cost < bestCost)
+        {
+          bestCost = cost;
+          bestAxis = axis;
+          bestBin = b;
+        }
+      }
+    }
+    if (bestAxis < 0)
+    {
+      return count <= Options.maxLeafSize ? end : medianSplit(begin, end, centroids);
+    }
+    const double parentArea = box.halfArea();
+    const double splitCost = Options.traversalCost +
+      Options.intersectionCost * (parentArea > 0.0 ? bestCost / parentArea : double(count));
+    if (count <= Options.maxLeafSize && splitCost >= Options.intersectionCost * count)
+    {
+      return end;
+    }
+    const double lo = centroids.min[bestAxis];
+    const double scale = nb / (centroids.max[bestAxis] - lo);
+    auto it = std::partition(Refs.begin() + begin, Refs.begin() + end, [&](const BuildRef& r) {
+      return binOf(r.centroid()[bestAxis], lo, scale, nb) < bestBin;
+    });
+    const std::uint32_t mid = static_cast<std::uint32_t>(it - Refs.begin());
+    if (mid == begin || mid == end)
+    {
+      return medianSplit(begin, end, centroids);
+    }
+    return mid;
+  }
+
+  static std::uint32_t binOf(double c, double lo, double scale, std::uint32_t nb)
+  {
+    const double f = (c - lo) * scale;
+    const std::uint32_t b = f > 0.0 ? static_cast<std::uint32_t>(f) : 0u;
+    return std::min(b, nb - 1);
+  }
+
+  /// Full-sweep SAH: every primitive boundary in centroid order on each axis.
+  std::uint32_t sweepSplit(std::uint32_t begin, std::uint32_t end, const AABB<double>& box,
+    const AABB<double>& centroids)
+  {
+    const std::uint32_t count = end - begin;
+    std::vector<double> rightArea(count);
+    double bestCost = std::numeric_limits<double>::infinity();
+    int bestAxis = -1;
+    int sortedAxis = -1;
+    std::uint32_t bestSplit = 0;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      if (!(centroids.max[axis] > centroids.min[axis]))
+      {
+        continue;
+      }
+      sortedAxis = axis;
+      std::sort(Refs.begin() + begin, Refs.begin() + end, AxisLess{ axis });
+      AABB<double> acc;
+      for (std::uint32_t i = count - 1; i > 0; --i)
+      {
+        acc.extend(Refs[begin + i].box);
+        rightArea[i] = acc.halfArea();
+      }
+      acc = AABB<double>();
+      for (std::uint32_t i = 1; i < count; ++i)
+      {
+        acc.extend(Refs[begin + i - 1].box);
+        const double cost = acc.halfArea() * i + rightArea[i] * (count - i);
+        if (cost < bestCost)
+        {
+          bestCost = cost;
+          bestAxis = axis;
+          bestSplit = i;
+        }
+      }
+    }
+    if (bestAxis < 0)
+    {
+      return count <= Options.maxLeafSize ? end : medianSplit(begin, end, centroids);
+    }
+    const double parentArea = box.halfArea();
+    const double splitCost = Options.traversalCost +
+      Options.intersectionCost * (parentArea > 0.0 ? bestCost / parentArea : double(count));
+    if (count <= Options.maxLeafSize && splitCost >= Options.intersectionCost * count)
+    {
+      return end;
+    }
+    if (bestAxis != sortedAxis)
+    {
+      std::sort(Refs.begin() + begin, Refs.begin() + end, AxisLess{ bestAxis });
+    }
+    return begin + bestSplit;
+  }
+
+  /// Where to split [begin, end), or `end` for a leaf.
+  std::uint32_t chooseSplit(std::uint32_t begin, std::uint32_t end, std::uint32_t depth,
+    const AABB<double>& box, const AABB<double>& centroids)
+  {
+    const std::uint32_t count = end - begin;
+    if (count <= 1 || depth >= kMaxDepth)
+    {
+      return end;
+    }
+    // Depth cap: once the remaining levels only just suffice for halving the
+    // range down to leaf size, split at the object median (never deeper
+    // than kMaxDepth, leaves never larger than maxLeafSize for any input up
+    // to maxLeafSize * 2^kMaxDepth primitives).
+    const std::uint64_t leavesNeeded = (std::uint64_t(count) + Options.maxLeafSize - 1) / Options.maxLeafSize;
+    if (kMaxDepth - depth <= ceilLog2(leavesNeeded) + 1)
+    {
+      return count <= Options.maxLeafSize ? end : medianSplit(begin, end, centroids);
+    }
+    switch (Options.quality)
+    {
+      case BuildQuality::Fast:
+        return count <= Options.maxLeafSize ? end : medianSplit(begin, end, centroids);
+      case BuildQuality::High:
+        return sweepSplit(begin, end, box, centroids);
+      case BuildQuality::Medium:
+      default:
+        return binnedSplit(begin, end, box, centroids);
+    }
+  }
+
+  /// Builds the subtree of [begin, end) into nodes[slot] and nodes appended
+  /// to `nodes`.
+  void buildNode(std::vector<BVHNode>& nodes, std::size_t slot, std::uint32_t begin, std::uint32_t end,
+    std::uint32_t depth)
+  {
+    AABB<double> centroids;
+    const AABB<double> box = rangeBounds(begin, end, centroids);
+    nodes[slot].setBounds(box);
+    const std::uint32_t mid = chooseSplit(begin, end, depth, box, centroids);
+    if (mid == end || mid == begin)
+    {
+      nodes[slot].index = begin;
+      nodes[slot].count = end - begin;
+      return;
+    }
+    const std::size_t first = nodes.size();
+    nodes.resize(first + 2);
+    nodes[slot].index = static_cast<std::uint32_t>(first);
+    nodes[slot].count = 0;
+
+    const std::uint32_t ranges[2][2] = { { begin, mid }, { mid, end } };
+    bool isTask[2];
+    for (int c = 0; c < 2; ++c)
+    {
+      isTask[c] = ranges[c][1] - ranges[c][0] >= kTaskPrimitives;
+      if (!isTask[c])
+      {
+        buildNode(nodes, first + c, ranges[c][0], ranges[c][1], depth + 1);
+      }
+    }
+    std::vector<BVHNode> sub[2];
+    std::thread worker;
+    for (int c = 0; c < 2; ++c)
+    {
+      if (!isTask[c])
+      {
+        continue;
+      }
+      auto task = [this, &sub, &ranges, c, depth]() {
+        sub[c].resize(1);
+        buildNode(sub[c], 0, ranges[c][0], ranges[c][1], depth + 1);
+      };
+      if (c == 0 && isTask[1] && FreeThreads.fetch_sub(1) > 0)
+      {
+        worker = std::thread(task);
+      }
+      else
+      {
+        if (c == 0 && isTask[1])
+        {
+          FreeThreads.fetch_add(1);
+        }
+        task();
+      }
+    }
+    if (worker.joinable())
+    {
+      worker.join();
+      FreeThreads.fetch_add(1);
+    }
+    for (int c = 0; c < 2; ++c)
+    {
+      if (isTask[c])
+      {
+        splice(nodes, first + c, sub[c]);
+      }
+    }
+  }
+
+  /// Moves a subtree built with its root at sub[0] into nodes[slot] (root)
+  /// and the end of `nodes` (the rest), renumbering child indices.
+  static void splice(std::vector<BVHNode>& nodes, std::size_t slot, std::vector<BVHNode>& sub)
+  {
+    const std::size_t base = nodes.size();
+    auto remap = [base](BVHNode n) {
+      if (!n.isLeaf())
+      {
+        n.index = static_cast<std::uint32_t>(base + n.index - 1);
+      }
+      return n;
+    };
+    nodes[slot] = remap(sub[0]);
+    nodes.reserve(base + sub.size() - 1);
+    for (std::size_t i = 1; i < sub.size(); ++i)
+    {
+      nodes.push_back(remap(sub[i]));
+    }
+    std::vector<BVHNode>().swap(sub);
+  }
+};
+
+} // namespace detail
+
+/// Depth, leaf count and SAH cost of a finished tree (parents precede
+/// children in the layout, so one forward pass suffices).
+inline void computeTreeStats(BVH& bvh, const BuildOptions& options = BuildOptions())
+{
+  BuildStats& s = bvh.stats;
+  s.nodeCount = bvh.nodes.size();
+  s.leafCount = 0;
+  s.maxDepth = 0;
+  s.maxLeafPrimitives = 0;
+  s.sahCost = 0.0;
+  if (bvh.nodes.empty())
+  {
+    return;
+  }
+  std::vector<std::uint32_t> depth(bvh.nodes.size(), 0);
+  const double rootArea = bvh.nodes[0].bounds().halfArea();
+  for (std::size_t i = 0; i < bvh.nodes.size(); ++i)
+  {
+    const BVHNode& n = bvh.nodes[i];
+    const double rel = rootArea > 0.0 ? n.bounds().halfArea() / rootArea : 1.0;
+    s.maxDepth = std::max(s.maxDepth, depth[i]);
+    if (n.isLeaf())
+    {
+      s.leafCount++;
+      s.maxLeafPrimitives = std::max(s.maxLeafPrimitives, n.count);
+      s.sahCost += rel * options.intersectionCost * n.count;
+    }
+    else
+    {
+      depth[n.index] = depth[n.index + 1] = depth[i] + 1;
+      s.sahCost += rel * options.traversalCost;
+    }
+  }
+}
+
+/// Builds a BVH over primitives given by their bounds (primitive id = index
+/// in `bounds`). Primitives with empty, NaN or infinite bounds are skipped
+/// and counted in stats.skippedPrimitives.
+inline BVH buildBVH(const std::vector<AABB<double>>& bounds, const BuildOptions& options = BuildOptions())
+{
+  const auto start = std::chrono::steady_clock::now();
+  BVH bvh;
+  std::vector<detail::BuildRef> refs;
+  refs.reserve(bounds.size());
+  for (std::size_t i = 0; i < bounds.size(); ++i)
+  {
+    const AABB<double>& b = bounds[i];
+    if (b.isEmpty() || !b.isFinite())
+    {
+      continue;
+    }
+    refs.push_back({ b, static_cast<std::uint32_t>(i) });
+  }
+  bvh.stats.inputPrimitives = bounds.size();
+  bvh.stats.builtPrimitives = refs.size();
+  bvh.stats.skippedPrimitives = bounds.size() - refs.size();
+  {
+    detail::Builder builder(refs, options);
+    bvh.nodes = builder.build();
+  }
+  bvh.primIndex.resize(refs.size());
+  for (std::size_t i = 0; i < refs.size(); ++i)
+  {
+    bvh.primIndex[i] = refs[i].id;
+  }
+  computeTreeStats(bvh, options);
+  bvh.stats.buildSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return bvh;
+}
+
+} // namespace vtkrt::core
+
+#endif

@@ -1,0 +1,377 @@
+// BVH queries: closest hit, any hit, all hits, closest point, box overlap.
+// All are const and thread-safe (state lives on the caller's stack), walk
+// an explicit stack of kMaxStackSize entries, and visit the nearer child
+// first. The primitive test is a callable, so the same traversal serves
+// triangles, spheres, instances and a caller's exact cell test.
+//
+// Ray intersector:  bool(std::uint32_t prim, const Ray<T>& ray, Hit<T>& hit)
+//   Test primitive `prim` (an original id) on [ray.tmin, ray.tmax]. On a hit,
+//   write hit.t (and u, v if meaningful) and return true; otherwise leave
+//   `hit` alone and return false. The traversal then sets hit.prim and
+//   shrinks ray.tmax to hit.t, so for closestHit every `true` is a new
+//   closest hit (a caller may store extra per-hit data when returning true).
+// Point query:      bool(std::uint32_t prim, const Vec3<T>& p, PointHit<T>& cand)
+//   Write the closest point of `prim` to p into cand.point and its squared
+//   distance into cand.dist2; return false to ignore the primitive.
+//
+// The traversals are templated on a node source, so the float GPU copy
+// (GpuNodeSource) can be walked on the CPU exactly as the shader walks it.
+#ifndef vtkrt_core_BVHTraversal_h
+#define vtkrt_core_BVHTraversal_h
+
+#include "vtkrt/core/BVH.h"
+#include "vtkrt/core/Ray.h"
+
+#include <algorithm>
+#include <limits>
+#include <vector>
+
+namespace vtkrt::core
+{
+
+template <class T>
+struct Hit
+{
+  T t = std::numeric_limits<T>::infinity();
+  T u = T(0); ///< barycentric weight of v1 (triangles)
+  T v = T(0); ///< barycentric weight of v2 (triangles)
+  std::uint32_t prim = kInvalidIndex;
+  std::uint32_t instance = kInvalidIndex; ///< two-level queries only
+  bool found() const { return prim != kInvalidIndex; }
+};
+
+template <class T>
+struct PointHit
+{
+  Vec3<T> point = Vec3<T>(T(0));
+  T dist2 = std::numeric_limits<T>::infinity();
+  std::uint32_t prim = kInvalidIndex;
+  bool found() const { return prim != kInvalidIndex; }
+};
+
+/// The CPU double nodes.
+struct NodeSource
+{
+  using Scalar = double;
+  const BVHNode* nodes = nullptr;
+  std::size_t size = 0;
+
+  explicit NodeSource(const BVH& bvh)
+    : nodes(bvh.nodes.data())
+    , size(bvh.nodes.size())
+  {
+  }
+  const Vec3<double>& lo(std::uint32_t i) const { return nodes[i].min; }
+  const Vec3<double>& hi(std::uint32_t i) const { return nodes[i].max; }
+  std::uint32_t index(std::uint32_t i) const { return nodes[i].index; }
+  std::uint32_t count(std::uint32_t i) const { return nodes[i].count; }
+};
+
+/// The packed float copy from packNodesForGpu (8 floats per node), read the
+/// way the GLSL traversal reads it.
+struct GpuNodeSource
+{
+  using Scalar = float;
+  const float* data = nullptr;
+  std::size_t size = 0;
+
+  GpuNodeSource(const std::vector<float>& packed)
+    : data(packed.data())
+    , size(packed.size() / 8)
+  {
+  }
+  Vec3<float> lo(std::uint32_t i) const { return Vec3<float>(data[8 * i], data[8 * i + 1], data[8 * i + 2]); }
+  Vec3<float> hi(std::uint32_t i) const
+  {
+    return Vec3<float>(data[8 * i + 4], data[8 * i + 5], data[8 * i + 6]);
+  }
+  std::uint32_t index(std::uint32_t i) const { return floatBitsToUint(data[8 * i + 3]); }
+  std::uint32_t count(std::uint32_t i) const { return floatBitsToUint(data[8 * i + 7]); }
+};
+
+namespace detail
+{
+template <class T>
+struct StackEntry
+{
+  std::uint32_t node;
+  T dist; ///< entry t (rays) or squared distance (points)
+};
+
+/// Shared by closestHit/anyHit/allHits. mode: 0 closest, 1 any, 2 all.
+template <int Mode, class Nodes, class T, class Isect, class Sink>
+bool traverseRay(const Nodes& nodes, const std::uint32_t* primIndex, Ray<T> ray, Isect& isect, Hit<T>& hit,
+  Sink&& sink)
+{
+  if (nodes.size == 0 || !ray.isValid())
+  {
+    return false;
+  }
+  const RayBoxPrecomputed<T> pre(ray);
+  StackEntry<T> stack[kMaxStackSize];
+  std::uint32_t sp = 0;
+  T tnear;
+  if (!intersectRayAABB(pre, nodes.lo(0), nodes.hi(0), ray.tmin, ray.tmax, tnear))
+  {
+    return false;
+  }
+  bool found = false;
+  std::uint32_t cur = 0;
+  for (;;)
+  {
+    const std::uint32_t count = nodes.count(cur);
+    const std::uint32_t index = nodes.index(cur);
+    bool descend = false;
+    if (count > 0)
+    {
+      for (std::uint32_t k = 0; k < count; ++k)
+      {
+        const std::uint32_t prim = primIndex[index + k];
+        Hit<T> candidate = hit;
+        if (isect(prim, ray, candidate))
+        {
+          candidate.prim = prim;
+          found = true;
+          if constexpr (Mode == 2)
+          {
+            sink(candidate);
+          }
+          else
+          {
+            hit = candidate;
+            if constexpr (Mode == 1)
+            {
+              return true;
+            }
+            ray.tmax = hit.t;
+          }
+        }
+      }
+    }
+    else
+    {
+      T t0, t1;
+      const bool h0 = intersectRayAABB(pre, nodes.lo(index), nodes.hi(index), ray.tmin, ray.tmax, t0);
+      const bool h1 = intersectRayAABB(pre, nodes.lo(index + 1), nodes.hi(index + 1), ray.tmin, ray.tmax, t1);
+      if (h0 && h1)
+      {
+        const bool firstNear = t0 <= t1;
+        stack[sp++] = { firstNear ? index + 1 : index, firstNear ? t1 : t0 };
+        cur = firstNear ? index : index + 1;
+        descend = true;
+      }
+      else if (h0 || h1)
+      {
+        cur = h0 ? index : index + 1;
+        descend = true;
+      }
+    }
+    if (descend)
+    {
+      continue;
+    }
+    // Pop the next node still in front of the closest hit.
+    bool popped = false;
+    while (sp > 0)
+    {
+      const StackEntry<T> e = stack[--sp];
+      if (e.dist <= ray.tmax)
+      {
+        cur = e.node;
+        popped = true;
+        break;
+      }
+    }
+    if (!popped)
+    {
+      return found;
+    }
+  }
+}
+
+struct NoSink
+{
+  template <class H>
+  void operator()(const H&) const
+  {
+  }
+};
+} // namespace detail
+
+/// Closest hit on [ray.tmin, ray.tmax]. Returns whether anything was hit;
+/// `hit` holds it (hit.prim = original primitive id).
+template <class Nodes, class T, class Isect>
+bool closestHit(const Nodes& nodes, const std::uint32_t* primIndex, const Ray<T>& ray, Isect&& isect, Hit<T>& hit)
+{
+  hit = Hit<T>();
+  return detail::traverseRay<0>(nodes, primIndex, ray, isect, hit, detail::NoSink());
+}
+
+template <class T, class Isect>
+bool closestHit(const BVH& bvh, const Ray<T>& ray, Isect&& isect, Hit<T>& hit)
+{
+  static_assert(std::is_same_v<T, double>, "the CPU BVH is double; walk packNodesForGpu() for float");
+  return closestHit(NodeSource(bvh), bvh.primIndex.data(), ray, isect, hit);
+}
+
+/// Any hit on [ray.tmin, ray.tmax] (shadow rays): stops at the first.
+template <class Nodes, class T, class Isect>
+bool anyHit(const Nodes& nodes, const std::uint32_t* primIndex, const Ray<T>& ray, Isect&& isect, Hit<T>& hit)
+{
+  hit = Hit<T>();
+  return detail::traverseRay<1>(nodes, primIndex, ray, isect, hit, detail::NoSink());
+}
+
+template <class T, class Isect>
+bool anyHit(const BVH& bvh, const Ray<T>& ray, Isect&& isect, Hit<T>& hit)
+{
+  return anyHit(NodeSource(bvh), bvh.primIndex.data(), ray, isect, hit);
+}
+
+template <class T, class Isect>
+bool anyHit(const BVH& bvh, const Ray<T>& ray, Isect&& isect)
+{
+  Hit<T> hit;
+  return anyHit(bvh, ray, isect, hit);
+}
+
+/// Every hit on [ray.tmin, ray.tmax], sorted by (t, prim). For a primitive
+/// the intersector reports one hit (the nearest in range).
+template <class Nodes, class T, class Isect>
+std::vector<Hit<T>> allHits(const Nodes& nodes, const std::uint32_t* primIndex, const Ray<T>& ray, Isect&& isect)
+{
+  std::vector<Hit<T>> hits;
+  Hit<T> scratch;
+  detail::traverseRay<2>(nodes, primIndex, ray, isect, scratch, [&hits](const Hit<T>& h) { hits.push_back(h); });
+  std::sort(hits.begin(), hits.end(),
+    [](const Hit<T>& a, const Hit<T>& b) { return a.t < b.t || (a.t == b.t && a.prim < b.prim); });
+  return hits;
+}
+
+template <class T, class Isect>
+std::vector<Hit<T>> allHits(const BVH& bvh, const Ray<T>& ray, Isect&& isect)
+{
+  return allHits(NodeSource(bvh), bvh.primIndex.data(), ray, isect);
+}
+
+/// Closest point to p among primitives within maxDistance (inclusive; +inf
+/// for no limit). Returns whether one was found.
+template <class T, class PointFn>
+bool closestPoint(const BVH& bvh, const Vec3<T>& p, T maxDistance, PointFn&& fn, PointHit<T>& best)
+{
+  best = PointHit<T>();
+  if (bvh.empty() || !isFinite(p) || std::isnan(maxDistance) || maxDistance < T(0))
+  {
+    return false;
+  }
+  best.dist2 = maxDistance * maxDistance;
+  const NodeSource nodes(bvh);
+  detail::StackEntry<T> stack[kMaxStackSize];
+  std::uint32_t sp = 0;
+  const auto boxDist2 = [&](std::uint32_t i) { return AABB<T>(nodes.lo(i), nodes.hi(i)).distance2(p); };
+  if (boxDist2(0) > best.dist2)
+  {
+    return false;
+  }
+  std::uint32_t cur = 0;
+  for (;;)
+  {
+    const std::uint32_t count = nodes.count(cur);
+    const std::uint32_t index = nodes.index(cur);
+    bool descend = false;
+    if (count > 0)
+    {
+      for (std::uint32_t k = 0; k < count; ++k)
+      {
+        const std::uint32_t prim = bvh.primIndex[index + k];
+        PointHit<T> cand;
+        if (fn(prim, p, cand) &&
+          (cand.dist2 < best.dist2 || (!best.found() && cand.dist2 <= best.dist2)))
+        {
+          best = cand;
+          best.prim = prim;
+        }
+      }
+    }
+    else
+    {
+      const T d0 = boxDist2(index);
+      const T d1 = boxDist2(index + 1);
+      const bool h0 = d0 <= best.dist2, h1 = d1 <= best.dist2;
+      if (h0 && h1)
+      {
+        const bool firstNear = d0 <= d1;
+        stack[sp++] = { firstNear ? index + 1 : index, firstNear ? d1 : d0 };
+        cur = firstNear ? index : index + 1;
+        descend = true;
+      }
+      else if (h0 || h1)
+      {
+        cur = h0 ? index : index + 1;
+        descend = true;
+      }
+    }
+    if (descend)
+    {
+      continue;
+    }
+    bool popped = false;
+    while (sp > 0)
+    {
+      const detail::StackEntry<T> e = stack[--sp];
+      if (e.dist <= best.dist2)
+      {
+        cur = e.node;
+        popped = true;
+        break;
+      }
+    }
+    if (!popped)
+    {
+      return best.found();
+    }
+  }
+}
+
+/// Calls fn(prim) for every primitive in a leaf whose box overlaps `box`
+/// (closed intervals). The leaf box is a superset of its primitives'
+/// bounds: fn does the exact test (see meshes' overlap helpers).
+template <class Fn>
+void queryBox(const BVH& bvh, const AABB<double>& box, Fn&& fn)
+{
+  if (bvh.empty() || box.isEmpty())
+  {
+    return;
+  }
+  std::uint32_t stack[kMaxStackSize];
+  std::uint32_t sp = 0;
+  if (!bvh.nodes[0].bounds().overlaps(box))
+  {
+    return;
+  }
+  stack[sp++] = 0;
+  while (sp > 0)
+  {
+    const BVHNode& n = bvh.nodes[stack[--sp]];
+    if (n.isLeaf())
+    {
+      for (std::uint32_t k = 0; k < n.count; ++k)
+      {
+        fn(bvh.primIndex[n.index + k]);
+      }
+      continue;
+    }
+    // Push right first so the left child is visited first.
+    for (int c = 1; c >= 0; --c)
+    {
+      if (bvh.nodes[n.index + c].bounds().overlaps(box))
+      {
+        stack[sp++] = n.index + c;
+      }
+    }
+  }
+}
+
+} // namespace vtkrt::core
+
+#endif

@@ -1,0 +1,57 @@
+// vtkrt::core: the pure C++ (GLM + std, no VTK, no GL) geometry, kernel and
+// BVH library under both the locator (CPU, double) and the GLSL tracer (GPU,
+// float). Header-only; include this umbrella or the single headers.
+//
+// API overview
+//   Math.h       Vec3<T>, gammaBound<T>(n), roundDown/UpToFloat, kInvalidIndex
+//   AABB.h       AABB<T>: extend, halfArea, overlaps, distance2
+//   Ray.h        Ray<T>{org, dir, tmin, tmax} (dir any length: segment p1->p2
+//                is dir = p2 - p1, t in [0,1]); intersectRayAABB (Ize-robust)
+//   Triangle.h   intersectRayTriangle (watertight, Woop et al. 2013; u, v are
+//                the weights of v1, v2 like VTK pcoords), closestPointOnTriangle
+//   Sphere.h     raySphereRoots / intersectRaySphere (Ray Tracing Gems ch. 7)
+//   Plane.h      intersectRayPlane -> Hit / Miss / Parallel
+//   BVH.h        the flattened layout (read its header comment: the GPU walks
+//                it as is), BVHNode, BVH{nodes, primIndex, stats},
+//                BuildQuality/BuildOptions/BuildStats, kMaxDepth, kMaxStackSize,
+//                packNodesForGpu(bvh, origin) -> 8 floats per node
+//   BVHBuild.h   buildBVH(vector<AABB<double>>, options): generic builder
+//   BVHTraversal.h closestHit / anyHit / allHits (ray + intersector callable),
+//                closestPoint (point + callable, max distance), queryBox;
+//                also over the packed float copy (GpuNodeSource)
+//   Mesh.h       TriangleMesh<T>, SphereSet<T> views; buildTriangleBVH,
+//                buildSphereBVH; TriangleIntersector, SphereIntersector,
+//                TriangleClosestPoint, SphereClosestPoint callables;
+//                trianglesOverlappingBox; refit, refitTriangles
+//   LocalFrame.h localOrigin, relativeFloatVertices (GPU upload helpers)
+//   TwoLevel.h   Instance (bottom BVH + double 4x4), TwoLevelBVH: closest and
+//                any hit through both levels
+//
+// Typical use (locator):
+//   TriangleMesh<double> mesh(points, indices);
+//   BVH bvh = buildTriangleBVH(mesh);                 // binned SAH
+//   TriangleIntersector<double> isect(mesh);
+//   Hit<double> hit;
+//   if (closestHit(bvh, Ray<double>(p1, p2 - p1, 0.0, 1.0), isect, hit))
+//     -> hit.prim (triangle id), hit.t, hit.u, hit.v
+// Typical use (GPU upload):
+//   Vec3<double> o = localOrigin(mesh.vertices, mesh.vertexCount);
+//   std::vector<float> nodes = packNodesForGpu(bvh, o);      // RGBA32F, 2 texels/node
+//   std::vector<float> verts = relativeFloatVertices(mesh.vertices, n, o);
+//   primIndex: bvh.primIndex (uint32) -> R32UI texture buffer
+#ifndef vtkrt_core_Core_h
+#define vtkrt_core_Core_h
+
+#include "vtkrt/core/AABB.h"
+#include "vtkrt/core/BVH.h"
+#include "vtkrt/core/BVHBuild.h"
+#include "vtkrt/core/BVHTraversal.h"
+#include "vtkrt/core/LocalFrame.h"
+#include "vtkrt/core/Math.h"
+#include "vtkrt/core/Mesh.h"
+#include "vtkrt/core/Plane.h"
+#include "vtkrt/core/Ray.h"
+#include "vtkrt/core/Sphere.h"
+#include "vtkrt/core/Triangle.h"
+
+#endif

@@ -1,0 +1,101 @@
+// Rays (segments org + t*dir, t in [tmin, tmax]; dir need not be unit length,
+// so a segment p1->p2 is org = p1, dir = p2 - p1, t in [0, 1]) and the robust
+// ray/AABB slab test.
+#ifndef vtkrt_core_Ray_h
+#define vtkrt_core_Ray_h
+
+#include "vtkrt/core/AABB.h"
+
+#include <limits>
+
+namespace vtkrt::core
+{
+
+template <class T>
+struct Ray
+{
+  Vec3<T> org = Vec3<T>(T(0));
+  Vec3<T> dir = Vec3<T>(T(0), T(0), T(1));
+  T tmin = T(0);
+  T tmax = std::numeric_limits<T>::infinity();
+
+  Ray() = default;
+  Ray(const Vec3<T>& o, const Vec3<T>& d, T t0 = T(0), T t1 = std::numeric_limits<T>::infinity())
+    : org(o)
+    , dir(d)
+    , tmin(t0)
+    , tmax(t1)
+  {
+  }
+
+  Vec3<T> at(T t) const { return org + t * dir; }
+
+  /// A ray that can hit something: finite origin and direction, non-zero
+  /// direction, tmin <= tmax (tmax may be +inf), no NaN. Queries return "no
+  /// hit" for invalid rays instead of walking the whole tree.
+  bool isValid() const
+  {
+    return core::isFinite(org) && core::isFinite(dir) && (dir.x != T(0) || dir.y != T(0) || dir.z != T(0)) &&
+      !std::isnan(tmin) && !std::isnan(tmax) && tmin <= tmax;
+  }
+};
+
+/// Per-ray data reused by every box test: the inverse direction. A zero
+/// component (either sign) maps to +inf; intersectRayAABB explains why that
+/// is safe.
+template <class T>
+struct RayBoxPrecomputed
+{
+  Vec3<T> org;
+  Vec3<T> invDir;
+
+  static T safeInverse(T d) { return d == T(0) ? std::numeric_limits<T>::infinity() : T(1) / d; }
+
+  explicit RayBoxPrecomputed(const Ray<T>& ray)
+    : org(ray.org)
+    , invDir(safeInverse(ray.dir.x), safeInverse(ray.dir.y), safeInverse(ray.dir.z))
+  {
+  }
+};
+
+/// Slab test, conservative under rounding (Ize 2013, "Robust BVH Ray
+/// Traversal": the far distance is scaled by 1 + 2*gamma(3)).
+/// Zero direction component (invDir = +inf): origin strictly inside the slab
+/// gives [-inf, +inf] (no restriction); outside gives [+inf, +inf] or
+/// [-inf, -inf] (miss; tnear = +inf is rejected even when tmax = +inf); on a
+/// slab plane gives 0*inf = NaN, and the comparisons are written so NaN leaves
+/// the interval unchanged, i.e. the box counts as hit (conservative).
+/// On hit, tnear gets the entry distance (clamped to [tmin, tmax]).
+template <class T>
+inline bool intersectRayAABB(
+  const RayBoxPrecomputed<T>& r, const Vec3<T>& bmin, const Vec3<T>& bmax, T tmin, T tmax, T& tnear)
+{
+  constexpr T farScale = T(1) + T(2) * gammaBound<T>(3);
+  for (int i = 0; i < 3; ++i)
+  {
+    T t0 = (bmin[i] - r.org[i]) * r.invDir[i];
+    T t1 = (bmax[i] - r.org[i]) * r.invDir[i];
+    if (t1 < t0)
+    {
+      const T tmp = t0;
+      t0 = t1;
+      t1 = tmp;
+    }
+    t1 *= farScale;
+    // "x > tmin" / "x < tmax" are false for NaN: the slab is then ignored.
+    tmin = t0 > tmin ? t0 : tmin;
+    tmax = t1 < tmax ? t1 : tmax;
+  }
+  tnear = tmin;
+  return tmin <= tmax && tmin < std::numeric_limits<T>::infinity();
+}
+
+template <class T>
+inline bool intersectRayAABB(const Ray<T>& ray, const AABB<T>& box, T& tnear)
+{
+  return intersectRayAABB(RayBoxPrecomputed<T>(ray), box.min, box.max, ray.tmin, ray.tmax, tnear);
+}
+
+} // namespace vtkrt::core
+
+#endif
