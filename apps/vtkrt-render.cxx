@@ -1,0 +1,706 @@
+// vtkrt-render: renders a mesh file or the demo scene headless (EGL) to a PNG,
+// rasterized by VTK or ray traced by vtkRayTracePass, and reports timings.
+// Run with --help for the options.
+#include "vtkEGLHeadlessRenderWindow.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkCellPicker.h"
+#include "vtkDataSet.h"
+#include "vtkGenericDataObjectReader.h"
+#include "vtkGeometryFilter.h"
+#include "vtkGlyph3DMapper.h"
+#include "vtkLookupTable.h"
+#include "vtkNew.h"
+#include "vtkOBJReader.h"
+#include "vtkOutputWindow.h"
+#include "vtkPLYReader.h"
+#include "vtkPNGWriter.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkPolyDataNormals.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkSTLReader.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+#include "vtkWindowToImageFilter.h"
+#include "vtkXMLPolyDataReader.h"
+#include "vtksys/SystemTools.hxx"
+
+#ifdef VTKRT_HAVE_RAYTRACE_PASS
+#include "vtkRayTracePass.h"
+#endif
+#ifdef VTKRT_HAVE_BVH_LOCATOR
+#include "vtkBVHCellLocator.h"
+#endif
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+// Exit codes.
+constexpr int ExitOk = 0;
+constexpr int ExitRuntimeError = 1; // unreadable input, no GL context, cannot write
+constexpr int ExitUsage = 2;        // wrong arguments
+constexpr int ExitUnavailable = 3;  // a mode this build does not have
+
+const char* const Usage =
+  R"(usage: vtkrt-render [options] (--demo | MESH_FILE)
+
+Renders a mesh (.vtp .vtk .ply .obj .stl) or the built-in demo scene (a mesh
+plus sphere glyphs) headless through EGL and writes a PNG.
+
+  --demo               render the demo scene (bunny + sphere glyphs)
+  --size WxH           image size in pixels (default 800x600)
+  --azimuth DEG        orbit the camera about the view up (default 30)
+  --elevation DEG      orbit the camera up/down (default 20)
+  --output FILE        PNG to write (default vtkrt-render.png)
+  --mode raster|raytrace
+                       VTK's rasterizer (default) or the vtkrt ray tracer
+  --samples N          samples per pixel (raster: MSAA samples; default 0)
+  --frames N           orbit steps timed for the steady frame time (default 8;
+                       0 skips them)
+  --pick X Y           pick the pixel (X, Y) of the image (origin top left)
+                       with vtkCellPicker; prints the cell id and world point
+  --help               this text
+
+Exit status: 0 success, 1 runtime error (unreadable file, no EGL/GL context,
+cannot write the image), 2 wrong arguments, 3 mode not available in this build.
+)";
+
+struct Options
+{
+  bool Demo = false;
+  std::string MeshFile;
+  int Width = 800;
+  int Height = 600;
+  double Azimuth = 30.0;
+  double Elevation = 20.0;
+  std::string Output = "vtkrt-render.png";
+  std::string Mode = "raster";
+  int Samples = 0;
+  int Frames = 8;
+  bool Pick = false;
+  int PickX = 0;
+  int PickY = 0;
+};
+
+// Thrown for wrong arguments: one message, exit status 2.
+struct UsageError
+{
+  std::string Message;
+};
+
+bool ParseInt(const std::string& text, int& value)
+{
+  char* end = nullptr;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || v < -(1L << 30) || v > (1L << 30))
+  {
+    return false;
+  }
+  value = static_cast<int>(v);
+  return true;
+}
+
+bool ParseDouble(const std::string& text, double& value)
+{
+  char* end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  return !text.empty() && *end == '\0' && std::isfinite(value);
+}
+
+Options ParseArguments(int argc, char* argv[], bool& help)
+{
+  Options opt;
+  help = false;
+  auto next = [&](int& i, const std::string& name) -> std::string {
+    if (i + 1 >= argc)
+    {
+      throw UsageError{ name + " needs a value" };
+    }
+    return argv[++i];
+  };
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h")
+    {
+      help = true;
+      return opt;
+    }
+    else if (arg == "--demo")
+    {
+      opt.Demo = true;
+    }
+    else if (arg == "--size")
+    {
+      const std::string v = next(i, arg);
+      const size_t x = v.find_first_of("xX");
+      if (x == std::string::npos || !ParseInt(v.substr(0, x), opt.Width) ||
+        !ParseInt(v.substr(x + 1), opt.Height) || opt.Width < 1 || opt.Height < 1 ||
+        opt.Width > 16384 || opt.Height > 16384)
+      {
+        throw UsageError{ "--size expects WxH with 1 <= W, H <= 16384, e.g. 1024x768 (got '" + v +
+          "')" };
+      }
+    }
+    else if (arg == "--azimuth" || arg == "--elevation")
+    {
+      const std::string v = next(i, arg);
+      if (!ParseDouble(v, arg == "--azimuth" ? opt.Azimuth : opt.Elevation))
+      {
+        throw UsageError{ arg + " expects a number of degrees (got '" + v + "')" };
+      }
+    }
+    else if (arg == "--output" || arg == "-o")
+    {
+      opt.Output = next(i, arg);
+      if (opt.Output.empty())
+      {
+        throw UsageError{ "--output expects a file name" };
+      }
+    }
+    else if (arg == "--mode")
+    {
+      opt.Mode = next(i, arg);
+      if (opt.Mode != "raster" && opt.Mode != "raytrace")
+      {
+        throw UsageError{ "--mode expects raster or raytrace (got '" + opt.Mode + "')" };
+      }
+    }
+    else if (arg == "--samples")
+    {
+      const std::string v = next(i, arg);
+      if (!ParseInt(v, opt.Samples) || opt.Samples < 0 || opt.Samples > 64)
+      {
+        throw UsageError{ "--samples expects an integer in [0, 64] (got '" + v + "')" };
+      }
+    }
+    else if (arg == "--frames")
+    {
+      const std::string v = next(i, arg);
+      if (!ParseInt(v, opt.Frames) || opt.Frames < 0 || opt.Frames > 10000)
+      {
+        throw UsageError{ "--frames expects an integer in [0, 10000] (got '" + v + "')" };
+      }
+    }
+    else if (arg == "--pick")
+    {
+      const std::string x = next(i, arg);
+      const std::string y = next(i, arg);
+      if (!ParseInt(x, opt.PickX) || !ParseInt(y, opt.PickY))
+      {
+        throw UsageError{ "--pick expects two integer pixel coordinates X Y (got '" + x + "' '" +
+          y + "')" };
+      }
+      opt.Pick = true;
+    }
+    else if (!arg.empty() && arg[0] == '-')
+    {
+      throw UsageError{ "unknown option '" + arg + "'" };
+    }
+    else if (opt.MeshFile.empty())
+    {
+      opt.MeshFile = arg;
+    }
+    else
+    {
+      throw UsageError{ "only one mesh file can be given ('" + opt.MeshFile + "', then '" + arg +
+        "')" };
+    }
+  }
+  if (opt.Demo == !opt.MeshFile.empty())
+  {
+    throw UsageError{ opt.Demo ? "give either --demo or a mesh file, not both"
+                               : "nothing to render: give a mesh file or --demo" };
+  }
+  if (opt.Pick &&
+    (opt.PickX < 0 || opt.PickY < 0 || opt.PickX >= opt.Width || opt.PickY >= opt.Height))
+  {
+    throw UsageError{ "--pick " + std::to_string(opt.PickX) + " " + std::to_string(opt.PickY) +
+      " is outside the " + std::to_string(opt.Width) + "x" + std::to_string(opt.Height) +
+      " image" };
+  }
+  return opt;
+}
+
+// Records VTK's error/warning text while a file is read, so that a bad file
+// gives one message of ours instead of a reader's stack of errors.
+class CapturingOutputWindow : public vtkOutputWindow
+{
+public:
+  static CapturingOutputWindow* New();
+  vtkTypeMacro(CapturingOutputWindow, vtkOutputWindow);
+  bool Capturing = false;
+  std::vector<std::string> Captured;
+  void DisplayErrorText(const char* text) override { this->Handle(text); }
+  void DisplayWarningText(const char* text) override { this->Handle(text); }
+  void DisplayGenericWarningText(const char* text) override { this->Handle(text); }
+
+private:
+  void Handle(const char* text)
+  {
+    if (this->Capturing)
+    {
+      this->Captured.emplace_back(text ? text : "");
+    }
+    else
+    {
+      this->Superclass::DisplayErrorText(text);
+    }
+  }
+};
+vtkStandardNewMacro(CapturingOutputWindow);
+
+// The last line of VTK's "ERROR: In file, line N\nclass (ptr): message" text.
+std::string MessageOf(const std::string& vtkText)
+{
+  std::string text = vtkText;
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
+  {
+    text.pop_back();
+  }
+  const size_t nl = text.rfind('\n');
+  std::string line = nl == std::string::npos ? text : text.substr(nl + 1);
+  const size_t paren = line.find("): ");
+  return paren == std::string::npos ? line : line.substr(paren + 3);
+}
+
+struct Failure
+{
+  std::string Message;
+  int Code;
+};
+
+vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, CapturingOutputWindow* output)
+{
+  if (!vtksys::SystemTools::FileExists(path, true))
+  {
+    throw Failure{ "cannot read mesh '" + path + "': no such file", ExitRuntimeError };
+  }
+  if (!std::ifstream(path).good())
+  {
+    throw Failure{ "cannot read mesh '" + path + "': cannot open it", ExitRuntimeError };
+  }
+  const std::string ext =
+    vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path));
+  output->Captured.clear();
+  output->Capturing = true;
+  vtkSmartPointer<vtkDataObject> data;
+  if (ext == ".vtp")
+  {
+    vtkNew<vtkXMLPolyDataReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    data = reader->GetOutputDataObject(0);
+  }
+  else if (ext == ".vtk")
+  {
+    vtkNew<vtkGenericDataObjectReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    data = reader->GetOutputDataObject(0);
+  }
+  else if (ext == ".ply")
+  {
+    vtkNew<vtkPLYReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    data = reader->GetOutputDataObject(0);
+  }
+  else if (ext == ".obj")
+  {
+    vtkNew<vtkOBJReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    data = reader->GetOutputDataObject(0);
+  }
+  else if (ext == ".stl")
+  {
+    vtkNew<vtkSTLReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    data = reader->GetOutputDataObject(0);
+  }
+  else
+  {
+    output->Capturing = false;
+    throw Failure{ "cannot read mesh '" + path + "': unknown extension '" + ext +
+        "' (expected .vtp .vtk .ply .obj .stl)",
+      ExitRuntimeError };
+  }
+
+  vtkSmartPointer<vtkPolyData> mesh = vtkPolyData::SafeDownCast(data);
+  if (!mesh && vtkDataSet::SafeDownCast(data))
+  {
+    // A legacy .vtk grid: render its outer surface.
+    vtkNew<vtkGeometryFilter> surface;
+    surface->SetInputData(data);
+    surface->Update();
+    mesh = surface->GetOutput();
+  }
+  output->Capturing = false;
+  if (!output->Captured.empty())
+  {
+    throw Failure{ "cannot read mesh '" + path + "': " + MessageOf(output->Captured.front()),
+      ExitRuntimeError };
+  }
+  if (!mesh || mesh->GetNumberOfPolys() + mesh->GetNumberOfStrips() == 0)
+  {
+    throw Failure{ "cannot read mesh '" + path + "': it has no polygons to render",
+      ExitRuntimeError };
+  }
+  return mesh;
+}
+
+vtkIdType CountTriangles(vtkPolyData* mesh)
+{
+  // A polygon or strip of n points is n - 2 triangles.
+  vtkIdType triangles = 0;
+  for (vtkCellArray* cells : { mesh->GetPolys(), mesh->GetStrips() })
+  {
+    for (vtkIdType i = 0; i < cells->GetNumberOfCells(); ++i)
+    {
+      const vtkIdType n = cells->GetCellSize(i);
+      triangles += n >= 3 ? n - 2 : 0;
+    }
+  }
+  return triangles;
+}
+
+std::string DemoDataDirectory()
+{
+  // An explicit override, the source tree this was built from, then an
+  // installed layout next to the executable.
+  std::vector<std::string> candidates;
+  if (const char* env = std::getenv("VTKRT_DATA_DIR"))
+  {
+    candidates.emplace_back(env);
+  }
+#ifdef VTKRT_SOURCE_DATA_DIR
+  candidates.emplace_back(VTKRT_SOURCE_DATA_DIR);
+#endif
+  const std::string exeDir =
+    vtksys::SystemTools::GetFilenamePath(vtksys::SystemTools::GetRealPath("/proc/self/exe"));
+  candidates.emplace_back(exeDir + "/../share/vtkrt");
+  for (const std::string& dir : candidates)
+  {
+    if (vtksys::SystemTools::FileExists(dir + "/bunny.vtp", true) &&
+      vtksys::SystemTools::FileExists(dir + "/demo-spheres.vtp", true))
+    {
+      return dir;
+    }
+  }
+  throw Failure{ "the demo scene's data (bunny.vtp, demo-spheres.vtp) was not found; set "
+                 "VTKRT_DATA_DIR to the folder holding them",
+    ExitRuntimeError };
+}
+
+struct Scene
+{
+  vtkNew<vtkRenderer> Renderer;
+  vtkSmartPointer<vtkPolyData> Mesh;       // the triangle mesh (picking locator input)
+  vtkSmartPointer<vtkActor> MeshActor;
+  vtkIdType Triangles = 0;
+  vtkIdType Spheres = 0;
+  std::string Description;
+};
+
+void AddMesh(Scene& scene, vtkPolyData* mesh, const double color[3])
+{
+  vtkSmartPointer<vtkPolyData> shaded = mesh;
+  if (!mesh->GetPointData()->GetNormals())
+  {
+    // Smooth shading for files without normals; keeps cell ids (no splitting).
+    vtkNew<vtkPolyDataNormals> normals;
+    normals->SetInputData(mesh);
+    normals->SplittingOff();
+    normals->ComputeCellNormalsOff();
+    normals->Update();
+    shaded = normals->GetOutput();
+  }
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(shaded);
+  mapper->ScalarVisibilityOff();
+  scene.MeshActor = vtkSmartPointer<vtkActor>::New();
+  scene.MeshActor->SetMapper(mapper);
+  scene.MeshActor->GetProperty()->SetColor(color[0], color[1], color[2]);
+  scene.MeshActor->GetProperty()->SetSpecular(0.3);
+  scene.MeshActor->GetProperty()->SetSpecularPower(30);
+  scene.Renderer->AddActor(scene.MeshActor);
+  scene.Mesh = shaded;
+  scene.Triangles += CountTriangles(mesh);
+}
+
+void BuildDemo(Scene& scene, CapturingOutputWindow* output)
+{
+  const std::string dir = DemoDataDirectory();
+  vtkSmartPointer<vtkPolyData> bunny = ReadMesh(dir + "/bunny.vtp", output);
+  const double bunnyColor[3] = { 0.86, 0.82, 0.74 };
+  AddMesh(scene, bunny, bunnyColor);
+
+  // Sphere glyphs: a vtkSphereSource of radius 1 scaled by the "radius"
+  // array, so each glyph is a sphere of that radius (vtkRayTracePass traces
+  // such glyphs as analytic spheres), coloured by "scalar" through a LUT.
+  vtkNew<vtkXMLPolyDataReader> centresReader;
+  centresReader->SetFileName((dir + "/demo-spheres.vtp").c_str());
+  centresReader->Update();
+  vtkPolyData* centres = centresReader->GetOutput();
+  if (!centres || centres->GetNumberOfPoints() == 0 ||
+    !centres->GetPointData()->GetArray("radius") || !centres->GetPointData()->GetArray("scalar"))
+  {
+    throw Failure{ "demo-spheres.vtp in '" + dir + "' lacks points or its radius/scalar arrays",
+      ExitRuntimeError };
+  }
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(1.0);
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(24);
+  vtkNew<vtkLookupTable> lut;
+  lut->SetHueRange(0.66, 0.0); // blue to red
+  lut->SetSaturationRange(0.8, 0.8);
+  lut->SetValueRange(0.95, 0.95);
+  lut->SetTableRange(0.0, 1.0);
+  lut->Build();
+  vtkNew<vtkGlyph3DMapper> glyphs;
+  glyphs->SetInputData(centres);
+  glyphs->SetSourceConnection(sphere->GetOutputPort());
+  glyphs->SetScaleArray("radius");
+  glyphs->SetScaleModeToScaleByMagnitude();
+  glyphs->SetScaleFactor(1.0);
+  glyphs->OrientOff();
+  glyphs->SetLookupTable(lut);
+  glyphs->SetScalarModeToUsePointFieldData();
+  glyphs->SelectColorArray("scalar");
+  glyphs->SetScalarRange(0.0, 1.0);
+  glyphs->ScalarVisibilityOn();
+  vtkNew<vtkActor> glyphActor;
+  glyphActor->SetMapper(glyphs);
+  glyphActor->GetProperty()->SetSpecular(0.5);
+  glyphActor->GetProperty()->SetSpecularPower(40);
+  scene.Renderer->AddActor(glyphActor);
+  scene.Spheres = centres->GetNumberOfPoints();
+  scene.Description = "demo (" + dir + "/bunny.vtp + demo-spheres.vtp)";
+}
+
+// Puts the vtkrt ray tracer in charge of the renderer. Returns false when
+// this build has no vtkRayTracePass.
+bool UseRayTracing(vtkRenderer* renderer, const Options& opt)
+{
+#ifdef VTKRT_HAVE_RAYTRACE_PASS
+  vtkNew<vtkRayTracePass> pass;
+  renderer->SetPass(pass);
+  (void)opt;
+  return true;
+#else
+  (void)renderer;
+  (void)opt;
+  return false;
+#endif
+}
+
+// Adds a BVH locator over the mesh to the picker when the build has one.
+// Returns a description of what picks.
+std::string PrepareLocator(vtkCellPicker* picker, vtkPolyData* mesh)
+{
+#ifdef VTKRT_HAVE_BVH_LOCATOR
+  if (mesh)
+  {
+    vtkNew<vtkBVHCellLocator> locator;
+    locator->SetDataSet(mesh);
+    locator->BuildLocator();
+    picker->AddLocator(locator);
+    return "vtkCellPicker + vtkBVHCellLocator";
+  }
+#else
+  (void)picker;
+  (void)mesh;
+#endif
+  return "vtkCellPicker";
+}
+
+double Milliseconds(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b)
+{
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+int Run(const Options& opt)
+{
+  using Clock = std::chrono::steady_clock;
+  vtkEGLHeadlessRenderWindow::TuneMallocForLargeBuffers();
+  vtkNew<CapturingOutputWindow> output;
+  vtkOutputWindow::SetInstance(output);
+
+  if (opt.Mode == "raytrace")
+  {
+    vtkNew<vtkRenderer> probe;
+    if (!UseRayTracing(probe, opt))
+    {
+      throw Failure{ "raytrace mode is not available in this build (vtkRayTracePass was not "
+                     "built); use --mode raster",
+        ExitUnavailable };
+    }
+  }
+
+  const auto t0 = Clock::now();
+  Scene scene;
+  if (opt.Demo)
+  {
+    BuildDemo(scene, output);
+  }
+  else
+  {
+    const double color[3] = { 0.80, 0.82, 0.88 };
+    AddMesh(scene, ReadMesh(opt.MeshFile, output), color);
+    scene.Description = opt.MeshFile;
+  }
+  scene.Renderer->SetBackground(0.32, 0.34, 0.43);
+  if (opt.Mode == "raytrace")
+  {
+    UseRayTracing(scene.Renderer, opt);
+  }
+
+  vtkNew<vtkEGLHeadlessRenderWindow> window;
+  window->SetSize(opt.Width, opt.Height);
+  // Explicit: VTK's default is 8 (llvmpipe clamps to 4) and MSAA costs a lot.
+  window->SetMultiSamples(opt.Mode == "raster" ? opt.Samples : 0);
+  window->AddRenderer(scene.Renderer);
+
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  scene.Renderer->ResetCamera();
+  camera->Dolly(1.4); // ResetCamera frames the bounding sphere loosely
+  camera->Azimuth(opt.Azimuth);
+  camera->Elevation(opt.Elevation);
+  camera->OrthogonalizeViewUp();
+  scene.Renderer->ResetCameraClippingRange();
+  const auto t1 = Clock::now();
+
+  window->Render();
+  if (!window->IsContextReady())
+  {
+    throw Failure{ "no usable EGL/OpenGL context (see the error above)", ExitRuntimeError };
+  }
+  const auto t2 = Clock::now();
+
+  // Steady frames: orbit one full turn in opt.Frames steps, then return to
+  // the requested view exactly.
+  double steady = 0.0;
+  if (opt.Frames > 0)
+  {
+    vtkNew<vtkCamera> saved;
+    saved->DeepCopy(camera);
+    const auto s0 = Clock::now();
+    for (int i = 0; i < opt.Frames; ++i)
+    {
+      camera->Azimuth(360.0 / opt.Frames);
+      scene.Renderer->ResetCameraClippingRange();
+      window->Render();
+    }
+    steady = Milliseconds(s0, Clock::now()) / opt.Frames;
+    camera->DeepCopy(saved);
+    window->Render();
+  }
+
+  std::ostringstream pickReport;
+  if (opt.Pick)
+  {
+    vtkNew<vtkCellPicker> picker;
+    picker->SetTolerance(0.0);
+    const std::string how = PrepareLocator(picker, scene.Mesh);
+    // Image rows run top down; VTK's display coordinates bottom up.
+    const double x = opt.PickX, y = opt.Height - 1 - opt.PickY;
+    if (picker->Pick(x, y, 0.0, scene.Renderer) && picker->GetCellId() >= 0)
+    {
+      const double* p = picker->GetPickPosition();
+      pickReport << std::setprecision(9) << "pick (" << opt.PickX << ", " << opt.PickY
+                 << "): cell " << picker->GetCellId() << " at world (" << p[0] << ", " << p[1]
+                 << ", " << p[2] << ")"
+                 << (picker->GetActor() == scene.MeshActor ? " on the mesh" : "") << " [" << how
+                 << "]";
+    }
+    else
+    {
+      pickReport << "pick (" << opt.PickX << ", " << opt.PickY << "): nothing [" << how << "]";
+    }
+  }
+
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOn();
+  grab->ShouldRerenderOff();
+  grab->Update();
+  output->Captured.clear();
+  output->Capturing = true;
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputConnection(grab->GetOutputPort());
+  writer->SetFileName(opt.Output.c_str());
+  writer->Write();
+  output->Capturing = false;
+  if (!output->Captured.empty() || !vtksys::SystemTools::FileExists(opt.Output, true))
+  {
+    throw Failure{ "cannot write '" + opt.Output + "'" +
+        (output->Captured.empty() ? std::string() : ": " + MessageOf(output->Captured.front())),
+      ExitRuntimeError };
+  }
+
+  std::cout << std::fixed << std::setprecision(1);
+  std::cout << "vtkrt-render: " << opt.Mode << " " << opt.Width << "x" << opt.Height
+            << ", MultiSamples " << window->GetMultiSamples() << "\n"
+            << "  scene:        " << scene.Description << "\n"
+            << "  triangles:    " << scene.Triangles << "\n"
+            << "  spheres:      " << scene.Spheres << "\n"
+            << "  device:       " << window->GetGLRenderer() << " (" << window->GetGLVersion()
+            << "; " << window->GetDeviceDescription() << ")\n"
+            << "  scene build:  " << Milliseconds(t0, t1) << " ms (read + set up)\n"
+            << "  first frame:  " << Milliseconds(t1, t2) << " ms (context, upload, build)\n";
+  if (opt.Frames > 0)
+  {
+    std::cout << "  steady frame: " << steady << " ms (mean of " << opt.Frames << " orbit steps)\n";
+  }
+  if (opt.Pick)
+  {
+    std::cout << "  " << pickReport.str() << "\n";
+  }
+  std::cout << "  wrote " << opt.Output << "\n";
+  return ExitOk;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  try
+  {
+    bool help = false;
+    const Options opt = ParseArguments(argc, argv, help);
+    if (help)
+    {
+      std::cout << Usage;
+      return ExitOk;
+    }
+    return Run(opt);
+  }
+  catch (const UsageError& e)
+  {
+    std::cerr << "vtkrt-render: " << e.Message << "\n(run vtkrt-render --help for the options)\n";
+    return ExitUsage;
+  }
+  catch (const Failure& e)
+  {
+    std::cerr << "vtkrt-render: " << e.Message << "\n";
+    return e.Code;
+  }
+}

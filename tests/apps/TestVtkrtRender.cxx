@@ -1,0 +1,416 @@
+// End-to-end tests of vtkrt-render: runs the program, checks its exit
+// status, its report and the PNG it writes.
+//   TestVtkrtRender <path to vtkrt-render> <case>
+#include "vtkrtImageRegression.h"
+#include "vtkrtTestOutputWindow.h"
+
+#include "vtkCellArray.h"
+#include "vtkHexahedron.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPNGReader.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSTLWriter.h"
+#include "vtkSphereSource.h"
+#include "vtkTriangle.h"
+#include "vtkTriangleFilter.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtkUnstructuredGridWriter.h"
+#include "vtkXMLPolyDataReader.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <regex>
+#include <string>
+
+namespace
+{
+int Failures = 0;
+std::string App;
+const std::string Tmp = std::string(VTKRT_TEMP_DIR) + "/TestVtkrtRender";
+
+void Check(bool ok, const std::string& what)
+{
+  std::cout << (ok ? "ok   " : "FAIL ") << what << "\n";
+  if (!ok)
+  {
+    ++Failures;
+  }
+}
+
+struct Result
+{
+  int Code = -1;
+  std::string Output; // stdout and stderr together
+};
+
+Result RunApp(const std::string& args)
+{
+  const std::string command = "'" + App + "' " + args + " 2>&1";
+  std::cout << "$ vtkrt-render " << args << "\n";
+  Result r;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe)
+  {
+    return r;
+  }
+  char buffer[4096];
+  size_t n;
+  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0)
+  {
+    r.Output.append(buffer, n);
+  }
+  const int status = pclose(pipe);
+  r.Code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::cout << r.Output << "[exit " << r.Code << "]\n";
+  return r;
+}
+
+bool Contains(const std::string& text, const std::string& pattern)
+{
+  return std::regex_search(text, std::regex(pattern));
+}
+
+// Reads `key: <integer>` from the report.
+long long ReportNumber(const std::string& text, const std::string& key)
+{
+  std::smatch m;
+  if (std::regex_search(text, m, std::regex(key + ":\\s+([0-9]+)")))
+  {
+    return std::stoll(m[1]);
+  }
+  return -1;
+}
+
+vtkSmartPointer<vtkImageData> ReadPNG(const std::string& path)
+{
+  if (!vtksys::SystemTools::FileExists(path, true))
+  {
+    return nullptr;
+  }
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  return reader->GetOutput();
+}
+
+// The image exists, has the requested size and a share of pixels that are
+// not the app's background colour.
+void CheckImage(const std::string& path, int w, int h, double minCoverage)
+{
+  vtkSmartPointer<vtkImageData> image = ReadPNG(path);
+  int dims[3] = { 0, 0, 0 };
+  if (image)
+  {
+    image->GetDimensions(dims);
+  }
+  Check(image && dims[0] == w && dims[1] == h,
+    path + " exists and is " + std::to_string(w) + "x" + std::to_string(h) + " (got " +
+      std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + ")");
+  if (!image || dims[0] != w || dims[1] != h)
+  {
+    return;
+  }
+  const int nc = image->GetNumberOfScalarComponents();
+  const auto* p = static_cast<const unsigned char*>(image->GetScalarPointer());
+  const int bg[3] = { 82, 87, 110 }; // 255 * (0.32, 0.34, 0.43)
+  long covered = 0;
+  for (long i = 0; i < static_cast<long>(w) * h; ++i)
+  {
+    const unsigned char* c = p + nc * i;
+    covered += std::abs(c[0] - bg[0]) + std::abs(c[1] - bg[1]) + std::abs(c[2] - bg[2]) > 12;
+  }
+  const double coverage = static_cast<double>(covered) / (static_cast<double>(w) * h);
+  Check(coverage >= minCoverage && coverage < 0.98,
+    "non-background pixels: " + std::to_string(coverage * 100) + "% (>= " +
+      std::to_string(minCoverage * 100) + "%)");
+}
+
+std::string WriteSphereSTL(double radius, vtkIdType& triangles)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(radius);
+  sphere->SetThetaResolution(32);
+  sphere->SetPhiResolution(32);
+  sphere->Update();
+  triangles = sphere->GetOutput()->GetNumberOfPolys();
+  const std::string path = Tmp + "/sphere.stl";
+  vtkNew<vtkSTLWriter> writer;
+  writer->SetInputConnection(sphere->GetOutputPort());
+  writer->SetFileTypeToBinary();
+  writer->SetFileName(path.c_str());
+  writer->Write();
+  return path;
+}
+
+// Distance from p to triangle `cell` of `mesh`.
+double DistanceToCell(vtkPolyData* mesh, vtkIdType cell, const double p[3])
+{
+  if (cell < 0 || cell >= mesh->GetNumberOfCells())
+  {
+    return 1e300;
+  }
+  vtkIdType n;
+  const vtkIdType* ids;
+  mesh->GetCellPoints(cell, n, ids);
+  if (n != 3)
+  {
+    return 1e300;
+  }
+  double a[3], b[3], c[3], closest[3], d2;
+  mesh->GetPoint(ids[0], a);
+  mesh->GetPoint(ids[1], b);
+  mesh->GetPoint(ids[2], c);
+  double pcoords[3], weights[3];
+  int subId;
+  vtkNew<vtkTriangle> tri;
+  tri->GetPoints()->SetPoint(0, a);
+  tri->GetPoints()->SetPoint(1, b);
+  tri->GetPoints()->SetPoint(2, c);
+  tri->GetPointIds()->SetId(0, 0);
+  tri->GetPointIds()->SetId(1, 1);
+  tri->GetPointIds()->SetId(2, 2);
+  tri->EvaluatePosition(p, closest, subId, pcoords, d2, weights);
+  return std::sqrt(d2);
+}
+
+// Parses "pick (X, Y): cell N at world (x, y, z)".
+bool ParsePick(const std::string& text, long long& cell, double p[3])
+{
+  std::smatch m;
+  const std::string num = "([-+0-9.eE]+)";
+  if (!std::regex_search(text, m,
+        std::regex("pick \\([0-9]+, [0-9]+\\): cell ([0-9]+) at world \\(" + num + ", " + num +
+          ", " + num + "\\)")))
+  {
+    return false;
+  }
+  cell = std::stoll(m[1]);
+  p[0] = std::stod(m[2]);
+  p[1] = std::stod(m[3]);
+  p[2] = std::stod(m[4]);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void TestDemo()
+{
+  const std::string out = Tmp + "/demo.png";
+  vtksys::SystemTools::RemoveFile(out);
+  const Result r = RunApp("--demo --size 320x240 --frames 2 --output '" + out + "'");
+  Check(r.Code == 0, "exit status 0");
+  vtkNew<vtkXMLPolyDataReader> bunny;
+  bunny->SetFileName(VTKRT_DATA_DIR "/bunny.vtp");
+  bunny->Update();
+  vtkNew<vtkXMLPolyDataReader> spheres;
+  spheres->SetFileName(VTKRT_DATA_DIR "/demo-spheres.vtp");
+  spheres->Update();
+  Check(ReportNumber(r.Output, "triangles") == bunny->GetOutput()->GetNumberOfPolys(),
+    "report: triangles = the bunny's triangle count");
+  Check(ReportNumber(r.Output, "spheres") == spheres->GetOutput()->GetNumberOfPoints(),
+    "report: spheres = the number of glyph centres");
+  Check(Contains(r.Output, "first frame: +[0-9.]+ ms") &&
+      Contains(r.Output, "steady frame: +[0-9.]+ ms \\(mean of 2 orbit steps\\)") &&
+      Contains(r.Output, "scene build: +[0-9.]+ ms"),
+    "report: build, first and steady frame times");
+  CheckImage(out, 320, 240, 0.08);
+  vtkSmartPointer<vtkImageData> image = ReadPNG(out);
+  Check(image && vtkrtCompareWithBaseline(image, "apps_demo_raster") == 1,
+    "demo image matches its baseline");
+}
+
+void TestFiles()
+{
+  // Binary STL.
+  vtkIdType sphereTriangles = 0;
+  const std::string stl = WriteSphereSTL(1.0, sphereTriangles);
+  const std::string out1 = Tmp + "/sphere.png";
+  vtksys::SystemTools::RemoveFile(out1);
+  Result r = RunApp("'" + stl + "' --size 200x160 --frames 0 --output '" + out1 + "'");
+  Check(r.Code == 0, ".stl: exit status 0");
+  Check(ReportNumber(r.Output, "triangles") == sphereTriangles, ".stl: triangle count reported");
+  Check(ReportNumber(r.Output, "spheres") == 0, ".stl: no spheres");
+  CheckImage(out1, 200, 160, 0.10);
+
+  // OBJ with quads: a unit cube is 6 quads = 12 triangles.
+  const std::string obj = Tmp + "/cube.obj";
+  {
+    std::ofstream f(obj);
+    f << "# unit cube\n"
+         "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+         "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+  }
+  const std::string out2 = Tmp + "/cube.png";
+  vtksys::SystemTools::RemoveFile(out2);
+  r = RunApp("'" + obj + "' --size 150x150 --azimuth 40 --elevation 30 --frames 1 --output '" +
+    out2 + "'");
+  Check(r.Code == 0, ".obj: exit status 0");
+  Check(ReportNumber(r.Output, "triangles") == 12, ".obj: 6 quads reported as 12 triangles");
+  CheckImage(out2, 150, 150, 0.10);
+
+  // Legacy .vtk unstructured grid: one hexahedron, rendered as its surface.
+  const std::string vtk = Tmp + "/hex.vtk";
+  {
+    vtkNew<vtkPoints> points;
+    const double c[8][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 }, { 0, 0, 1 },
+      { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } };
+    vtkNew<vtkHexahedron> hex;
+    for (int i = 0; i < 8; ++i)
+    {
+      points->InsertNextPoint(c[i]);
+      hex->GetPointIds()->SetId(i, i);
+    }
+    vtkNew<vtkUnstructuredGrid> grid;
+    grid->SetPoints(points);
+    grid->InsertNextCell(hex->GetCellType(), hex->GetPointIds());
+    vtkNew<vtkUnstructuredGridWriter> writer;
+    writer->SetInputData(grid);
+    writer->SetFileName(vtk.c_str());
+    writer->Write();
+  }
+  const std::string out3 = Tmp + "/hex.png";
+  vtksys::SystemTools::RemoveFile(out3);
+  r = RunApp("'" + vtk + "' --size 120x100 --frames 0 --output '" + out3 + "'");
+  Check(r.Code == 0, ".vtk grid: exit status 0");
+  Check(ReportNumber(r.Output, "triangles") == 12, ".vtk grid: surface of 6 quads = 12 triangles");
+  CheckImage(out3, 120, 100, 0.10);
+}
+
+void TestPick()
+{
+  // The centre pixel of a sphere at the origin: a cell of the sphere, and a
+  // world point on that cell, at the sphere's radius.
+  vtkIdType triangles = 0;
+  const std::string stl = WriteSphereSTL(2.0, triangles);
+  Result r = RunApp("'" + stl + "' --size 200x200 --frames 0 --pick 100 100 --output '" + Tmp +
+    "/pick-sphere.png'");
+  long long cell = -1;
+  double p[3] = { 0, 0, 0 };
+  Check(r.Code == 0 && ParsePick(r.Output, cell, p), "sphere: pick reports a cell and a point");
+  Check(Contains(r.Output, "on the mesh"), "sphere: the pick is on the mesh");
+  const double radius = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+  Check(cell >= 0 && cell < triangles && std::abs(radius - 2.0) < 0.02,
+    "sphere: picked cell " + std::to_string(cell) + " at distance " + std::to_string(radius) +
+      " from the centre (radius 2)");
+  // A corner pixel is background.
+  r = RunApp("'" + stl + "' --size 200x200 --frames 0 --pick 2 2 --output '" + Tmp +
+    "/pick-sphere.png'");
+  Check(r.Code == 0 && Contains(r.Output, "pick \\(2, 2\\): nothing"), "sphere: corner picks nothing");
+
+  // Demo scene: the centre pixel lies on the bunny; the point lies on the
+  // reported cell of bunny.vtp.
+  r = RunApp("--demo --size 300x200 --frames 0 --pick 150 100 --output '" + Tmp + "/pick-demo.png'");
+  Check(r.Code == 0 && ParsePick(r.Output, cell, p) && Contains(r.Output, "on the mesh"),
+    "demo: the centre pixel picks a cell on the mesh");
+  vtkNew<vtkXMLPolyDataReader> bunny;
+  bunny->SetFileName(VTKRT_DATA_DIR "/bunny.vtp");
+  bunny->Update();
+  const double d = DistanceToCell(bunny->GetOutput(), cell, p);
+  Check(d < 1e-6, "demo: the picked point lies on cell " + std::to_string(cell) +
+      " (distance " + std::to_string(d) + ")");
+}
+
+void TestBadArguments()
+{
+  struct Case
+  {
+    std::string Args;
+    int Code;
+    std::string Message;
+  };
+  const std::string garbage = Tmp + "/garbage.ply";
+  {
+    std::ofstream f(garbage);
+    f << "this is not a PLY file\n";
+  }
+  const std::string noExt = Tmp + "/mesh.xyz";
+  {
+    std::ofstream f(noExt);
+    f << "1 2 3\n";
+  }
+  const Case cases[] = {
+    { "", 2, "nothing to render" },
+    { "--demo --size 0x100", 2, "--size expects WxH" },
+    { "--demo --size big", 2, "--size expects WxH" },
+    { "--demo --size", 2, "--size needs a value" },
+    { "--demo --mode fancy", 2, "--mode expects raster or raytrace" },
+    { "--demo --azimuth north", 2, "--azimuth expects a number" },
+    { "--demo --samples -1", 2, "--samples expects an integer" },
+    { "--demo --pick 5", 2, "--pick needs a value" },
+    { "--demo --size 100x100 --pick 100 5", 2, "--pick 100 5 is outside the 100x100 image" },
+    { "--demo --frobnicate", 2, "unknown option '--frobnicate'" },
+    { "--demo '" + noExt + "'", 2, "either --demo or a mesh file, not both" },
+    { "'" + Tmp + "/does-not-exist.stl'", 1, "cannot read mesh .*does-not-exist.stl.*no such file" },
+    { "'" + garbage + "'", 1, "cannot read mesh .*garbage.ply" },
+    { "'" + noExt + "'", 1, "unknown extension '.xyz'" },
+    { "--demo --frames 0 --size 64x64 --output /nonexistent-dir/x.png", 1,
+      "cannot write '/nonexistent-dir/x.png'" },
+  };
+  for (const Case& c : cases)
+  {
+    const Result r = RunApp(c.Args);
+    Check(r.Code == c.Code && Contains(r.Output, "vtkrt-render: .*" + c.Message),
+      "'" + c.Args + "': exit " + std::to_string(c.Code) + " and says '" + c.Message + "'");
+    // One clear message of ours, not VTK's error dump.
+    Check(!Contains(r.Output, "ERROR: In ") && !Contains(r.Output, "Warning: In "),
+      "'" + c.Args + "': no raw VTK error text");
+  }
+  const Result help = RunApp("--help");
+  Check(help.Code == 0 && Contains(help.Output, "usage: vtkrt-render") &&
+      Contains(help.Output, "--pick X Y"),
+    "--help prints the usage and exits 0");
+}
+
+void TestRaytraceMode()
+{
+  const std::string out = Tmp + "/raytrace.png";
+  vtksys::SystemTools::RemoveFile(out);
+  const Result r = RunApp("--demo --mode raytrace --size 160x120 --frames 1 --output '" + out + "'");
+#ifdef VTKRT_HAVE_RAYTRACE_PASS
+  Check(r.Code == 0, "raytrace: exit status 0");
+  CheckImage(out, 160, 120, 0.05);
+#else
+  Check(r.Code == 3 && Contains(r.Output, "raytrace mode is not available in this build"),
+    "raytrace: this build says it is not available and exits 3");
+  Check(!vtksys::SystemTools::FileExists(out, true), "raytrace: no image written");
+#endif
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  vtkrtTestOutputWindow* output = vtkrtTestOutputWindow::Install();
+  const std::map<std::string, std::function<void()>> cases = {
+    { "Demo", TestDemo },
+    { "Files", TestFiles },
+    { "Pick", TestPick },
+    { "BadArguments", TestBadArguments },
+    { "RaytraceMode", TestRaytraceMode },
+  };
+  if (argc != 3 || cases.find(argv[2]) == cases.end())
+  {
+    std::cerr << "usage: " << argv[0] << " <vtkrt-render> <case>; cases:";
+    for (const auto& c : cases)
+    {
+      std::cerr << " " << c.first;
+    }
+    std::cerr << "\n";
+    return EXIT_FAILURE;
+  }
+  App = argv[1];
+  vtksys::SystemTools::MakeDirectory(Tmp);
+  cases.at(argv[2])();
+  Check(output->GetNumberOfErrors() == 0 && output->GetNumberOfWarnings() == 0,
+    "no VTK error or warning in the driver");
+  std::cout << (Failures ? "FAILED: " : "passed: ") << Failures << " failure(s)\n";
+  return Failures ? EXIT_FAILURE : EXIT_SUCCESS;
+}
