@@ -4,7 +4,7 @@
 set -euo pipefail
 PKGS=(
   build-essential cmake ninja-build pkg-config
-  libvtk9-dev python3-vtk9 python3
+  libvtk9-dev python3-vtk9 python3 python3-dev
   libglm-dev libopenmesh-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev
   libembree-dev
