@@ -53,5 +53,6 @@
 #include "vtkrt/core/Ray.h"
 #include "vtkrt/core/Sphere.h"
 #include "vtkrt/core/Triangle.h"
+#include "vtkrt/core/TwoLevel.h"
 
 #endif

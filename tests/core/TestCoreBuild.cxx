@@ -1,0 +1,260 @@
+// Builders: structure invariants for each quality and leaf size; identical
+// node arrays for identical input whatever the thread count; SAH quality
+// order (sweep <= binned <= median, within 5 %); the depth cap on
+// adversarial input (100k triangles with one centroid, exponentially spaced
+// primitives) with queries still matching brute force; refit after moving
+// vertices (tight boxes, same answers as a rebuild).
+#include "CoreTestUtils.h"
+
+using namespace vtkrt::core;
+using namespace vtkrt::test;
+
+namespace
+{
+
+/// Every valid primitive in exactly one leaf, children after parents, child
+/// boxes inside parent boxes, leaf boxes = union of their primitives' boxes.
+void checkStructure(const char* what, const BVH& bvh, const std::vector<AABB<double>>& primBounds,
+  std::uint32_t maxLeaf)
+{
+  std::vector<int> seen(primBounds.size(), 0);
+  int bad = 0;
+  for (std::size_t i = 0; i < bvh.nodes.size(); ++i)
+  {
+    const BVHNode& n = bvh.nodes[i];
+    if (n.isLeaf())
+    {
+      bad += n.count > maxLeaf || n.index + n.count > bvh.primIndex.size();
+      AABB<double> u;
+      for (std::uint32_t k = 0; k < n.count && n.index + k < bvh.primIndex.size(); ++k)
+      {
+        const std::uint32_t p = bvh.primIndex[n.index + k];
+        seen[p]++;
+        u.extend(primBounds[p]);
+      }
+      bad += !(u == n.bounds());
+    }
+    else
+    {
+      bad += !(n.index > i && n.index + 1 < bvh.nodes.size());
+      if (n.index + 1 < bvh.nodes.size())
+      {
+        AABB<double> u = bvh.nodes[n.index].bounds();
+        u.extend(bvh.nodes[n.index + 1].bounds());
+        bad += !(u == n.bounds());
+      }
+    }
+  }
+  for (std::size_t p = 0; p < primBounds.size(); ++p)
+  {
+    const bool valid = !primBounds[p].isEmpty() && primBounds[p].isFinite();
+    bad += seen[p] != (valid ? 1 : 0);
+  }
+  VTKRT_CHECK_MSG(bad == 0, "%s: %d structural errors", what, bad);
+  VTKRT_CHECK_MSG(bvh.stats.maxDepth <= kMaxDepth, "%s: depth %u", what, bvh.stats.maxDepth);
+  VTKRT_CHECK(bvh.stats.nodeCount == bvh.nodes.size());
+}
+
+int queryMismatches(const BVH& bvh, const MeshData& m, Rng& rng, int rays)
+{
+  TriangleIntersector<double> isect(m.view());
+  const AABB<double> box = bvh.bounds();
+  int mismatches = 0;
+  for (int i = 0; i < rays; ++i)
+  {
+    const Vec3<double> o = rng.inBox(box.min - box.diagonal(), box.max + box.diagonal());
+    const Vec3<double> target = rng.inBox(box.min, box.max);
+    const Ray<double> ray(o, target - o);
+    double second;
+    const Hit<double> expected = bruteForceClosest(m.triangleCount(), ray, isect, &second);
+    Hit<double> got;
+    closestHit(bvh, ray, isect, got);
+    mismatches += got.found() != expected.found() || got.t != expected.t ||
+      (second > expected.t && got.prim != expected.prim);
+  }
+  return mismatches;
+}
+
+void testDeterminismAndQuality()
+{
+  Rng rng(1);
+  // ~100k triangles: a noisy sphere plus a soup, enough for parallel tasks.
+  MeshData m = makeIcosphere(6, 0.5, Vec3<double>(0.5)); // 81920 triangles
+  for (auto& v : m.vertices)
+  {
+    v += 0.003 * rng.inBox(Vec3<double>(-1), Vec3<double>(1));
+  }
+  const MeshData soup = makeTriangleSoup(rng, 20000, 0.02);
+  for (std::size_t i = 0; i < soup.indices.size(); ++i)
+  {
+    m.indices.push_back(std::uint32_t(m.vertices.size()));
+    m.vertices.push_back(soup.vertices[soup.indices[i]]);
+  }
+  const std::vector<AABB<double>> bounds = triangleBounds(m.view());
+  double sah[3] = { 0, 0, 0 };
+  const char* names[] = { "fast", "binned", "sweep" };
+  for (int q = 0; q < 3; ++q)
+  {
+    BuildOptions opt;
+    opt.quality = BuildQuality(q);
+    opt.numThreads = 1;
+    const BVH ref = buildTriangleBVH(m.view(), opt);
+    checkStructure(names[q], ref, bounds, opt.maxLeafSize);
+    sah[q] = ref.stats.sahCost;
+    for (unsigned threads : { 2u, 8u })
+    {
+      opt.numThreads = threads;
+      const BVH other = buildTriangleBVH(m.view(), opt);
+      VTKRT_CHECK_MSG(other.nodes == ref.nodes && other.primIndex == ref.primIndex,
+        "%s: %u threads give a different tree", names[q], threads);
+    }
+    VTKRT_CHECK(queryMismatches(ref, m, rng, 300) == 0);
+    std::printf("%s: %zu nodes, depth %u, SAH %.2f, %.3f s\n", names[q], ref.nodes.size(), ref.stats.maxDepth,
+      ref.stats.sahCost, ref.stats.buildSeconds);
+  }
+  VTKRT_CHECK(sah[2] <= sah[1] * 1.05);
+  VTKRT_CHECK(sah[1] <= sah[0] * 1.05);
+
+  // Leaf sizes 1..16 respected by every builder (smaller mesh).
+  const MeshData small = makeTriangleSoup(rng, 3000, 0.05);
+  const std::vector<AABB<double>> sb = triangleBounds(small.view());
+  for (int q = 0; q < 3; ++q)
+  {
+    for (std::uint32_t leaf : { 1u, 2u, 7u, 16u })
+    {
+      BuildOptions opt;
+      opt.quality = BuildQuality(q);
+      opt.maxLeafSize = leaf;
+      const BVH b = buildTriangleBVH(small.view(), opt);
+      checkStructure(names[q], b, sb, leaf);
+    }
+  }
+}
+
+void testDepthCap()
+{
+  Rng rng(2);
+  // 100k triangles sharing one centroid (rotated copies): no split plane
+  // separates them.
+  {
+    MeshData m;
+    for (int i = 0; i < 100000; ++i)
+    {
+      const Vec3<double> a = rng.unitVector(), b = rng.unitVector();
+      const Vec3<double> c = -(a + b);
+      for (const Vec3<double>& v : { a, b, c })
+      {
+        m.indices.push_back(std::uint32_t(m.vertices.size()));
+        m.vertices.push_back(v);
+      }
+    }
+    for (int q = 0; q < 3; ++q)
+    {
+      BuildOptions opt;
+      opt.quality = BuildQuality(q);
+      const BVH b = buildTriangleBVH(m.view(), opt);
+      checkStructure("same-centroid", b, triangleBounds(m.view()), opt.maxLeafSize);
+      if (q == 1)
+      {
+        VTKRT_CHECK(queryMismatches(b, m, rng, 20) == 0);
+      }
+    }
+  }
+  // Exponentially spaced primitives: SAH alone peels one primitive per
+  // level (a chain as deep as there are primitives); the cap must bound it.
+  // (Coordinates stay below 1e100: beyond ~1e154 the kernel's products
+  // overflow double.)
+  for (const auto& [base, count] : { std::pair<double, int>(1.5, 500), std::pair<double, int>(1.05, 2000) })
+  {
+    MeshData m;
+    for (int i = 0; i < count; ++i)
+    {
+      const double x = std::pow(base, i);
+      const double s = 0.02 * x; // disjoint from the neighbours
+      for (const Vec3<double>& v : { Vec3<double>(x, 0, 0), Vec3<double>(x + s, 0, 0), Vec3<double>(x, s, s) })
+      {
+        m.indices.push_back(std::uint32_t(m.vertices.size()));
+        m.vertices.push_back(v);
+      }
+    }
+    for (int q = 0; q < 3; ++q)
+    {
+      for (std::uint32_t leaf : { 1u, 4u })
+      {
+        BuildOptions opt;
+        opt.quality = BuildQuality(q);
+        opt.maxLeafSize = leaf;
+        const BVH b = buildTriangleBVH(m.view(), opt);
+        checkStructure("exponential", b, triangleBounds(m.view()), leaf);
+        if (q == 1)
+        {
+          std::printf("exponential %.2f leaf %u: depth %u\n", base, leaf, b.stats.maxDepth);
+        }
+      }
+    }
+    BuildOptions opt;
+    opt.maxLeafSize = 1;
+    const BVH b = buildTriangleBVH(m.view(), opt);
+    VTKRT_CHECK(b.stats.maxDepth > 30); // far deeper than balanced: the cap, not SAH, stopped it
+    // Queries on the capped tree: a ray through each triangle finds it.
+    TriangleIntersector<double> isect(m.view());
+    for (int i = 0; i < count; i += 7)
+    {
+      Vec3<double> a(0.0), bb(0.0), c(0.0);
+      m.view().triangle(i, a, bb, c);
+      const Vec3<double> p = a + 0.2 * (bb - a) + 0.2 * (c - a);
+      Hit<double> h;
+      const Ray<double> ray(p - Vec3<double>(0, 0, a.x), Vec3<double>(0, 0, a.x));
+      const bool found = closestHit(b, ray, isect, h);
+      VTKRT_CHECK_MSG(found && h.prim == std::uint32_t(i), "base %g i %d found %d prim %u", base, i, found, h.prim);
+    }
+  }
+}
+
+void testRefit()
+{
+  Rng rng(3);
+  MeshData m = makeIcosphere(4, 0.5, Vec3<double>(0.5));
+  const BVH original = buildTriangleBVH(m.view());
+  for (int step = 0; step < 3; ++step)
+  {
+    // Deform: twist + noise, moving vertices by up to ~20 % of the size.
+    for (auto& v : m.vertices)
+    {
+      const double a = 0.3 * (v.z - 0.5);
+      const Vec3<double> c = v - Vec3<double>(0.5);
+      v = Vec3<double>(0.5) +
+        Vec3<double>(c.x * std::cos(a) - c.y * std::sin(a), c.x * std::sin(a) + c.y * std::cos(a), c.z * 1.1) +
+        0.01 * rng.inBox(Vec3<double>(-1), Vec3<double>(1));
+    }
+    BVH refitted = original;
+    refitTriangles(refitted, m.view());
+    checkStructure("refit", refitted, triangleBounds(m.view()), BuildOptions().maxLeafSize);
+    VTKRT_CHECK(refitted.primIndex == original.primIndex);
+    const BVH rebuilt = buildTriangleBVH(m.view());
+    // Same answers as a rebuild and as brute force.
+    TriangleIntersector<double> isect(m.view());
+    int differ = 0;
+    for (int i = 0; i < 2000; ++i)
+    {
+      const Vec3<double> o = rng.inBox(Vec3<double>(-1), Vec3<double>(2));
+      const Ray<double> ray(o, rng.inBox(Vec3<double>(0.2), Vec3<double>(0.8)) - o);
+      Hit<double> a, b;
+      closestHit(refitted, ray, isect, a);
+      closestHit(rebuilt, ray, isect, b);
+      differ += a.found() != b.found() || a.t != b.t;
+    }
+    VTKRT_CHECK(differ == 0);
+    VTKRT_CHECK(queryMismatches(refitted, m, rng, 300) == 0);
+  }
+}
+
+} // namespace
+
+int main()
+{
+  testDeterminismAndQuality();
+  testDepthCap();
+  testRefit();
+  return testResult("TestCoreBuild");
+}
