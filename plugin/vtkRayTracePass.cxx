@@ -1,0 +1,666 @@
+#include "vtkRayTracePass.h"
+
+#include "vtkRayTraceScene.h"
+
+#include "vtkCamera.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkLightsPass.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpaquePass.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLCamera.h"
+#include "vtkOpenGLError.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkOverlayPass.h"
+#include "vtkProp.h"
+#include "vtkRenderPassCollection.h"
+#include "vtkRenderState.h"
+#include "vtkSequencePass.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtkTranslucentPass.h"
+#include "vtkVolumetricPass.h"
+#include "vtk_glew.h"
+
+#include "vtkrtRayTraceKernels.h"
+#include "vtkrtRayTraceMain.h"
+#include "vtkrtRayTraceSpheres.h"
+#include "vtkrtRayTraceTriangles.h"
+
+#include "vtkrt/core/BVH.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using vtkrt::pass::FrameCounters;
+using vtkrt::pass::Features;
+using vtkrt::pass::Instance;
+
+namespace
+{
+constexpr int kInstanceTexels = 10;
+enum InstanceFlags : std::uint32_t
+{
+  kSpheres = 1u,
+  kLit = 2u,
+  kVertexNormals = 4u,
+  kPointColors = 8u,
+  kCellColors = 16u,
+  kMirrored = 32u,
+};
+
+float bits(std::uint32_t u)
+{
+  return vtkrt::core::uintBitsToFloat(u);
+}
+
+/// One RGBA32F texture buffer (the GLSL's samplerBuffer).
+struct TextureBuffer
+{
+  vtkNew<vtkOpenGLBufferObject> Buffer;
+  vtkNew<vtkTextureObject> Texture;
+  std::size_t Texels = 0;
+
+  /// Uploads (4 floats per texel; an empty array gets one zero texel so the
+  /// sampler is always complete). Returns the bytes uploaded.
+  std::size_t Upload(vtkOpenGLRenderWindow* win, const std::vector<float>& data)
+  {
+    static const float zero[4] = { 0, 0, 0, 0 };
+    const float* ptr = data.empty() ? zero : data.data();
+    const std::size_t n = data.empty() ? 4 : data.size();
+    this->Buffer->Upload(ptr, n, vtkOpenGLBufferObject::TextureBuffer);
+    this->Texture->SetContext(win);
+    this->Texture->CreateTextureBuffer(static_cast<unsigned int>(n / 4), 4, VTK_FLOAT, this->Buffer);
+    this->Texels = n / 4;
+    return n * sizeof(float);
+  }
+
+  void Release(vtkWindow* w)
+  {
+    this->Texture->ReleaseGraphicsResources(w);
+    this->Buffer->ReleaseGraphicsResources();
+    this->Texels = 0;
+  }
+};
+
+/// Row-major double 4x4 -> column-major float (what GLSL's mat4 expects).
+void toGLSL(const vtkMatrix4x4* m, float out[16])
+{
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      out[c * 4 + r] = static_cast<float>(m->GetElement(r, c));
+    }
+  }
+}
+} // namespace
+
+struct vtkRayTracePass::Internals
+{
+  vtkrt::pass::Scene Scene;
+  vtkNew<vtkLightsPass> Lights;
+  std::vector<vtkProp*> Traced;
+  std::vector<vtkProp*> Others;
+  FrameCounters Counters;
+  std::map<std::string, std::unique_ptr<vtkOpenGLQuadHelper>> Programs;
+  std::string LastKey;
+  std::string LastSource;
+  vtkOpenGLRenderWindow* Window = nullptr;
+  bool GeometryOnGpu = false;
+  bool ColorsOnGpu = false;
+  bool GeometryValid = true;
+
+  TextureBuffer Nodes, Triangles, TriangleVertices, Spheres, SphereIds, Normals, Colors, Instances;
+
+  void ReleaseGL(vtkWindow* w)
+  {
+    for (auto& p : this->Programs)
+    {
+      p.second->ReleaseGraphicsResources(w);
+    }
+    this->Programs.clear();
+    for (TextureBuffer* b : { &this->Nodes, &this->Triangles, &this->TriangleVertices, &this->Spheres,
+           &this->SphereIds, &this->Normals, &this->Colors, &this->Instances })
+    {
+      b->Release(w);
+    }
+    this->GeometryOnGpu = false;
+    this->ColorsOnGpu = false;
+  }
+};
+
+vtkStandardNewMacro(vtkRayTracePass);
+
+vtkRayTracePass::vtkRayTracePass()
+  : Internal(new Internals)
+{
+  // Default delegate: everything a vtkRenderStepsPass does after the camera
+  // pass (which would clear the traced image).
+  vtkNew<vtkRenderPassCollection> passes;
+  vtkNew<vtkLightsPass> lights;
+  vtkNew<vtkOpaquePass> opaque;
+  vtkNew<vtkTranslucentPass> translucent;
+  vtkNew<vtkVolumetricPass> volumes;
+  vtkNew<vtkOverlayPass> overlay;
+  passes->AddItem(lights);
+  passes->AddItem(opaque);
+  passes->AddItem(translucent);
+  passes->AddItem(volumes);
+  passes->AddItem(overlay);
+  vtkNew<vtkSequencePass> sequence;
+  sequence->SetPasses(passes);
+  this->SetDelegatePass(sequence);
+}
+
+vtkRayTracePass::~vtkRayTracePass()
+{
+  this->SetDelegatePass(nullptr);
+}
+
+void vtkRayTracePass::SetDelegatePass(vtkRenderPass* pass)
+{
+  if (pass == this->DelegatePass)
+  {
+    return;
+  }
+  if (this->DelegatePass)
+  {
+    this->DelegatePass->UnRegister(this);
+  }
+  this->DelegatePass = pass;
+  if (pass)
+  {
+    pass->Register(this);
+  }
+  this->Modified();
+}
+
+vtkRenderPass* vtkRayTracePass::GetDelegatePass()
+{
+  return this->DelegatePass;
+}
+
+void vtkRayTracePass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "IdMode: " << this->IdMode << "\n";
+  os << indent << "MaximumTextureBufferTexels: " << this->MaximumTextureBufferTexels << "\n";
+  os << indent << "DelegatePass: " << this->DelegatePass << "\n";
+  os << indent << "LastFeatureKey: " << this->Internal->LastKey << "\n";
+  const FrameCounters& c = this->Internal->Counters;
+  os << indent << "Last frame: BVH builds " << c.BVHBuilds << ", geometry bytes "
+     << c.GeometryBytesUploaded << ", frame bytes " << c.FrameBytesUploaded << ", shader compiles "
+     << c.ShaderCompiles << ", traced primitives " << c.TracedPrimitives << "\n";
+}
+
+bool vtkRayTracePass::DecodeId(const unsigned char rgba[4], int& propIndex, vtkIdType& id)
+{
+  if (rgba[3] == 0)
+  {
+    propIndex = -1;
+    id = -1;
+    return false;
+  }
+  propIndex = static_cast<int>(rgba[3]) - 1;
+  id = static_cast<vtkIdType>(rgba[0]) | (static_cast<vtkIdType>(rgba[1]) << 8) |
+    (static_cast<vtkIdType>(rgba[2]) << 16);
+  return true;
+}
+
+int vtkRayTracePass::GetNumberOfTracedProps() const
+{
+  return static_cast<int>(this->Internal->Traced.size());
+}
+
+vtkProp* vtkRayTracePass::GetTracedProp(int index) const
+{
+  const auto& t = this->Internal->Traced;
+  return index >= 0 && index < static_cast<int>(t.size()) ? t[index] : nullptr;
+}
+
+int vtkRayTracePass::GetLastBVHBuilds() const
+{
+  return this->Internal->Counters.BVHBuilds;
+}
+vtkTypeInt64 vtkRayTracePass::GetLastGeometryBytesUploaded() const
+{
+  return static_cast<vtkTypeInt64>(this->Internal->Counters.GeometryBytesUploaded);
+}
+vtkTypeInt64 vtkRayTracePass::GetLastFrameBytesUploaded() const
+{
+  return static_cast<vtkTypeInt64>(this->Internal->Counters.FrameBytesUploaded);
+}
+int vtkRayTracePass::GetLastShaderCompiles() const
+{
+  return this->Internal->Counters.ShaderCompiles;
+}
+vtkTypeInt64 vtkRayTracePass::GetLastTracedPrimitives() const
+{
+  return static_cast<vtkTypeInt64>(this->Internal->Counters.TracedPrimitives);
+}
+int vtkRayTracePass::GetLastTracedInstances() const
+{
+  return this->Internal->Counters.TracedInstances;
+}
+const char* vtkRayTracePass::GetLastFeatureKey() const
+{
+  return this->Internal->LastKey.c_str();
+}
+const char* vtkRayTracePass::GetLastFragmentShaderSource() const
+{
+  return this->Internal->LastSource.c_str();
+}
+
+void vtkRayTracePass::ReleaseGraphicsResources(vtkWindow* w)
+{
+  this->Internal->ReleaseGL(w);
+  if (this->DelegatePass)
+  {
+    this->DelegatePass->ReleaseGraphicsResources(w);
+  }
+}
+
+namespace
+{
+/// The fragment shader for a feature set: only the chunks it needs.
+std::string assembleShader(const Features& f)
+{
+  std::ostringstream s;
+  s << (f.Fp64 ? "#version 400 core\n#define VTKRT_HAS_FP64\n" : "#version 330 core\n");
+  s << "// vtkrt feature key " << f.Key() << "\n";
+  if (f.Triangles)
+  {
+    s << "#define VTKRT_HAS_TRIANGLES\n";
+  }
+  if (f.Spheres)
+  {
+    s << "#define VTKRT_HAS_SPHERES\n";
+  }
+  if (f.VertexNormals)
+  {
+    s << "#define VTKRT_HAS_VERTEX_NORMALS\n";
+  }
+  if (f.Colors)
+  {
+    s << "#define VTKRT_HAS_COLORS\n";
+  }
+  if (f.Triangles && (f.VertexNormals || f.Colors))
+  {
+    s << "#define VTKRT_HAS_TRIANGLE_VERTICES\n";
+  }
+  if (f.IdMode)
+  {
+    s << "#define VTKRT_ID_MODE\n";
+  }
+  s << "#define VTKRT_NUMBER_OF_CLIP_PLANES " << f.ClipPlanes << "\n";
+  s << "#define VTKRT_NUMBER_OF_LIGHTS " << f.Lights << "\n";
+  s << "#define VTKRT_LIGHT_COMPLEXITY " << f.LightComplexity << "\n";
+  s << "#define VTKRT_STACK_SIZE " << vtkrt::core::kMaxStackSize << "\n";
+  s << "#define VTKRT_INSTANCE_TEXELS " << kInstanceTexels << "\n";
+  s << vtkrtRayTraceKernels << "\n";
+  if (f.Triangles)
+  {
+    s << vtkrtRayTraceTriangles << "\n";
+  }
+  if (f.Spheres)
+  {
+    s << vtkrtRayTraceSpheres << "\n";
+  }
+  s << vtkrtRayTraceMain;
+  return s.str();
+}
+} // namespace
+
+void vtkRayTracePass::Render(const vtkRenderState* s)
+{
+  this->NumberOfRenderedProps = 0;
+  Internals& in = *this->Internal;
+  in.Counters = FrameCounters();
+  vtkOpenGLRenderer* ren = vtkOpenGLRenderer::SafeDownCast(s->GetRenderer());
+  vtkOpenGLRenderWindow* win = ren ? vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()) : nullptr;
+  if (!win)
+  {
+    vtkErrorMacro("vtkRayTracePass needs a vtkOpenGLRenderer in a vtkOpenGLRenderWindow.");
+    return;
+  }
+  if (win != in.Window)
+  {
+    if (in.Window)
+    {
+      in.ReleaseGL(in.Window);
+    }
+    in.Window = win;
+    in.GeometryOnGpu = false;
+    in.ColorsOnGpu = false;
+  }
+  vtkOpenGLState* ostate = win->GetState();
+  vtkOpenGLCamera* cam = vtkOpenGLCamera::SafeDownCast(ren->GetActiveCamera());
+  if (!cam)
+  {
+    vtkErrorMacro("vtkRayTracePass needs a vtkOpenGLCamera.");
+    return;
+  }
+  // Viewport, scissor and VTK's own clear (solid or gradient background).
+  cam->Render(ren);
+  // Lights follow the camera and VTK computes the lighting complexity.
+  in.Lights->Render(s);
+
+  in.Scene.Extract(ren, s->GetPropArray(), s->GetPropArrayCount(), in.Traced, in.Others, in.Counters);
+
+  if (this->IdMode)
+  {
+    vtkOpenGLState::ScopedglClearColor clearColor(ostate);
+    ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+    ostate->vtkglDepthMask(GL_TRUE);
+    ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  }
+
+  // Geometry: repacked and uploaded only when a cached geometry changed.
+  GLint maxTexels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  std::size_t limit = static_cast<std::size_t>(maxTexels);
+  if (this->MaximumTextureBufferTexels > 0)
+  {
+    limit = std::min(limit, static_cast<std::size_t>(this->MaximumTextureBufferTexels));
+  }
+  if (in.Scene.GeometryChanged() || !in.GeometryOnGpu)
+  {
+    std::vector<float> nodes, tris, triVerts, spheres, sphereIds, normals;
+    in.Scene.PackGeometry(nodes, tris, triVerts, spheres, sphereIds, normals);
+    in.GeometryValid = true;
+    for (const auto* a : { &nodes, &tris, &triVerts, &spheres, &sphereIds, &normals })
+    {
+      if (a->size() / 4 > limit)
+      {
+        vtkErrorMacro("The ray-traced scene needs a texture buffer of "
+          << a->size() / 4 << " texels, more than the limit of " << limit
+          << " (GL_MAX_TEXTURE_BUFFER_SIZE or MaximumTextureBufferTexels): nothing is traced.");
+        in.GeometryValid = false;
+        break;
+      }
+    }
+    if (in.GeometryValid)
+    {
+      std::size_t bytes = 0;
+      bytes += in.Nodes.Upload(win, nodes);
+      bytes += in.Triangles.Upload(win, tris);
+      bytes += in.TriangleVertices.Upload(win, triVerts);
+      bytes += in.Spheres.Upload(win, spheres);
+      bytes += in.SphereIds.Upload(win, sphereIds);
+      bytes += in.Normals.Upload(win, normals);
+      in.Counters.GeometryBytesUploaded += bytes;
+    }
+    in.GeometryOnGpu = true;
+  }
+  if (in.Scene.ColorsChanged() || !in.ColorsOnGpu)
+  {
+    std::vector<float> colors;
+    in.Scene.PackColors(colors);
+    if (colors.size() / 4 > limit)
+    {
+      vtkErrorMacro("The ray-traced scene's colors need " << colors.size() / 4
+                                                          << " texels, more than the limit of "
+                                                          << limit << ": nothing is traced.");
+      in.GeometryValid = false;
+    }
+    else
+    {
+      in.Counters.GeometryBytesUploaded += in.Colors.Upload(win, colors);
+    }
+    in.ColorsOnGpu = true;
+  }
+
+  const std::vector<Instance>& instances = in.Scene.GetInstances();
+  if (!instances.empty() && in.GeometryValid)
+  {
+    // Camera: VTK's own matrices (the ones raster uses), made relative to
+    // the eye in double.
+    vtkMatrix4x4* wcvc;
+    vtkMatrix3x3* normalMatrix;
+    vtkMatrix4x4* vcdc;
+    vtkMatrix4x4* wcdc;
+    cam->GetKeyMatrices(ren, wcvc, normalMatrix, vcdc, wcdc);
+    double eye[3];
+    cam->GetPosition(eye);
+    vtkNew<vtkMatrix4x4> worldToClip; // row-major P * V
+    vtkMatrix4x4::Transpose(wcdc, worldToClip);
+    vtkNew<vtkMatrix4x4> eyeTranslation;
+    for (int k = 0; k < 3; ++k)
+    {
+      eyeTranslation->SetElement(k, 3, eye[k]);
+    }
+    vtkNew<vtkMatrix4x4> cameraToClip;
+    vtkMatrix4x4::Multiply4x4(worldToClip, eyeTranslation, cameraToClip);
+    vtkNew<vtkMatrix4x4> clipToCamera;
+    vtkMatrix4x4::Invert(cameraToClip, clipToCamera);
+    double dop[3];
+    cam->GetDirectionOfProjection(dop);
+
+    // Per-instance records and clip planes (camera-relative, double -> float).
+    std::vector<float> records(instances.size() * kInstanceTexels * 4, 0.0f);
+    std::vector<float> planes;
+    for (std::size_t i = 0; i < instances.size(); ++i)
+    {
+      const Instance& inst = instances[i];
+      const vtkrt::pass::Geometry& g = *inst.Geom;
+      vtkNew<vtkMatrix4x4> localToCamera;
+      localToCamera->DeepCopy(inst.Matrix.data());
+      for (int r = 0; r < 3; ++r)
+      {
+        double t = localToCamera->GetElement(r, 3);
+        for (int c = 0; c < 3; ++c)
+        {
+          t += localToCamera->GetElement(r, c) * g.Origin[c];
+        }
+        localToCamera->SetElement(r, 3, t - eye[r]);
+      }
+      vtkNew<vtkMatrix4x4> cameraToLocal;
+      vtkMatrix4x4::Invert(localToCamera, cameraToLocal);
+      float* rec = records.data() + i * kInstanceTexels * 4;
+      for (int r = 0; r < 3; ++r)
+      {
+        for (int c = 0; c < 4; ++c)
+        {
+          rec[4 * r + c] = static_cast<float>(cameraToLocal->GetElement(r, c));
+        }
+      }
+      // Camera-space box of the instance: its 8 local corners, padded for
+      // the float rounding of the transformed ray.
+      double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
+      double hi[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+      for (int corner = 0; corner < 8; ++corner)
+      {
+        double p[4] = { g.LocalBounds[(corner & 1) ? 1 : 0], g.LocalBounds[(corner & 2) ? 3 : 2],
+          g.LocalBounds[(corner & 4) ? 5 : 4], 1.0 };
+        localToCamera->MultiplyPoint(p, p);
+        for (int k = 0; k < 3; ++k)
+        {
+          lo[k] = std::min(lo[k], p[k]);
+          hi[k] = std::max(hi[k], p[k]);
+        }
+      }
+      double pad = 0.0;
+      for (int k = 0; k < 3; ++k)
+      {
+        pad = std::max({ pad, std::abs(lo[k]), std::abs(hi[k]) });
+      }
+      pad *= 1e-6;
+      std::uint32_t flags = g.Spheres ? kSpheres : 0u;
+      flags |= inst.Lit ? kLit : 0u;
+      flags |= inst.UseVertexNormals ? kVertexNormals : 0u;
+      if (inst.Color)
+      {
+        flags |= inst.Color->CellColors ? kCellColors : kPointColors;
+      }
+      if (localToCamera->Determinant() < 0.0)
+      {
+        flags |= kMirrored;
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        rec[12 + k] = vtkrt::core::roundDownToFloat(lo[k] - pad);
+        rec[16 + k] = vtkrt::core::roundUpToFloat(hi[k] + pad);
+        rec[20 + k] = inst.Ambient[k];
+        rec[24 + k] = inst.Diffuse[k];
+        rec[28 + k] = inst.Specular[k];
+      }
+      rec[15] = bits(g.NodeBase);
+      rec[19] = bits(flags);
+      rec[23] = inst.SpecularPower;
+      rec[27] = bits(inst.Color ? inst.Color->Base : 0u);
+      rec[31] = bits(g.NormalBase);
+      rec[32] = bits(static_cast<std::uint32_t>(planes.size() / 4));
+      rec[33] = bits(static_cast<std::uint32_t>(inst.ClipPlanes.size()));
+      rec[34] = bits(static_cast<std::uint32_t>(inst.PropIndex));
+      rec[35] = 0.0f;
+      rec[36] = inst.AmbientIntensity;
+      rec[37] = inst.DiffuseIntensity;
+      for (const auto& pl : inst.ClipPlanes)
+      {
+        const double d = pl[3] + pl[0] * eye[0] + pl[1] * eye[1] + pl[2] * eye[2];
+        planes.insert(planes.end(),
+          { static_cast<float>(pl[0]), static_cast<float>(pl[1]), static_cast<float>(pl[2]),
+            static_cast<float>(d) });
+      }
+    }
+    in.Counters.FrameBytesUploaded += in.Instances.Upload(win, records);
+
+    // Lights, as vtkOpenGLRenderer hands them to vtkOpenGLPolyDataMapper.
+    std::vector<float> lightColor, lightDirection, lightPosition, lightAttenuation, lightCone;
+    vtkLightCollection* lights = ren->GetLights();
+    vtkCollectionSimpleIterator it;
+    lights->InitTraversal(it);
+    while (vtkLight* light = lights->GetNextLight(it))
+    {
+      if (!light->GetSwitch())
+      {
+        continue;
+      }
+      const double intensity = light->GetIntensity();
+      double* color = light->GetDiffuseColor();
+      double* position = light->GetTransformedPosition();
+      double* focal = light->GetTransformedFocalPoint();
+      double direction[3] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2] };
+      vtkMath::Normalize(direction);
+      double* attenuation = light->GetAttenuationValues();
+      for (int k = 0; k < 3; ++k)
+      {
+        lightColor.push_back(static_cast<float>(color[k] * intensity));
+        lightDirection.push_back(static_cast<float>(direction[k]));
+        lightPosition.push_back(static_cast<float>(position[k] - eye[k]));
+        lightAttenuation.push_back(static_cast<float>(attenuation[k]));
+      }
+      lightCone.push_back(static_cast<float>(light->GetConeAngle()));
+      lightCone.push_back(static_cast<float>(light->GetExponent()));
+      lightCone.push_back(light->GetPositional() ? 1.0f : 0.0f);
+    }
+
+    Features f;
+    f.Triangles = in.Scene.HasTriangles();
+    f.Spheres = in.Scene.HasSpheres();
+    f.VertexNormals = in.Scene.HasVertexNormals();
+    f.Colors = in.Scene.HasColors();
+    f.ClipPlanes = static_cast<int>(planes.size() / 4);
+    f.Lights = static_cast<int>(lightCone.size() / 3);
+    f.LightComplexity = f.Lights > 0 ? ren->GetLightingComplexity() : 0;
+    f.IdMode = this->IdMode;
+    GLint major = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    f.Fp64 = major >= 4;
+    in.LastKey = f.Key();
+
+    auto& helper = in.Programs[in.LastKey];
+    if (!helper)
+    {
+      in.LastSource = assembleShader(f);
+      helper.reset(new vtkOpenGLQuadHelper(win, nullptr, in.LastSource.c_str(), ""));
+      ++in.Counters.ShaderCompiles;
+      if (!helper->Program || !helper->Program->GetCompiled())
+      {
+        vtkErrorMacro("vtkRayTracePass: the ray tracing shader (features " << in.LastKey
+                                                                          << ") failed to compile.");
+      }
+    }
+    else
+    {
+      win->GetShaderCache()->ReadyShaderProgram(helper->Program);
+    }
+    vtkShaderProgram* program = helper->Program;
+    if (program && program->GetCompiled())
+    {
+      float m[16];
+      toGLSL(cameraToClip, m);
+      program->SetUniformMatrix4x4("uCameraToClip", m);
+      toGLSL(clipToCamera, m);
+      program->SetUniformMatrix4x4("uClipToCamera", m);
+      const float viewBack[3] = { static_cast<float>(-dop[0]), static_cast<float>(-dop[1]),
+        static_cast<float>(-dop[2]) };
+      program->SetUniform3f("uViewBack", viewBack);
+      program->SetUniformi("uNumberOfInstances", static_cast<int>(instances.size()));
+      if (f.ClipPlanes > 0)
+      {
+        program->SetUniform4fv("uClipPlanes", f.ClipPlanes, planes.data());
+      }
+      if (f.Lights > 0)
+      {
+        program->SetUniform3fv("uLightColor", f.Lights, lightColor.data());
+        program->SetUniform3fv("uLightDirection", f.Lights, lightDirection.data());
+        program->SetUniform3fv("uLightPosition", f.Lights, lightPosition.data());
+        program->SetUniform3fv("uLightAttenuation", f.Lights, lightAttenuation.data());
+        program->SetUniform3fv("uLightCone", f.Lights, lightCone.data());
+      }
+      std::vector<vtkTextureObject*> active;
+      const std::pair<const char*, TextureBuffer*> samplers[] = { { "uNodes", &in.Nodes },
+        { "uTriangles", &in.Triangles }, { "uTriangleVertices", &in.TriangleVertices },
+        { "uSpheres", &in.Spheres }, { "uSphereIds", &in.SphereIds }, { "uNormals", &in.Normals },
+        { "uColors", &in.Colors }, { "uInstances", &in.Instances } };
+      for (const auto& sampler : samplers)
+      {
+        if (program->IsUniformUsed(sampler.first))
+        {
+          sampler.second->Texture->Activate();
+          program->SetUniformi(sampler.first, sampler.second->Texture->GetTextureUnit());
+          active.push_back(sampler.second->Texture);
+        }
+      }
+
+      vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
+      vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
+      vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+      vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+      ostate->vtkglEnable(GL_DEPTH_TEST);
+      ostate->vtkglDepthFunc(GL_ALWAYS);
+      ostate->vtkglDepthMask(GL_TRUE);
+      ostate->vtkglDisable(GL_BLEND);
+      helper->Render();
+      for (vtkTextureObject* t : active)
+      {
+        t->Deactivate();
+      }
+    }
+  }
+  this->NumberOfRenderedProps += static_cast<int>(in.Traced.size());
+
+  if (!this->IdMode && this->DelegatePass && !in.Others.empty())
+  {
+    vtkRenderState rest(ren);
+    rest.SetPropArrayAndCount(in.Others.data(), static_cast<int>(in.Others.size()));
+    rest.SetFrameBuffer(s->GetFrameBuffer());
+    rest.SetRequiredKeys(s->GetRequiredKeys());
+    this->DelegatePass->Render(&rest);
+    this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
+  }
+  vtkOpenGLCheckErrorMacro("failed after vtkRayTracePass::Render");
+}

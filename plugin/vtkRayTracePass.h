@@ -1,0 +1,142 @@
+/**
+ * @class   vtkRayTracePass
+ * @brief   Ray traces a renderer's opaque geometry with a GLSL BVH tracer.
+ *
+ * `renderer->SetPass(pass)` makes the renderer's opaque polygonal geometry
+ * ray traced; removing the pass gives raster back. The pass draws one
+ * full-screen quad whose fragment shader builds each pixel's ray from the
+ * inverse of VTK's own projection, walks a float copy of a two-level BVH
+ * (vtkrt::core), shades like vtkOpenGLPolyDataMapper and writes the hit's
+ * depth, so what it does not trace is drawn afterwards by the delegate
+ * raster passes and composites by depth.
+ *
+ * Traced (everything else falls back to the delegate):
+ * - vtkActor + vtkPolyDataMapper / vtkCompositePolyDataMapper(2), opaque,
+ *   surface representation, no texture, no edge visibility, no backface
+ *   property: polygons (fan triangulated, like VTK), triangle strips.
+ *   An actor whose data also has lines, or vertices without
+ *   RenderPointsAsSpheres, falls back whole.
+ * - Points of such an actor with RenderPointsAsSpheres (vertices, or every
+ *   point with the points representation) as analytic spheres whose radius
+ *   is PointSize/2 pixels at the set's center when the set is built.
+ * - vtkGlyph3DMapper whose single source is a vtkSphereSource, as analytic
+ *   spheres (scale array by magnitude, scale factor, clamping, masking,
+ *   colors through the mapper's LUT). Orientation is ignored (spheres).
+ * Shading: vtkProperty ambient/diffuse/specular, flat or interpolated point
+ * normals, point or cell scalars mapped by the mapper's LUT, the renderer's
+ * lights (VTK's lighting complexities 0-3), mapper clipping planes.
+ * Background: VTK's own clear (solid, gradient) shows where rays miss.
+ *
+ * Geometry is cached per data object and rebuilt only when its MTime
+ * changes; camera, light or property changes upload only the per-instance
+ * records. Shaders are assembled from the scene's features and cached by
+ * feature key. The per-frame counters say what the last frame did.
+ */
+#ifndef vtkRayTracePass_h
+#define vtkRayTracePass_h
+
+#include "vtkRenderPass.h"
+#include "vtkrtPluginModule.h" // For export macro
+
+#include <memory> // For std::unique_ptr
+
+class vtkOpenGLRenderWindow;
+class vtkProp;
+
+class VTKRTPLUGIN_EXPORT vtkRayTracePass : public vtkRenderPass
+{
+public:
+  static vtkRayTracePass* New();
+  vtkTypeMacro(vtkRayTracePass, vtkRenderPass);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  void Render(const vtkRenderState* s) override;
+  void ReleaseGraphicsResources(vtkWindow* w) override;
+
+  ///@{
+  /**
+   * The pass that renders the props this pass does not trace, after the
+   * traced image (and its depth) is in place. By default a sequence of
+   * vtkLightsPass, vtkOpaquePass, vtkTranslucentPass, vtkVolumetricPass and
+   * vtkOverlayPass. It must not clear.
+   */
+  void SetDelegatePass(vtkRenderPass* pass);
+  vtkRenderPass* GetDelegatePass();
+  ///@}
+
+  ///@{
+  /**
+   * Id mode: instead of shading, each pixel gets the VTK cell id (point id
+   * for spheres) of its hit in R, G, B (24 bits, little end in R) and the
+   * traced prop's index + 1 in A (0: no hit). Decode with DecodeId(). Props
+   * that are not traced are not drawn in this mode.
+   */
+  vtkSetMacro(IdMode, bool);
+  vtkGetMacro(IdMode, bool);
+  vtkBooleanMacro(IdMode, bool);
+  ///@}
+
+  /**
+   * Decodes an RGBA pixel of an id-mode image: returns false for "no hit",
+   * else the traced prop index (see GetTracedProp) and the id.
+   */
+  static bool DecodeId(const unsigned char rgba[4], int& propIndex, vtkIdType& id);
+
+  ///@{
+  /**
+   * The props traced in the last frame, in prop index order.
+   */
+  int GetNumberOfTracedProps() const;
+  vtkProp* GetTracedProp(int index) const;
+  ///@}
+
+  ///@{
+  /**
+   * What the last frame did: bottom-level BVH builds, bytes of geometry
+   * (nodes, primitives, normals, colors) uploaded, bytes of per-frame
+   * records uploaded (camera-relative instances), shader programs compiled,
+   * primitives in the traced instances, traced instances.
+   */
+  int GetLastBVHBuilds() const;
+  vtkTypeInt64 GetLastGeometryBytesUploaded() const;
+  vtkTypeInt64 GetLastFrameBytesUploaded() const;
+  int GetLastShaderCompiles() const;
+  vtkTypeInt64 GetLastTracedPrimitives() const;
+  int GetLastTracedInstances() const;
+  ///@}
+
+  /**
+   * The feature key of the last frame's shader (what the scene needed).
+   */
+  const char* GetLastFeatureKey() const;
+
+  /**
+   * The fragment shader source of the last frame (for inspection and tests).
+   */
+  const char* GetLastFragmentShaderSource() const;
+
+  /**
+   * Largest texture buffer (texels) the pass may use; 0 (default) means
+   * GL_MAX_TEXTURE_BUFFER_SIZE. A scene that needs more fails with an error
+   * instead of drawing garbage.
+   */
+  vtkSetMacro(MaximumTextureBufferTexels, vtkTypeInt64);
+  vtkGetMacro(MaximumTextureBufferTexels, vtkTypeInt64);
+
+protected:
+  vtkRayTracePass();
+  ~vtkRayTracePass() override;
+
+  bool IdMode = false;
+  vtkTypeInt64 MaximumTextureBufferTexels = 0;
+  vtkRenderPass* DelegatePass = nullptr;
+
+private:
+  vtkRayTracePass(const vtkRayTracePass&) = delete;
+  void operator=(const vtkRayTracePass&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif

@@ -1,0 +1,849 @@
+#include "vtkRayTraceScene.h"
+
+#include "vtkActor.h"
+#include "vtkAlgorithmOutput.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCompositeDataDisplayAttributes.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkCompositePolyDataMapper.h"
+#include "vtkCompositePolyDataMapper2.h"
+#include "vtkDataArray.h"
+#include "vtkDataObject.h"
+#include "vtkGlyph3DMapper.h"
+#include "vtkInformation.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkScalarsToColors.h"
+#include "vtkSphereSource.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "vtkrt/core/LocalFrame.h"
+#include "vtkrt/core/Mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace vtkrt
+{
+namespace pass
+{
+
+namespace
+{
+using core::Vec3;
+
+std::uint32_t packRGBA(const unsigned char* c, int comps)
+{
+  const std::uint32_t r = c[0];
+  const std::uint32_t g = comps > 1 ? c[1] : c[0];
+  const std::uint32_t b = comps > 2 ? c[2] : c[0];
+  const std::uint32_t a = comps > 3 ? c[3] : 255u;
+  return r | (g << 8) | (b << 16) | (a << 24);
+}
+
+float bitsOf(std::uint32_t u)
+{
+  return core::uintBitsToFloat(u);
+}
+
+void readPoints(vtkPoints* pts, std::vector<Vec3<double>>& out)
+{
+  const vtkIdType n = pts ? pts->GetNumberOfPoints() : 0;
+  out.resize(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    pts->GetPoint(i, &out[static_cast<std::size_t>(i)].x);
+  }
+}
+
+void setBounds(Geometry& g, const core::BVH& bvh)
+{
+  const core::AABB<double> b = bvh.bounds();
+  for (int k = 0; k < 3; ++k)
+  {
+    g.LocalBounds[2 * k] = b.min[k] - g.Origin[k];
+    g.LocalBounds[2 * k + 1] = b.max[k] - g.Origin[k];
+  }
+}
+
+/// The polydata's verts/lines cells decide whether the pass can trace it.
+bool hasUntraceableCells(vtkPolyData* poly, bool pointsAsSpheres)
+{
+  if (poly->GetNumberOfLines() > 0)
+  {
+    return true;
+  }
+  return poly->GetNumberOfVerts() > 0 && !pointsAsSpheres;
+}
+
+/// Triangles of polys (fan, as VTK's raster) and strips (VTK's winding),
+/// with their VTK cell ids, and the BVH over them.
+std::unique_ptr<Geometry> buildTriangles(vtkPolyData* poly)
+{
+  auto g = std::make_unique<Geometry>();
+  std::vector<Vec3<double>> points;
+  readPoints(poly->GetPoints(), points);
+  std::vector<std::uint32_t> indices;
+  std::vector<std::uint32_t> cellIds;
+  vtkIdType cellId = poly->GetNumberOfVerts() + poly->GetNumberOfLines();
+  vtkIdType npts;
+  const vtkIdType* pts;
+  auto polys = vtk::TakeSmartPointer(poly->GetPolys()->NewIterator());
+  for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell(), ++cellId)
+  {
+    polys->GetCurrentCell(npts, pts);
+    for (vtkIdType k = 1; k + 1 < npts; ++k)
+    {
+      indices.insert(indices.end(), { std::uint32_t(pts[0]), std::uint32_t(pts[k]), std::uint32_t(pts[k + 1]) });
+      cellIds.push_back(std::uint32_t(cellId));
+    }
+  }
+  auto strips = vtk::TakeSmartPointer(poly->GetStrips()->NewIterator());
+  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell(), ++cellId)
+  {
+    strips->GetCurrentCell(npts, pts);
+    for (vtkIdType i = 0; i + 2 < npts; ++i)
+    {
+      indices.insert(indices.end(),
+        { std::uint32_t(pts[i]), std::uint32_t(pts[i + 1 + i % 2]), std::uint32_t(pts[i + 1 + (i + 1) % 2]) });
+      cellIds.push_back(std::uint32_t(cellId));
+    }
+  }
+
+  core::TriangleMesh<double> mesh(points, indices);
+  core::BVH bvh = core::buildTriangleBVH(mesh);
+  g->Spheres = false;
+  g->VertexCount = points.size();
+  g->SkippedPrimitives = bvh.stats.skippedPrimitives;
+  if (bvh.empty())
+  {
+    return g;
+  }
+  // The origin of the triangles actually traced (NaN points are ignored).
+  core::AABB<double> box = bvh.bounds();
+  const Vec3<double> origin = box.center();
+  g->Origin = { { origin.x, origin.y, origin.z } };
+  setBounds(*g, bvh);
+  g->Nodes = core::packNodesForGpu(bvh, origin);
+  const std::vector<Vec3<float>> rel = core::relativeFloatPoints(points.data(), points.size(), origin);
+  const std::size_t n = bvh.primIndex.size();
+  g->PrimitiveCount = n;
+  g->Primitives.resize(12 * n);
+  g->TriangleVertices.resize(4 * n);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const std::uint32_t tri = bvh.primIndex[k];
+    float* o = g->Primitives.data() + 12 * k;
+    float* iv = g->TriangleVertices.data() + 4 * k;
+    for (int v = 0; v < 3; ++v)
+    {
+      const std::uint32_t vi = indices[3 * tri + v];
+      o[4 * v + 0] = rel[vi].x;
+      o[4 * v + 1] = rel[vi].y;
+      o[4 * v + 2] = rel[vi].z;
+      o[4 * v + 3] = 0.0f;
+      iv[v] = bitsOf(vi);
+    }
+    o[3] = bitsOf(cellIds[tri]);
+    iv[3] = 0.0f;
+  }
+  if (vtkDataArray* normals = poly->GetPointData()->GetNormals())
+  {
+    if (normals->GetNumberOfComponents() == 3 &&
+      normals->GetNumberOfTuples() == static_cast<vtkIdType>(points.size()))
+    {
+      g->Normals.resize(4 * points.size());
+      double nv[3];
+      for (std::size_t i = 0; i < points.size(); ++i)
+      {
+        normals->GetTuple(static_cast<vtkIdType>(i), nv);
+        g->Normals[4 * i + 0] = static_cast<float>(nv[0]);
+        g->Normals[4 * i + 1] = static_cast<float>(nv[1]);
+        g->Normals[4 * i + 2] = static_cast<float>(nv[2]);
+        g->Normals[4 * i + 3] = 0.0f;
+      }
+    }
+  }
+  return g;
+}
+
+/// Spheres (centers, radii, VTK point ids) and the BVH over them.
+std::unique_ptr<Geometry> buildSpheres(
+  const std::vector<Vec3<double>>& centers, const std::vector<double>& radii, const std::vector<std::uint32_t>& ids)
+{
+  auto g = std::make_unique<Geometry>();
+  g->Spheres = true;
+  core::SphereSet<double> set(centers, radii);
+  core::BVH bvh = core::buildSphereBVH(set);
+  g->SkippedPrimitives = bvh.stats.skippedPrimitives;
+  if (bvh.empty())
+  {
+    return g;
+  }
+  const Vec3<double> origin = bvh.bounds().center();
+  g->Origin = { { origin.x, origin.y, origin.z } };
+  setBounds(*g, bvh);
+  g->Nodes = core::packNodesForGpu(bvh, origin);
+  const std::size_t n = bvh.primIndex.size();
+  g->PrimitiveCount = n;
+  g->Primitives.resize(4 * n);
+  g->SphereIds.resize(n);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const std::uint32_t s = bvh.primIndex[k];
+    const Vec3<double> c = centers[s] - origin;
+    float* o = g->Primitives.data() + 4 * k;
+    o[0] = static_cast<float>(c.x);
+    o[1] = static_cast<float>(c.y);
+    o[2] = static_cast<float>(c.z);
+    o[3] = static_cast<float>(radii[s]);
+    g->SphereIds[k] = ids[s];
+  }
+  return g;
+}
+
+/// The array a glyph mapper reads for `idx` (SCALE, MASK, ...), as VTK's
+/// GetInputArrayToProcess would find it among the point data.
+vtkDataArray* glyphArray(vtkGlyph3DMapper* mapper, int idx, vtkDataSet* input)
+{
+  vtkInformation* info = mapper->GetInputArrayInformation(idx);
+  if (!info)
+  {
+    return nullptr;
+  }
+  vtkPointData* pd = input->GetPointData();
+  if (info->Has(vtkDataObject::FIELD_NAME()))
+  {
+    return pd->GetArray(info->Get(vtkDataObject::FIELD_NAME()));
+  }
+  if (info->Has(vtkDataObject::FIELD_ATTRIBUTE_TYPE()))
+  {
+    return vtkDataArray::SafeDownCast(
+      pd->GetAbstractAttribute(info->Get(vtkDataObject::FIELD_ATTRIBUTE_TYPE())));
+  }
+  return nullptr;
+}
+
+} // namespace
+
+std::string Features::Key() const
+{
+  std::ostringstream s;
+  s << "T" << this->Triangles << "S" << this->Spheres << "N" << this->VertexNormals << "C"
+    << this->Colors << "P" << this->ClipPlanes << "L" << this->Lights << "x"
+    << this->LightComplexity << "I" << this->IdMode << "D" << this->Fp64;
+  return s.str();
+}
+
+bool Scene::IsTraceable(vtkProp* prop)
+{
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  if (!actor || !actor->GetVisibility() || !actor->GetMapper())
+  {
+    return false;
+  }
+  vtkMapper* mapper = actor->GetMapper();
+  const bool glyphs = vtkGlyph3DMapper::SafeDownCast(mapper) != nullptr;
+  if (!glyphs && !vtkPolyDataMapper::SafeDownCast(mapper) &&
+    !vtkCompositePolyDataMapper::SafeDownCast(mapper))
+  {
+    return false;
+  }
+  vtkProperty* property = actor->GetProperty();
+  if (property->GetOpacity() < 1.0 || actor->GetTexture() || property->GetNumberOfTextures() > 0 ||
+    property->GetEdgeVisibility() || actor->GetBackfaceProperty())
+  {
+    return false;
+  }
+  const int representation = property->GetRepresentation();
+  if (representation == VTK_WIREFRAME ||
+    (representation == VTK_POINTS && (glyphs || !property->GetRenderPointsAsSpheres())))
+  {
+    return false;
+  }
+  return true;
+}
+
+void Scene::FillMaterial(vtkActor* actor, vtkMapper* mapper, Instance& inst) const
+{
+  vtkProperty* p = actor->GetProperty();
+  double c[3];
+  p->GetAmbientColor(c);
+  for (int k = 0; k < 3; ++k)
+  {
+    inst.Ambient[k] = static_cast<float>(p->GetAmbient() * c[k]);
+  }
+  p->GetDiffuseColor(c);
+  for (int k = 0; k < 3; ++k)
+  {
+    inst.Diffuse[k] = static_cast<float>(p->GetDiffuse() * c[k]);
+  }
+  p->GetSpecularColor(c);
+  for (int k = 0; k < 3; ++k)
+  {
+    inst.Specular[k] = static_cast<float>(p->GetSpecular() * c[k]);
+  }
+  inst.SpecularPower = static_cast<float>(p->GetSpecularPower());
+  inst.Lit = p->GetLighting();
+  inst.AmbientIntensity = static_cast<float>(p->GetAmbient());
+  inst.DiffuseIntensity = static_cast<float>(p->GetDiffuse());
+  vtkMatrix4x4* m = actor->GetMatrix();
+  for (int i = 0; i < 16; ++i)
+  {
+    inst.Matrix[i] = m->GetElement(i / 4, i % 4);
+  }
+  inst.ClipPlanes.clear();
+  if (vtkPlaneCollection* planes = mapper->GetClippingPlanes())
+  {
+    for (int i = 0; i < planes->GetNumberOfItems(); ++i)
+    {
+      vtkPlane* plane = planes->GetItem(i);
+      double n[3], o[3];
+      plane->GetNormal(n);
+      plane->GetOrigin(o);
+      inst.ClipPlanes.push_back({ { n[0], n[1], n[2], -vtkMath::Dot(n, o) } });
+    }
+  }
+}
+
+Colors* Scene::GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time)
+{
+  if (!mapper->GetScalarVisibility())
+  {
+    return nullptr;
+  }
+  vtkScalarsToColors* lut = mapper->GetLookupTable();
+  time = std::max(time, mapper->GetMTime());
+  if (lut)
+  {
+    time = std::max(time, lut->GetMTime());
+  }
+  auto key = std::make_pair(static_cast<const void*>(mapper), static_cast<const void*>(data));
+  auto it = this->ColorCache.find(key);
+  if (it != this->ColorCache.end() && it->second->SourceTime == time)
+  {
+    it->second->Used = true;
+    return it->second->Packed.empty() ? nullptr : it->second.get();
+  }
+  auto colors = std::make_unique<Colors>();
+  colors->SourceTime = time;
+  colors->Keep = data;
+  colors->Used = true;
+  int cellFlag = 0;
+  vtkUnsignedCharArray* mapped = mapper->MapScalars(data, 1.0, cellFlag);
+  if (mapped && cellFlag != 2 && mapped->GetNumberOfTuples() > 0)
+  {
+    const int comps = mapped->GetNumberOfComponents();
+    const vtkIdType n = mapped->GetNumberOfTuples();
+    colors->CellColors = cellFlag == 1;
+    colors->Packed.resize(static_cast<std::size_t>(n));
+    const unsigned char* ptr = mapped->GetPointer(0);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      colors->Packed[static_cast<std::size_t>(i)] = packRGBA(ptr + i * comps, comps);
+    }
+  }
+  Colors* result = colors->Packed.empty() ? nullptr : colors.get();
+  this->ColorCache[key] = std::move(colors);
+  this->ColorsDirty = true;
+  return result;
+}
+
+bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
+  vtkRenderer* ren, FrameCounters& counters)
+{
+  vtkProperty* property = actor->GetProperty();
+  const bool pointsAsSpheres = property->GetRenderPointsAsSpheres() &&
+    (property->GetRepresentation() == VTK_POINTS || poly->GetNumberOfVerts() > 0);
+  const vtkMTimeType time = poly->GetMTime();
+  Instance inst;
+  inst.PropIndex = propIndex;
+  this->FillMaterial(actor, mapper, inst);
+
+  if (property->GetRepresentation() == VTK_SURFACE &&
+    (poly->GetNumberOfPolys() > 0 || poly->GetNumberOfStrips() > 0))
+  {
+    auto& entry = this->TriangleCache[poly];
+    if (!entry || entry->SourceTime != time)
+    {
+      entry = buildTriangles(poly);
+      entry->SourceTime = time;
+      entry->Keep = poly;
+      ++counters.BVHBuilds;
+      this->GeometryDirty = true;
+    }
+    if (!entry->Used)
+    {
+      entry->Used = true;
+    }
+    if (!entry->Empty())
+    {
+      Instance tri = inst;
+      tri.Geom = entry.get();
+      tri.Color = this->GetColors(mapper, poly, time);
+      tri.UseVertexNormals = !entry->Normals.empty() && property->GetInterpolation() != VTK_FLAT;
+      this->Instances.push_back(tri);
+    }
+  }
+
+  if (pointsAsSpheres)
+  {
+    // VTK draws these as screen-space disks PointSize pixels wide; the pass
+    // fixes their world radius when the set is built, from the pixel size
+    // at the set's center under the camera of that frame.
+    std::vector<Vec3<double>> all;
+    readPoints(poly->GetPoints(), all);
+    std::vector<char> used(all.size(), 0);
+    vtkIdType npts;
+    const vtkIdType* pts;
+    auto mark = [&](vtkCellArray* cells) {
+      auto it = vtk::TakeSmartPointer(cells->NewIterator());
+      for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+      {
+        it->GetCurrentCell(npts, pts);
+        for (vtkIdType k = 0; k < npts; ++k)
+        {
+          if (pts[k] >= 0 && static_cast<std::size_t>(pts[k]) < used.size())
+          {
+            used[static_cast<std::size_t>(pts[k])] = 1;
+          }
+        }
+      }
+    };
+    mark(poly->GetVerts());
+    if (property->GetRepresentation() == VTK_POINTS)
+    {
+      mark(poly->GetPolys());
+      mark(poly->GetStrips());
+      mark(poly->GetLines());
+    }
+    std::ostringstream key;
+    key << "points:" << property->GetPointSize();
+    auto& entry = this->SphereCache[poly];
+    if (!entry || entry->SourceTime != time || entry->SourceKey != key.str())
+    {
+      core::AABB<double> box;
+      for (std::size_t i = 0; i < all.size(); ++i)
+      {
+        if (used[i] && core::isFinite(all[i]))
+        {
+          box.extend(all[i]);
+        }
+      }
+      double radius = 0.0;
+      vtkCamera* cam = ren->GetActiveCamera();
+      int size[2];
+      int origin[2];
+      ren->GetTiledSizeAndOrigin(size, size + 1, origin, origin + 1);
+      if (!box.isEmpty() && size[1] > 0)
+      {
+        double pixel;
+        if (cam->GetParallelProjection())
+        {
+          pixel = 2.0 * cam->GetParallelScale() / size[1];
+        }
+        else
+        {
+          double center[4] = { box.center().x, box.center().y, box.center().z, 1.0 };
+          actor->GetMatrix()->MultiplyPoint(center, center);
+          double eye[3], dop[3];
+          cam->GetPosition(eye);
+          cam->GetDirectionOfProjection(dop);
+          const double depth = std::max(1e-30,
+            (center[0] - eye[0]) * dop[0] + (center[1] - eye[1]) * dop[1] + (center[2] - eye[2]) * dop[2]);
+          pixel = 2.0 * depth * std::tan(vtkMath::RadiansFromDegrees(cam->GetViewAngle()) / 2.0) / size[1];
+        }
+        radius = 0.5 * property->GetPointSize() * pixel;
+      }
+      std::vector<Vec3<double>> centers;
+      std::vector<double> radii;
+      std::vector<std::uint32_t> ids;
+      for (std::size_t i = 0; i < all.size(); ++i)
+      {
+        if (used[i])
+        {
+          centers.push_back(all[i]);
+          radii.push_back(radius);
+          ids.push_back(static_cast<std::uint32_t>(i));
+        }
+      }
+      entry = buildSpheres(centers, radii, ids);
+      entry->SourceTime = time;
+      entry->SourceKey = key.str();
+      entry->Keep = poly;
+      ++counters.BVHBuilds;
+      this->GeometryDirty = true;
+    }
+    entry->Used = true;
+    if (!entry->Empty())
+    {
+      Instance sph = inst;
+      sph.Geom = entry.get();
+      Colors* colors = this->GetColors(mapper, poly, time);
+      sph.Color = colors && !colors->CellColors ? colors : nullptr;
+      this->Instances.push_back(sph);
+    }
+  }
+  return true;
+}
+
+bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, FrameCounters& counters)
+{
+  if (mapper->GetNumberOfInputConnections(1) != 1 || mapper->GetSourceIndexing() ||
+    mapper->GetUseSourceTableTree())
+  {
+    return false;
+  }
+  vtkAlgorithmOutput* conn = mapper->GetInputConnection(1, 0);
+  vtkSphereSource* sphere = conn ? vtkSphereSource::SafeDownCast(conn->GetProducer()) : nullptr;
+  if (!sphere)
+  {
+    return false;
+  }
+  mapper->Update();
+  vtkDataSet* input = mapper->GetInput();
+  if (!input)
+  {
+    return false;
+  }
+  vtkDataArray* scale = mapper->GetScaling() ? glyphArray(mapper, vtkGlyph3DMapper::SCALE, input) : nullptr;
+  const int scaleMode = mapper->GetScaleMode();
+  if (scale && scaleMode == vtkGlyph3DMapper::SCALE_BY_COMPONENTS && scale->GetNumberOfComponents() != 1)
+  {
+    return false; // ellipsoids: left to raster
+  }
+  vtkMTimeType time = std::max({ mapper->GetMTime(), input->GetMTime(), sphere->GetMTime() });
+  auto& entry = this->SphereCache[mapper];
+  if (!entry || entry->SourceTime != time)
+  {
+    vtkDataArray* mask = mapper->GetMasking() ? glyphArray(mapper, vtkGlyph3DMapper::MASK, input) : nullptr;
+    const double r0 = sphere->GetRadius();
+    double sourceCenter[3];
+    sphere->GetCenter(sourceCenter);
+    const double* range = mapper->GetRange();
+    double den = range[1] - range[0];
+    if (den == 0.0)
+    {
+      den = 1.0;
+    }
+    const vtkIdType n = input->GetNumberOfPoints();
+    std::vector<Vec3<double>> centers;
+    std::vector<double> radii;
+    std::vector<std::uint32_t> ids;
+    centers.reserve(static_cast<std::size_t>(n));
+    radii.reserve(static_cast<std::size_t>(n));
+    ids.reserve(static_cast<std::size_t>(n));
+    std::vector<double> tuple(scale ? scale->GetNumberOfComponents() : 1);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      if (mask && mask->GetComponent(i, 0) == 0.0)
+      {
+        continue;
+      }
+      double s = 1.0;
+      if (scale && scaleMode != vtkGlyph3DMapper::NO_DATA_SCALING)
+      {
+        scale->GetTuple(i, tuple.data());
+        s = scaleMode == vtkGlyph3DMapper::SCALE_BY_MAGNITUDE
+          ? vtkMath::Norm(tuple.data(), static_cast<int>(tuple.size()))
+          : tuple[0];
+        if (mapper->GetClamping())
+        {
+          s = std::min(std::max(s, range[0]), range[1]);
+          s = (s - range[0]) / den;
+        }
+      }
+      s *= mapper->GetScaleFactor();
+      double p[3];
+      input->GetPoint(i, p);
+      centers.emplace_back(p[0] + s * sourceCenter[0], p[1] + s * sourceCenter[1], p[2] + s * sourceCenter[2]);
+      radii.push_back(std::abs(s) * r0);
+      ids.push_back(static_cast<std::uint32_t>(i));
+    }
+    entry = buildSpheres(centers, radii, ids);
+    entry->SourceTime = time;
+    entry->Keep = mapper;
+    ++counters.BVHBuilds;
+    this->GeometryDirty = true;
+  }
+  entry->Used = true;
+  Instance inst;
+  inst.PropIndex = propIndex;
+  this->FillMaterial(actor, mapper, inst);
+  if (!entry->Empty())
+  {
+    inst.Geom = entry.get();
+    vtkPolyData* asPoly = vtkPolyData::SafeDownCast(input);
+    Colors* colors = nullptr;
+    if (asPoly)
+    {
+      colors = this->GetColors(mapper, asPoly, input->GetMTime());
+    }
+    inst.Color = colors && !colors->CellColors ? colors : nullptr;
+    this->Instances.push_back(inst);
+  }
+  return true;
+}
+
+void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vtkProp*>& traced,
+  std::vector<vtkProp*>& others, FrameCounters& counters)
+{
+  traced.clear();
+  others.clear();
+  this->Instances.clear();
+  for (auto& e : this->TriangleCache)
+  {
+    e.second->Used = false;
+  }
+  for (auto& e : this->SphereCache)
+  {
+    e.second->Used = false;
+  }
+  for (auto& e : this->ColorCache)
+  {
+    e.second->Used = false;
+  }
+
+  for (int i = 0; i < count; ++i)
+  {
+    vtkProp* prop = props[i];
+    if (!IsTraceable(prop))
+    {
+      others.push_back(prop);
+      continue;
+    }
+    vtkActor* actor = vtkActor::SafeDownCast(prop);
+    vtkMapper* mapper = actor->GetMapper();
+    const int propIndex = static_cast<int>(traced.size());
+    const std::size_t firstInstance = this->Instances.size();
+    bool ok = false;
+    if (auto* glyphs = vtkGlyph3DMapper::SafeDownCast(mapper))
+    {
+      ok = this->AddGlyphs(actor, glyphs, propIndex, counters);
+    }
+    else
+    {
+      mapper->Update();
+      vtkDataObject* input = mapper->GetInputDataObject(0, 0);
+      const bool pointsAsSpheres = actor->GetProperty()->GetRenderPointsAsSpheres();
+      std::vector<vtkPolyData*> pieces;
+      ok = true;
+      if (auto* poly = vtkPolyData::SafeDownCast(input))
+      {
+        pieces.push_back(poly);
+      }
+      else if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
+      {
+        vtkCompositeDataDisplayAttributes* attributes = nullptr;
+        if (auto* m2 = vtkCompositePolyDataMapper2::SafeDownCast(mapper))
+        {
+          attributes = m2->GetCompositeDataDisplayAttributes();
+        }
+        auto it = vtk::TakeSmartPointer(composite->NewIterator());
+        for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+        {
+          vtkDataObject* leaf = it->GetCurrentDataObject();
+          auto* poly = vtkPolyData::SafeDownCast(leaf);
+          if (!poly)
+          {
+            ok = ok && leaf == nullptr;
+            continue;
+          }
+          if (attributes && attributes->HasBlockVisibility(poly) && !attributes->GetBlockVisibility(poly))
+          {
+            continue;
+          }
+          pieces.push_back(poly);
+        }
+      }
+      else if (input)
+      {
+        ok = false;
+      }
+      for (vtkPolyData* poly : pieces)
+      {
+        ok = ok && !hasUntraceableCells(poly, pointsAsSpheres);
+      }
+      if (ok)
+      {
+        for (vtkPolyData* poly : pieces)
+        {
+          this->AddPolyData(actor, mapper, poly, propIndex, ren, counters);
+        }
+      }
+    }
+    if (ok)
+    {
+      traced.push_back(prop);
+    }
+    else
+    {
+      this->Instances.resize(firstInstance);
+      others.push_back(prop);
+    }
+  }
+
+  // Forget what no prop uses any more.
+  for (auto* cache : { &this->TriangleCache, &this->SphereCache })
+  {
+    for (auto it = cache->begin(); it != cache->end();)
+    {
+      if (!it->second->Used)
+      {
+        it = cache->erase(it);
+        this->GeometryDirty = true;
+      }
+      else
+      {
+        ++it;
+      }
+    }
+  }
+  for (auto it = this->ColorCache.begin(); it != this->ColorCache.end();)
+  {
+    if (!it->second->Used)
+    {
+      it = this->ColorCache.erase(it);
+      this->ColorsDirty = true;
+    }
+    else
+    {
+      ++it;
+    }
+  }
+  counters.TracedInstances = static_cast<int>(this->Instances.size());
+  for (const Instance& inst : this->Instances)
+  {
+    counters.TracedPrimitives += inst.Geom->PrimitiveCount;
+  }
+}
+
+void Scene::PackGeometry(std::vector<float>& nodes, std::vector<float>& triangles,
+  std::vector<float>& triangleVertices, std::vector<float>& spheres, std::vector<float>& sphereIds,
+  std::vector<float>& normals)
+{
+  nodes.clear();
+  triangles.clear();
+  triangleVertices.clear();
+  spheres.clear();
+  sphereIds.clear();
+  normals.clear();
+  std::vector<std::uint32_t> ids;
+  auto place = [&](Geometry& g) {
+    g.NodeBase = static_cast<std::uint32_t>(nodes.size() / 8);
+    if (g.Spheres)
+    {
+      g.PrimitiveBase = static_cast<std::uint32_t>(spheres.size() / 4);
+      spheres.insert(spheres.end(), g.Primitives.begin(), g.Primitives.end());
+      ids.insert(ids.end(), g.SphereIds.begin(), g.SphereIds.end());
+    }
+    else
+    {
+      g.PrimitiveBase = static_cast<std::uint32_t>(triangles.size() / 12);
+      triangles.insert(triangles.end(), g.Primitives.begin(), g.Primitives.end());
+      triangleVertices.insert(triangleVertices.end(), g.TriangleVertices.begin(), g.TriangleVertices.end());
+      g.NormalBase = static_cast<std::uint32_t>(normals.size() / 4);
+      normals.insert(normals.end(), g.Normals.begin(), g.Normals.end());
+    }
+    const std::size_t first = nodes.size();
+    nodes.insert(nodes.end(), g.Nodes.begin(), g.Nodes.end());
+    // Local child / primitive indices become global ones.
+    for (std::size_t i = first; i < nodes.size(); i += 8)
+    {
+      const std::uint32_t index = core::floatBitsToUint(nodes[i + 3]);
+      const std::uint32_t count = core::floatBitsToUint(nodes[i + 7]);
+      nodes[i + 3] = bitsOf(index + (count == 0 ? g.NodeBase : g.PrimitiveBase));
+    }
+  };
+  for (auto& e : this->TriangleCache)
+  {
+    if (!e.second->Empty())
+    {
+      place(*e.second);
+    }
+  }
+  for (auto& e : this->SphereCache)
+  {
+    if (!e.second->Empty())
+    {
+      place(*e.second);
+    }
+  }
+  ids.resize((ids.size() + 3) / 4 * 4, 0u);
+  sphereIds.resize(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i)
+  {
+    sphereIds[i] = bitsOf(ids[i]);
+  }
+  this->GeometryDirty = false;
+}
+
+void Scene::PackColors(std::vector<float>& colors)
+{
+  colors.clear();
+  for (auto& e : this->ColorCache)
+  {
+    e.second->Base = static_cast<std::uint32_t>(colors.size());
+    for (std::uint32_t c : e.second->Packed)
+    {
+      colors.push_back(bitsOf(c));
+    }
+  }
+  colors.resize((colors.size() + 3) / 4 * 4, 0.0f);
+  this->ColorsDirty = false;
+}
+
+bool Scene::HasTriangles() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return !i.Geom->Spheres; });
+}
+bool Scene::HasSpheres() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.Geom->Spheres; });
+}
+bool Scene::HasVertexNormals() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.UseVertexNormals; });
+}
+bool Scene::HasColors() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.Color != nullptr; });
+}
+int Scene::MaxClipPlanes() const
+{
+  std::size_t total = 0;
+  for (const Instance& i : this->Instances)
+  {
+    total += i.ClipPlanes.size();
+  }
+  return static_cast<int>(total);
+}
+
+void Scene::Clear()
+{
+  this->TriangleCache.clear();
+  this->SphereCache.clear();
+  this->ColorCache.clear();
+  this->Instances.clear();
+  this->GeometryDirty = true;
+  this->ColorsDirty = true;
+}
+
+} // namespace pass
+} // namespace vtkrt

@@ -1,0 +1,166 @@
+// Private to vtkRayTracePass: scene extraction (renderer props -> cached
+// per-data geometry with its BVH, per-frame instances), and the packing of
+// every cached geometry into the flat arrays the GLSL reads. No GL here.
+#ifndef vtkRayTraceScene_h
+#define vtkRayTraceScene_h
+
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+
+#include "vtkrt/core/BVH.h"
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkActor;
+class vtkDataObject;
+class vtkGlyph3DMapper;
+class vtkMapper;
+class vtkObject;
+class vtkPolyData;
+class vtkProp;
+class vtkRenderer;
+
+namespace vtkrt
+{
+namespace pass
+{
+
+/// One bottom-level BVH with its primitives (triangles of one polydata, or
+/// spheres of one glyph set / point set), relative to its local origin.
+struct Geometry
+{
+  bool Spheres = false;
+  vtkMTimeType SourceTime = 0; ///< cache key part: MTime of what it was built from
+  std::string SourceKey;       ///< extra key (e.g. sphere radius settings)
+  std::array<double, 3> Origin{ { 0, 0, 0 } }; ///< local origin (model coordinates)
+  std::array<double, 6> LocalBounds{ { 0, 0, 0, 0, 0, 0 } }; ///< relative to Origin
+  std::vector<float> Nodes;      ///< packNodesForGpu, local indices
+  std::vector<float> Primitives; ///< triangles: 12 floats each; spheres: 4 floats each (leaf order)
+  std::vector<float> TriangleVertices; ///< 4 floats per triangle: bits(i0, i1, i2, 0)
+  std::vector<std::uint32_t> SphereIds; ///< VTK point id per sphere (leaf order)
+  std::vector<float> Normals;          ///< 4 floats per vertex, empty if none
+  std::size_t PrimitiveCount = 0;
+  std::size_t VertexCount = 0;
+  std::size_t SkippedPrimitives = 0; ///< NaN or degenerate, never traced
+  bool Used = false;
+  vtkSmartPointer<vtkObject> Keep; ///< keeps the keyed object alive
+
+  // Placement in the packed arrays (global offsets).
+  std::uint32_t NodeBase = 0;
+  std::uint32_t PrimitiveBase = 0;
+  std::uint32_t NormalBase = 0;
+
+  bool Empty() const { return Nodes.empty(); }
+};
+
+/// Colors of one (mapper, data) pair: RGBA8 per point or per cell.
+struct Colors
+{
+  vtkMTimeType SourceTime = 0;
+  bool CellColors = false;
+  std::vector<std::uint32_t> Packed;
+  bool Used = false;
+  vtkSmartPointer<vtkObject> Keep;
+  std::uint32_t Base = 0;
+};
+
+/// One traced instance of a geometry, rebuilt every frame (cheap).
+struct Instance
+{
+  Geometry* Geom = nullptr;
+  Colors* Color = nullptr;
+  int PropIndex = 0;
+  std::array<double, 16> Matrix; ///< model to world, row-major (actor matrix)
+  std::array<float, 3> Ambient{ { 0, 0, 0 } };
+  std::array<float, 3> Diffuse{ { 0, 0, 0 } };
+  std::array<float, 3> Specular{ { 0, 0, 0 } };
+  float SpecularPower = 1.0f;
+  float AmbientIntensity = 0.0f; ///< weights of scalar colors, which replace
+  float DiffuseIntensity = 1.0f; ///< the ambient and diffuse colors (VTK 9.1)
+  bool Lit = true;
+  bool UseVertexNormals = false;
+  std::vector<std::array<double, 4>> ClipPlanes; ///< world: n.x + d >= 0 kept
+};
+
+/// What a frame needs from the shader; also the program cache key.
+struct Features
+{
+  bool Triangles = false;
+  bool Spheres = false;
+  bool VertexNormals = false;
+  bool Colors = false;
+  int ClipPlanes = 0;
+  int Lights = 0;
+  int LightComplexity = 0;
+  bool IdMode = false;
+  bool Fp64 = false;
+
+  std::string Key() const;
+};
+
+/// Counters of the work one frame did.
+struct FrameCounters
+{
+  int BVHBuilds = 0;
+  std::size_t GeometryBytesUploaded = 0;
+  std::size_t FrameBytesUploaded = 0;
+  int ShaderCompiles = 0;
+  std::size_t TracedPrimitives = 0;
+  int TracedInstances = 0;
+};
+
+/// Renderer props -> instances, with geometry cached by (data object, MTime).
+class Scene
+{
+public:
+  /// Extracts the props; `traced` receives the props the pass draws (a prop
+  /// index in an instance indexes it), `others` the ones left to raster.
+  void Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vtkProp*>& traced,
+    std::vector<vtkProp*>& others, FrameCounters& counters);
+
+  /// True when the packed geometry arrays changed since the last Pack().
+  bool GeometryChanged() const { return this->GeometryDirty; }
+  bool ColorsChanged() const { return this->ColorsDirty; }
+
+  /// Concatenates every used geometry (global indices) into the arrays.
+  void PackGeometry(std::vector<float>& nodes, std::vector<float>& triangles,
+    std::vector<float>& triangleVertices, std::vector<float>& spheres,
+    std::vector<float>& sphereIds, std::vector<float>& normals);
+  void PackColors(std::vector<float>& colors);
+
+  const std::vector<Instance>& GetInstances() const { return this->Instances; }
+  bool HasTriangles() const;
+  bool HasSpheres() const;
+  bool HasVertexNormals() const;
+  bool HasColors() const;
+  int MaxClipPlanes() const;
+
+  void Clear();
+
+  /// Whether this prop would be traced (public for documentation/tests).
+  static bool IsTraceable(vtkProp* prop);
+
+private:
+  bool AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
+    vtkRenderer* ren, FrameCounters& counters);
+  bool AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, FrameCounters& counters);
+  Colors* GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time);
+  void FillMaterial(vtkActor* actor, vtkMapper* mapper, Instance& inst) const;
+
+  std::map<const void*, std::unique_ptr<Geometry>> TriangleCache;
+  std::map<const void*, std::unique_ptr<Geometry>> SphereCache;
+  std::map<std::pair<const void*, const void*>, std::unique_ptr<Colors>> ColorCache;
+  std::vector<Instance> Instances;
+  bool GeometryDirty = true;
+  bool ColorsDirty = true;
+};
+
+} // namespace pass
+} // namespace vtkrt
+
+#endif

@@ -1,0 +1,346 @@
+// vtkrt ray tracing fragment shader, main part. The pass prepends the
+// #version line, the feature #defines and the kernel chunks
+// (vtkrtRayTraceKernels, and vtkrtRayTraceTriangles / vtkrtRayTraceSpheres
+// only when the scene has such primitives).
+//
+// Coordinates: everything the shader sees is camera-relative world space
+// (world minus the eye position, computed in double on the CPU), so a scene
+// far from the origin keeps float precision. The ray of a pixel runs from its
+// point on the near plane (t = 0) to its point on the far plane (t = 1),
+// both from the inverse of VTK's own composite projection: images line up
+// with raster pixel for pixel and the clipping range is honoured exactly.
+
+in vec2 texCoord;
+layout(location = 0) out vec4 fragOutput0;
+
+uniform mat4 uClipToCamera; // inverse of uCameraToClip
+uniform mat4 uCameraToClip; // VTK's world-to-clip matrix, translated by the eye
+uniform vec3 uViewBack;     // unit +z axis of VTK's view coordinates
+uniform int uNumberOfInstances;
+
+// Per-instance records (VTKRT_INSTANCE_TEXELS texels each), rewritten every
+// frame because their matrices are camera-relative:
+// 0-2: rows of the camera-to-local affine matrix
+// 3: (camera-relative box min, bits(BVH root node))
+// 4: (camera-relative box max, bits(flags))
+// 5: (ambient color, specular power)   (colors weighted by intensity)
+// 6: (diffuse color, bits(color base))
+// 7: (specular color, bits(normal base))
+// 8: bits(first clip plane, clip plane count, prop index, 0)
+// 9: (ambient intensity, diffuse intensity, 0, 0): scalar colors replace
+//    the ambient and diffuse colors, weighted by these (as VTK 9.1 does)
+uniform samplerBuffer uInstances;
+
+const uint kInstanceSpheres = 1u;
+const uint kInstanceLit = 2u;
+const uint kInstanceVertexNormals = 4u;
+const uint kInstancePointColors = 8u;
+const uint kInstanceCellColors = 16u;
+const uint kInstanceMirrored = 32u;
+
+#ifdef VTKRT_HAS_COLORS
+uniform samplerBuffer uColors; // packed RGBA8, four per texel
+#endif
+#ifdef VTKRT_HAS_VERTEX_NORMALS
+uniform samplerBuffer uNormals; // one texel per vertex (xyz)
+#endif
+#ifdef VTKRT_HAS_TRIANGLE_VERTICES
+uniform samplerBuffer uTriangleVertices; // bits(i0, i1, i2, 0) per triangle
+#endif
+#ifdef VTKRT_HAS_SPHERES
+uniform samplerBuffer uSphereIds; // VTK point id per sphere, four per texel
+#endif
+#if VTKRT_NUMBER_OF_CLIP_PLANES > 0
+uniform vec4 uClipPlanes[VTKRT_NUMBER_OF_CLIP_PLANES]; // n.p + d >= 0 is kept
+#endif
+#if VTKRT_NUMBER_OF_LIGHTS > 0
+uniform vec3 uLightColor[VTKRT_NUMBER_OF_LIGHTS];     // diffuse color * intensity
+uniform vec3 uLightDirection[VTKRT_NUMBER_OF_LIGHTS]; // unit, from the light
+uniform vec3 uLightPosition[VTKRT_NUMBER_OF_LIGHTS];  // camera-relative
+uniform vec3 uLightAttenuation[VTKRT_NUMBER_OF_LIGHTS];
+uniform vec3 uLightCone[VTKRT_NUMBER_OF_LIGHTS]; // (cone angle, exponent, positional)
+#endif
+
+vec4 instanceTexel(int instance, int i)
+{
+  return texelFetch(uInstances, instance * VTKRT_INSTANCE_TEXELS + i);
+}
+
+uint asUint(float f)
+{
+  return floatBitsToUint(f);
+}
+
+// VTK's vtkOpenGLPolyDataMapper lighting, for the renderer's lighting
+// complexity (0: none, 1: headlight, 2: directional lights, 3: positional),
+// evaluated in camera-relative world space (a rotation of VTK's view space,
+// so every dot product is the same).
+vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ambientColor, vec3 diffuseColor, vec3 specularColor,
+  float specularPower, bool lit)
+{
+#if VTKRT_LIGHT_COMPLEXITY == 0 || VTKRT_NUMBER_OF_LIGHTS == 0
+  return ambientColor + diffuseColor;
+#else
+  if (!lit)
+  {
+    return ambientColor + diffuseColor;
+  }
+#if VTKRT_LIGHT_COMPLEXITY == 1
+  float df = max(0.0, dot(n, uViewBack));
+  float sf = pow(df, specularPower);
+  return ambientColor + df * diffuseColor * uLightColor[0] +
+    sf * specularColor * uLightColor[0];
+#else
+  vec3 diffuse = vec3(0.0);
+  vec3 specular = vec3(0.0);
+  vec3 viewDirection = normalize(-p);
+  for (int i = 0; i < VTKRT_NUMBER_OF_LIGHTS; ++i)
+  {
+    vec3 lightDirection = uLightDirection[i];
+    float attenuation = 1.0;
+#if VTKRT_LIGHT_COMPLEXITY == 3
+    if (uLightCone[i].z != 0.0)
+    {
+      lightDirection = p - uLightPosition[i];
+      float distance = length(lightDirection);
+      lightDirection = normalize(lightDirection);
+      vec3 att = uLightAttenuation[i];
+      attenuation = 1.0 / (att.x + att.y * distance + att.z * distance * distance);
+      if (uLightCone[i].x < 90.0)
+      {
+        float coneDot = dot(lightDirection, uLightDirection[i]);
+        if (coneDot >= cos(radians(uLightCone[i].x)))
+        {
+          attenuation = attenuation * pow(coneDot, uLightCone[i].y);
+        }
+        else
+        {
+          attenuation = 0.0;
+        }
+      }
+    }
+#endif
+    float df = max(0.0, attenuation * dot(n, -lightDirection));
+    diffuse += df * uLightColor[i];
+    float sf = sign(df) * attenuation *
+      pow(max(0.0, dot(reflect(lightDirection, n), viewDirection)), specularPower);
+    specular += sf * uLightColor[i];
+  }
+  return ambientColor + diffuse * diffuseColor + specular * specularColor;
+#endif
+#endif
+}
+
+#ifdef VTKRT_HAS_COLORS
+vec4 fetchColor(int i)
+{
+  return unpackUnorm4x8(fetchPacked(uColors, i));
+}
+#endif
+
+void main()
+{
+  vec2 ndc = texCoord * 2.0 - 1.0;
+  vec4 nearPoint = uClipToCamera * vec4(ndc, -1.0, 1.0);
+  vec4 farPoint = uClipToCamera * vec4(ndc, 1.0, 1.0);
+  vec3 org = nearPoint.xyz / nearPoint.w;
+  vec3 dir = farPoint.xyz / farPoint.w - org;
+  vec3 invDir = safeInverse(dir);
+
+  float tBest = 1.0;
+  int hitInstance = -1;
+  int hitPrimitive = -1;
+  vec2 hitUV = vec2(0.0);
+  for (int instance = 0; instance < uNumberOfInstances; ++instance)
+  {
+    vec4 boxMin = instanceTexel(instance, 3);
+    vec4 boxMax = instanceTexel(instance, 4);
+    uint flags = asUint(boxMax.w);
+    float t0 = 0.0;
+    float t1 = tBest;
+#if VTKRT_NUMBER_OF_CLIP_PLANES > 0
+    vec4 info = instanceTexel(instance, 8);
+    int firstPlane = int(asUint(info.x));
+    int planeCount = int(asUint(info.y));
+    bool clippedAway = false;
+    for (int c = 0; c < planeCount; ++c)
+    {
+      if (!clipRayByPlane(org, dir, uClipPlanes[firstPlane + c], t0, t1))
+      {
+        clippedAway = true;
+      }
+    }
+    if (clippedAway)
+    {
+      continue;
+    }
+#endif
+    float tnear;
+    if (!intersectRayAABB(org, invDir, boxMin.xyz, boxMax.xyz, t0, t1, tnear))
+    {
+      continue;
+    }
+    vec4 r0 = instanceTexel(instance, 0);
+    vec4 r1 = instanceTexel(instance, 1);
+    vec4 r2 = instanceTexel(instance, 2);
+    vec3 localOrg = vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
+    vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
+    int root = int(asUint(boxMin.w));
+    int primitive = -1;
+    vec2 uv = vec2(0.0);
+#if defined(VTKRT_HAS_TRIANGLES) && defined(VTKRT_HAS_SPHERES)
+    bool hit = (flags & kInstanceSpheres) != 0u
+      ? traverseSpheres(root, localOrg, localDir, t0, t1, primitive)
+      : traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv);
+#elif defined(VTKRT_HAS_TRIANGLES)
+    bool hit = traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv);
+#elif defined(VTKRT_HAS_SPHERES)
+    bool hit = traverseSpheres(root, localOrg, localDir, t0, t1, primitive);
+#else
+    bool hit = false;
+#endif
+    if (hit)
+    {
+      tBest = t1;
+      hitInstance = instance;
+      hitPrimitive = primitive;
+      hitUV = uv;
+    }
+  }
+
+  if (hitInstance < 0)
+  {
+#ifdef VTKRT_ID_MODE
+    fragOutput0 = vec4(0.0);
+    gl_FragDepth = 1.0;
+    return;
+#else
+    discard;
+#endif
+  }
+
+  vec3 p = org + tBest * dir;
+  vec4 clip = uCameraToClip * vec4(p, 1.0);
+  gl_FragDepth = clamp(0.5 * (clip.z / clip.w) + 0.5, 0.0, 1.0);
+
+  vec4 r0 = instanceTexel(hitInstance, 0);
+  vec4 r1 = instanceTexel(hitInstance, 1);
+  vec4 r2 = instanceTexel(hitInstance, 2);
+  uint flags = asUint(instanceTexel(hitInstance, 4).w);
+  vec4 info = instanceTexel(hitInstance, 8);
+
+  // Local normals map to camera space by the transpose of the camera-to-local
+  // matrix (the inverse transpose of local-to-camera).
+  vec3 localNormal = vec3(0.0, 0.0, 1.0);
+  vec3 geometricNormal = vec3(0.0, 0.0, 1.0);
+  uint vtkId = 0u;
+  vec4 scalarColor = vec4(-1.0);
+  float mirror = (flags & kInstanceMirrored) != 0u ? -1.0 : 1.0;
+#ifdef VTKRT_HAS_SPHERES
+  if ((flags & kInstanceSpheres) != 0u)
+  {
+    vec3 localOrg = vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
+    vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
+    vec4 s = texelFetch(uSpheres, hitPrimitive);
+    localNormal = localOrg + tBest * localDir - s.xyz;
+    geometricNormal = localNormal;
+    mirror = 1.0;
+    vtkId = fetchPacked(uSphereIds, hitPrimitive);
+#ifdef VTKRT_HAS_COLORS
+    if ((flags & (kInstancePointColors | kInstanceCellColors)) != 0u)
+    {
+      scalarColor = fetchColor(int(asUint(instanceTexel(hitInstance, 6).w)) + int(vtkId));
+    }
+#endif
+  }
+#endif
+#ifdef VTKRT_HAS_TRIANGLES
+  if ((flags & kInstanceSpheres) == 0u)
+  {
+    vec4 a = texelFetch(uTriangles, 3 * hitPrimitive);
+    vec3 b = texelFetch(uTriangles, 3 * hitPrimitive + 1).xyz;
+    vec3 c = texelFetch(uTriangles, 3 * hitPrimitive + 2).xyz;
+    geometricNormal = cross(b - a.xyz, c - a.xyz);
+    localNormal = geometricNormal;
+    vtkId = asUint(a.w);
+    float w0 = 1.0 - hitUV.x - hitUV.y;
+#ifdef VTKRT_HAS_TRIANGLE_VERTICES
+    if ((flags & (kInstanceVertexNormals | kInstancePointColors)) != 0u)
+    {
+      vec4 iv = texelFetch(uTriangleVertices, hitPrimitive);
+      int i0 = int(asUint(iv.x));
+      int i1 = int(asUint(iv.y));
+      int i2 = int(asUint(iv.z));
+#ifdef VTKRT_HAS_VERTEX_NORMALS
+      if ((flags & kInstanceVertexNormals) != 0u)
+      {
+        int nb = int(asUint(instanceTexel(hitInstance, 7).w));
+        localNormal = w0 * texelFetch(uNormals, nb + i0).xyz +
+          hitUV.x * texelFetch(uNormals, nb + i1).xyz + hitUV.y * texelFetch(uNormals, nb + i2).xyz;
+      }
+#endif
+#ifdef VTKRT_HAS_COLORS
+      if ((flags & kInstancePointColors) != 0u)
+      {
+        int cb = int(asUint(instanceTexel(hitInstance, 6).w));
+        scalarColor = w0 * fetchColor(cb + i0) + hitUV.x * fetchColor(cb + i1) +
+          hitUV.y * fetchColor(cb + i2);
+      }
+#endif
+    }
+#endif
+#ifdef VTKRT_HAS_COLORS
+    if ((flags & kInstanceCellColors) != 0u)
+    {
+      scalarColor = fetchColor(int(asUint(instanceTexel(hitInstance, 6).w)) + int(vtkId));
+    }
+#endif
+  }
+#endif
+
+#ifdef VTKRT_ID_MODE
+  // RGB: the VTK cell (or point, for spheres) id, 24 bits; A: prop index + 1.
+  uint prop = asUint(info.z) + 1u;
+  fragOutput0 = vec4(float(vtkId & 255u), float((vtkId >> 8) & 255u),
+                  float((vtkId >> 16) & 255u), float(prop & 255u)) / 255.0;
+#else
+  mat3 cameraToLocal = mat3(r0.xyz, r1.xyz, r2.xyz); // columns = rows of the matrix
+  vec3 n = normalize(cameraToLocal * localNormal);
+  vec3 ng = mirror * (cameraToLocal * geometricNormal);
+  if ((flags & kInstanceVertexNormals) != 0u)
+  {
+    // VTK flips interpolated normals on back-facing triangles.
+    if (dot(ng, dir) > 0.0)
+    {
+      n = -n;
+    }
+  }
+  else if ((flags & kInstanceSpheres) != 0u)
+  {
+    if (dot(n, dir) > 0.0)
+    {
+      n = -n;
+    }
+  }
+  else if (dot(n, uViewBack) < 0.0)
+  {
+    // VTK's derivative normal faces the viewer: normalVC.z >= 0.
+    n = -n;
+  }
+
+  vec4 t5 = instanceTexel(hitInstance, 5);
+  vec4 t6 = instanceTexel(hitInstance, 6);
+  vec4 t7 = instanceTexel(hitInstance, 7);
+  vec3 ambientColor = t5.xyz;
+  vec3 diffuseColor = t6.xyz;
+  if (scalarColor.x >= 0.0)
+  {
+    vec4 intensities = instanceTexel(hitInstance, 9);
+    ambientColor = intensities.x * scalarColor.rgb;
+    diffuseColor = intensities.y * scalarColor.rgb;
+  }
+  vec3 color = shadeLikeVTK(p, n, ambientColor, diffuseColor, t7.xyz, t5.w,
+    (flags & kInstanceLit) != 0u);
+  fragOutput0 = vec4(clamp(color, 0.0, 1.0), 1.0);
+#endif
+}

@@ -1,0 +1,198 @@
+// Triangle meshes: the watertight ray/triangle test and closest-hit BVH
+// traversal. Included only in shaders of scenes that have triangles.
+
+// Triangles in BVH leaf order, three texels each: (v0, bits(VTK cell id)),
+// (v1, 0), (v2, 0); coordinates relative to the mesh's center.
+uniform samplerBuffer uTriangles;
+
+// Per-ray data of the watertight test (core::RayTrianglePrecomputed). The
+// axis permutation and shear are stored as three rows so that
+// A[kx] - sx * A[kz] becomes dot(A, rowX) (the products by 0 and 1 are exact).
+struct RayTrianglePrecomputed
+{
+  vec3 org;
+  vec3 rowX;
+  vec3 rowY;
+  vec3 rowZ;
+};
+
+vec3 unitAxis(int k)
+{
+  return vec3(k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0);
+}
+
+RayTrianglePrecomputed precomputeRayTriangle(vec3 org, vec3 dir)
+{
+  vec3 ad = abs(dir);
+  int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
+  int kx = kz + 1 == 3 ? 0 : kz + 1;
+  int ky = kx + 1 == 3 ? 0 : kx + 1;
+  float dz = dir[kz];
+  // Keep the winding independent of the direction sign.
+  if (dz < 0.0)
+  {
+    int tmp = kx;
+    kx = ky;
+    ky = tmp;
+  }
+  float sx = dir[kx] / dz;
+  float sy = dir[ky] / dz;
+  float sz = 1.0 / dz;
+  RayTrianglePrecomputed r;
+  r.org = org;
+  r.rowX = unitAxis(kx) - sx * unitAxis(kz);
+  r.rowY = unitAxis(ky) - sy * unitAxis(kz);
+  r.rowZ = sz * unitAxis(kz);
+  return r;
+}
+
+// Mirrors core::intersectRayTriangle (Woop, Benthin & Wald 2013). hit = (t,
+// u, v) with the hit point (1 - u - v) * v0 + u * v1 + v * v2. Both windings
+// hit; t must lie in [tmin, tmax]; degenerate triangles never hit.
+bool intersectRayTriangle(RayTrianglePrecomputed r, vec3 v0, vec3 v1, vec3 v2, float tmin,
+  float tmax, out vec3 hit)
+{
+  vec3 A = v0 - r.org;
+  vec3 B = v1 - r.org;
+  vec3 C = v2 - r.org;
+  float Ax = dot(A, r.rowX);
+  float Ay = dot(A, r.rowY);
+  float Bx = dot(B, r.rowX);
+  float By = dot(B, r.rowY);
+  float Cx = dot(C, r.rowX);
+  float Cy = dot(C, r.rowY);
+  float U = Cx * By - Cy * Bx;
+  float V = Ax * Cy - Ay * Cx;
+  float W = Bx * Ay - By * Ax;
+#ifdef VTKRT_HAS_FP64
+  // An edge function that is exactly 0 in float is recomputed in double.
+  if (U == 0.0 || V == 0.0 || W == 0.0)
+  {
+    U = float(double(Cx) * double(By) - double(Cy) * double(Bx));
+    V = float(double(Ax) * double(Cy) - double(Ay) * double(Cx));
+    W = float(double(Bx) * double(Ay) - double(By) * double(Ax));
+  }
+#endif
+  hit = vec3(0.0);
+  if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0))
+  {
+    return false;
+  }
+  float det = U + V + W;
+  if (det == 0.0 || isnan(det))
+  {
+    return false;
+  }
+  float Az = dot(A, r.rowZ);
+  float Bz = dot(B, r.rowZ);
+  float Cz = dot(C, r.rowZ);
+  float Tsc = U * Az + V * Bz + W * Cz;
+  float rcpDet = 1.0 / det;
+  float t = Tsc * rcpDet;
+  if (!(t >= tmin && t <= tmax))
+  {
+    return false;
+  }
+  hit = vec3(t, V * rcpDet, W * rcpDet);
+  return true;
+}
+
+// Closest hit in the triangle BVH whose root node is `root`: on a hit, tmax
+// becomes the hit distance, tri the triangle's leaf-order index (global) and
+// uv its barycentrics.
+bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tmax, out int tri,
+  out vec2 uv)
+{
+  tri = -1;
+  uv = vec2(0.0);
+  vec3 invDir = safeInverse(dir);
+  float tnear;
+  vec4 rootLo = texelFetch(uNodes, 2 * root);
+  vec4 rootHi = texelFetch(uNodes, 2 * root + 1);
+  if (!intersectRayAABB(org, invDir, rootLo.xyz, rootHi.xyz, tmin, tmax, tnear))
+  {
+    return false;
+  }
+  RayTrianglePrecomputed pre = precomputeRayTriangle(org, dir);
+  int stackNode[VTKRT_STACK_SIZE];
+  float stackNear[VTKRT_STACK_SIZE];
+  int sp = 0;
+  int node = root;
+  vec4 lo = rootLo;
+  vec4 hi = rootHi;
+  for (;;)
+  {
+    int index = int(floatBitsToUint(lo.w));
+    int count = int(floatBitsToUint(hi.w));
+    bool descended = false;
+    if (count > 0)
+    {
+      for (int i = index; i < index + count; ++i)
+      {
+        vec3 v0 = texelFetch(uTriangles, 3 * i).xyz;
+        vec3 v1 = texelFetch(uTriangles, 3 * i + 1).xyz;
+        vec3 v2 = texelFetch(uTriangles, 3 * i + 2).xyz;
+        vec3 h;
+        if (intersectRayTriangle(pre, v0, v1, v2, tmin, tmax, h))
+        {
+          tmax = h.x;
+          tri = i;
+          uv = h.yz;
+        }
+      }
+    }
+    else
+    {
+      vec4 lo0 = texelFetch(uNodes, 2 * index);
+      vec4 hi0 = texelFetch(uNodes, 2 * index + 1);
+      vec4 lo1 = texelFetch(uNodes, 2 * index + 2);
+      vec4 hi1 = texelFetch(uNodes, 2 * index + 3);
+      float t0, t1;
+      bool h0 = intersectRayAABB(org, invDir, lo0.xyz, hi0.xyz, tmin, tmax, t0);
+      bool h1 = intersectRayAABB(org, invDir, lo1.xyz, hi1.xyz, tmin, tmax, t1);
+      if (h0 && h1)
+      {
+        bool firstNear = t0 <= t1;
+        if (sp < VTKRT_STACK_SIZE)
+        {
+          stackNode[sp] = firstNear ? index + 1 : index;
+          stackNear[sp] = firstNear ? t1 : t0;
+          ++sp;
+        }
+        node = firstNear ? index : index + 1;
+        lo = firstNear ? lo0 : lo1;
+        hi = firstNear ? hi0 : hi1;
+        descended = true;
+      }
+      else if (h0 || h1)
+      {
+        node = h0 ? index : index + 1;
+        lo = h0 ? lo0 : lo1;
+        hi = h0 ? hi0 : hi1;
+        descended = true;
+      }
+    }
+    if (!descended)
+    {
+      // Pop the nearest pending subtree that can still hold a closer hit.
+      bool found = false;
+      while (sp > 0)
+      {
+        --sp;
+        if (stackNear[sp] <= tmax)
+        {
+          node = stackNode[sp];
+          found = true;
+          break;
+        }
+      }
+      if (!found)
+      {
+        break;
+      }
+      lo = texelFetch(uNodes, 2 * node);
+      hi = texelFetch(uNodes, 2 * node + 1);
+    }
+  }
+  return tri >= 0;
+}

@@ -1,0 +1,126 @@
+// Helpers shared by the pass tests: headless windows, image capture and
+// raster-vs-ray-traced comparison.
+#ifndef vtkrtPassTestUtils_h
+#define vtkrtPassTestUtils_h
+
+#include "vtkEGLHeadlessRenderWindow.h"
+#include "vtkRayTracePass.h"
+
+#include "vtkImageData.h"
+#include "vtkImageDifference.h"
+#include "vtkNew.h"
+#include "vtkPNGWriter.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkWindowToImageFilter.h"
+
+#include <cstdlib>
+#include <iostream>
+#include <string>
+
+namespace vtkrtPassTest
+{
+inline vtkSmartPointer<vtkEGLHeadlessRenderWindow> MakeWindow(int w, int h)
+{
+  auto win = vtkSmartPointer<vtkEGLHeadlessRenderWindow>::New();
+  win->SetSize(w, h);
+  win->SetMultiSamples(0);
+  return win;
+}
+
+/// The window's current image (no re-render), RGB or RGBA.
+inline vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* win, bool rgba = false)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(win);
+  if (rgba)
+  {
+    grab->SetInputBufferTypeToRGBA();
+  }
+  else
+  {
+    grab->SetInputBufferTypeToRGB();
+  }
+  grab->ReadFrontBufferOn();
+  grab->ShouldRerenderOff();
+  grab->Update();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->DeepCopy(grab->GetOutput());
+  return image;
+}
+
+/// vtkImageDifference's thresholded error between two images (the same
+/// settings as the baseline harness: averaging, threshold 16).
+inline double Difference(vtkImageData* a, vtkImageData* b)
+{
+  vtkNew<vtkImageDifference> diff;
+  diff->SetInputData(a);
+  diff->SetImageData(b);
+  diff->SetThreshold(16);
+  diff->AllowShiftOff();
+  diff->AveragingOn();
+  diff->Update();
+  return diff->GetThresholdedError();
+}
+
+/// Pixels whose color differs by more than `tolerance` in some channel.
+inline long CountDifferingPixels(vtkImageData* a, vtkImageData* b, int tolerance)
+{
+  int da[3], db[3];
+  a->GetDimensions(da);
+  b->GetDimensions(db);
+  if (da[0] != db[0] || da[1] != db[1])
+  {
+    return -1;
+  }
+  const int ca = a->GetNumberOfScalarComponents();
+  const int cb = b->GetNumberOfScalarComponents();
+  const auto* pa = static_cast<const unsigned char*>(a->GetScalarPointer());
+  const auto* pb = static_cast<const unsigned char*>(b->GetScalarPointer());
+  long count = 0;
+  for (long i = 0; i < static_cast<long>(da[0]) * da[1]; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      if (std::abs(int(pa[i * ca + c]) - int(pb[i * cb + c])) > tolerance)
+      {
+        ++count;
+        break;
+      }
+    }
+  }
+  return count;
+}
+
+/// Pixels that are not the background color (exactly).
+inline long CountForegroundPixels(vtkImageData* image, const double background[3])
+{
+  int d[3];
+  image->GetDimensions(d);
+  const int comps = image->GetNumberOfScalarComponents();
+  const auto* p = static_cast<const unsigned char*>(image->GetScalarPointer());
+  long count = 0;
+  for (long i = 0; i < static_cast<long>(d[0]) * d[1]; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      if (std::abs(int(p[i * comps + c]) - int(background[c] * 255.0 + 0.5)) > 1)
+      {
+        ++count;
+        break;
+      }
+    }
+  }
+  return count;
+}
+
+inline void WritePNG(vtkImageData* image, const std::string& path)
+{
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(path.c_str());
+  writer->Write();
+}
+} // namespace vtkrtPassTest
+
+#endif
