@@ -21,6 +21,14 @@
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
 #include "vtkXMLPolyDataReader.h"
+#include "vtkCellData.h"
+#include "vtkConeSource.h"
+#include "vtkElevationFilter.h"
+#include "vtkFloatArray.h"
+#include "vtkLight.h"
+#include "vtkPlane.h"
+#include "vtkTextActor.h"
+#include "vtkTextProperty.h"
 
 #include <cstdlib>
 #include <functional>
@@ -166,6 +174,227 @@ void TestGlyphs()
     },
     40.0);
 }
+// Several actors with transforms (translation, rotation, non-uniform and
+// mirroring scale); four share one polydata, which is stored (and built)
+// once: two-level BVH instances.
+void TestActors()
+{
+  CompareWithRaster("Actors",
+    [](vtkRenderer* ren) {
+      vtkNew<vtkSphereSource> sphere;
+      sphere->SetThetaResolution(48);
+      sphere->SetPhiResolution(24);
+      sphere->Update();
+      vtkSmartPointer<vtkPolyData> shared = sphere->GetOutput();
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputData(shared);
+      vtkNew<vtkPolyDataMapper> mapper2;
+      mapper2->SetInputData(shared);
+      const double colors[4][3] = { { 1, 0.3, 0.3 }, { 0.3, 1, 0.3 }, { 0.3, 0.3, 1 }, { 1, 1, 0.3 } };
+      for (int i = 0; i < 4; ++i)
+      {
+        vtkNew<vtkActor> actor;
+        actor->SetMapper(i == 3 ? mapper2.Get() : mapper.Get());
+        actor->GetProperty()->SetColor(colors[i][0], colors[i][1], colors[i][2]);
+        actor->GetProperty()->SetSpecular(0.5);
+        actor->GetProperty()->SetSpecularPower(40);
+        actor->SetPosition(1.2 * (i % 2), 1.2 * (i / 2), 0.1 * i);
+        actor->RotateZ(25.0 * i);
+        actor->SetScale(1.0 + 0.3 * i, 1.0, i == 2 ? -0.6 : 0.8);
+        ren->AddActor(actor);
+      }
+      vtkNew<vtkConeSource> cone;
+      cone->SetResolution(40);
+      vtkNew<vtkPolyDataMapper> coneMapper;
+      coneMapper->SetInputConnection(cone->GetOutputPort());
+      vtkNew<vtkActor> coneActor;
+      coneActor->SetMapper(coneMapper);
+      coneActor->SetPosition(0.6, 0.6, 0.8);
+      coneActor->RotateY(-60);
+      coneActor->GetProperty()->SetColor(0.8, 0.8, 0.8);
+      ren->AddActor(coneActor);
+      ren->SetBackground(0.2, 0.2, 0.2);
+      ren->ResetCamera();
+      ren->GetActiveCamera()->Elevation(20);
+      ren->ResetCameraClippingRange();
+    },
+    40.0);
+}
+
+// Point scalars (elevation) and cell scalars through lookup tables.
+void TestScalars()
+{
+  CompareWithRaster("Scalars",
+    [](vtkRenderer* ren) {
+      vtkNew<vtkElevationFilter> elevation;
+      elevation->SetInputData(ReadPolyData("bunny.vtp"));
+      elevation->SetLowPoint(0, -0.1, 0);
+      elevation->SetHighPoint(0, 0.2, 0);
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputConnection(elevation->GetOutputPort());
+      mapper->SetScalarRange(0.2, 0.8);
+      vtkNew<vtkActor> bunny;
+      bunny->SetMapper(mapper);
+      ren->AddActor(bunny);
+
+      vtkNew<vtkSphereSource> sphere;
+      sphere->SetRadius(0.05);
+      sphere->SetCenter(0.1, 0.15, 0.0);
+      sphere->SetThetaResolution(12);
+      sphere->SetPhiResolution(8);
+      sphere->Update();
+      auto poly = vtkSmartPointer<vtkPolyData>::New();
+      poly->ShallowCopy(sphere->GetOutput());
+      vtkNew<vtkFloatArray> cellValues;
+      cellValues->SetName("cellValue");
+      for (vtkIdType i = 0; i < poly->GetNumberOfCells(); ++i)
+      {
+        cellValues->InsertNextValue(static_cast<float>(i % 7));
+      }
+      poly->GetCellData()->SetScalars(cellValues);
+      poly->GetPointData()->SetScalars(nullptr);
+      vtkNew<vtkLookupTable> lut;
+      lut->SetHueRange(0.0, 0.8);
+      lut->Build();
+      vtkNew<vtkPolyDataMapper> cellMapper;
+      cellMapper->SetInputData(poly);
+      cellMapper->SetScalarModeToUseCellData();
+      cellMapper->SetLookupTable(lut);
+      cellMapper->SetScalarRange(0, 6);
+      vtkNew<vtkActor> cells;
+      cells->SetMapper(cellMapper);
+      ren->AddActor(cells);
+      ren->SetBackground(0.1, 0.1, 0.15);
+      ren->ResetCamera();
+      ren->GetActiveCamera()->Azimuth(-20);
+      ren->ResetCameraClippingRange();
+    },
+    40.0);
+}
+
+// Parallel projection of the mesh and the sphere glyphs.
+void TestParallel()
+{
+  CompareWithRaster("Parallel",
+    [](vtkRenderer* ren) {
+      ren->AddActor(BunnyActor());
+      ren->AddActor(SphereGlyphActor());
+      ren->SetBackground(0.3, 0.3, 0.3);
+      ren->GetActiveCamera()->ParallelProjectionOn();
+      ren->ResetCamera();
+      ren->GetActiveCamera()->Azimuth(60);
+      ren->GetActiveCamera()->Elevation(-10);
+      ren->ResetCameraClippingRange();
+    },
+    40.0, 320, 240);
+}
+
+// Mapper clipping planes on a mesh (two planes) and on the glyphs.
+void TestClipPlanes()
+{
+  CompareWithRaster("ClipPlanes",
+    [](vtkRenderer* ren) {
+      auto bunny = BunnyActor();
+      vtkNew<vtkPlane> plane;
+      plane->SetOrigin(-0.02, 0.1, 0.0);
+      plane->SetNormal(1.0, 0.3, 0.2);
+      bunny->GetMapper()->AddClippingPlane(plane);
+      vtkNew<vtkPlane> plane2;
+      plane2->SetOrigin(0.0, 0.16, 0.0);
+      plane2->SetNormal(0.0, -1.0, 0.0);
+      bunny->GetMapper()->AddClippingPlane(plane2);
+      bunny->GetProperty()->SetBackfaceCulling(false);
+      ren->AddActor(bunny);
+      auto glyphs = SphereGlyphActor();
+      vtkNew<vtkPlane> plane3;
+      plane3->SetOrigin(0.0, 0.0, 0.0);
+      plane3->SetNormal(0.0, 0.0, 1.0);
+      glyphs->GetMapper()->AddClippingPlane(plane3);
+      ren->AddActor(glyphs);
+      ren->SetBackground(0.1, 0.2, 0.3);
+      ren->ResetCamera();
+      ren->GetActiveCamera()->Azimuth(40);
+      ren->ResetCameraClippingRange();
+    },
+    40.0);
+}
+
+// Three scene lights (VTK's positional lighting path): a colored
+// directional light, a positional spot light, a camera light.
+void TestLights()
+{
+  CompareWithRaster("Lights",
+    [](vtkRenderer* ren) {
+      ren->AddActor(BunnyActor());
+      ren->AddActor(SphereGlyphActor());
+      ren->SetBackground(0.05, 0.05, 0.05);
+      ren->ResetCamera();
+      ren->GetActiveCamera()->Azimuth(20);
+      ren->ResetCameraClippingRange();
+      vtkNew<vtkLight> directional;
+      directional->SetLightTypeToSceneLight();
+      directional->SetPosition(1, 1, 1);
+      directional->SetFocalPoint(0, 0, 0);
+      directional->SetColor(1.0, 0.6, 0.6);
+      directional->SetIntensity(0.8);
+      ren->AddLight(directional);
+      vtkNew<vtkLight> spot;
+      spot->SetLightTypeToSceneLight();
+      spot->PositionalOn();
+      spot->SetPosition(-0.1, 0.4, 0.3);
+      spot->SetFocalPoint(0.0, 0.1, 0.0);
+      spot->SetConeAngle(25);
+      spot->SetExponent(2);
+      spot->SetColor(0.5, 0.7, 1.0);
+      ren->AddLight(spot);
+      vtkNew<vtkLight> cameraLight;
+      cameraLight->SetLightTypeToCameraLight();
+      cameraLight->SetPosition(-1, 0, 1);
+      cameraLight->SetFocalPoint(0, 0, 0);
+      cameraLight->SetIntensity(0.4);
+      ren->AddLight(cameraLight);
+    },
+    40.0);
+}
+
+// Props the pass does not trace (translucent, wireframe, text) are drawn
+// by the raster delegate and composite with the traced image by depth.
+void TestFallback()
+{
+  CompareWithRaster("Fallback",
+    [](vtkRenderer* ren) {
+      ren->AddActor(BunnyActor());
+      vtkNew<vtkSphereSource> sphere;
+      sphere->SetCenter(0.0, 0.1, 0.0);
+      sphere->SetRadius(0.06);
+      sphere->SetThetaResolution(32);
+      sphere->SetPhiResolution(16);
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputConnection(sphere->GetOutputPort());
+      vtkNew<vtkActor> wire;
+      wire->SetMapper(mapper);
+      wire->GetProperty()->SetRepresentationToWireframe();
+      wire->GetProperty()->SetColor(1, 1, 0);
+      wire->SetPosition(-0.08, 0.0, 0.0);
+      ren->AddActor(wire);
+      vtkNew<vtkActor> glass;
+      glass->SetMapper(mapper);
+      glass->GetProperty()->SetOpacity(0.4);
+      glass->GetProperty()->SetColor(0.3, 0.6, 1.0);
+      glass->SetPosition(0.05, -0.02, 0.02);
+      ren->AddActor(glass);
+      vtkNew<vtkTextActor> text;
+      text->SetInput("vtkrt");
+      text->GetTextProperty()->SetFontSize(24);
+      text->SetDisplayPosition(10, 10);
+      ren->AddActor2D(text);
+      ren->SetBackground(0.1, 0.2, 0.3);
+      ren->ResetCamera();
+      ren->GetActiveCamera()->Azimuth(30);
+      ren->ResetCameraClippingRange();
+    },
+    40.0);
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -174,6 +403,12 @@ int main(int argc, char* argv[])
   const std::map<std::string, std::function<void()>> cases = {
     { "Mesh", TestMesh },
     { "Glyphs", TestGlyphs },
+    { "Actors", TestActors },
+    { "Scalars", TestScalars },
+    { "Parallel", TestParallel },
+    { "ClipPlanes", TestClipPlanes },
+    { "Lights", TestLights },
+    { "Fallback", TestFallback },
   };
   const std::string which = argc > 1 ? argv[1] : "";
   auto it = cases.find(which);
