@@ -446,6 +446,73 @@ void TestBaseline()
 }
 
 //------------------------------------------------------------------------------
+// VTK's default MultiSamples (8; llvmpipe clamps to 4): the multisampled
+// framebuffer is resolved for colour and depth readback.
+void TestMultiSamples()
+{
+  const std::array<double, 3> red{ 1, 0, 0 }, bg{ 0.1, 0.2, 0.3 };
+  auto window = vtkSmartPointer<vtkEGLHeadlessRenderWindow>::New();
+  window->SetSize(160, 120);
+  Scene cube(false, red, bg);
+  window->AddRenderer(cube.Renderer);
+  window->Render();
+  Pixels px;
+  Read(window, px);
+  CheckCubeFootprint(cube.Renderer, px, red, bg, "MultiSamples " + std::to_string(window->GetMultiSamples()));
+  vtkNew<vtkFloatArray> z;
+  Check(window->GetZbufferData(0, 0, 159, 119, z.Get()) == VTK_OK, "GetZbufferData succeeds");
+  const double centre[3] = { 0, 0, 0.5 };
+  const double expected = Project(cube.Renderer, centre)[2];
+  const float atCentre = z->GetValue(60 * 160 + 80);
+  const float atCorner = z->GetValue(0);
+  Check(std::abs(atCentre - expected) < 1e-5 && atCorner == 1.0f,
+    "depth at the centre " + std::to_string(atCentre) + " (expected " + std::to_string(expected) +
+      "), at the corner " + std::to_string(atCorner));
+  NoVTKOutput("multisamples");
+}
+
+//------------------------------------------------------------------------------
+// Teardown in every order: window before renderer, renderer before window,
+// never-rendered windows, Finalize then delete, a new window after the last
+// one (and its EGL display) went away.
+void TestTeardown()
+{
+  const std::array<double, 3> red{ 1, 0, 0 }, bg{ 0, 0, 0 };
+  for (int round = 0; round < 2; ++round)
+  {
+    {
+      Scene cube(false, red, bg); // outlives the window
+      auto window = MakeWindow(64, 48);
+      window->AddRenderer(cube.Renderer);
+      window->Render();
+      window = nullptr;
+      // The renderer, now without a window, can join a new one.
+      auto second = MakeWindow(64, 48);
+      second->AddRenderer(cube.Renderer);
+      second->Render();
+      Pixels px;
+      Read(second, px);
+      Check(Near(px.At(32, 24), red), "round " + std::to_string(round) +
+          ": a renderer moves to a new window after the first is deleted");
+    }
+    {
+      auto window = MakeWindow(64, 48);
+      Scene cube(false, red, bg); // destroyed before the window
+      window->AddRenderer(cube.Renderer);
+      window->Render();
+      window->Finalize();
+      window->Finalize(); // twice is harmless
+    }
+    {
+      auto never = MakeWindow(32, 32); // never rendered
+      auto finalizedOnly = MakeWindow(32, 32);
+      finalizedOnly->Finalize();
+    }
+  }
+  NoVTKOutput("teardown");
+}
+
+//------------------------------------------------------------------------------
 // Description strings, PrintSelf, GL version.
 void TestDescription()
 {
@@ -503,7 +570,10 @@ void TestFailure(bool viaSetter, const std::string& expectedFragment)
   Output->SetEcho(true);
   for (const auto& e : Output->GetErrors())
   {
-    std::cout << "  (expected) " << e;
+    // The message only: VTK's "ERROR: In file, line" header stays out of a
+    // passing test's output.
+    const size_t at = e.find("): ");
+    std::cout << "  expected message: " << (at == std::string::npos ? e : e.substr(at + 3));
   }
   Check(window->HasFailed() && !window->IsContextReady(), "window reports failure");
   Check(Output->GetNumberOfErrors() == 1, "exactly one VTK error (" +
@@ -536,8 +606,11 @@ int main(int argc, char* argv[])
     { "Selector", TestSelector },
     { "Baseline", TestBaseline },
     { "Description", TestDescription },
+    { "MultiSamples", TestMultiSamples },
+    { "Teardown", TestTeardown },
     { "BadDeviceIndex", [] { TestFailure(true, "999"); } },
     { "BadDeviceFromEnv", [] { TestFailure(false, "VTKRT_EGL_DEVICE"); } },
+    { "BadPlatformFromEnv", [] { TestFailure(false, "EGL_PLATFORM=x11"); } },
   };
   const std::string which = argc > 1 ? argv[1] : "";
   auto it = cases.find(which);
