@@ -368,18 +368,33 @@ void Decimate(Mesh& mesh, size_t targetFaces, const DecimationLimits& limits, vt
   std::vector<Mesh::HalfedgeHandle> target(mesh.n_vertices());
   std::vector<unsigned char> refused(mesh.n_halfedges(), 0);
 
+  // A vertex's best collapse: the cheapest quadric among its outgoing
+  // halfedges that passes the topology test and the binary modules. Those
+  // tests cost far more than the quadric (OpenMesh's is_collapse_ok
+  // dominated profiles), so candidates are tried in quadric order and the
+  // first legal one wins.
+  std::vector<std::pair<float, Mesh::HalfedgeHandle>> candidates;
   auto heapVertex = [&](Mesh::VertexHandle v)
   {
     ++stamp[v.idx()];
-    float best = FLT_MAX;
-    Mesh::HalfedgeHandle bestHalfedge;
+    candidates.clear();
     for (const auto h : mesh.voh_range(v))
     {
-      if (refused[h.idx()])
+      if (!refused[h.idx()])
       {
-        continue;
+        const float priority = quadric.collapse_priority(CollapseInfo(mesh, h));
+        if (priority >= 0.0f)
+        {
+          candidates.emplace_back(priority, h);
+        }
       }
-      CollapseInfo ci(mesh, h);
+    }
+    std::sort(candidates.begin(), candidates.end(),
+      [](const std::pair<float, Mesh::HalfedgeHandle>& x,
+        const std::pair<float, Mesh::HalfedgeHandle>& y) { return x.first < y.first; });
+    for (const auto& candidate : candidates)
+    {
+      CollapseInfo ci(mesh, candidate.second);
       if (!IsCollapseLegal(mesh, ci))
       {
         continue;
@@ -393,21 +408,12 @@ void Decimate(Mesh& mesh, size_t targetFaces, const DecimationLimits& limits, vt
           break;
         }
       }
-      if (!legal)
+      if (legal)
       {
-        continue;
+        target[v.idx()] = candidate.second;
+        heap.push(Entry{ candidate.first, v.idx(), stamp[v.idx()] });
+        return;
       }
-      const float priority = quadric.collapse_priority(ci);
-      if (priority >= 0.0f && priority < best)
-      {
-        best = priority;
-        bestHalfedge = h;
-      }
-    }
-    if (bestHalfedge.is_valid())
-    {
-      target[v.idx()] = bestHalfedge;
-      heap.push(Entry{ best, v.idx(), stamp[v.idx()] });
     }
   };
 
