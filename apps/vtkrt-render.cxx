@@ -671,6 +671,10 @@ int Run(const Options& opt)
   {
     std::cout << "  steady frame: " << steady << " ms (mean of " << opt.Frames << " orbit steps)\n";
   }
+  if (opt.Mode == "raytrace" && opt.Samples > 0)
+  {
+    std::cout << "  note:         --samples applies to raster mode (MSAA); ignored\n";
+  }
   if (opt.Pick)
   {
     std::cout << "  " << pickReport.str() << "\n";

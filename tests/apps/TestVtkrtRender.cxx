@@ -378,6 +378,35 @@ void TestRaytraceMode()
 #ifdef VTKRT_HAVE_RAYTRACE_PASS
   Check(r.Code == 0, "raytrace: exit status 0");
   CheckImage(out, 160, 120, 0.05);
+  // The traced scene covers the same pixels as the rasterized one (shading
+  // may differ; silhouettes agree up to edge pixels).
+  const std::string rasterOut = Tmp + "/raster.png";
+  const Result raster = RunApp("--demo --size 160x120 --frames 0 --output '" + rasterOut + "'");
+  vtkSmartPointer<vtkImageData> a = ReadPNG(out);
+  vtkSmartPointer<vtkImageData> b = ReadPNG(rasterOut);
+  if (raster.Code == 0 && a && b)
+  {
+    const auto* pa = static_cast<const unsigned char*>(a->GetScalarPointer());
+    const auto* pb = static_cast<const unsigned char*>(b->GetScalarPointer());
+    const int na = a->GetNumberOfScalarComponents(), nb = b->GetNumberOfScalarComponents();
+    const int bg[3] = { 82, 87, 110 };
+    auto covered = [&](const unsigned char* c) {
+      return std::abs(c[0] - bg[0]) + std::abs(c[1] - bg[1]) + std::abs(c[2] - bg[2]) > 12;
+    };
+    long both = 0, either = 0;
+    for (long i = 0; i < 160L * 120; ++i)
+    {
+      const bool ca = covered(pa + na * i), cb = covered(pb + nb * i);
+      both += ca && cb;
+      either += ca || cb;
+    }
+    const double iou = either ? static_cast<double>(both) / either : 0.0;
+    Check(iou > 0.97, "raytrace and raster cover the same pixels (IoU " + std::to_string(iou) + ")");
+  }
+  else
+  {
+    Check(false, "raster reference rendered");
+  }
 #else
   Check(r.Code == 3 && Contains(r.Output, "raytrace mode is not available in this build"),
     "raytrace: this build says it is not available and exits 3");
