@@ -524,7 +524,10 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
   {
     return false; // ellipsoids: left to raster
   }
-  vtkMTimeType time = std::max({ mapper->GetMTime(), input->GetMTime(), sphere->GetMTime() });
+  // The mapper's own MTime (its GetMTime() adds the lookup table's, which
+  // colors depend on, not the spheres).
+  vtkMTimeType time =
+    std::max({ mapper->vtkObject::GetMTime(), input->GetMTime(), sphere->GetMTime() });
   auto& entry = this->SphereCache[mapper];
   if (!entry || entry->SourceTime != time)
   {
