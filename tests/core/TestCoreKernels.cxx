@@ -80,7 +80,7 @@ void testTriangleRandomAgainstPlane()
       VTKRT_CHECK(glm::length(p - ray.at(h.t)) < 1e-9);
       if (margin > 1e-3)
       {
-        TriangleHit<float> hf;
+        TriangleHit<float> hf{};
         VTKRT_CHECK(intersectRayTriangle(Ray<float>(Vec3<float>(org), Vec3<float>(target - org)),
           Vec3<float>(a), Vec3<float>(b), Vec3<float>(c), hf));
         VTKRT_CHECK_NEAR(hf.t, 1.0, 1e-3);

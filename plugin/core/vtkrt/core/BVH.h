@@ -74,7 +74,7 @@ struct BuildOptions
   BuildQuality quality = BuildQuality::Medium;
   std::uint32_t maxLeafSize = 4; ///< max primitives per leaf (>= 1)
   unsigned numThreads = 0;       ///< 0: std::thread::hardware_concurrency()
-  std::uint32_t numBins = 32;    ///< binned SAH bins per axis
+  std::uint32_t numBins = 32;    ///< binned SAH bins per axis (2..64)
   double traversalCost = 1.0;    ///< SAH cost of visiting an interior node
   double intersectionCost = 1.0; ///< SAH cost of one primitive test
 };

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <new>
 #include <thread>
 
 namespace vtkrt::core
@@ -44,6 +45,7 @@ class Builder
 {
 public:
   static constexpr std::uint32_t kTaskPrimitives = 16384;
+  static constexpr std::uint32_t kMaxBins = 64;
 
   Builder(std::vector<BuildRef>& refs, const BuildOptions& options)
     : Refs(refs)
@@ -53,7 +55,7 @@ public:
     {
       Options.maxLeafSize = 1;
     }
-    Options.numBins = std::max<std::uint32_t>(2, std::min<std::uint32_t>(Options.numBins, 256));
+    Options.numBins = std::max<std::uint32_t>(2, std::min<std::uint32_t>(Options.numBins, kMaxBins));
     unsigned threads = Options.numThreads ? Options.numThreads : std::thread::hardware_concurrency();
     FreeThreads = static_cast<int>(std::max(1u, threads)) - 1;
   }
@@ -118,40 +120,62 @@ private:
     const AABB<double>& centroids)
   {
     const std::uint32_t count = end - begin;
-    const std::uint32_t nb = Options.numBins;
+    // Small ranges get fewer bins: the sweeps below cost O(bins) per node.
+    const std::uint32_t nb = std::min(Options.numBins, std::max<std::uint32_t>(2, count));
     struct Bin
     {
       AABB<double> box;
-      std::uint32_t count = 0;
+      std::uint32_t count;
     };
     double bestCost = std::numeric_limits<double>::infinity();
     int bestAxis = -1;
     std::uint32_t bestBin = 0;
-    std::vector<Bin> bins(nb);
-    std::vector<double> rightArea(nb);
-    std::vector<std::uint32_t> rightCount(nb);
+    // Fixed-size scratch on the stack, raw storage initialized for the nb
+    // bins in use only: no allocation, no 3 x kMaxBins constructor calls.
+    alignas(Bin) unsigned char binStorage[3 * kMaxBins * sizeof(Bin)];
+    Bin(*bins)[kMaxBins] = reinterpret_cast<Bin(*)[kMaxBins]>(binStorage);
+    double rightArea[kMaxBins];
+    std::uint32_t rightCount[kMaxBins];
+    double scale[3];
+    bool active[3];
     for (int axis = 0; axis < 3; ++axis)
     {
-      const double lo = centroids.min[axis];
-      const double extent = centroids.max[axis] - lo;
-      if (!(extent > 0.0))
+      const double extent = centroids.max[axis] - centroids.min[axis];
+      active[axis] = extent > 0.0;
+      scale[axis] = active[axis] ? nb / extent : 0.0;
+      for (std::uint32_t b = 0; b < nb; ++b)
+      {
+        new (&bins[axis][b]) Bin{ AABB<double>(), 0u };
+      }
+    }
+    // One pass over the primitives bins all three axes.
+    for (std::uint32_t i = begin; i < end; ++i)
+    {
+      const BuildRef& r = Refs[i];
+      const Vec3<double> c = r.centroid();
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        if (active[axis])
+        {
+          Bin& bin = bins[axis][binOf(c[axis], centroids.min[axis], scale[axis], nb)];
+          bin.box.extend(r.box);
+          bin.count++;
+        }
+      }
+    }
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      if (!active[axis])
       {
         continue;
       }
-      const double scale = nb / extent;
-      std::fill(bins.begin(), bins.end(), Bin());
-      for (std::uint32_t i = begin; i < end; ++i)
-      {
-        const std::uint32_t b = binOf(Refs[i].centroid()[axis], lo, scale, nb);
-        bins[b].box.extend(Refs[i].box);
-        bins[b].count++;
-      }
+      const Bin* axisBins = bins[axis];
       AABB<double> acc;
       std::uint32_t n = 0;
       for (std::uint32_t b = nb - 1; b > 0; --b)
       {
-        acc.extend(bins[b].box);
-        n += bins[b].count;
+        acc.extend(axisBins[b].box);
+        n += axisBins[b].count;
         rightArea[b] = acc.halfArea();
         rightCount[b] = n;
       }
@@ -159,8 +183,8 @@ private:
       n = 0;
       for (std::uint32_t b = 1; b < nb; ++b)
       {
-        acc.extend(bins[b - 1].box);
-        n += bins[b - 1].count;
+        acc.extend(axisBins[b - 1].box);
+        n += axisBins[b - 1].count;
         if (n == 0 || rightCount[b] == 0)
         {
           continue;
@@ -186,9 +210,9 @@ private:
       return end;
     }
     const double lo = centroids.min[bestAxis];
-    const double scale = nb / (centroids.max[bestAxis] - lo);
+    const double axisScale = scale[bestAxis];
     auto it = std::partition(Refs.begin() + begin, Refs.begin() + end, [&](const BuildRef& r) {
-      return binOf(r.centroid()[bestAxis], lo, scale, nb) < bestBin;
+      return binOf(r.centroid()[bestAxis], lo, axisScale, nb) < bestBin;
     });
     const std::uint32_t mid = static_cast<std::uint32_t>(it - Refs.begin());
     if (mid == begin || mid == end)

@@ -66,26 +66,35 @@ struct RayBoxPrecomputed
 /// slab plane gives 0*inf = NaN, and the comparisons are written so NaN leaves
 /// the interval unchanged, i.e. the box counts as hit (conservative).
 /// On hit, tnear gets the entry distance (clamped to [tmin, tmax]).
+namespace detail
+{
+/// One slab of intersectRayAABB; NaN-tolerant as described there.
+template <class T>
+inline void clipSlab(T lo, T hi, T org, T invDir, T& tmin, T& tmax)
+{
+  constexpr T farScale = T(1) + T(2) * gammaBound<T>(3);
+  T t0 = (lo - org) * invDir;
+  T t1 = (hi - org) * invDir;
+  if (t1 < t0)
+  {
+    const T tmp = t0;
+    t0 = t1;
+    t1 = tmp;
+  }
+  t1 *= farScale;
+  // "x > tmin" / "x < tmax" are false for NaN: the slab is then ignored.
+  tmin = t0 > tmin ? t0 : tmin;
+  tmax = t1 < tmax ? t1 : tmax;
+}
+} // namespace detail
+
 template <class T>
 inline bool intersectRayAABB(
   const RayBoxPrecomputed<T>& r, const Vec3<T>& bmin, const Vec3<T>& bmax, T tmin, T tmax, T& tnear)
 {
-  constexpr T farScale = T(1) + T(2) * gammaBound<T>(3);
-  for (int i = 0; i < 3; ++i)
-  {
-    T t0 = (bmin[i] - r.org[i]) * r.invDir[i];
-    T t1 = (bmax[i] - r.org[i]) * r.invDir[i];
-    if (t1 < t0)
-    {
-      const T tmp = t0;
-      t0 = t1;
-      t1 = tmp;
-    }
-    t1 *= farScale;
-    // "x > tmin" / "x < tmax" are false for NaN: the slab is then ignored.
-    tmin = t0 > tmin ? t0 : tmin;
-    tmax = t1 < tmax ? t1 : tmax;
-  }
+  detail::clipSlab(bmin.x, bmax.x, r.org.x, r.invDir.x, tmin, tmax);
+  detail::clipSlab(bmin.y, bmax.y, r.org.y, r.invDir.y, tmin, tmax);
+  detail::clipSlab(bmin.z, bmax.z, r.org.z, r.invDir.z, tmin, tmax);
   tnear = tmin;
   return tmin <= tmax && tmin < std::numeric_limits<T>::infinity();
 }

@@ -43,9 +43,9 @@ struct RayTrianglePrecomputed
 template <class T>
 struct TriangleHit
 {
-  T t;
-  T u;
-  T v;
+  T t = T(0);
+  T u = T(0);
+  T v = T(0);
 };
 
 /// Watertight ray/triangle test: rays through a shared edge or vertex of a
@@ -57,9 +57,14 @@ template <class T>
 inline bool intersectRayTriangle(const RayTrianglePrecomputed<T>& r, const Vec3<T>& v0,
   const Vec3<T>& v1, const Vec3<T>& v2, T tmin, T tmax, TriangleHit<T>& hit)
 {
-  const Vec3<T> A = v0 - r.org;
-  const Vec3<T> B = v1 - r.org;
-  const Vec3<T> C = v2 - r.org;
+  const Vec3<T> Av = v0 - r.org;
+  const Vec3<T> Bv = v1 - r.org;
+  const Vec3<T> Cv = v2 - r.org;
+  // Component access by index through the contiguous storage (what
+  // glm::value_ptr does): glm's operator[] is a switch.
+  const T* A = &Av.x;
+  const T* B = &Bv.x;
+  const T* C = &Cv.x;
 
   const T Ax = A[r.kx] - r.sx * A[r.kz];
   const T Ay = A[r.ky] - r.sy * A[r.kz];
