@@ -30,6 +30,8 @@
 #include "vtkXMLPolyDataReader.h"
 #include "vtksys/SystemTools.hxx"
 
+#include "vtkrt/core/Sphere.h"
+
 #ifdef VTKRT_HAVE_RAYTRACE_PASS
 #include "vtkRayTracePass.h"
 #endif
@@ -44,6 +46,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -414,6 +417,7 @@ struct Scene
   vtkNew<vtkRenderer> Renderer;
   vtkSmartPointer<vtkPolyData> Mesh;       // the triangle mesh (picking locator input)
   vtkSmartPointer<vtkActor> MeshActor;
+  vtkSmartPointer<vtkPolyData> SphereCentres; // glyph centres with a "radius" array
   vtkIdType Triangles = 0;
   vtkIdType Spheres = 0;
   std::string Description;
@@ -493,6 +497,7 @@ void BuildDemo(Scene& scene, CapturingOutputWindow* output)
   glyphActor->GetProperty()->SetSpecularPower(40);
   scene.Renderer->AddActor(glyphActor);
   scene.Spheres = centres->GetNumberOfPoints();
+  scene.SphereCentres = centres;
   scene.Description = "demo (" + dir + "/bunny.vtp + demo-spheres.vtp)";
 }
 
@@ -530,6 +535,30 @@ std::string PrepareLocator(vtkCellPicker* picker, vtkPolyData* mesh)
   (void)mesh;
 #endif
   return "vtkCellPicker";
+}
+
+// The ray through a display pixel from the near to the far clipping plane.
+struct PickRay
+{
+  vtkrt::core::Ray<double> Ray;
+};
+
+PickRay MakePickRay(vtkRenderer* renderer, double x, double y)
+{
+  double ends[2][3];
+  for (int i = 0; i < 2; ++i)
+  {
+    renderer->SetDisplayPoint(x, y, i);
+    renderer->DisplayToWorld();
+    const double* w = renderer->GetWorldPoint();
+    for (int k = 0; k < 3; ++k)
+    {
+      ends[i][k] = w[k] / w[3];
+    }
+  }
+  const vtkrt::core::Vec3<double> a(ends[0][0], ends[0][1], ends[0][2]);
+  const vtkrt::core::Vec3<double> b(ends[1][0], ends[1][1], ends[1][2]);
+  return PickRay{ vtkrt::core::Ray<double>(a, b - a, 0.0, 1.0) };
 }
 
 double Milliseconds(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b)
@@ -617,23 +646,62 @@ int Run(const Options& opt)
   std::ostringstream pickReport;
   if (opt.Pick)
   {
+    pickReport << std::setprecision(9);
+    // Image rows run top down; VTK's display coordinates bottom up.
+    const double x = opt.PickX, y = opt.Height - 1 - opt.PickY;
     vtkNew<vtkCellPicker> picker;
     picker->SetTolerance(0.0);
     const std::string how = PrepareLocator(picker, scene.Mesh);
-    // Image rows run top down; VTK's display coordinates bottom up.
-    const double x = opt.PickX, y = opt.Height - 1 - opt.PickY;
-    if (picker->Pick(x, y, 0.0, scene.Renderer) && picker->GetCellId() >= 0)
+    const bool meshHit = picker->Pick(x, y, 0.0, scene.Renderer) && picker->GetCellId() >= 0;
+
+    // Glyph spheres have no cells for vtkCellPicker: intersect the same pick
+    // ray (near to far plane, t in [0, 1]) with them as analytic spheres,
+    // with the core's kernel, as the ray tracer sees them.
+    const PickRay ray = MakePickRay(scene.Renderer, x, y);
+    double meshT = std::numeric_limits<double>::infinity();
+    if (meshHit)
     {
       const double* p = picker->GetPickPosition();
-      pickReport << std::setprecision(9) << "pick (" << opt.PickX << ", " << opt.PickY
-                 << "): cell " << picker->GetCellId() << " at world (" << p[0] << ", " << p[1]
+      const vtkrt::core::Vec3<double> d = ray.Ray.dir;
+      meshT = glm::dot(vtkrt::core::Vec3<double>(p[0], p[1], p[2]) - ray.Ray.org, d) / glm::dot(d, d);
+    }
+    vtkIdType sphereId = -1;
+    double sphereT = meshT;
+    if (scene.SphereCentres)
+    {
+      vtkDataArray* radius = scene.SphereCentres->GetPointData()->GetArray("radius");
+      for (vtkIdType i = 0; i < scene.SphereCentres->GetNumberOfPoints(); ++i)
+      {
+        double c[3];
+        scene.SphereCentres->GetPoint(i, c);
+        double t;
+        if (vtkrt::core::intersectRaySphere(ray.Ray, vtkrt::core::Vec3<double>(c[0], c[1], c[2]),
+              radius->GetTuple1(i), t) &&
+          t < sphereT)
+        {
+          sphereT = t;
+          sphereId = i;
+        }
+      }
+    }
+    pickReport << "pick (" << opt.PickX << ", " << opt.PickY << "): ";
+    if (sphereId >= 0)
+    {
+      const vtkrt::core::Vec3<double> p = ray.Ray.at(sphereT);
+      pickReport << "sphere " << sphereId << " at world (" << p.x << ", " << p.y << ", " << p.z
+                 << ") [analytic glyph sphere]";
+    }
+    else if (meshHit)
+    {
+      const double* p = picker->GetPickPosition();
+      pickReport << "cell " << picker->GetCellId() << " at world (" << p[0] << ", " << p[1]
                  << ", " << p[2] << ")"
                  << (picker->GetActor() == scene.MeshActor ? " on the mesh" : "") << " [" << how
                  << "]";
     }
     else
     {
-      pickReport << "pick (" << opt.PickX << ", " << opt.PickY << "): nothing [" << how << "]";
+      pickReport << "nothing [" << how << "]";
     }
   }
 

@@ -9,6 +9,7 @@
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPNGReader.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSTLWriter.h"
@@ -22,6 +23,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -317,6 +319,77 @@ void TestPick()
   const double d = DistanceToCell(bunny->GetOutput(), cell, p);
   Check(d < 1e-6, "demo: the picked point lies on cell " + std::to_string(cell) +
       " (distance " + std::to_string(d) + ")");
+
+  // A pixel well inside a glyph sphere (strongly coloured, as is its whole
+  // 7x7 neighbourhood at 600x400; the bunny and background are greyish): the pick
+  // reports that sphere and a point on its surface.
+  r = RunApp("--demo --size 600x400 --frames 0 --output '" + Tmp + "/pick-spheres.png'");
+  vtkSmartPointer<vtkImageData> image = ReadPNG(Tmp + "/pick-spheres.png");
+  int px = -1, py = -1;
+  if (image)
+  {
+    const int nc = image->GetNumberOfScalarComponents();
+    const auto* data = static_cast<const unsigned char*>(image->GetScalarPointer());
+    auto saturated = [&](int x, int y) {
+      const unsigned char* c = data + nc * (y * 600 + x);
+      const int hi = std::max({ c[0], c[1], c[2] }), lo = std::min({ c[0], c[1], c[2] });
+      return hi > 80 && hi - lo > 0.5 * hi;
+    };
+    for (int y = 3; y < 397 && px < 0; ++y)
+    {
+      for (int x = 3; x < 597 && px < 0; ++x)
+      {
+        bool all = true;
+        for (int dy = -3; dy <= 3 && all; ++dy)
+        {
+          for (int dx = -3; dx <= 3 && all; ++dx)
+          {
+            all = saturated(x + dx, y + dy);
+          }
+        }
+        if (all)
+        {
+          px = x;
+          py = 399 - y; // image rows for --pick run top down
+        }
+      }
+    }
+  }
+  Check(px >= 0, "demo: found a pixel inside a sphere glyph");
+  if (px >= 0)
+  {
+    r = RunApp("--demo --size 600x400 --frames 0 --pick " + std::to_string(px) + " " +
+      std::to_string(py) + " --output '" + Tmp + "/pick-spheres.png'");
+    std::smatch m;
+    const std::string num = "([-+0-9.eE]+)";
+    const bool parsed = std::regex_search(r.Output, m,
+      std::regex("sphere ([0-9]+) at world \\(" + num + ", " + num + ", " + num + "\\)"));
+    Check(r.Code == 0 && parsed, "demo: the pick reports a sphere");
+    if (parsed)
+    {
+      vtkNew<vtkXMLPolyDataReader> spheres;
+      spheres->SetFileName(VTKRT_DATA_DIR "/demo-spheres.vtp");
+      spheres->Update();
+      const vtkIdType id = std::stoll(m[1]);
+      vtkPolyData* centres = spheres->GetOutput();
+      if (id < centres->GetNumberOfPoints())
+      {
+        double c[3];
+        centres->GetPoint(id, c);
+        const double radius = centres->GetPointData()->GetArray("radius")->GetTuple1(id);
+        const double dx = std::stod(m[2]) - c[0], dy = std::stod(m[3]) - c[1],
+                     dz = std::stod(m[4]) - c[2];
+        const double dist = std::sqrt(dx * dx + dy * dy + dz * dz);
+        Check(std::abs(dist - radius) < 1e-6 * (1 + radius),
+          "demo: the point lies on sphere " + std::to_string(id) + " (|p - c| = " +
+            std::to_string(dist) + ", radius " + std::to_string(radius) + ")");
+      }
+      else
+      {
+        Check(false, "demo: sphere id within the glyph count");
+      }
+    }
+  }
 }
 
 void TestBadArguments()
