@@ -1,0 +1,498 @@
+// vtkrtBenchLocator: vtkBVHCellLocator against VTK's cell locators and
+// Embree 3, in one run, on the same meshes and the same random segments.
+//
+// For every mesh and peer: build time, single-thread IntersectWithLine
+// rate, first-pick latency (new locator + build + one query), heap held by
+// the structure, heap left behind after deleting it, and agreement of the
+// hits with vtkBVHCellLocator. Ratios are "peer / vtkBVHCellLocator" for
+// rates (below 1: slower than ours) and for times (above 1: slower).
+//
+// Usage: vtkrtBenchLocator [--4m] [--rays N] [--quick]
+#include "vtkBVHCellLocator.h"
+
+#include "vtkCellLocator.h"
+#include "vtkGenericCell.h"
+#include "vtkMath.h"
+#include "vtkMinimalStandardRandomSequence.h"
+#include "vtkModifiedBSPTree.h"
+#include "vtkNew.h"
+#include "vtkOBBTree.h"
+#include "vtkPLYReader.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+#include "vtkStaticCellLocator.h"
+#include "vtkTriangleFilter.h"
+
+#ifdef VTKRT_HAVE_EMBREE
+#include <embree3/rtcore.h>
+#endif
+
+#include <malloc.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point a, Clock::time_point b)
+{
+  return std::chrono::duration<double>(b - a).count();
+}
+
+/// Bytes malloc currently hands out (arena + mmapped chunks).
+long long HeapInUse()
+{
+  struct mallinfo2 mi = mallinfo2();
+  return static_cast<long long>(mi.uordblks) + static_cast<long long>(mi.hblkhd);
+}
+
+struct Segment
+{
+  double P1[3], P2[3];
+};
+
+vtkSmartPointer<vtkPolyData> BumpySphere(int res)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(res);
+  sphere->SetPhiResolution(res);
+  sphere->LatLongTessellationOff();
+  vtkNew<vtkTriangleFilter> tri;
+  tri->SetInputConnection(sphere->GetOutputPort());
+  tri->Update();
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->DeepCopy(tri->GetOutput());
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(pd->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    pd->GetPoint(i, p);
+    const double s =
+      1.0 + 0.15 * std::sin(7.0 * p[0]) * std::cos(5.0 * p[1]) + 0.05 * std::sin(13.0 * p[2]);
+    pts->SetPoint(i, p[0] * s, p[1] * s, p[2] * s);
+  }
+  pd->SetPoints(pts);
+  pd->GetPointData()->Initialize();
+  return pd;
+}
+
+vtkSmartPointer<vtkPolyData> Bunny()
+{
+  const char* path = "/work/shared/data/bunny.ply";
+  std::ifstream f(path);
+  if (!f.good())
+  {
+    return nullptr;
+  }
+  vtkNew<vtkPLYReader> reader;
+  reader->SetFileName(path);
+  reader->Update();
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->DeepCopy(reader->GetOutput());
+  return pd->GetNumberOfCells() > 0 ? pd : nullptr;
+}
+
+/// Segments between random points of the grown bounds (about half hit).
+std::vector<Segment> RandomSegments(vtkPolyData* pd, int count)
+{
+  vtkNew<vtkMinimalStandardRandomSequence> rng;
+  rng->SetSeed(1234);
+  double b[6];
+  pd->GetBounds(b);
+  std::vector<Segment> out(static_cast<size_t>(count));
+  for (auto& s : out)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const double c = 0.5 * (b[2 * k] + b[2 * k + 1]), h = 0.75 * (b[2 * k + 1] - b[2 * k]);
+      s.P1[k] = rng->GetRangeValue(c - h, c + h);
+      rng->Next();
+      s.P2[k] = rng->GetRangeValue(c - h, c + h);
+      rng->Next();
+    }
+  }
+  return out;
+}
+
+struct Result
+{
+  std::string Name;
+  double BuildSeconds = 0;
+  double RaysPerSecond = 0;
+  double FirstPickSeconds = 0;
+  long long HeapBytes = 0;
+  long long LeakBytes = 0;
+  int RaysTimed = 0;
+  int Hits = 0;
+  int Agree = -1; // hits with the same t (1e-9) as vtkBVHCellLocator, of RaysTimed
+};
+
+/// One peer: how to make it, build it and query it.
+struct Peer
+{
+  std::string Name;
+  std::function<void*(vtkPolyData*)> Create; // new + SetDataSet (not built)
+  std::function<void(void*)> Build;
+  std::function<bool(void*, const Segment&, double& t)> Query;
+  std::function<void(void*)> Destroy;
+  int MaxRays;
+};
+
+Result Measure(const Peer& peer, vtkPolyData* pd, const std::vector<Segment>& segs,
+  std::vector<double>* refT)
+{
+  Result r;
+  r.Name = peer.Name;
+  // First pick: a fresh locator, its build, one query.
+  {
+    const long long heap0 = HeapInUse();
+    auto t0 = Clock::now();
+    void* loc = peer.Create(pd);
+    peer.Build(loc);
+    double t;
+    peer.Query(loc, segs[0], t);
+    r.FirstPickSeconds = Seconds(t0, Clock::now());
+    peer.Destroy(loc);
+    (void)heap0;
+  }
+  const long long heap0 = HeapInUse();
+  void* loc = peer.Create(pd);
+  auto t0 = Clock::now();
+  peer.Build(loc);
+  r.BuildSeconds = Seconds(t0, Clock::now());
+  // One query first: lazy peers (vtkModifiedBSPTree) finish building here.
+  double t;
+  peer.Query(loc, segs[0], t);
+  r.HeapBytes = HeapInUse() - heap0;
+
+  r.RaysTimed = std::min(static_cast<int>(segs.size()), peer.MaxRays);
+  std::vector<double> ts(static_cast<size_t>(r.RaysTimed), -1.0);
+  t0 = Clock::now();
+  for (int i = 0; i < r.RaysTimed; ++i)
+  {
+    double tt;
+    if (peer.Query(loc, segs[i], tt))
+    {
+      ts[i] = tt;
+      ++r.Hits;
+    }
+  }
+  const double secs = Seconds(t0, Clock::now());
+  r.RaysPerSecond = r.RaysTimed / secs;
+  peer.Destroy(loc);
+  r.LeakBytes = HeapInUse() - heap0;
+  if (refT)
+  {
+    if (refT->empty())
+    {
+      *refT = ts;
+    }
+    else
+    {
+      r.Agree = 0;
+      for (int i = 0; i < r.RaysTimed; ++i)
+      {
+        const double a = ts[i], b = (*refT)[i];
+        r.Agree += ((a < 0) == (b < 0) && (a < 0 || std::abs(a - b) < 1e-9)) ? 1 : 0;
+      }
+    }
+  }
+  return r;
+}
+
+template <class Locator>
+Peer VtkPeer(const std::string& name, int maxRays, std::function<void(Locator*)> setup = nullptr)
+{
+  Peer p;
+  p.Name = name;
+  p.MaxRays = maxRays;
+  p.Create = [setup](vtkPolyData* pd) -> void* {
+    Locator* l = Locator::New();
+    if (setup)
+    {
+      setup(l);
+    }
+    l->SetDataSet(pd);
+    return l;
+  };
+  p.Build = [](void* l) { static_cast<Locator*>(l)->BuildLocator(); };
+  p.Query = [](void* l, const Segment& s, double& t) {
+    double x[3], pc[3];
+    int sub;
+    vtkIdType cellId;
+    return static_cast<Locator*>(l)->IntersectWithLine(s.P1, s.P2, 0.0, t, x, pc, sub, cellId) != 0;
+  };
+  p.Destroy = [](void* l) { static_cast<Locator*>(l)->Delete(); };
+  return p;
+}
+
+/// vtkOBBTree answers IntersectWithLine with the 9-argument form too.
+Peer OBBPeer(int maxRays)
+{
+  return VtkPeer<vtkOBBTree>("vtkOBBTree", maxRays);
+}
+
+Peer BVHPeer(const std::string& name, int quality, int maxRays)
+{
+  Peer p;
+  p.Name = name;
+  p.MaxRays = maxRays;
+  p.Create = [quality](vtkPolyData* pd) -> void* {
+    vtkBVHCellLocator* l = vtkBVHCellLocator::New();
+    l->SetBuildQuality(quality);
+    l->SetDataSet(pd);
+    return l;
+  };
+  p.Build = [](void* l) { static_cast<vtkBVHCellLocator*>(l)->BuildLocator(); };
+  // The vtkCellPicker call: the 9-argument form with the caller's cell.
+  auto cell = std::make_shared<vtkSmartPointer<vtkGenericCell>>(vtkSmartPointer<vtkGenericCell>::New());
+  p.Query = [cell](void* l, const Segment& s, double& t) {
+    double x[3], pc[3];
+    int sub;
+    vtkIdType cellId;
+    return static_cast<vtkBVHCellLocator*>(l)->IntersectWithLine(
+             s.P1, s.P2, 0.0, t, x, pc, sub, cellId, *cell) != 0;
+  };
+  p.Destroy = [](void* l) { static_cast<vtkBVHCellLocator*>(l)->Delete(); };
+  return p;
+}
+
+#ifdef VTKRT_HAVE_EMBREE
+struct EmbreeState
+{
+  RTCDevice Device = nullptr;
+  RTCScene Scene = nullptr;
+  vtkPolyData* Data = nullptr;
+  double Origin[3] = { 0, 0, 0 };
+};
+
+long long g_EmbreeBytes = 0;
+bool EmbreeMemory(void*, ssize_t bytes, bool)
+{
+  g_EmbreeBytes += bytes;
+  return true;
+}
+
+/// Embree 3, one thread, float geometry relative to the mesh center (its
+/// best case for precision), rtcIntersect1 per segment.
+Peer EmbreePeer(int maxRays)
+{
+  Peer p;
+  p.Name = "Embree 3 (1 thread)";
+  p.MaxRays = maxRays;
+  p.Create = [](vtkPolyData* pd) -> void* {
+    auto* e = new EmbreeState;
+    e->Device = rtcNewDevice("threads=1");
+    rtcSetDeviceMemoryMonitorFunction(e->Device, EmbreeMemory, nullptr);
+    e->Data = pd;
+    return e;
+  };
+  p.Build = [](void* v) {
+    auto* e = static_cast<EmbreeState*>(v);
+    vtkPolyData* pd = e->Data;
+    double b[6];
+    pd->GetBounds(b);
+    for (int k = 0; k < 3; ++k)
+    {
+      e->Origin[k] = 0.5 * (b[2 * k] + b[2 * k + 1]);
+    }
+    e->Scene = rtcNewScene(e->Device);
+    RTCGeometry geom = rtcNewGeometry(e->Device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    const vtkIdType np = pd->GetNumberOfPoints();
+    float* v3 = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), np));
+    for (vtkIdType i = 0; i < np; ++i)
+    {
+      double q[3];
+      pd->GetPoint(i, q);
+      for (int k = 0; k < 3; ++k)
+      {
+        v3[3 * i + k] = static_cast<float>(q[k] - e->Origin[k]);
+      }
+    }
+    vtkCellArray* polys = pd->GetPolys();
+    const vtkIdType nt = polys->GetNumberOfCells();
+    unsigned* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), nt));
+    vtkIdType n;
+    const vtkIdType* ids;
+    vtkIdType c = 0;
+    for (polys->InitTraversal(); polys->GetNextCell(n, ids); ++c)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        idx[3 * c + k] = static_cast<unsigned>(ids[k]);
+      }
+    }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(e->Scene, geom);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(e->Scene);
+  };
+  p.Query = [](void* v, const Segment& s, double& t) {
+    auto* e = static_cast<EmbreeState*>(v);
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    rh.ray.org_x = static_cast<float>(s.P1[0] - e->Origin[0]);
+    rh.ray.org_y = static_cast<float>(s.P1[1] - e->Origin[1]);
+    rh.ray.org_z = static_cast<float>(s.P1[2] - e->Origin[2]);
+    rh.ray.dir_x = static_cast<float>(s.P2[0] - s.P1[0]);
+    rh.ray.dir_y = static_cast<float>(s.P2[1] - s.P1[1]);
+    rh.ray.dir_z = static_cast<float>(s.P2[2] - s.P1[2]);
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = 1.0f;
+    rh.ray.mask = 0xffffffffu;
+    rh.ray.flags = 0;
+    rh.ray.time = 0.0f;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(e->Scene, &ctx, &rh);
+    t = rh.ray.tfar;
+    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+  };
+  p.Destroy = [](void* v) {
+    auto* e = static_cast<EmbreeState*>(v);
+    if (e->Scene)
+    {
+      rtcReleaseScene(e->Scene);
+    }
+    rtcReleaseDevice(e->Device);
+    delete e;
+  };
+  return p;
+}
+#endif
+
+std::string Human(long long bytes)
+{
+  char buf[64];
+  const double a = std::abs(static_cast<double>(bytes));
+  if (a >= 1 << 20)
+  {
+    std::snprintf(buf, sizeof buf, "%.1f MiB", bytes / 1048576.0);
+  }
+  else if (a >= 1 << 10)
+  {
+    std::snprintf(buf, sizeof buf, "%.1f KiB", bytes / 1024.0);
+  }
+  else
+  {
+    std::snprintf(buf, sizeof buf, "%lld B", bytes);
+  }
+  return buf;
+}
+
+void RunMesh(const std::string& name, vtkPolyData* pd, int rays, bool quick)
+{
+  const vtkIdType tris = pd->GetNumberOfCells();
+  std::printf("\n## %s: %lld triangles, %d random segments\n\n", name.c_str(),
+    static_cast<long long>(tris), rays);
+  const std::vector<Segment> segs = RandomSegments(pd, rays);
+  // Slow peers get fewer rays (their rate is still per second).
+  const int vtkRays = std::max(200, std::min(rays, quick ? 500 : 3000));
+  std::vector<Peer> peers;
+  peers.push_back(BVHPeer("vtkBVHCellLocator (SAH)", vtkBVHCellLocator::SAH, rays));
+  peers.push_back(BVHPeer("vtkBVHCellLocator (fast build)", vtkBVHCellLocator::FAST, rays));
+  peers.push_back(BVHPeer("vtkBVHCellLocator (high)", vtkBVHCellLocator::HIGH, rays));
+  peers.push_back(VtkPeer<vtkStaticCellLocator>("vtkStaticCellLocator", vtkRays));
+  peers.push_back(VtkPeer<vtkCellLocator>("vtkCellLocator", vtkRays));
+  peers.push_back(VtkPeer<vtkModifiedBSPTree>("vtkModifiedBSPTree", vtkRays));
+  peers.push_back(OBBPeer(quick ? 50 : 200));
+#ifdef VTKRT_HAVE_EMBREE
+  peers.push_back(EmbreePeer(rays));
+#endif
+  std::vector<double> refT;
+  std::vector<Result> results;
+  for (const auto& p : peers)
+  {
+#ifdef VTKRT_HAVE_EMBREE
+    g_EmbreeBytes = 0;
+#endif
+    Result r = Measure(p, pd, segs, &refT);
+#ifdef VTKRT_HAVE_EMBREE
+    if (p.Name.rfind("Embree", 0) == 0)
+    {
+      // Embree allocates through its own aligned allocator: use its monitor.
+      r.HeapBytes = std::max(r.HeapBytes, g_EmbreeBytes);
+    }
+#endif
+    results.push_back(r);
+    std::fflush(stdout);
+  }
+  const Result& ours = results[0];
+  std::printf("| locator | build s | rays/s (1 thread) | rate ratio | first pick ms | first-pick "
+              "ratio | memory | left after delete | same hits |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const auto& r : results)
+  {
+    char agree[32] = "ref";
+    if (r.Agree >= 0)
+    {
+      std::snprintf(agree, sizeof agree, "%d/%d", r.Agree, r.RaysTimed);
+    }
+    std::printf("| %s | %.3f | %.0f | %.3g | %.1f | %.3g | %s | %s | %s |\n", r.Name.c_str(),
+      r.BuildSeconds, r.RaysPerSecond, r.RaysPerSecond / ours.RaysPerSecond,
+      1e3 * r.FirstPickSeconds, r.FirstPickSeconds / ours.FirstPickSeconds,
+      Human(r.HeapBytes).c_str(), Human(r.LeakBytes).c_str(), agree);
+  }
+  std::fflush(stdout);
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  bool big = false, quick = false;
+  int rays = 100000;
+  for (int i = 1; i < argc; ++i)
+  {
+    if (!std::strcmp(argv[i], "--4m"))
+    {
+      big = true;
+    }
+    else if (!std::strcmp(argv[i], "--quick"))
+    {
+      quick = true;
+      rays = 5000;
+    }
+    else if (!std::strcmp(argv[i], "--rays") && i + 1 < argc)
+    {
+      rays = std::max(10, std::atoi(argv[++i]));
+    }
+  }
+  std::printf("# vtkrtBenchLocator\n\nIntersectWithLine(p1, p2, tol=0, ...) over random segments, "
+              "single thread. Ratios: peer / vtkBVHCellLocator (SAH).\n"
+              "VTK SMP backend %s (builds may use it); Embree built with 1 thread.\n",
+    vtkSMPTools::GetBackend());
+  if (auto bunny = Bunny())
+  {
+    RunMesh("bunny", bunny, rays, quick);
+  }
+  RunMesh("generated 100k", BumpySphere(quick ? 100 : 224), rays, quick);
+  if (!quick)
+  {
+    RunMesh("generated 1M", BumpySphere(708), rays, quick);
+  }
+  if (big)
+  {
+    RunMesh("generated 4M", BumpySphere(1415), rays, quick);
+  }
+  return 0;
+}

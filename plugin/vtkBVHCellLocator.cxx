@@ -1,0 +1,588 @@
+#include "vtkBVHCellLocator.h"
+
+#include "vtkCell.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellType.h"
+#include "vtkDataSet.h"
+#include "vtkGenericCell.h"
+#include "vtkIdList.h"
+#include "vtkMath.h"
+#include "vtkObjectFactory.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolygon.h"
+#include "vtkSMPTools.h"
+#include "vtkUnstructuredGrid.h"
+
+#include "vtkBVHCellLocatorInternals.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <vector>
+
+vtkStandardNewMacro(vtkBVHCellLocator);
+
+using vtkrt::locator::Vec3d;
+using vtkrt::locator::BVHCellLocatorData;
+
+struct vtkBVHCellLocator::vtkInternals
+{
+  BVHCellLocatorData Data;
+  bool HasTree = false;
+  std::mutex BuildMutex;
+  // Scratch cell for the overloads that take none; never used concurrently
+  // by the thread-safe forms.
+  vtkNew<vtkGenericCell> ScratchCell;
+};
+
+namespace
+{
+inline bool IsFinite3(const double p[3])
+{
+  return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+}
+
+// A vtkGenericCell for one query: the caller's when given, else a local one
+// created only when needed (non-triangle cells).
+class QueryCell
+{
+public:
+  explicit QueryCell(vtkGenericCell* given)
+    : Given(given)
+  {
+  }
+  ~QueryCell()
+  {
+    if (this->Own)
+    {
+      this->Own->Delete();
+    }
+  }
+  vtkGenericCell* Get()
+  {
+    if (this->Given)
+    {
+      return this->Given;
+    }
+    if (!this->Own)
+    {
+      this->Own = vtkGenericCell::New();
+    }
+    return this->Own;
+  }
+
+private:
+  vtkGenericCell* Given;
+  vtkGenericCell* Own = nullptr;
+};
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkBVHCellLocator::vtkBVHCellLocator()
+  : BuildQuality(SAH)
+  , Internals(new vtkInternals)
+{
+  // Small leaves suit a BVH (VTK's default of 32 suits bucket locators).
+  this->NumberOfCellsPerNode = 4;
+  this->CacheCellBounds = 0;
+}
+
+//------------------------------------------------------------------------------
+vtkBVHCellLocator::~vtkBVHCellLocator()
+{
+  this->FreeSearchStructure();
+}
+
+//------------------------------------------------------------------------------
+bool vtkBVHCellLocator::NeedsBuild() const
+{
+  if (!this->Internals->HasTree)
+  {
+    return true;
+  }
+  if (this->UseExistingSearchStructure)
+  {
+    return false;
+  }
+  const vtkMTimeType built = this->BuildTime.GetMTime();
+  return this->MTime.GetMTime() > built || (this->DataSet && this->DataSet->GetMTime() > built);
+}
+
+//------------------------------------------------------------------------------
+void vtkBVHCellLocator::BuildLocator()
+{
+  if (this->LazyEvaluation)
+  {
+    // Built by the first query.
+    return;
+  }
+  if (!this->DataSet)
+  {
+    vtkErrorMacro(<< "No dataset to build a locator for");
+    return;
+  }
+  if (this->DataSet->GetNumberOfCells() < 1)
+  {
+    vtkErrorMacro(<< "No cells to build");
+    return;
+  }
+  std::lock_guard<std::mutex> lock(this->Internals->BuildMutex);
+  if (this->NeedsBuild())
+  {
+    this->BuildTree();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkBVHCellLocator::ForceBuildLocator()
+{
+  if (!this->DataSet)
+  {
+    vtkErrorMacro(<< "No dataset to build a locator for");
+    return;
+  }
+  if (this->DataSet->GetNumberOfCells() < 1)
+  {
+    vtkErrorMacro(<< "No cells to build");
+    return;
+  }
+  std::lock_guard<std::mutex> lock(this->Internals->BuildMutex);
+  this->BuildTree();
+}
+
+//------------------------------------------------------------------------------
+bool vtkBVHCellLocator::PrepareQuery()
+{
+  if (!this->DataSet)
+  {
+    if (this->Internals->HasTree && this->UseExistingSearchStructure)
+    {
+      return true;
+    }
+    vtkErrorMacro(<< "No dataset: set one with SetDataSet() before querying");
+    return false;
+  }
+  if (this->NeedsBuild())
+  {
+    std::lock_guard<std::mutex> lock(this->Internals->BuildMutex);
+    if (this->NeedsBuild())
+    {
+      this->BuildTree();
+    }
+  }
+  return this->Internals->HasTree && this->Internals->Data.NumberOfPrimitives() > 0;
+}
+
+//------------------------------------------------------------------------------
+void vtkBVHCellLocator::BuildTree()
+{
+  this->Internals->HasTree = false;
+  this->FreeCellBounds();
+  this->Internals->Data.Clear();
+  if (!this->DataSet || this->DataSet->GetNumberOfCells() < 1)
+  {
+    this->Internals->HasTree = this->DataSet != nullptr;
+    this->BuildTime.Modified();
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+
+  // Random-access cell structures must exist before threads call GetCell
+  // (it builds them lazily, which is not thread-safe).
+  if (auto* pd = vtkPolyData::SafeDownCast(this->DataSet))
+  {
+    if (pd->NeedToBuildCells())
+    {
+      pd->BuildCells();
+    }
+  }
+  {
+    vtkNew<vtkGenericCell> warmup;
+    this->DataSet->GetCell(0, warmup);
+    double b[6];
+    this->DataSet->GetCellBounds(0, b);
+  }
+  if (this->CacheCellBounds)
+  {
+    this->StoreCellBounds();
+  }
+
+  this->Internals->Data.Extract(this->DataSet);
+  this->Internals->Data.Build(this->BuildQuality, this->NumberOfCellsPerNode);
+
+  this->Internals->Data.BuildSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  this->Internals->HasTree = true;
+  this->BuildTime.Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkBVHCellLocator::FreeSearchStructure()
+{
+  this->Internals->Data.Clear();
+  this->Internals->HasTree = false;
+  this->FreeCellBounds();
+}
+
+//------------------------------------------------------------------------------
+void vtkBVHCellLocator::GenerateRepresentation(int level, vtkPolyData* pd)
+{
+  if (!pd)
+  {
+    return;
+  }
+  if (this->DataSet && !this->PrepareQuery() && !this->Internals->HasTree)
+  {
+    return;
+  }
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> quads;
+  std::vector<vtkrt::locator::Box> boxes;
+  this->Internals->Data.BoxesAtLevel(level, boxes);
+  static const int faces[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 },
+    { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
+  const Vec3d& o = this->Internals->Data.Origin;
+  for (const auto& b : boxes)
+  {
+    vtkIdType base = pts->GetNumberOfPoints();
+    for (int k = 0; k < 8; ++k)
+    {
+      pts->InsertNextPoint(o.x + ((k & 1) ? b.max.x : b.min.x), o.y + ((k & 2) ? b.max.y : b.min.y),
+        o.z + ((k & 4) ? b.max.z : b.min.z));
+    }
+    for (const auto& f : faces)
+    {
+      vtkIdType ids[4] = { base + f[0], base + f[1], base + f[2], base + f[3] };
+      quads->InsertNextCell(4, ids);
+    }
+  }
+  pd->Initialize();
+  pd->SetPoints(pts);
+  pd->SetPolys(quads);
+}
+
+//------------------------------------------------------------------------------
+int vtkBVHCellLocator::IntersectWithLine(const double p1[3], const double p2[3], double tol,
+  double& t, double x[3], double pcoords[3], int& subId, vtkIdType& cellId, vtkGenericCell* cell)
+{
+  cellId = -1;
+  if (!this->PrepareQuery() || !IsFinite3(p1) || !IsFinite3(p2) || !std::isfinite(tol))
+  {
+    return 0;
+  }
+  QueryCell qc(cell);
+  vtkrt::locator::LineHit hit;
+  const auto& data = this->Internals->Data;
+  if (!data.ClosestHit(p1, p2, std::abs(tol), this->DataSet, [&]() { return qc.Get(); }, hit))
+  {
+    return 0;
+  }
+  t = hit.T;
+  cellId = hit.CellId;
+  subId = hit.SubId;
+  for (int i = 0; i < 3; ++i)
+  {
+    x[i] = hit.X[i];
+    pcoords[i] = hit.PCoords[i];
+  }
+  if (hit.NeedsEvaluate)
+  {
+    // Quad or polygon hit through its triangulation: parametric coordinates
+    // in the original cell.
+    vtkGenericCell* c = qc.Get();
+    this->DataSet->GetCell(cellId, c);
+    double closest[3], dist2;
+    std::vector<double> weights(static_cast<size_t>(std::max<vtkIdType>(c->GetNumberOfPoints(), 1)));
+    c->EvaluatePosition(x, closest, subId, pcoords, dist2, weights.data());
+  }
+  if (cell)
+  {
+    this->DataSet->GetCell(cellId, cell);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkBVHCellLocator::IntersectWithLine(const double p1[3], const double p2[3], double tol,
+  double& t, double x[3], double pcoords[3], int& subId, vtkIdType& cellId)
+{
+  return this->IntersectWithLine(p1, p2, tol, t, x, pcoords, subId, cellId, nullptr);
+}
+
+//------------------------------------------------------------------------------
+int vtkBVHCellLocator::IntersectWithLine(const double p1[3], const double p2[3], double tol,
+  double& t, double x[3], double pcoords[3], int& subId)
+{
+  vtkIdType cellId;
+  return this->IntersectWithLine(p1, p2, tol, t, x, pcoords, subId, cellId, nullptr);
+}
+
+//------------------------------------------------------------------------------
+int vtkBVHCellLocator::IntersectWithLine(
+  const double p1[3], const double p2[3], vtkPoints* points, vtkIdList* cellIds)
+{
+  return this->IntersectWithLine(p1, p2, 0.0, points, cellIds, nullptr);
+}
+
+//------------------------------------------------------------------------------
+int vtkBVHCellLocator::IntersectWithLine(const double p1[3], const double p2[3], double tol,
+  vtkPoints* points, vtkIdList* cellIds, vtkGenericCell* cell)
+{
+  if (points)
+  {
+    points->Reset();
+  }
+  if (cellIds)
+  {
+    cellIds->Reset();
+  }
+  if (!this->PrepareQuery() || !IsFinite3(p1) || !IsFinite3(p2) || !std::isfinite(tol))
+  {
+    return 0;
+  }
+  QueryCell qc(cell);
+  std::vector<vtkrt::locator::LineHit> hits;
+  const auto& data = this->Internals->Data;
+  data.AllHits(p1, p2, std::abs(tol), this->DataSet, [&]() { return qc.Get(); }, hits);
+  if (hits.empty())
+  {
+    return 0;
+  }
+  for (const auto& h : hits)
+  {
+    if (points)
+    {
+      points->InsertNextPoint(h.X);
+    }
+    if (cellIds)
+    {
+      cellIds->InsertNextId(h.CellId);
+    }
+  }
+  return hits.front().Leaving ? -1 : 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkBVHCellLocator::FindCellsAlongLine(
+  const double p1[3], const double p2[3], double tolerance, vtkIdList* cells)
+{
+  if (!cells)
+  {
+    return;
+  }
+  cells->Reset();
+  if (!this->PrepareQuery() || !IsFinite3(p1) || !IsFinite3(p2) || !std::isfinite(tolerance))
+  {
+    return;
+  }
+  std::vector<vtkIdType> ids;
+  this->Internals->Data.CellsAlongLine(p1, p2, std::abs(tolerance), ids);
+  cells->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
+  std::copy(ids.begin(), ids.end(), cells->GetPointer(0));
+}
+
+//------------------------------------------------------------------------------
+void vtkBVHCellLocator::FindCellsWithinBounds(double* bbox, vtkIdList* cells)
+{
+  if (!cells)
+  {
+    return;
+  }
+  cells->Reset();
+  if (!bbox || !this->PrepareQuery())
+  {
+    return;
+  }
+  std::vector<vtkIdType> ids;
+  this->Internals->Data.CellsInBox(bbox, ids);
+  cells->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
+  std::copy(ids.begin(), ids.end(), cells->GetPointer(0));
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkBVHCellLocator::FindClosestPointWithinRadius(double x[3], double radius,
+  double closestPoint[3], vtkGenericCell* cell, vtkIdType& cellId, int& subId, double& dist2,
+  int& inside)
+{
+  cellId = -1;
+  subId = 0;
+  inside = 0;
+  dist2 = VTK_DOUBLE_MAX;
+  if (!this->PrepareQuery() || !x || !IsFinite3(x) || std::isnan(radius) || radius < 0.0)
+  {
+    return 0;
+  }
+  QueryCell qc(cell);
+  vtkrt::locator::PointHit hit;
+  if (!this->Internals->Data.ClosestPoint(x, radius, this->DataSet, [&]() { return qc.Get(); }, hit))
+  {
+    return 0;
+  }
+  cellId = hit.CellId;
+  subId = hit.SubId;
+  dist2 = hit.Dist2;
+  inside = hit.Inside;
+  for (int i = 0; i < 3; ++i)
+  {
+    closestPoint[i] = hit.X[i];
+  }
+  if (hit.NeedsEvaluate)
+  {
+    // subId and inside as the original cell reports them.
+    vtkGenericCell* c = qc.Get();
+    this->DataSet->GetCell(cellId, c);
+    double cp[3], d2, pc[3];
+    std::vector<double> weights(static_cast<size_t>(std::max<vtkIdType>(c->GetNumberOfPoints(), 1)));
+    const int r = c->EvaluatePosition(x, cp, subId, pc, d2, weights.data());
+    inside = r == 1 ? 1 : 0;
+  }
+  if (cell)
+  {
+    this->DataSet->GetCell(cellId, cell);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkBVHCellLocator::FindClosestPointWithinRadius(double x[3], double radius,
+  double closestPoint[3], vtkGenericCell* cell, vtkIdType& cellId, int& subId, double& dist2)
+{
+  int inside;
+  return this->FindClosestPointWithinRadius(
+    x, radius, closestPoint, cell, cellId, subId, dist2, inside);
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkBVHCellLocator::FindClosestPointWithinRadius(
+  double x[3], double radius, double closestPoint[3], vtkIdType& cellId, int& subId, double& dist2)
+{
+  int inside;
+  return this->FindClosestPointWithinRadius(
+    x, radius, closestPoint, nullptr, cellId, subId, dist2, inside);
+}
+
+//------------------------------------------------------------------------------
+void vtkBVHCellLocator::FindClosestPoint(const double x[3], double closestPoint[3],
+  vtkGenericCell* cell, vtkIdType& cellId, int& subId, double& dist2)
+{
+  int inside;
+  double p[3] = { x[0], x[1], x[2] };
+  this->FindClosestPointWithinRadius(
+    p, vtkMath::Inf(), closestPoint, cell, cellId, subId, dist2, inside);
+}
+
+//------------------------------------------------------------------------------
+void vtkBVHCellLocator::FindClosestPoint(
+  const double x[3], double closestPoint[3], vtkIdType& cellId, int& subId, double& dist2)
+{
+  this->FindClosestPoint(x, closestPoint, nullptr, cellId, subId, dist2);
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkBVHCellLocator::FindCell(
+  double x[3], double tol2, vtkGenericCell* cell, double pcoords[3], double* weights)
+{
+  if (!this->PrepareQuery() || !x || !IsFinite3(x) || std::isnan(tol2))
+  {
+    return -1;
+  }
+  QueryCell qc(cell);
+  std::vector<double> localWeights;
+  if (!weights)
+  {
+    localWeights.resize(static_cast<size_t>(std::max(this->DataSet->GetMaxCellSize(), 1)));
+    weights = localWeights.data();
+  }
+  double localPcoords[3];
+  if (!pcoords)
+  {
+    pcoords = localPcoords;
+  }
+  return this->Internals->Data.FindCell(
+    x, std::max(tol2, 0.0), this->DataSet, qc.Get(), pcoords, weights);
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkBVHCellLocator::FindCell(double x[3])
+{
+  double pcoords[3];
+  return this->FindCell(x, 0.0, nullptr, pcoords, nullptr);
+}
+
+//------------------------------------------------------------------------------
+bool vtkBVHCellLocator::InsideCellBounds(double x[3], vtkIdType cellId)
+{
+  if (!this->DataSet || !x || cellId < 0 || cellId >= this->DataSet->GetNumberOfCells())
+  {
+    return false;
+  }
+  double b[6];
+  if (this->CellBounds && this->Internals->HasTree && !this->NeedsBuild())
+  {
+    std::copy(this->CellBounds[cellId], this->CellBounds[cellId] + 6, b);
+  }
+  else
+  {
+    this->DataSet->GetCellBounds(cellId, b);
+  }
+  return b[0] <= x[0] && x[0] <= b[1] && b[2] <= x[1] && x[1] <= b[3] && b[4] <= x[2] &&
+    x[2] <= b[5];
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkBVHCellLocator::GetNumberOfNodes() const
+{
+  return this->Internals->Data.Stats.Nodes;
+}
+vtkIdType vtkBVHCellLocator::GetNumberOfPrimitives() const
+{
+  return this->Internals->Data.NumberOfPrimitives();
+}
+int vtkBVHCellLocator::GetTreeDepth() const
+{
+  return this->Internals->Data.Stats.Depth;
+}
+double vtkBVHCellLocator::GetSAHCost() const
+{
+  return this->Internals->Data.Stats.SAHCost;
+}
+double vtkBVHCellLocator::GetBuildTimeSeconds() const
+{
+  return this->Internals->Data.BuildSeconds;
+}
+size_t vtkBVHCellLocator::GetMemorySize() const
+{
+  size_t bytes = this->Internals->Data.MemorySize();
+  if (this->CellBounds && this->DataSet)
+  {
+    bytes += static_cast<size_t>(this->DataSet->GetNumberOfCells()) * 6 * sizeof(double);
+  }
+  return bytes;
+}
+
+//------------------------------------------------------------------------------
+void vtkBVHCellLocator::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  static const char* qualityNames[] = { "Fast", "SAH", "High" };
+  os << indent << "BuildQuality: " << qualityNames[this->BuildQuality] << "\n";
+  os << indent << "Built: " << (this->Internals->HasTree ? "yes" : "no") << "\n";
+  const auto& d = this->Internals->Data;
+  os << indent << "Leaf size (NumberOfCellsPerNode): " << this->NumberOfCellsPerNode << "\n";
+  os << indent << "Primitives: " << d.NumberOfPrimitives() << " (" << d.NumberOfTriangles()
+     << " triangles, " << d.NumberOfGeneralCells() << " general cells, " << d.SkippedCells
+     << " skipped non-finite cells)\n";
+  os << indent << "Nodes: " << d.Stats.Nodes << "\n";
+  os << indent << "Leaves: " << d.Stats.Leaves << "\n";
+  os << indent << "Depth: " << d.Stats.Depth << "\n";
+  os << indent << "SAH cost: " << d.Stats.SAHCost << "\n";
+  os << indent << "Build time: " << d.BuildSeconds << " s\n";
+  os << indent << "Memory: " << this->GetMemorySize() << " bytes\n";
+  os << indent << "Local origin: (" << d.Origin.x << ", " << d.Origin.y << ", " << d.Origin.z
+     << ")\n";
+}

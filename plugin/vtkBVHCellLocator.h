@@ -1,0 +1,214 @@
+/**
+ * @class   vtkBVHCellLocator
+ * @brief   cell locator over a bounding volume hierarchy, exact in double
+ *
+ * vtkBVHCellLocator is a vtkAbstractCellLocator backed by vtkrt's BVH core
+ * (plugin/core/vtkrt/core): the same tree layout the GLSL ray tracer walks,
+ * here walked in double precision. It can stand in wherever VTK takes a cell
+ * locator: vtkCellPicker::AddLocator, filters that accept a locator, or user
+ * code calling IntersectWithLine / FindClosestPoint / FindCell.
+ *
+ * Two paths share one tree:
+ * - fast path (vtkPolyData triangles, quads, polygons and triangle strips):
+ *   cells are triangulated once at build time, keeping the original cell id
+ *   (and, for strips, the triangle index as subId); rays are tested with a
+ *   watertight ray/triangle test, so a ray through a shared edge or vertex
+ *   never slips between two triangles. No vtkCell and no virtual call is
+ *   touched per candidate; the returned cell, pcoords and subId are those of
+ *   the original VTK cell (pcoords of a quad or polygon hit come from the
+ *   cell's own EvaluatePosition).
+ * - general path (lines, vertices, and every cell of any other vtkDataSet,
+ *   e.g. tetrahedra or hexahedra of a vtkUnstructuredGrid): the tree is built
+ *   over cell bounds and each candidate is tested exactly by the cell's own
+ *   IntersectWithLine / EvaluatePosition, so semantics are VTK's.
+ *
+ * Geometry is stored relative to a local origin (the dataset's bounds
+ * center) so that meshes far from the world origin keep full precision.
+ * Cells with non-finite coordinates are skipped.
+ *
+ * Tolerance: as in vtkCell::IntersectWithLine, tol is a world distance: a
+ * triangle is hit when the line's crossing of its plane lies within tol of
+ * it; lines and vertices are hit within tol.
+ *
+ * Build: BuildLocator() rebuilds when the dataset (or this locator) was
+ * modified since the last build, unless UseExistingSearchStructure is on and
+ * a tree exists. With LazyEvaluation on, BuildLocator() only marks the
+ * locator and the first query builds. Every query builds the tree when it is
+ * missing or stale (vtkCellPicker never calls BuildLocator itself).
+ * ForceBuildLocator() always rebuilds.
+ *
+ * Thread safety: once built (and while the dataset is unmodified) all queries
+ * are read-only on shared state and may run concurrently from several
+ * threads, provided each thread passes its own vtkGenericCell (the overloads
+ * taking `cell`), and its own output lists. Overloads without a `cell`
+ * argument use an internal cell only when they need one (non-triangle cells),
+ * so they should not be called concurrently on a general dataset.
+ *
+ * NumberOfCellsPerNode is the BVH leaf size (default 4 here).
+ *
+ * @sa vtkAbstractCellLocator vtkStaticCellLocator vtkCellPicker
+ */
+
+#ifndef vtkBVHCellLocator_h
+#define vtkBVHCellLocator_h
+
+#include "vtkAbstractCellLocator.h"
+#include "vtkrtPluginModule.h" // For export macro
+
+#include <memory> // For std::unique_ptr
+
+class vtkIdList;
+class vtkPoints;
+
+class VTKRTPLUGIN_EXPORT vtkBVHCellLocator : public vtkAbstractCellLocator
+{
+public:
+  static vtkBVHCellLocator* New();
+  vtkTypeMacro(vtkBVHCellLocator, vtkAbstractCellLocator);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  using vtkAbstractCellLocator::FindCell;
+  using vtkAbstractCellLocator::FindClosestPoint;
+  using vtkAbstractCellLocator::FindClosestPointWithinRadius;
+  using vtkAbstractCellLocator::IntersectWithLine;
+
+  /**
+   * BVH builder quality: FAST (quick median-style build, lowest first-pick
+   * latency), SAH (binned surface area heuristic, the default) or HIGH
+   * (slower build, fastest queries).
+   */
+  enum BuildQualityType
+  {
+    FAST = 0,
+    SAH = 1,
+    HIGH = 2
+  };
+  vtkSetClampMacro(BuildQuality, int, FAST, HIGH);
+  vtkGetMacro(BuildQuality, int);
+  void SetBuildQualityToFast() { this->SetBuildQuality(FAST); }
+  void SetBuildQualityToSAH() { this->SetBuildQuality(SAH); }
+  void SetBuildQualityToHigh() { this->SetBuildQuality(HIGH); }
+
+  ///@{
+  /**
+   * Build the tree if it is missing or stale (see class documentation);
+   * ForceBuildLocator() always rebuilds. FreeSearchStructure() releases it.
+   */
+  void BuildLocator() override;
+  virtual void ForceBuildLocator();
+  void FreeSearchStructure() override;
+  ///@}
+
+  /**
+   * Polydata of the BVH boxes (quads, 6 per box) of the nodes at depth
+   * `level` (0 is the root), plus the leaves above that depth; a negative
+   * level gives all leaves.
+   */
+  void GenerateRepresentation(int level, vtkPolyData* pd) override;
+
+  /**
+   * Nearest intersection of the segment p1->p2 with the cells, within tol.
+   * t is the segment parameter in [0, 1], x the world point, pcoords/subId
+   * the parametric coordinates in cell `cellId`. If `cell` is given it holds
+   * cell `cellId` on return (vtkCellPicker relies on that).
+   */
+  int IntersectWithLine(const double p1[3], const double p2[3], double tol, double& t, double x[3],
+    double pcoords[3], int& subId, vtkIdType& cellId, vtkGenericCell* cell) override;
+  int IntersectWithLine(const double p1[3], const double p2[3], double tol, double& t, double x[3],
+    double pcoords[3], int& subId, vtkIdType& cellId) override;
+  int IntersectWithLine(const double p1[3], const double p2[3], double tol, double& t, double x[3],
+    double pcoords[3], int& subId) override;
+
+  /**
+   * Every intersection of the segment with the cells (tolerance 0 for the
+   * 4-argument form), one per cell (its nearest), sorted along the segment.
+   * Either list may be null. Returns 0 when nothing is hit; otherwise -1 if
+   * p1 is inside a closed, outward-oriented surface (the first crossing
+   * leaves it) and +1 otherwise, as vtkOBBTree does.
+   */
+  int IntersectWithLine(
+    const double p1[3], const double p2[3], vtkPoints* points, vtkIdList* cellIds) override;
+  virtual int IntersectWithLine(const double p1[3], const double p2[3], double tol,
+    vtkPoints* points, vtkIdList* cellIds, vtkGenericCell* cell = nullptr);
+
+  /**
+   * Ids of the cells whose bounds (grown by tolerance) meet the segment:
+   * every cell the segment may hit, in increasing id order.
+   */
+  void FindCellsAlongLine(
+    const double p1[3], const double p2[3], double tolerance, vtkIdList* cells) override;
+
+  /**
+   * Ids of the cells whose bounds meet bbox (xmin,xmax,ymin,ymax,zmin,zmax),
+   * in increasing id order.
+   */
+  void FindCellsWithinBounds(double* bbox, vtkIdList* cells) override;
+
+  ///@{
+  /**
+   * Closest point on any cell to x (within radius for the WithinRadius
+   * forms, which return 1 when found and 0 otherwise, with cellId -1).
+   * `inside` is the closest cell's EvaluatePosition result at x.
+   */
+  void FindClosestPoint(const double x[3], double closestPoint[3], vtkGenericCell* cell,
+    vtkIdType& cellId, int& subId, double& dist2) override;
+  void FindClosestPoint(
+    const double x[3], double closestPoint[3], vtkIdType& cellId, int& subId, double& dist2) override;
+  vtkIdType FindClosestPointWithinRadius(double x[3], double radius, double closestPoint[3],
+    vtkGenericCell* cell, vtkIdType& cellId, int& subId, double& dist2, int& inside) override;
+  vtkIdType FindClosestPointWithinRadius(double x[3], double radius, double closestPoint[3],
+    vtkGenericCell* cell, vtkIdType& cellId, int& subId, double& dist2) override;
+  vtkIdType FindClosestPointWithinRadius(double x[3], double radius, double closestPoint[3],
+    vtkIdType& cellId, int& subId, double& dist2) override;
+  ///@}
+
+  ///@{
+  /**
+   * Point location: the cell containing x (EvaluatePosition == 1 and
+   * distance^2 <= tol2), the lowest such cell id, or -1. Meant for 3D cells.
+   */
+  vtkIdType FindCell(double x[3]) override;
+  vtkIdType FindCell(
+    double x[3], double tol2, vtkGenericCell* cell, double pcoords[3], double* weights) override;
+  ///@}
+
+  /**
+   * Whether x lies inside the bounds of cell cellId (false for a bad id).
+   */
+  bool InsideCellBounds(double x[3], vtkIdType cellId) override;
+
+  ///@{
+  /**
+   * Tree statistics of the last build.
+   */
+  vtkIdType GetNumberOfNodes() const;
+  vtkIdType GetNumberOfPrimitives() const;
+  int GetTreeDepth() const;
+  double GetSAHCost() const;
+  double GetBuildTimeSeconds() const;
+  /** Bytes held by the search structure (tree, primitives, geometry copy). */
+  size_t GetMemorySize() const;
+  ///@}
+
+protected:
+  vtkBVHCellLocator();
+  ~vtkBVHCellLocator() override;
+
+  // True when the tree is missing or older than the dataset / this object.
+  bool NeedsBuild() const;
+  // Builds when needed; returns false (after an error where VTK gives one)
+  // when there is nothing to query.
+  bool PrepareQuery();
+  void BuildTree();
+
+  int BuildQuality;
+
+private:
+  vtkBVHCellLocator(const vtkBVHCellLocator&) = delete;
+  void operator=(const vtkBVHCellLocator&) = delete;
+
+  struct vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif

@@ -1,0 +1,918 @@
+// Private to vtkBVHCellLocator: the dataset -> primitive extraction and the
+// queries over the core's BVH (plugin/core/vtkrt/core). Not installed.
+//
+// Primitives are of two kinds sharing one tree:
+// - triangles (fast path): polydata / unstructured-grid triangles, quads,
+//   polygons (ear-cut) and triangle strips, stored as point-index triples
+//   into a local-origin copy of the points and tested without any vtkCell;
+// - general cells: every other cell, tested by its own vtkCell methods.
+#ifndef vtkBVHCellLocatorInternals_h
+#define vtkBVHCellLocatorInternals_h
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellType.h"
+#include "vtkDataSet.h"
+#include "vtkGenericCell.h"
+#include "vtkIdList.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolygon.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnstructuredGrid.h"
+
+#include "vtkrt/core/BVH.h"
+#include "vtkrt/core/BVHBuild.h"
+#include "vtkrt/core/BVHTraversal.h"
+#include "vtkrt/core/Ray.h"
+#include "vtkrt/core/Triangle.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace vtkrt
+{
+namespace locator
+{
+using Vec3d = core::Vec3<double>;
+using Box = core::AABB<double>;
+
+/// One segment/cell intersection, in world coordinates.
+struct LineHit
+{
+  double T = 0.0;
+  double X[3] = { 0.0, 0.0, 0.0 };
+  double PCoords[3] = { 0.0, 0.0, 0.0 };
+  int SubId = 0;
+  vtkIdType CellId = -1;
+  bool NeedsEvaluate = false; ///< pcoords/subId must come from the cell's EvaluatePosition
+  bool Leaving = false;       ///< the segment leaves through an outward-facing triangle
+};
+
+/// One closest-point result, in world coordinates.
+struct PointHit
+{
+  double X[3] = { 0.0, 0.0, 0.0 };
+  double Dist2 = 0.0;
+  vtkIdType CellId = -1;
+  int SubId = 0;
+  int Inside = 0;
+  bool NeedsEvaluate = false;
+};
+
+struct TreeStats
+{
+  vtkIdType Nodes = 0;
+  vtkIdType Leaves = 0;
+  int Depth = 0;
+  double SAHCost = 0.0;
+};
+
+enum TriangleFlags : std::uint8_t
+{
+  FlipOrientation = 1, ///< odd triangle of a strip: its cell's winding is reversed
+  EvaluateInCell = 2,  ///< part of a quad or polygon: pcoords come from the cell
+};
+
+class BVHCellLocatorData
+{
+public:
+  Vec3d Origin = Vec3d(0.0);
+  std::vector<Vec3d> Points;             ///< local copy (point - Origin), fast path only
+  std::vector<std::uint32_t> TriVerts;   ///< 3 point ids per triangle
+  std::vector<vtkIdType> TriCell;        ///< original cell id per triangle
+  std::vector<std::int32_t> TriSub;      ///< subId per triangle (strips: triangle index)
+  std::vector<std::uint8_t> TriFlags;    ///< TriangleFlags
+  std::vector<vtkIdType> GenCell;        ///< original cell id per general primitive
+  std::vector<Box> GenBox;               ///< its bounds, local, slightly widened
+  core::BVH Tree;
+  TreeStats Stats;
+  vtkIdType SkippedCells = 0;   ///< cells in no leaf (non-finite or empty bounds)
+  vtkIdType NonFiniteCells = 0; ///< surface cells dropped at extraction
+  double BuildSeconds = 0.0;
+
+  vtkIdType NumberOfTriangles() const { return static_cast<vtkIdType>(this->TriCell.size()); }
+  vtkIdType NumberOfGeneralCells() const { return static_cast<vtkIdType>(this->GenCell.size()); }
+  vtkIdType NumberOfPrimitives() const
+  {
+    return this->NumberOfTriangles() + this->NumberOfGeneralCells();
+  }
+
+  void Clear()
+  {
+    *this = BVHCellLocatorData();
+  }
+
+  size_t MemorySize() const
+  {
+    return this->Points.capacity() * sizeof(Vec3d) +
+      this->TriVerts.capacity() * sizeof(std::uint32_t) +
+      this->TriCell.capacity() * sizeof(vtkIdType) +
+      this->TriSub.capacity() * sizeof(std::int32_t) + this->TriFlags.capacity() +
+      this->GenCell.capacity() * sizeof(vtkIdType) + this->GenBox.capacity() * sizeof(Box) +
+      this->Tree.memoryBytes();
+  }
+
+  //----------------------------------------------------------------------------
+  // Extraction
+  //----------------------------------------------------------------------------
+  void Extract(vtkDataSet* ds)
+  {
+    this->ComputeOrigin(ds);
+    if (auto* pd = vtkPolyData::SafeDownCast(ds))
+    {
+      this->CopyPoints(pd->GetPoints());
+      this->ExtractPolyData(pd);
+    }
+    else if (auto* ug = vtkUnstructuredGrid::SafeDownCast(ds))
+    {
+      this->CopyPoints(ug->GetPoints());
+      this->ExtractUnstructuredGrid(ug);
+    }
+    else
+    {
+      const vtkIdType n = ds->GetNumberOfCells();
+      for (vtkIdType c = 0; c < n; ++c)
+      {
+        this->GenCell.push_back(c);
+      }
+    }
+    this->ComputeGeneralBoxes(ds);
+  }
+
+  void Build(int quality, int leafSize)
+  {
+    const size_t nTri = this->TriCell.size();
+    const size_t n = nTri + this->GenCell.size();
+    std::vector<Box> boxes(n);
+    vtkSMPTools::For(0, static_cast<vtkIdType>(nTri), [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        Box box;
+        for (int k = 0; k < 3; ++k)
+        {
+          box.extend(this->Points[this->TriVerts[3 * i + k]]);
+        }
+        if (!box.isFinite())
+        {
+          box = Box(); // empty: the builder skips it
+        }
+        boxes[i] = box;
+      }
+    });
+    for (size_t g = 0; g < this->GenCell.size(); ++g)
+    {
+      boxes[nTri + g] = this->GenBox[g];
+    }
+    core::BuildOptions options;
+    options.quality = quality == 0 ? core::BuildQuality::Fast
+                                   : (quality == 2 ? core::BuildQuality::High : core::BuildQuality::Medium);
+    options.maxLeafSize = static_cast<std::uint32_t>(std::max(leafSize, 1));
+    this->Tree = core::buildBVH(boxes, options);
+    this->Stats.Nodes = static_cast<vtkIdType>(this->Tree.stats.nodeCount);
+    this->Stats.Leaves = static_cast<vtkIdType>(this->Tree.stats.leafCount);
+    this->Stats.Depth = static_cast<int>(this->Tree.stats.maxDepth);
+    this->Stats.SAHCost = this->Tree.stats.sahCost;
+    this->SkippedCells =
+      this->NonFiniteCells + static_cast<vtkIdType>(this->Tree.stats.skippedPrimitives);
+  }
+
+  //----------------------------------------------------------------------------
+  // Queries, over the core's traversals. GetCellFn returns the
+  // vtkGenericCell this query may use as scratch for general cells.
+  //----------------------------------------------------------------------------
+  template <class GetCellFn>
+  bool ClosestHit(const double p1[3], const double p2[3], double tol, vtkDataSet* ds,
+    GetCellFn&& getCell, LineHit& out) const
+  {
+    core::Ray<double> ray;
+    if (!this->MakeSegment(p1, p2, ray))
+    {
+      return false;
+    }
+    const core::RayTrianglePrecomputed<double> triPre(ray);
+    const vtkIdType nTri = this->NumberOfTriangles();
+    vtkIdType bestCell = -1;
+    LineHit general;
+    bool generalBest = false;
+
+    // Ties (same t) go to the lowest cell id, so the answer does not depend
+    // on the traversal order.
+    auto isect = [&](std::uint32_t prim, const core::Ray<double>& r, core::Hit<double>& hit) {
+      const bool haveBest = hit.found();
+      if (static_cast<vtkIdType>(prim) < nTri)
+      {
+        double t, u, v;
+        if (!this->IntersectTriangle(prim, triPre, r, tol, t, u, v))
+        {
+          return false;
+        }
+        const vtkIdType cellId = this->TriCell[prim];
+        if (haveBest && t == hit.t && cellId > bestCell)
+        {
+          return false;
+        }
+        hit.t = t;
+        hit.u = u;
+        hit.v = v;
+        bestCell = cellId;
+        generalBest = false;
+        return true;
+      }
+      const vtkIdType cellId = this->GenCell[prim - nTri];
+      vtkGenericCell* cell = getCell();
+      ds->GetCell(cellId, cell);
+      double t, x[3], pc[3];
+      int sub;
+      if (!cell->IntersectWithLine(p1, p2, tol, t, x, pc, sub) || !(t >= r.tmin && t <= r.tmax))
+      {
+        return false;
+      }
+      if (haveBest && t == hit.t && cellId > bestCell)
+      {
+        return false;
+      }
+      hit.t = t;
+      bestCell = cellId;
+      generalBest = true;
+      general.T = t;
+      general.SubId = sub;
+      general.CellId = cellId;
+      for (int k = 0; k < 3; ++k)
+      {
+        general.X[k] = x[k];
+        general.PCoords[k] = pc[k];
+      }
+      return true;
+    };
+    core::Hit<double> hit;
+    if (!this->WalkSegment<0>(ray, tol, isect, hit))
+    {
+      return false;
+    }
+    if (generalBest)
+    {
+      out = general;
+      out.NeedsEvaluate = false;
+      return true;
+    }
+    const std::uint32_t prim = hit.prim;
+    out.T = hit.t;
+    out.CellId = this->TriCell[prim];
+    for (int k = 0; k < 3; ++k)
+    {
+      out.X[k] = p1[k] + hit.t * ray.dir[k];
+    }
+    out.NeedsEvaluate = (this->TriFlags[prim] & EvaluateInCell) != 0;
+    out.SubId = this->TriSub[prim];
+    out.PCoords[0] = hit.u;
+    out.PCoords[1] = hit.v;
+    out.PCoords[2] = 0.0;
+    return true;
+  }
+
+  template <class GetCellFn>
+  void AllHits(const double p1[3], const double p2[3], double tol, vtkDataSet* ds,
+    GetCellFn&& getCell, std::vector<LineHit>& hits) const
+  {
+    hits.clear();
+    core::Ray<double> ray;
+    if (!this->MakeSegment(p1, p2, ray))
+    {
+      return;
+    }
+    const core::RayTrianglePrecomputed<double> triPre(ray);
+    const vtkIdType nTri = this->NumberOfTriangles();
+    auto isect = [&](std::uint32_t prim, const core::Ray<double>& r, core::Hit<double>&) {
+      LineHit h;
+      if (static_cast<vtkIdType>(prim) < nTri)
+      {
+        double t, u, v;
+        if (!this->IntersectTriangle(prim, triPre, r, tol, t, u, v))
+        {
+          return false;
+        }
+        h.T = t;
+        h.CellId = this->TriCell[prim];
+        for (int k = 0; k < 3; ++k)
+        {
+          h.X[k] = p1[k] + t * r.dir[k];
+        }
+        const Vec3d& v0 = this->Points[this->TriVerts[3 * prim]];
+        const Vec3d& v1 = this->Points[this->TriVerts[3 * prim + 1]];
+        const Vec3d& v2 = this->Points[this->TriVerts[3 * prim + 2]];
+        double side = glm::dot(core::triangleNormal(v0, v1, v2), r.dir);
+        if (this->TriFlags[prim] & FlipOrientation)
+        {
+          side = -side;
+        }
+        h.Leaving = side > 0.0;
+      }
+      else
+      {
+        const vtkIdType cellId = this->GenCell[prim - nTri];
+        vtkGenericCell* cell = getCell();
+        ds->GetCell(cellId, cell);
+        double t, x[3], pc[3];
+        int sub;
+        if (!cell->IntersectWithLine(p1, p2, tol, t, x, pc, sub) || !(t >= r.tmin && t <= r.tmax))
+        {
+          return false;
+        }
+        h.T = t;
+        h.CellId = cellId;
+        for (int k = 0; k < 3; ++k)
+        {
+          h.X[k] = x[k];
+        }
+      }
+      hits.push_back(h);
+      return false; // collected here; nothing for the traversal to keep
+    };
+    core::Hit<double> hit;
+    this->WalkSegment<2>(ray, tol, isect, hit);
+    // One hit per cell (its nearest), then along the segment.
+    std::sort(hits.begin(), hits.end(), [](const LineHit& a, const LineHit& b) {
+      return a.CellId != b.CellId ? a.CellId < b.CellId : a.T < b.T;
+    });
+    hits.erase(std::unique(hits.begin(), hits.end(),
+                 [](const LineHit& a, const LineHit& b) { return a.CellId == b.CellId; }),
+      hits.end());
+    std::stable_sort(hits.begin(), hits.end(),
+      [](const LineHit& a, const LineHit& b) { return a.T < b.T; });
+  }
+
+  void CellsAlongLine(
+    const double p1[3], const double p2[3], double tol, std::vector<vtkIdType>& cells) const
+  {
+    cells.clear();
+    core::Ray<double> ray;
+    if (!this->MakeSegment(p1, p2, ray))
+    {
+      return;
+    }
+    const core::RayBoxPrecomputed<double> boxPre(ray);
+    auto isect = [&](std::uint32_t prim, const core::Ray<double>& r, core::Hit<double>&) {
+      const Box b = this->PrimitiveBox(prim);
+      double tnear;
+      if (core::intersectRayAABB(boxPre, b.min - Vec3d(tol), b.max + Vec3d(tol), r.tmin, r.tmax, tnear))
+      {
+        cells.push_back(this->PrimitiveCell(prim));
+      }
+      return false;
+    };
+    core::Hit<double> hit;
+    this->WalkSegment<2>(ray, tol, isect, hit);
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  }
+
+  void CellsInBox(const double bbox[6], std::vector<vtkIdType>& cells) const
+  {
+    cells.clear();
+    const Box q(this->ToLocal(Vec3d(bbox[0], bbox[2], bbox[4])),
+      this->ToLocal(Vec3d(bbox[1], bbox[3], bbox[5])));
+    core::queryBox(this->Tree, q, [&](std::uint32_t prim) {
+      if (this->PrimitiveBox(prim).overlaps(q))
+      {
+        cells.push_back(this->PrimitiveCell(prim));
+      }
+    });
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  }
+
+  template <class GetCellFn>
+  bool ClosestPoint(
+    const double xw[3], double radius, vtkDataSet* ds, GetCellFn&& getCell, PointHit& out) const
+  {
+    const Vec3d x = this->ToLocal(xw);
+    const vtkIdType nTri = this->NumberOfTriangles();
+    std::vector<double> weights(static_cast<size_t>(std::max(ds ? ds->GetMaxCellSize() : 1, 1)));
+    // Per general primitive, what EvaluatePosition said (read back for the winner).
+    PointHit general;
+    std::uint32_t generalPrim = core::kInvalidIndex;
+    auto fn = [&](std::uint32_t prim, const Vec3d& p, core::PointHit<double>& cand) {
+      if (static_cast<vtkIdType>(prim) < nTri)
+      {
+        const Vec3d& v0 = this->Points[this->TriVerts[3 * prim]];
+        const Vec3d& v1 = this->Points[this->TriVerts[3 * prim + 1]];
+        const Vec3d& v2 = this->Points[this->TriVerts[3 * prim + 2]];
+        cand.point = core::closestPointOnTriangle(p, v0, v1, v2);
+        const Vec3d d = p - cand.point;
+        cand.dist2 = glm::dot(d, d);
+        return true;
+      }
+      const vtkIdType cellId = this->GenCell[prim - nTri];
+      vtkGenericCell* cell = getCell();
+      ds->GetCell(cellId, cell);
+      double cp[3], pc[3], d2;
+      int sub;
+      double xx[3] = { xw[0], xw[1], xw[2] };
+      const int r = cell->EvaluatePosition(xx, cp, sub, pc, d2, weights.data());
+      if (r < 0 || !std::isfinite(d2))
+      {
+        return false;
+      }
+      if (r == 1 && cell->GetCellDimension() == 3)
+      {
+        std::copy(xx, xx + 3, cp); // inside a 3D cell: x itself
+      }
+      cand.point = this->ToLocal(cp);
+      cand.dist2 = d2;
+      // Keep the cell's own answer in case this candidate wins.
+      if (d2 < general.Dist2 || generalPrim == core::kInvalidIndex)
+      {
+        general.CellId = cellId;
+        general.SubId = sub;
+        general.Dist2 = d2;
+        general.Inside = r;
+        std::copy(cp, cp + 3, general.X);
+        generalPrim = prim;
+      }
+      return true;
+    };
+    core::PointHit<double> best;
+    if (!core::closestPoint(this->Tree, x, radius, fn, best))
+    {
+      return false;
+    }
+    if (best.prim == generalPrim)
+    {
+      out = general;
+      return true;
+    }
+    const std::uint32_t prim = best.prim;
+    out.CellId = this->TriCell[prim];
+    out.Dist2 = best.dist2;
+    for (int k = 0; k < 3; ++k)
+    {
+      out.X[k] = best.point[k] + this->Origin[k];
+    }
+    out.SubId = this->TriSub[prim];
+    out.NeedsEvaluate = (this->TriFlags[prim] & EvaluateInCell) != 0;
+    out.Inside = this->ProjectsInside(prim, x) ? 1 : 0;
+    return true;
+  }
+
+  vtkIdType FindCell(const double xw[3], double tol2, vtkDataSet* ds, vtkGenericCell* cell,
+    double pcoords[3], double* weights) const
+  {
+    const Vec3d x = this->ToLocal(xw);
+    const Vec3d tol(std::sqrt(tol2));
+    const Box q(x - tol, x + tol);
+    std::vector<vtkIdType> candidates;
+    core::queryBox(this->Tree, q, [&](std::uint32_t prim) {
+      if (this->PrimitiveBox(prim).overlaps(q))
+      {
+        candidates.push_back(this->PrimitiveCell(prim));
+      }
+    });
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    double xx[3] = { xw[0], xw[1], xw[2] };
+    for (const vtkIdType cellId : candidates)
+    {
+      ds->GetCell(cellId, cell);
+      double cp[3], dist2;
+      int sub;
+      if (cell->EvaluatePosition(xx, cp, sub, pcoords, dist2, weights) == 1 && dist2 <= tol2)
+      {
+        return cellId;
+      }
+    }
+    return -1;
+  }
+
+  /// Boxes (local coordinates) of the nodes at depth `level` and of the
+  /// leaves above it; all leaves for a negative level.
+  void BoxesAtLevel(int level, std::vector<Box>& boxes) const
+  {
+    boxes.clear();
+    if (this->Tree.empty())
+    {
+      return;
+    }
+    struct Entry
+    {
+      std::uint32_t Node;
+      int Depth;
+    };
+    std::vector<Entry> stack{ { 0, 0 } };
+    while (!stack.empty())
+    {
+      const Entry e = stack.back();
+      stack.pop_back();
+      const core::BVHNode& node = this->Tree.nodes[e.Node];
+      if (node.isLeaf() || (level >= 0 && e.Depth >= level))
+      {
+        boxes.push_back(node.bounds());
+        continue;
+      }
+      stack.push_back({ node.index + 1, e.Depth + 1 });
+      stack.push_back({ node.index, e.Depth + 1 });
+    }
+  }
+
+private:
+  Vec3d ToLocal(const double p[3]) const
+  {
+    return Vec3d(p[0] - this->Origin.x, p[1] - this->Origin.y, p[2] - this->Origin.z);
+  }
+  Vec3d ToLocal(const Vec3d& p) const { return p - this->Origin; }
+
+  Box PrimitiveBox(std::uint32_t prim) const
+  {
+    const vtkIdType nTri = this->NumberOfTriangles();
+    if (static_cast<vtkIdType>(prim) < nTri)
+    {
+      Box b;
+      for (int k = 0; k < 3; ++k)
+      {
+        b.extend(this->Points[this->TriVerts[3 * prim + k]]);
+      }
+      return b;
+    }
+    return this->GenBox[prim - nTri];
+  }
+
+  vtkIdType PrimitiveCell(std::uint32_t prim) const
+  {
+    const vtkIdType nTri = this->NumberOfTriangles();
+    return static_cast<vtkIdType>(prim) < nTri ? this->TriCell[prim] : this->GenCell[prim - nTri];
+  }
+
+  /// The core's nodes with every box grown by tol (a cell within tol of the
+  /// segment may lie outside its box by up to tol).
+  struct GrownNodeSource
+  {
+    using Scalar = double;
+    const core::BVHNode* nodes = nullptr;
+    std::size_t size = 0;
+    Vec3d grow;
+    Vec3d lo(std::uint32_t i) const { return nodes[i].min - grow; }
+    Vec3d hi(std::uint32_t i) const { return nodes[i].max + grow; }
+    std::uint32_t index(std::uint32_t i) const { return nodes[i].index; }
+    std::uint32_t count(std::uint32_t i) const { return nodes[i].count; }
+  };
+
+  bool MakeSegment(const double p1[3], const double p2[3], core::Ray<double>& ray) const
+  {
+    if (this->Tree.empty())
+    {
+      return false;
+    }
+    const Vec3d dir(p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]);
+    // VTK cells never hit a zero-length segment either.
+    ray = core::Ray<double>(this->ToLocal(p1), dir, 0.0, 1.0);
+    return ray.isValid();
+  }
+
+  /// Mode 0: closest hit, 2: every primitive (the intersector collects).
+  template <int Mode, class Isect>
+  bool WalkSegment(const core::Ray<double>& ray, double tol, Isect& isect, core::Hit<double>& hit) const
+  {
+    const std::uint32_t* primIndex = this->Tree.primIndex.data();
+    if (tol > 0.0)
+    {
+      GrownNodeSource nodes{ this->Tree.nodes.data(), this->Tree.nodes.size(), Vec3d(tol) };
+      if (Mode == 0)
+      {
+        return core::closestHit(nodes, primIndex, ray, isect, hit);
+      }
+      core::allHits(nodes, primIndex, ray, isect);
+      return false;
+    }
+    const core::NodeSource nodes(this->Tree);
+    if (Mode == 0)
+    {
+      return core::closestHit(nodes, primIndex, ray, isect, hit);
+    }
+    core::allHits(nodes, primIndex, ray, isect);
+    return false;
+  }
+
+  /// Watertight hit, or (tol > 0) VTK's rule: the crossing of the plane lies
+  /// within tol of the triangle. u, v: VTK triangle pcoords of the hit.
+  bool IntersectTriangle(std::uint32_t prim, const core::RayTrianglePrecomputed<double>& pre,
+    const core::Ray<double>& ray, double tol, double& t, double& u, double& v) const
+  {
+    const Vec3d& v0 = this->Points[this->TriVerts[3 * prim]];
+    const Vec3d& v1 = this->Points[this->TriVerts[3 * prim + 1]];
+    const Vec3d& v2 = this->Points[this->TriVerts[3 * prim + 2]];
+    core::TriangleHit<double> hit;
+    if (core::intersectRayTriangle(pre, v0, v1, v2, ray.tmin, ray.tmax, hit))
+    {
+      t = hit.t;
+      u = hit.u;
+      v = hit.v;
+      return true;
+    }
+    if (tol <= 0.0)
+    {
+      return false;
+    }
+    const Vec3d e1 = v1 - v0, e2 = v2 - v0;
+    const Vec3d n = glm::cross(e1, e2);
+    const double denom = glm::dot(n, ray.dir);
+    if (denom == 0.0)
+    {
+      return false;
+    }
+    const double tt = glm::dot(n, v0 - ray.org) / denom;
+    if (!(tt >= ray.tmin && tt <= ray.tmax))
+    {
+      return false;
+    }
+    const Vec3d x = ray.org + tt * ray.dir;
+    const Vec3d cp = core::closestPointOnTriangle(x, v0, v1, v2);
+    const Vec3d d = x - cp;
+    if (glm::dot(d, d) > tol * tol)
+    {
+      return false;
+    }
+    t = tt;
+    Barycentric(x, v0, e1, e2, u, v);
+    return true;
+  }
+
+  static void Barycentric(
+    const Vec3d& x, const Vec3d& v0, const Vec3d& e1, const Vec3d& e2, double& u, double& v)
+  {
+    const Vec3d w = x - v0;
+    const double d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
+    const double w1 = glm::dot(w, e1), w2 = glm::dot(w, e2);
+    const double det = d11 * d22 - d12 * d12;
+    if (det == 0.0)
+    {
+      u = v = 0.0;
+      return;
+    }
+    u = (d22 * w1 - d12 * w2) / det;
+    v = (d11 * w2 - d12 * w1) / det;
+  }
+
+  /// Whether x projects into the triangle (vtkTriangle::EvaluatePosition == 1).
+  bool ProjectsInside(std::uint32_t prim, const Vec3d& x) const
+  {
+    const Vec3d& v0 = this->Points[this->TriVerts[3 * prim]];
+    const Vec3d& v1 = this->Points[this->TriVerts[3 * prim + 1]];
+    const Vec3d& v2 = this->Points[this->TriVerts[3 * prim + 2]];
+    double u, v;
+    Barycentric(x, v0, v1 - v0, v2 - v0, u, v);
+    return u >= 0.0 && v >= 0.0 && u + v <= 1.0;
+  }
+
+  void ComputeOrigin(vtkDataSet* ds)
+  {
+    // Center of the finite points' bounds (NaN/inf points would poison it).
+    Box b;
+    const vtkIdType n = ds->GetNumberOfPoints();
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      double p[3];
+      ds->GetPoint(i, p);
+      const Vec3d v(p[0], p[1], p[2]);
+      if (core::isFinite(v))
+      {
+        b.extend(v);
+      }
+    }
+    this->Origin = b.isEmpty() ? Vec3d(0.0) : b.center();
+  }
+
+  void CopyPoints(vtkPoints* pts)
+  {
+    const vtkIdType n = pts ? pts->GetNumberOfPoints() : 0;
+    this->Points.resize(static_cast<size_t>(n));
+    vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
+      double p[3];
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        pts->GetPoint(i, p);
+        this->Points[i] = this->ToLocal(p);
+      }
+    });
+  }
+
+  void AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cellId, int sub, std::uint8_t flags)
+  {
+    this->TriVerts.push_back(static_cast<std::uint32_t>(a));
+    this->TriVerts.push_back(static_cast<std::uint32_t>(b));
+    this->TriVerts.push_back(static_cast<std::uint32_t>(c));
+    this->TriCell.push_back(cellId);
+    this->TriSub.push_back(sub);
+    this->TriFlags.push_back(flags);
+  }
+
+  /// Triangulates a surface cell onto the fast path; false when it must take
+  /// the general path.
+  bool AddSurfaceCell(int type, vtkIdType npts, const vtkIdType* pts, vtkIdType cellId,
+    vtkPolygon* polygon, vtkIdList* tris)
+  {
+    if (type != VTK_TRIANGLE && type != VTK_QUAD && type != VTK_POLYGON && type != VTK_TRIANGLE_STRIP)
+    {
+      return false;
+    }
+    const vtkIdType nPoints = static_cast<vtkIdType>(this->Points.size());
+    for (vtkIdType i = 0; i < npts; ++i)
+    {
+      if (pts[i] < 0 || pts[i] >= nPoints)
+      {
+        return false; // let the general path (and VTK) deal with it
+      }
+    }
+    for (vtkIdType i = 0; i < npts; ++i)
+    {
+      if (!core::isFinite(this->Points[pts[i]]))
+      {
+        ++this->NonFiniteCells; // a cell with a NaN/inf point is never hit
+        return true;
+      }
+    }
+    switch (type)
+    {
+      case VTK_TRIANGLE:
+        if (npts != 3)
+        {
+          return false;
+        }
+        this->AddTriangle(pts[0], pts[1], pts[2], cellId, 0, 0);
+        return true;
+      case VTK_QUAD:
+        if (npts != 4)
+        {
+          return false;
+        }
+        this->AddQuad(pts, cellId);
+        return true;
+      case VTK_POLYGON:
+        if (npts < 3)
+        {
+          return false;
+        }
+        if (npts == 3)
+        {
+          this->AddTriangle(pts[0], pts[1], pts[2], cellId, 0, EvaluateInCell);
+          return true;
+        }
+        if (npts == 4)
+        {
+          this->AddQuad(pts, cellId);
+          return true;
+        }
+        this->AddPolygon(npts, pts, cellId, polygon, tris);
+        return true;
+      case VTK_TRIANGLE_STRIP:
+        if (npts < 3)
+        {
+          return false;
+        }
+        for (vtkIdType k = 0; k + 2 < npts; ++k)
+        {
+          // subId k and pcoords on (k, k+1, k+2), as vtkTriangleStrip's
+          // IntersectWithLine and EvaluatePosition report them.
+          this->AddTriangle(pts[k], pts[k + 1], pts[k + 2], cellId, static_cast<int>(k),
+            (k & 1) ? FlipOrientation : 0);
+        }
+        return true;
+      default:
+        return false;
+    }
+  }
+
+  void AddQuad(const vtkIdType* pts, vtkIdType cellId)
+  {
+    // Split along the shorter diagonal, as vtkQuad::IntersectWithLine does.
+    const Vec3d d02 = this->Points[pts[2]] - this->Points[pts[0]];
+    const Vec3d d13 = this->Points[pts[3]] - this->Points[pts[1]];
+    if (glm::dot(d02, d02) <= glm::dot(d13, d13))
+    {
+      this->AddTriangle(pts[0], pts[1], pts[2], cellId, 0, EvaluateInCell);
+      this->AddTriangle(pts[0], pts[2], pts[3], cellId, 0, EvaluateInCell);
+    }
+    else
+    {
+      this->AddTriangle(pts[0], pts[1], pts[3], cellId, 0, EvaluateInCell);
+      this->AddTriangle(pts[1], pts[2], pts[3], cellId, 0, EvaluateInCell);
+    }
+  }
+
+  void AddPolygon(
+    vtkIdType npts, const vtkIdType* pts, vtkIdType cellId, vtkPolygon* polygon, vtkIdList* tris)
+  {
+    polygon->GetPointIds()->SetNumberOfIds(npts);
+    polygon->GetPoints()->SetNumberOfPoints(npts);
+    for (vtkIdType i = 0; i < npts; ++i)
+    {
+      polygon->GetPointIds()->SetId(i, pts[i]);
+      const Vec3d& p = this->Points[pts[i]];
+      polygon->GetPoints()->SetPoint(i, p.x, p.y, p.z);
+    }
+    tris->Reset();
+    if (polygon->Triangulate(tris) && tris->GetNumberOfIds() >= 3)
+    {
+      for (vtkIdType k = 0; k + 2 < tris->GetNumberOfIds(); k += 3)
+      {
+        this->AddTriangle(pts[tris->GetId(k)], pts[tris->GetId(k + 1)], pts[tris->GetId(k + 2)],
+          cellId, 0, EvaluateInCell);
+      }
+      return;
+    }
+    for (vtkIdType k = 1; k + 1 < npts; ++k) // fan for polygons ear-cutting rejects
+    {
+      this->AddTriangle(pts[0], pts[k], pts[k + 1], cellId, 0, EvaluateInCell);
+    }
+  }
+
+  void ExtractPolyData(vtkPolyData* pd)
+  {
+    vtkNew<vtkPolygon> polygon;
+    vtkNew<vtkIdList> tris;
+    const bool indexable = this->Points.size() < std::numeric_limits<std::uint32_t>::max();
+    vtkIdType cellId = 0;
+    vtkCellArray* arrays[4] = { pd->GetVerts(), pd->GetLines(), pd->GetPolys(), pd->GetStrips() };
+    for (int a = 0; a < 4; ++a)
+    {
+      vtkCellArray* ca = arrays[a];
+      if (!ca || ca->GetNumberOfCells() == 0)
+      {
+        continue;
+      }
+      auto it = vtk::TakeSmartPointer(ca->NewIterator());
+      for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cellId)
+      {
+        vtkIdType npts;
+        const vtkIdType* pts;
+        it->GetCurrentCell(npts, pts);
+        int type = -1;
+        if (a == 2)
+        {
+          type = npts == 3 ? VTK_TRIANGLE : (npts == 4 ? VTK_QUAD : VTK_POLYGON);
+        }
+        else if (a == 3)
+        {
+          type = VTK_TRIANGLE_STRIP;
+        }
+        if (!(indexable && type >= 0 && this->AddSurfaceCell(type, npts, pts, cellId, polygon, tris)))
+        {
+          this->GenCell.push_back(cellId);
+        }
+      }
+    }
+  }
+
+  void ExtractUnstructuredGrid(vtkUnstructuredGrid* ug)
+  {
+    vtkNew<vtkPolygon> polygon;
+    vtkNew<vtkIdList> tris;
+    const bool indexable = this->Points.size() < std::numeric_limits<std::uint32_t>::max();
+    const vtkIdType n = ug->GetNumberOfCells();
+    for (vtkIdType c = 0; c < n; ++c)
+    {
+      vtkIdType npts;
+      const vtkIdType* pts;
+      const int type = ug->GetCellType(c);
+      ug->GetCellPoints(c, npts, pts);
+      if (!(indexable && this->AddSurfaceCell(type, npts, pts, c, polygon, tris)))
+      {
+        this->GenCell.push_back(c);
+      }
+    }
+  }
+
+  void ComputeGeneralBoxes(vtkDataSet* ds)
+  {
+    this->GenBox.resize(this->GenCell.size());
+    constexpr double eps = 4.0 * std::numeric_limits<double>::epsilon();
+    vtkSMPTools::For(0, static_cast<vtkIdType>(this->GenCell.size()), [&](vtkIdType b, vtkIdType e) {
+      double cb[6];
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        ds->GetCellBounds(this->GenCell[i], cb);
+        Box box(Vec3d(cb[0], cb[2], cb[4]), Vec3d(cb[1], cb[3], cb[5]));
+        if (!box.isFinite() || box.isEmpty())
+        {
+          this->GenBox[i] = Box();
+          continue;
+        }
+        // Cells are tested in world coordinates and the ray is walked in
+        // local ones: widen by the rounding of the shift.
+        Vec3d lo = box.min - this->Origin, hi = box.max - this->Origin;
+        const Vec3d slack = eps *
+          (glm::abs(box.min) + glm::abs(box.max) + glm::abs(this->Origin) * 2.0);
+        this->GenBox[i] = Box(lo - slack, hi + slack);
+      }
+    });
+  }
+};
+
+} // namespace locator
+} // namespace vtkrt
+
+#endif
