@@ -1,0 +1,263 @@
+// vtkrtBenchPass: frame times of vtkRayTracePass against VTK's raster peers,
+// measured in one run, in one EGL window, MultiSamples 0, malloc tuned for
+// large buffers (the same for every side).
+//   triangles: pass vs vtkPolyDataMapper, 100k and 1M (4M with --large)
+//   spheres:   pass (analytic) vs vtkGlyph3DMapper (triangulated 16x16
+//              spheres), RenderPointsAsSpheres and vtkOpenGLSphereMapper
+//              impostors, 10k and 100k (1M with --large)
+// at 512x512 and 1024x1024, camera orbiting; the first frame (build, upload,
+// compile) is reported separately. Ratios are peer time / pass time (> 1:
+// the pass is faster).
+// usage: vtkrtBenchPass [--large] [--frames N] [--sizes 512,1024]
+#include "vtkEGLHeadlessRenderWindow.h"
+#include "vtkRayTracePass.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkFloatArray.h"
+#include "vtkGlyph3DMapper.h"
+#include "vtkMinimalStandardRandomSequence.h"
+#include "vtkNew.h"
+#include "vtkOpenGLSphereMapper.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double Ms(Clock::time_point a, Clock::time_point b)
+{
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+struct Timing
+{
+  double First = 0;
+  double Steady = 0;
+};
+
+/// A UV sphere with about `triangles` triangles.
+vtkSmartPointer<vtkPolyData> MeshOf(long triangles)
+{
+  const int res = static_cast<int>(std::sqrt(triangles / 2.0)) + 2;
+  vtkNew<vtkSphereSource> source;
+  source->SetThetaResolution(res);
+  source->SetPhiResolution(res);
+  source->Update();
+  return source->GetOutput();
+}
+
+/// `count` random sphere centers in a unit cube with radii and scalars, as
+/// vertices (RenderPointsAsSpheres draws vertices).
+vtkSmartPointer<vtkPolyData> SpheresOf(long count)
+{
+  vtkNew<vtkMinimalStandardRandomSequence> random;
+  random->SetSeed(7);
+  vtkNew<vtkPoints> points;
+  points->SetNumberOfPoints(count);
+  vtkNew<vtkFloatArray> radius;
+  radius->SetName("radius");
+  radius->SetNumberOfTuples(count);
+  vtkNew<vtkCellArray> verts;
+  const double r = 0.5 / std::cbrt(static_cast<double>(count));
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    double p[3];
+    for (double& c : p)
+    {
+      c = random->GetNextRangeValue(-0.5, 0.5);
+    }
+    points->SetPoint(i, p);
+    radius->SetValue(i, static_cast<float>(r * random->GetNextRangeValue(0.5, 1.0)));
+    verts->InsertNextCell(1, &i);
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(points);
+  poly->SetVerts(verts);
+  poly->GetPointData()->AddArray(radius);
+  return poly;
+}
+
+/// Renders `frames` orbit steps after a first frame; fresh renderer each time.
+Timing Measure(vtkRenderWindow* win, const std::function<void(vtkRenderer*)>& setup, bool trace,
+  int frames)
+{
+  vtkNew<vtkRenderer> ren;
+  ren->SetBackground(0.2, 0.2, 0.25);
+  setup(ren);
+  ren->ResetCamera();
+  ren->GetActiveCamera()->Elevation(20);
+  ren->ResetCameraClippingRange();
+  vtkNew<vtkRayTracePass> pass;
+  if (trace)
+  {
+    ren->SetPass(pass);
+  }
+  win->AddRenderer(ren);
+  Timing t;
+  auto t0 = Clock::now();
+  win->Render();
+  win->WaitForCompletion();
+  t.First = Ms(t0, Clock::now());
+  t0 = Clock::now();
+  for (int i = 0; i < frames; ++i)
+  {
+    ren->GetActiveCamera()->Azimuth(360.0 / frames);
+    ren->ResetCameraClippingRange();
+    win->Render();
+  }
+  win->WaitForCompletion();
+  t.Steady = Ms(t0, Clock::now()) / frames;
+  win->RemoveRenderer(ren);
+  ren->ReleaseGraphicsResources(win);
+  return t;
+}
+
+void Row(const std::string& scene, int size, const std::string& peer, const Timing& p, const Timing& r)
+{
+  std::cout << std::left << std::setw(20) << scene << std::setw(6) << size << std::setw(28) << peer
+            << std::right << std::fixed << std::setprecision(1) << std::setw(10) << r.Steady
+            << std::setw(10) << p.Steady << std::setw(8) << std::setprecision(2)
+            << r.Steady / p.Steady << std::setprecision(1) << std::setw(11) << r.First
+            << std::setw(11) << p.First << "\n";
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  bool large = false;
+  int frames = 6;
+  std::vector<int> sizes = { 512, 1024 };
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    if (a == "--large")
+    {
+      large = true;
+    }
+    else if (a == "--frames" && i + 1 < argc)
+    {
+      frames = std::max(1, std::atoi(argv[++i]));
+    }
+    else if (a == "--sizes" && i + 1 < argc)
+    {
+      sizes.clear();
+      std::stringstream list(argv[++i]);
+      std::string item;
+      while (std::getline(list, item, ','))
+      {
+        sizes.push_back(std::atoi(item.c_str()));
+      }
+    }
+    else
+    {
+      std::cerr << "usage: " << argv[0] << " [--large] [--frames N] [--sizes 512,1024]\n";
+      return EXIT_FAILURE;
+    }
+  }
+  vtkEGLHeadlessRenderWindow::TuneMallocForLargeBuffers();
+  vtkNew<vtkEGLHeadlessRenderWindow> win;
+  win->SetMultiSamples(0);
+  win->SetSize(64, 64);
+  win->Render();
+  std::cout << "vtkrtBenchPass: " << win->GetGLRenderer() << ", " << frames
+            << " orbit frames after a first frame; times in ms; ratio = peer / pass\n\n";
+  std::cout << std::left << std::setw(20) << "scene" << std::setw(6) << "size" << std::setw(28)
+            << "peer" << std::right << std::setw(10) << "peer" << std::setw(10) << "pass"
+            << std::setw(8) << "ratio" << std::setw(11) << "peer 1st" << std::setw(11)
+            << "pass 1st" << "\n";
+
+  std::vector<long> meshes = { 100000, 1000000 };
+  std::vector<long> sphereCounts = { 10000, 100000 };
+  if (large)
+  {
+    meshes.push_back(4000000);
+    sphereCounts.push_back(1000000);
+  }
+  for (int size : sizes)
+  {
+    win->SetSize(size, size);
+    for (long n : meshes)
+    {
+      auto mesh = MeshOf(n);
+      auto setup = [&](vtkRenderer* ren) {
+        vtkNew<vtkPolyDataMapper> mapper;
+        mapper->SetInputData(mesh);
+        vtkNew<vtkActor> actor;
+        actor->SetMapper(mapper);
+        ren->AddActor(actor);
+      };
+      const Timing pass = Measure(win, setup, true, frames);
+      const Timing raster = Measure(win, setup, false, frames);
+      Row(std::to_string(mesh->GetNumberOfCells() / 1000) + "k triangles", size,
+        "vtkPolyDataMapper", pass, raster);
+    }
+    for (long n : sphereCounts)
+    {
+      auto spheres = SpheresOf(n);
+      auto glyphs = [&](int resolution) {
+        return [&, resolution](vtkRenderer* ren) {
+          vtkNew<vtkSphereSource> source;
+          source->SetThetaResolution(resolution);
+          source->SetPhiResolution(resolution);
+          source->SetRadius(1.0);
+          vtkNew<vtkGlyph3DMapper> mapper;
+          mapper->SetInputData(spheres);
+          mapper->SetSourceConnection(source->GetOutputPort());
+          mapper->SetScaleArray("radius");
+          mapper->SetScaleModeToScaleByMagnitude();
+          vtkNew<vtkActor> actor;
+          actor->SetMapper(mapper);
+          ren->AddActor(actor);
+        };
+      };
+      const std::string scene = std::to_string(n / 1000) + "k spheres";
+      const Timing pass = Measure(win, glyphs(16), true, frames);
+      // Triangulated glyphs are slow at 100k+: fewer frames there.
+      const Timing glyph = Measure(win, glyphs(16), false, n > 20000 ? 2 : frames);
+      Row(scene, size, "vtkGlyph3DMapper 16x16", pass, glyph);
+      const Timing points = Measure(win,
+        [&](vtkRenderer* ren) {
+          vtkNew<vtkPolyDataMapper> mapper;
+          mapper->SetInputData(spheres);
+          vtkNew<vtkActor> actor;
+          actor->SetMapper(mapper);
+          actor->GetProperty()->SetRenderPointsAsSpheres(true);
+          actor->GetProperty()->SetPointSize(static_cast<float>(size) / 100.0f);
+          ren->AddActor(actor);
+        },
+        false, frames);
+      Row(scene, size, "RenderPointsAsSpheres", pass, points);
+      const Timing impostors = Measure(win,
+        [&](vtkRenderer* ren) {
+          vtkNew<vtkOpenGLSphereMapper> mapper;
+          mapper->SetInputData(spheres);
+          mapper->SetScaleArray("radius");
+          vtkNew<vtkActor> actor;
+          actor->SetMapper(mapper);
+          ren->AddActor(actor);
+        },
+        false, frames);
+      Row(scene, size, "vtkOpenGLSphereMapper", pass, impostors);
+    }
+  }
+  return EXIT_SUCCESS;
+}
