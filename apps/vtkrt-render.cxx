@@ -760,7 +760,19 @@ int main(int argc, char* argv[])
     const Options opt = ParseArguments(argc, argv, help);
     if (help)
     {
-      std::cout << Usage;
+      std::cout << Usage << "\nThis build: raytrace mode "
+#ifdef VTKRT_HAVE_RAYTRACE_PASS
+                << "available"
+#else
+                << "not available"
+#endif
+                << "; picking with vtkBVHCellLocator "
+#ifdef VTKRT_HAVE_BVH_LOCATOR
+                << "available"
+#else
+                << "not available"
+#endif
+                << ".\n";
       return ExitOk;
     }
     return Run(opt);

@@ -439,7 +439,8 @@ void TestBadArguments()
   }
   const Result help = RunApp("--help");
   Check(help.Code == 0 && Contains(help.Output, "usage: vtkrt-render") &&
-      Contains(help.Output, "--pick X Y"),
+      Contains(help.Output, "--pick X Y") &&
+      Contains(help.Output, "This build: raytrace mode (not )?available"),
     "--help prints the usage and exits 0");
 }
 
