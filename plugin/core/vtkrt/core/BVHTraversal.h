@@ -110,7 +110,7 @@ bool traverseRay(const Nodes& nodes, const std::uint32_t* primIndex, Ray<T> ray,
   const RayBoxPrecomputed<T> pre(ray);
   StackEntry<T> stack[kMaxStackSize];
   std::uint32_t sp = 0;
-  T tnear;
+  T tnear = T(0);
   if (!intersectRayAABB(pre, nodes.lo(0), nodes.hi(0), ray.tmin, ray.tmax, tnear))
   {
     return false;
@@ -150,7 +150,7 @@ bool traverseRay(const Nodes& nodes, const std::uint32_t* primIndex, Ray<T> ray,
     }
     else
     {
-      T t0, t1;
+      T t0 = T(0), t1 = T(0);
       const bool h0 = intersectRayAABB(pre, nodes.lo(index), nodes.hi(index), ray.tmin, ray.tmax, t0);
       const bool h1 = intersectRayAABB(pre, nodes.lo(index + 1), nodes.hi(index + 1), ray.tmin, ray.tmax, t1);
       if (h0 && h1)

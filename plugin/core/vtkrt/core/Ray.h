@@ -40,16 +40,22 @@ struct Ray
   }
 };
 
-/// Per-ray data reused by every box test: the inverse direction. A zero
-/// component (either sign) maps to +inf; intersectRayAABB explains why that
-/// is safe.
+/// Per-ray data reused by every box test: the inverse direction. A
+/// component that is zero, or whose inverse overflows (|d| subnormal), is
+/// "parallel" and stored as invDir = 0 (a real inverse is never 0), so the
+/// slab test never forms 0 * inf = NaN. (Relying on NaN comparisons would
+/// not carry over to GLSL, where NaN behaviour is undefined.)
 template <class T>
 struct RayBoxPrecomputed
 {
   Vec3<T> org;
   Vec3<T> invDir;
 
-  static T safeInverse(T d) { return d == T(0) ? std::numeric_limits<T>::infinity() : T(1) / d; }
+  static T safeInverse(T d)
+  {
+    const T inv = T(1) / d;
+    return std::abs(inv) <= std::numeric_limits<T>::max() ? inv : T(0);
+  }
 
   explicit RayBoxPrecomputed(const Ray<T>& ray)
     : org(ray.org)
@@ -58,20 +64,18 @@ struct RayBoxPrecomputed
   }
 };
 
-/// Slab test, conservative under rounding (Ize 2013, "Robust BVH Ray
-/// Traversal": the far distance is scaled by 1 + 2*gamma(3)).
-/// Zero direction component (invDir = +inf): origin strictly inside the slab
-/// gives [-inf, +inf] (no restriction); outside gives [+inf, +inf] or
-/// [-inf, -inf] (miss; tnear = +inf is rejected even when tmax = +inf); on a
-/// slab plane gives 0*inf = NaN, and the comparisons are written so NaN leaves
-/// the interval unchanged, i.e. the box counts as hit (conservative).
-/// On hit, tnear gets the entry distance (clamped to [tmin, tmax]).
 namespace detail
 {
-/// One slab of intersectRayAABB; NaN-tolerant as described there.
+/// One slab of intersectRayAABB. Returns false when the slab alone rules
+/// the box out.
 template <class T>
-inline void clipSlab(T lo, T hi, T org, T invDir, T& tmin, T& tmax)
+inline bool clipSlab(T lo, T hi, T org, T invDir, T& tmin, T& tmax)
 {
+  if (invDir == T(0))
+  {
+    // Parallel to the slab: inside it (closed) for every t, or never.
+    return org >= lo && org <= hi;
+  }
   constexpr T farScale = T(1) + T(2) * gammaBound<T>(3);
   T t0 = (lo - org) * invDir;
   T t1 = (hi - org) * invDir;
@@ -82,21 +86,30 @@ inline void clipSlab(T lo, T hi, T org, T invDir, T& tmin, T& tmax)
     t1 = tmp;
   }
   t1 *= farScale;
-  // "x > tmin" / "x < tmax" are false for NaN: the slab is then ignored.
   tmin = t0 > tmin ? t0 : tmin;
   tmax = t1 < tmax ? t1 : tmax;
+  return true;
 }
 } // namespace detail
 
+/// Slab test, conservative under rounding (Ize 2013, "Robust BVH Ray
+/// Traversal": each far distance is scaled by 1 + 2*gamma(3)). For a valid
+/// ray (finite origin) and a finite box no NaN arises: parallel axes are
+/// decided by the origin alone (closed interval, so a ray lying in a face
+/// plane of a flat box hits it). On hit, tnear gets the entry distance
+/// clamped to [tmin, tmax]. The GLSL traversal mirrors this function.
 template <class T>
 inline bool intersectRayAABB(
   const RayBoxPrecomputed<T>& r, const Vec3<T>& bmin, const Vec3<T>& bmax, T tmin, T tmax, T& tnear)
 {
-  detail::clipSlab(bmin.x, bmax.x, r.org.x, r.invDir.x, tmin, tmax);
-  detail::clipSlab(bmin.y, bmax.y, r.org.y, r.invDir.y, tmin, tmax);
-  detail::clipSlab(bmin.z, bmax.z, r.org.z, r.invDir.z, tmin, tmax);
+  if (!detail::clipSlab(bmin.x, bmax.x, r.org.x, r.invDir.x, tmin, tmax) ||
+    !detail::clipSlab(bmin.y, bmax.y, r.org.y, r.invDir.y, tmin, tmax) ||
+    !detail::clipSlab(bmin.z, bmax.z, r.org.z, r.invDir.z, tmin, tmax))
+  {
+    return false;
+  }
   tnear = tmin;
-  return tmin <= tmax && tmin < std::numeric_limits<T>::infinity();
+  return tmin <= tmax;
 }
 
 template <class T>
