@@ -32,6 +32,7 @@
 #endif
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <memory>
@@ -141,7 +142,7 @@ bool IsCollapseLegal(Mesh& mesh, const CollapseInfo& ci)
 // Keeps the decimated surface within MaximumError of the input, both ways,
 // on samples: every input sample (face centroids, edge midpoints, removed
 // vertices) stays within the bound of some face around it, and every new
-// face's centroid and new-edge midpoints stay within the bound of the input
+// face's centroid and edge midpoints stay within the bound of the input
 // surface. OpenMesh's ModHausdorffT only does the first, with removed
 // vertices only, which let the output wander (measured up to 6.5x the bound
 // on the Stanford bunny, at its holes).
@@ -154,12 +155,27 @@ public:
     , Tolerance(tolerance)
     , Input(input)
   {
+    // The input triangles, by face index (faces are not yet garbage
+    // collected, so face indices stay valid through the decimation).
+    this->InputPoints.reserve(mesh.n_vertices());
+    for (const auto v : mesh.vertices())
+    {
+      this->InputPoints.push_back(mesh.point(v));
+    }
+    this->InputFaces.resize(mesh.n_faces());
+    this->FaceOfVertex.assign(mesh.n_vertices(), -1);
     mesh.add_property(this->Samples);
     for (const auto f : mesh.faces())
     {
+      int k = 0;
+      for (const auto v : mesh.fv_range(f))
+      {
+        this->InputFaces[f.idx()][k++] = v.idx();
+        this->FaceOfVertex[v.idx()] = f.idx();
+      }
       Point a, b, c;
       FacePoints(mesh, f, a, b, c);
-      mesh.property(this->Samples, f).push_back((a + b + c) / 3.0);
+      mesh.property(this->Samples, f).push_back(Sample{ (a + b + c) / 3.0, f.idx() });
     }
     for (const auto e : mesh.edges())
     {
@@ -170,8 +186,11 @@ public:
         f = mesh.face_handle(mesh.opposite_halfedge_handle(h));
       }
       mesh.property(this->Samples, f)
-        .push_back(0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h))));
+        .push_back(Sample{ 0.5 * (mesh.point(mesh.from_vertex_handle(h)) +
+                             mesh.point(mesh.to_vertex_handle(h))),
+          f.idx() });
     }
+    this->CandidateStamp.assign(mesh.n_faces(), 0);
   }
   ~SurfaceDistanceGuard() { this->TheMesh.remove_property(this->Samples); }
   SurfaceDistanceGuard(const SurfaceDistanceGuard&) = delete;
@@ -199,9 +218,29 @@ public:
         this->After.push_back(f);
       }
     }
+    // The input triangles this region stands for: the first place to look
+    // for the input surface near a new face.
+    ++this->Stamp;
+    this->Candidates.clear();
+    auto addCandidate = [this](int face)
+    {
+      if (face >= 0 && this->CandidateStamp[face] != this->Stamp)
+      {
+        this->CandidateStamp[face] = this->Stamp;
+        this->Candidates.push_back(face);
+      }
+    };
+    addCandidate(this->FaceOfVertex[ci.v0.idx()]);
+    for (const auto f : this->Before)
+    {
+      for (const Sample& sample : mesh.property(this->Samples, f))
+      {
+        addCandidate(sample.Face);
+      }
+    }
+
     mesh.set_point(ci.v0, ci.p1); // simulate
-    bool ok = true;
-    auto near = [&](const Point& p)
+    auto nearOutput = [&](const Point& p)
     {
       for (const auto f : this->After)
       {
@@ -214,12 +253,12 @@ public:
       }
       return false;
     };
-    ok = near(ci.p0);
+    bool ok = nearOutput(ci.p0);
     for (size_t i = 0; ok && i < this->Before.size(); ++i)
     {
-      for (const Point& p : mesh.property(this->Samples, this->Before[i]))
+      for (const Sample& sample : mesh.property(this->Samples, this->Before[i]))
       {
-        if (!near(p))
+        if (!nearOutput(sample.P))
         {
           ok = false;
           break;
@@ -275,8 +314,8 @@ public:
     {
       take(ci.fr);
     }
-    this->Pending.push_back(ci.p0);
-    for (const Point& p : this->Pending)
+    this->Pending.push_back(Sample{ ci.p0, this->FaceOfVertex[ci.v0.idx()] });
+    for (const Sample& sample : this->Pending)
     {
       double best = VTK_DOUBLE_MAX;
       Mesh::FaceHandle bestFace = this->After[0];
@@ -284,20 +323,31 @@ public:
       {
         Point a, b, c;
         FacePoints(mesh, f, a, b, c);
-        const double d2 = PointTriangleDistance2(p, a, b, c);
+        const double d2 = PointTriangleDistance2(sample.P, a, b, c);
         if (d2 < best)
         {
           best = d2;
           bestFace = f;
         }
       }
-      mesh.property(this->Samples, bestFace).push_back(p);
+      mesh.property(this->Samples, bestFace).push_back(sample);
     }
   }
 
 private:
+  // Within the bound of the input surface: the region's own input triangles
+  // first, the whole input (locator) only when none of them is near.
   bool NearInput(const Point& p)
   {
+    for (const int face : this->Candidates)
+    {
+      const auto& t = this->InputFaces[face];
+      if (PointTriangleDistance2(p, this->InputPoints[t[0]], this->InputPoints[t[1]],
+            this->InputPoints[t[2]]) <= this->Tolerance2)
+      {
+        return true;
+      }
+    }
     double x[3] = { p[0], p[1], p[2] }, closest[3], dist2;
     vtkIdType cellId;
     int subId, inside;
@@ -305,14 +355,26 @@ private:
              x, this->Tolerance, closest, this->Cell, cellId, subId, dist2, inside) != 0;
   }
 
+  struct Sample
+  {
+    Point P;
+    int Face; // the input face it samples (for a removed vertex: one of its faces)
+  };
+
   Mesh& TheMesh;
   double Tolerance2;
   double Tolerance;
   vtkStaticCellLocator* Input;
   vtkNew<vtkGenericCell> Cell;
-  OpenMesh::FPropHandleT<std::vector<Point>> Samples;
+  OpenMesh::FPropHandleT<std::vector<Sample>> Samples;
+  std::vector<Point> InputPoints;
+  std::vector<std::array<int, 3>> InputFaces;
+  std::vector<int> FaceOfVertex;
+  std::vector<unsigned> CandidateStamp;
+  unsigned Stamp = 0;
+  std::vector<int> Candidates;
   std::vector<Mesh::FaceHandle> Before, After;
-  std::vector<Point> Pending;
+  std::vector<Sample> Pending;
 };
 
 struct DecimationLimits

@@ -153,8 +153,8 @@ void TestErrorBound(vtkPolyData* mesh, const char* name, double relativeBound)
   decimate->Update();
   vtkPolyData* out = decimate->GetOutput();
   const double vertexError = VertexDistance(mesh, out);
-  const auto forward = SurfaceDistance(mesh, out, 20000, 3);
-  const auto backward = SurfaceDistance(out, mesh, 20000, 4);
+  const auto forward = SurfaceDistance(mesh, out, 10000, 3);
+  const auto backward = SurfaceDistance(out, mesh, 10000, 4);
   std::cout << name << ": error bound " << bound << " -> " << mesh->GetNumberOfPolys() << " to "
             << out->GetNumberOfPolys() << " triangles; input vertices max " << vertexError
             << "; sampled input->output max " << forward.Max << " mean " << forward.Mean
@@ -177,8 +177,8 @@ void TestVersusVTK(vtkPolyData* mesh, const char* name, double reduction)
   theirs->Update();
   vtkPolyData* a = ours->GetOutput();
   vtkPolyData* b = theirs->GetOutput();
-  const auto aFwd = SurfaceDistance(mesh, a, 20000, 5), aBwd = SurfaceDistance(a, mesh, 20000, 6);
-  const auto bFwd = SurfaceDistance(mesh, b, 20000, 5), bBwd = SurfaceDistance(b, mesh, 20000, 6);
+  const auto aFwd = SurfaceDistance(mesh, a, 10000, 5), aBwd = SurfaceDistance(a, mesh, 10000, 6);
+  const auto bFwd = SurfaceDistance(mesh, b, 10000, 5), bBwd = SurfaceDistance(b, mesh, 10000, 6);
   const double aHausdorff = std::max(aFwd.Max, aBwd.Max);
   const double bHausdorff = std::max(bFwd.Max, bBwd.Max);
   std::cout << name << " reduction " << reduction << ": " << mesh->GetNumberOfPolys()
