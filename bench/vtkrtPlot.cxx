@@ -1,0 +1,224 @@
+#include "vtkrtPlot.h"
+
+#include "vtkEGLHeadlessRenderWindow.h"
+
+#include "vtkAxis.h"
+#include "vtkChartLegend.h"
+#include "vtkChartXY.h"
+#include "vtkContextScene.h"
+#include "vtkContextView.h"
+#include "vtkDoubleArray.h"
+#include "vtkNew.h"
+#include "vtkPNGWriter.h"
+#include "vtkPen.h"
+#include "vtkPlotPoints.h"
+#include "vtkRenderer.h"
+#include "vtkStringArray.h"
+#include "vtkTable.h"
+#include "vtkTextProperty.h"
+#include "vtkWindowToImageFilter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+namespace vtkrtPlot
+{
+namespace
+{
+// Distinguishable colors (Okabe-Ito, readable by most color-blind readers).
+const unsigned char kPalette[][3] = { { 0, 114, 178 }, { 213, 94, 0 }, { 0, 158, 115 },
+  { 204, 121, 167 }, { 230, 159, 0 }, { 86, 180, 233 }, { 0, 0, 0 }, { 240, 228, 66 } };
+const int kMarkers[] = { vtkPlotPoints::CIRCLE, vtkPlotPoints::SQUARE, vtkPlotPoints::DIAMOND,
+  vtkPlotPoints::CROSS, vtkPlotPoints::PLUS };
+
+void StyleAxis(vtkAxis* axis, const std::string& title)
+{
+  axis->SetTitle(title);
+  axis->GetTitleProperties()->SetFontSize(15);
+  axis->GetTitleProperties()->BoldOff();
+  axis->GetLabelProperties()->SetFontSize(13);
+}
+
+std::string DecadeLabel(double value)
+{
+  char buf[32];
+  if (value >= 1e-3 && value < 1e5)
+  {
+    std::snprintf(buf, sizeof(buf), "%g", value);
+  }
+  else
+  {
+    std::snprintf(buf, sizeof(buf), "1e%d", static_cast<int>(std::lround(std::log10(value))));
+  }
+  return buf;
+}
+
+// VTK 9.1's own log axes do not match what its plots draw, so a log axis is
+// drawn here as a linear axis over log10 of the data (lo..hi), padded a
+// little, with ticks at decades (and at 2 and 5 times them when the range
+// spans few decades) labelled with the values themselves.
+void MakeLogAxis(vtkAxis* axis, double lo, double hi)
+{
+  const double pad = std::max(0.05, 0.04 * (hi - lo));
+  const double a = lo - pad;
+  const double b = hi + pad;
+  const double span = b - a;
+  const int step = span > 12 ? 2 : 1;
+  vtkNew<vtkDoubleArray> positions;
+  vtkNew<vtkStringArray> labels;
+  for (int d = static_cast<int>(std::floor(a)); d <= static_cast<int>(std::ceil(b)); d += step)
+  {
+    for (double m : { 1.0, 2.0, 5.0 })
+    {
+      const double at = d + std::log10(m);
+      if ((m == 1.0 || span <= 3.0) && at >= a && at <= b)
+      {
+        positions->InsertNextValue(at);
+        labels->InsertNextValue(DecadeLabel(m * std::pow(10.0, d)));
+      }
+    }
+  }
+  axis->SetBehavior(vtkAxis::FIXED);
+  axis->SetRange(a, b);
+  axis->SetCustomTickPositions(positions, labels);
+}
+}
+
+bool WritePNG(const Chart& chart, const std::string& path)
+{
+  vtkNew<vtkEGLHeadlessRenderWindow> window;
+  window->SetSize(chart.Width, chart.Height);
+  window->SetMultiSamples(0);
+  window->Initialize();
+  if (!window->IsContextReady())
+  {
+    std::cerr << "vtkrtPlot: no EGL context, cannot draw " << path << "\n";
+    return false;
+  }
+
+  vtkNew<vtkContextView> view;
+  view->SetRenderWindow(window);
+  view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
+
+  vtkNew<vtkChartXY> xy;
+  view->GetScene()->AddItem(xy);
+  xy->SetTitle(chart.Title);
+  xy->GetTitleProperties()->SetFontSize(17);
+  xy->SetShowLegend(true);
+  xy->GetLegend()->SetLabelSize(13);
+  xy->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
+  xy->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
+  StyleAxis(xy->GetAxis(vtkAxis::BOTTOM), chart.XLabel);
+  StyleAxis(xy->GetAxis(vtkAxis::LEFT), chart.YLabel);
+  double range[2][2] = { { HUGE_VAL, -HUGE_VAL }, { HUGE_VAL, -HUGE_VAL } };
+
+  int index = 0;
+  for (const Series& s : chart.Curves)
+  {
+    vtkNew<vtkTable> table;
+    vtkNew<vtkDoubleArray> xs;
+    xs->SetName("x");
+    vtkNew<vtkDoubleArray> ys;
+    ys->SetName(s.Name.c_str());
+    const size_t n = std::min(s.X.size(), s.Y.size());
+    for (size_t i = 0; i < n; ++i)
+    {
+      double x = s.X[i];
+      double y = s.Y[i];
+      if (!std::isfinite(x) || !std::isfinite(y))
+      {
+        continue;
+      }
+      if (chart.LogX)
+      {
+        x = std::log10(std::max(x, chart.LogFloor));
+      }
+      if (chart.LogY)
+      {
+        y = std::log10(std::max(y, chart.LogFloor));
+      }
+      range[0][0] = std::min(range[0][0], x);
+      range[0][1] = std::max(range[0][1], x);
+      range[1][0] = std::min(range[1][0], y);
+      range[1][1] = std::max(range[1][1], y);
+      xs->InsertNextValue(x);
+      ys->InsertNextValue(y);
+    }
+    table->AddColumn(xs);
+    table->AddColumn(ys);
+
+    vtkPlot* plot = xy->AddPlot(vtkChart::LINE);
+    plot->SetInputData(table, 0, 1);
+    plot->SetLabel(s.Name);
+    const unsigned char* pal = kPalette[index % 8];
+    if (s.Color[0] >= 0)
+    {
+      plot->SetColor(static_cast<unsigned char>(s.Color[0]), static_cast<unsigned char>(s.Color[1]),
+        static_cast<unsigned char>(s.Color[2]), 255);
+    }
+    else
+    {
+      plot->SetColor(pal[0], pal[1], pal[2], 255);
+    }
+    plot->SetWidth(2.5);
+    if (s.Dashed)
+    {
+      plot->GetPen()->SetLineType(vtkPen::DASH_LINE);
+    }
+    if (auto* points = vtkPlotPoints::SafeDownCast(plot))
+    {
+      points->SetMarkerStyle(kMarkers[index % 5]);
+      points->SetMarkerSize(8.0);
+    }
+    ++index;
+  }
+
+  if (chart.LogX && range[0][0] <= range[0][1])
+  {
+    MakeLogAxis(xy->GetAxis(vtkAxis::BOTTOM), range[0][0], range[0][1]);
+  }
+  if (chart.LogY && range[1][0] <= range[1][1])
+  {
+    MakeLogAxis(xy->GetAxis(vtkAxis::LEFT), range[1][0], range[1][1]);
+  }
+  switch (chart.Legend)
+  {
+    case LegendCorner::TopLeft:
+      xy->GetLegend()->SetHorizontalAlignment(vtkChartLegend::LEFT);
+      break;
+    case LegendCorner::BottomLeft:
+      xy->GetLegend()->SetHorizontalAlignment(vtkChartLegend::LEFT);
+      xy->GetLegend()->SetVerticalAlignment(vtkChartLegend::BOTTOM);
+      break;
+    case LegendCorner::BottomRight:
+      xy->GetLegend()->SetVerticalAlignment(vtkChartLegend::BOTTOM);
+      break;
+    default:
+      break;
+  }
+
+  window->Render();
+
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOn();
+  grab->ShouldRerenderOff();
+  grab->Update();
+
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputConnection(grab->GetOutputPort());
+  writer->SetFileName(path.c_str());
+  writer->SetCompressionLevel(9);
+  writer->Write();
+  if (writer->GetErrorCode() != 0)
+  {
+    std::cerr << "vtkrtPlot: could not write " << path << "\n";
+    return false;
+  }
+  window->Finalize();
+  return true;
+}
+}

@@ -1,0 +1,53 @@
+// vtkrtPlot: headless line charts for benchmarks, drawn with VTK's own
+// charts (vtkChartXY in a vtkContextView) on a vtkEGLHeadlessRenderWindow
+// and written as PNG. No plotting dependency beyond VTK.
+#ifndef vtkrtPlot_h
+#define vtkrtPlot_h
+
+#include <string>
+#include <vector>
+
+namespace vtkrtPlot
+{
+/// One curve: points joined in the order given, each drawn with a marker.
+struct Series
+{
+  std::string Name;
+  std::vector<double> X;
+  std::vector<double> Y;
+  // Line color (0-255); a palette color is used when Color[0] < 0.
+  int Color[3] = { -1, 0, 0 };
+  bool Dashed = false;
+};
+
+enum class LegendCorner
+{
+  TopRight,
+  TopLeft,
+  BottomLeft,
+  BottomRight
+};
+
+struct Chart
+{
+  std::string Title;
+  std::string XLabel;
+  std::string YLabel;
+  bool LogX = false;
+  bool LogY = false;
+  // On a log axis, values <= 0 cannot be drawn: they are raised to this
+  // floor (say so in the axis label when it matters).
+  double LogFloor = 1e-9;
+  LegendCorner Legend = LegendCorner::TopRight;
+  int Width = 720;
+  int Height = 480;
+  std::vector<Series> Curves;
+};
+
+/// Renders `chart` headless and writes it to `path` (PNG). Returns false,
+/// with a message on stderr, when no EGL context could be made or the file
+/// could not be written. Points with non-finite coordinates are left out.
+bool WritePNG(const Chart& chart, const std::string& path);
+}
+
+#endif
