@@ -400,84 +400,73 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
 
   if (pointsAsSpheres)
   {
-    // VTK draws these as screen-space disks PointSize pixels wide; the pass
-    // fixes their world radius when the set is built, from the pixel size
-    // at the set's center under the camera of that frame.
-    std::vector<Vec3<double>> all;
-    readPoints(poly->GetPoints(), all);
-    std::vector<char> used(all.size(), 0);
-    vtkIdType npts;
-    const vtkIdType* pts;
-    auto mark = [&](vtkCellArray* cells) {
-      auto it = vtk::TakeSmartPointer(cells->NewIterator());
-      for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
-      {
-        it->GetCurrentCell(npts, pts);
-        for (vtkIdType k = 0; k < npts; ++k)
-        {
-          if (pts[k] >= 0 && static_cast<std::size_t>(pts[k]) < used.size())
-          {
-            used[static_cast<std::size_t>(pts[k])] = 1;
-          }
-        }
-      }
-    };
-    mark(poly->GetVerts());
-    if (property->GetRepresentation() == VTK_POINTS)
-    {
-      mark(poly->GetPolys());
-      mark(poly->GetStrips());
-      mark(poly->GetLines());
-    }
+    // VTK draws these as screen-space spheres PointSize pixels wide; the
+    // pass fixes their world radii when the set is built (from the camera
+    // of that frame), so they keep their world size when the camera moves.
     std::ostringstream key;
-    key << "points:" << property->GetPointSize();
+    key << "points:" << property->GetPointSize() << ":" << property->GetRepresentation();
     auto& entry = this->SphereCache[poly];
     if (!entry || entry->SourceTime != time || entry->SourceKey != key.str())
     {
-      core::AABB<double> box;
-      for (std::size_t i = 0; i < all.size(); ++i)
-      {
-        if (used[i] && core::isFinite(all[i]))
+      std::vector<Vec3<double>> all;
+      readPoints(poly->GetPoints(), all);
+      std::vector<char> used(all.size(), 0);
+      vtkIdType npts;
+      const vtkIdType* pts;
+      auto mark = [&](vtkCellArray* cells) {
+        auto it = vtk::TakeSmartPointer(cells->NewIterator());
+        for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
         {
-          box.extend(all[i]);
+          it->GetCurrentCell(npts, pts);
+          for (vtkIdType k = 0; k < npts; ++k)
+          {
+            if (pts[k] >= 0 && static_cast<std::size_t>(pts[k]) < used.size())
+            {
+              used[static_cast<std::size_t>(pts[k])] = 1;
+            }
+          }
         }
+      };
+      mark(poly->GetVerts());
+      if (property->GetRepresentation() == VTK_POINTS)
+      {
+        mark(poly->GetPolys());
+        mark(poly->GetStrips());
+        mark(poly->GetLines());
       }
-      double radius = 0.0;
+      // Radius: PointSize / 2 pixels at each point's depth under this
+      // frame's camera.
       vtkCamera* cam = ren->GetActiveCamera();
       int size[2];
       int origin[2];
       ren->GetTiledSizeAndOrigin(size, size + 1, origin, origin + 1);
-      if (!box.isEmpty() && size[1] > 0)
-      {
-        double pixel;
-        if (cam->GetParallelProjection())
-        {
-          pixel = 2.0 * cam->GetParallelScale() / size[1];
-        }
-        else
-        {
-          double center[4] = { box.center().x, box.center().y, box.center().z, 1.0 };
-          actor->GetMatrix()->MultiplyPoint(center, center);
-          double eye[3], dop[3];
-          cam->GetPosition(eye);
-          cam->GetDirectionOfProjection(dop);
-          const double depth = std::max(1e-30,
-            (center[0] - eye[0]) * dop[0] + (center[1] - eye[1]) * dop[1] + (center[2] - eye[2]) * dop[2]);
-          pixel = 2.0 * depth * std::tan(vtkMath::RadiansFromDegrees(cam->GetViewAngle()) / 2.0) / size[1];
-        }
-        radius = 0.5 * property->GetPointSize() * pixel;
-      }
+      double eye[3], dop[3];
+      cam->GetPosition(eye);
+      cam->GetDirectionOfProjection(dop);
+      const double halfSize = 0.5 * property->GetPointSize() / std::max(1, size[1]);
+      const double tanHalfAngle = std::tan(vtkMath::RadiansFromDegrees(cam->GetViewAngle()) / 2.0);
+      vtkMatrix4x4* matrix = actor->GetMatrix();
       std::vector<Vec3<double>> centers;
       std::vector<double> radii;
       std::vector<std::uint32_t> ids;
       for (std::size_t i = 0; i < all.size(); ++i)
       {
-        if (used[i])
+        if (!used[i])
         {
-          centers.push_back(all[i]);
-          radii.push_back(radius);
-          ids.push_back(static_cast<std::uint32_t>(i));
+          continue;
         }
+        double radius = 2.0 * halfSize * cam->GetParallelScale();
+        if (!cam->GetParallelProjection())
+        {
+          double p[4] = { all[i].x, all[i].y, all[i].z, 1.0 };
+          matrix->MultiplyPoint(p, p);
+          const double depth =
+            (p[0] - eye[0]) * dop[0] + (p[1] - eye[1]) * dop[1] + (p[2] - eye[2]) * dop[2];
+          radius = 2.0 * halfSize * std::max(depth, 0.0) * tanHalfAngle;
+        }
+        centers.push_back(all[i]);
+        radii.push_back(radius);
+        ids.push_back(static_cast<std::uint32_t>(i));
       }
       entry = buildSpheres(centers, radii, ids);
       entry->SourceTime = time;

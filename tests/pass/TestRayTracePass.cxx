@@ -22,6 +22,8 @@
 #include "vtkSphereSource.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtkCellData.h"
+#include "vtkCompositePolyDataMapper2.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkConeSource.h"
 #include "vtkElevationFilter.h"
 #include "vtkFloatArray.h"
@@ -395,6 +397,68 @@ void TestFallback()
     },
     40.0);
 }
+// vtkCompositePolyDataMapper2 over a multiblock (three meshes, one a
+// triangle-strip surface), and points drawn with RenderPointsAsSpheres.
+void TestComposite()
+{
+  CompareWithRaster("Composite",
+    [](vtkRenderer* ren) {
+      vtkNew<vtkMultiBlockDataSet> blocks;
+      blocks->SetNumberOfBlocks(3);
+      for (int i = 0; i < 3; ++i)
+      {
+        vtkNew<vtkSphereSource> sphere;
+        sphere->SetCenter(1.1 * i, 0.2 * i, 0.0);
+        sphere->SetRadius(0.5);
+        sphere->SetThetaResolution(16 + 8 * i);
+        sphere->SetPhiResolution(12 + 4 * i);
+        sphere->Update();
+        vtkNew<vtkPolyData> poly;
+        poly->DeepCopy(sphere->GetOutput());
+        if (i == 1)
+        {
+          poly->GetPointData()->SetNormals(nullptr);
+        }
+        blocks->SetBlock(i, poly);
+      }
+      vtkNew<vtkCompositePolyDataMapper2> mapper;
+      mapper->SetInputDataObject(blocks);
+      vtkNew<vtkActor> actor;
+      actor->SetMapper(mapper);
+      actor->GetProperty()->SetColor(0.4, 0.8, 0.9);
+      actor->GetProperty()->SetSpecular(0.3);
+      ren->AddActor(actor);
+      ren->SetBackground(0.15, 0.15, 0.15);
+      ren->ResetCamera();
+      ren->GetActiveCamera()->Elevation(30);
+      ren->ResetCameraClippingRange();
+    },
+    40.0);
+}
+
+void TestPointsAsSpheres()
+{
+  CompareWithRaster("PointsAsSpheres",
+    [](vtkRenderer* ren) {
+      vtkNew<vtkSphereSource> sphere;
+      sphere->SetThetaResolution(12);
+      sphere->SetPhiResolution(8);
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputConnection(sphere->GetOutputPort());
+      vtkNew<vtkActor> actor;
+      actor->SetMapper(mapper);
+      actor->GetProperty()->SetRepresentationToPoints();
+      actor->GetProperty()->RenderPointsAsSpheresOn();
+      actor->GetProperty()->SetPointSize(12);
+      actor->GetProperty()->SetColor(1.0, 0.5, 0.2);
+      ren->AddActor(actor);
+      ren->SetBackground(0.1, 0.1, 0.2);
+      ren->ResetCamera();
+      ren->GetActiveCamera()->Elevation(20);
+      ren->ResetCameraClippingRange();
+    },
+    60.0);
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -409,6 +473,8 @@ int main(int argc, char* argv[])
     { "ClipPlanes", TestClipPlanes },
     { "Lights", TestLights },
     { "Fallback", TestFallback },
+    { "Composite", TestComposite },
+    { "PointsAsSpheres", TestPointsAsSpheres },
   };
   const std::string which = argc > 1 ? argv[1] : "";
   auto it = cases.find(which);
