@@ -15,6 +15,7 @@
 #include <atomic>
 #include <chrono>
 #include <new>
+#include <system_error>
 #include <thread>
 
 namespace vtkrt::core
@@ -356,16 +357,28 @@ private:
         sub[c].resize(1);
         buildNode(sub[c], 0, ranges[c][0], ranges[c][1], depth + 1);
       };
-      if (c == 0 && isTask[1] && FreeThreads.fetch_sub(1) > 0)
+      bool spawned = false;
+      if (c == 0 && isTask[1])
       {
-        worker = std::thread(task);
-      }
-      else
-      {
-        if (c == 0 && isTask[1])
+        if (FreeThreads.fetch_sub(1) > 0)
+        {
+          try
+          {
+            worker = std::thread(task);
+            spawned = true;
+          }
+          catch (const std::system_error&)
+          {
+            // No thread available from the system: build inline (same output).
+          }
+        }
+        if (!spawned)
         {
           FreeThreads.fetch_add(1);
         }
+      }
+      if (!spawned)
+      {
         task();
       }
     }
