@@ -539,6 +539,36 @@ void TestDescription()
 }
 
 //------------------------------------------------------------------------------
+// An EGL device chosen by index (EGL_EXT_platform_device; Mesa lists its
+// software device, a GPU driver its GPUs): the same pixel and depth checks.
+// Returns false when EGL lists no device (the test is then skipped).
+bool TestDeviceIndex()
+{
+  auto probe = MakeWindow(8, 8);
+  if (probe->GetNumberOfDevices() == 0)
+  {
+    std::cout << "EGL lists no device: skipped\n";
+    return false;
+  }
+  auto window = MakeWindow(8, 8);
+  window->SetDeviceIndex(0);
+  window->Initialize();
+  Check(window->IsContextReady() &&
+      std::string(window->GetDeviceDescription()).rfind("EGL device 0", 0) == 0,
+    std::string("SetDeviceIndex(0) uses EGL device 0: ") + window->GetDeviceDescription());
+  // The environment variable: the rest of the checks run on the device it names.
+  setenv("VTKRT_EGL_DEVICE", "0", 1);
+  TestPixelsAndDepth();
+  auto fromEnv = MakeWindow(8, 8);
+  fromEnv->Initialize();
+  Check(std::string(fromEnv->GetDeviceDescription()).rfind("EGL device 0", 0) == 0,
+    std::string("VTKRT_EGL_DEVICE=0 uses EGL device 0: ") + fromEnv->GetDeviceDescription());
+  unsetenv("VTKRT_EGL_DEVICE");
+  NoVTKOutput("device index");
+  return true;
+}
+
+//------------------------------------------------------------------------------
 // A device that does not exist: one clear error, no crash, Render a no-op;
 // Finalize and a valid choice recover. `viaSetter` false: the environment
 // (VTKRT_EGL_DEVICE, set by CTest) chose the device.
@@ -608,6 +638,7 @@ int main(int argc, char* argv[])
     { "Description", TestDescription },
     { "MultiSamples", TestMultiSamples },
     { "Teardown", TestTeardown },
+    { "DeviceIndex", [] {} }, // run by main: may skip
     { "BadDeviceIndex", [] { TestFailure(true, "999"); } },
     { "BadDeviceFromEnv", [] { TestFailure(false, "VTKRT_EGL_DEVICE"); } },
     { "BadPlatformFromEnv", [] { TestFailure(false, "EGL_PLATFORM=x11"); } },
@@ -624,7 +655,17 @@ int main(int argc, char* argv[])
     std::cerr << "\n";
     return EXIT_FAILURE;
   }
-  it->second();
+  if (which == "DeviceIndex")
+  {
+    if (!TestDeviceIndex())
+    {
+      return 77; // CTest SKIP_RETURN_CODE
+    }
+  }
+  else
+  {
+    it->second();
+  }
   std::cout << (Failures ? "FAILED: " : "passed: ") << Failures << " failure(s)\n";
   return Failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }
