@@ -486,6 +486,66 @@ int vtkOpenMeshClean::RequestData(
     }
   }
 
+  // Non-manifold vertices: the faces around a vertex must form one fan
+  // (faces chained through shared manifold edges). Corners (face, vertex)
+  // joined across manifold edges; a vertex whose corners end in more than
+  // one set, or that lies on a non-manifold edge, is non-manifold.
+  {
+    std::vector<vtkIdType> parent(3 * numFaces);
+    for (vtkIdType c = 0; c < 3 * numFaces; ++c)
+    {
+      parent[c] = c;
+    }
+    auto find = [&parent](vtkIdType c)
+    {
+      while (parent[c] != c)
+      {
+        parent[c] = parent[parent[c]];
+        c = parent[c];
+      }
+      return c;
+    };
+    auto corner = [&](vtkIdType f, vtkIdType vertex)
+    {
+      const Triangle& tri = face(f);
+      return 3 * f + (tri[0] == vertex ? 0 : tri[1] == vertex ? 1 : 2);
+    };
+    std::vector<unsigned char> onNonManifoldEdge(numInPoints, 0);
+    for (const EdgeGroup& g : groups)
+    {
+      const EdgeUse& u = uses[g.Begin];
+      if (g.End - g.Begin == 2)
+      {
+        const EdgeUse& v = uses[g.Begin + 1];
+        for (vtkIdType end : { u.Low, u.High })
+        {
+          parent[find(corner(u.Face, end))] = find(corner(v.Face, end));
+        }
+      }
+      else if (g.End - g.Begin > 2)
+      {
+        onNonManifoldEdge[u.Low] = onNonManifoldEdge[u.High] = 1;
+      }
+    }
+    std::vector<vtkIdType> fan(numInPoints, -1);
+    std::vector<unsigned char> nonManifold(onNonManifoldEdge);
+    for (vtkIdType c = 0; c < 3 * numFaces; ++c)
+    {
+      const vtkIdType vertex = face(c / 3)[c % 3];
+      const vtkIdType root = find(c);
+      if (fan[vertex] < 0)
+      {
+        fan[vertex] = root;
+      }
+      else if (fan[vertex] != root)
+      {
+        nonManifold[vertex] = 1;
+      }
+    }
+    this->NumberOfNonManifoldVertices =
+      static_cast<vtkIdType>(std::count(nonManifold.begin(), nonManifold.end(), 1));
+  }
+
   // 8. Output points: the representatives the kept faces use, in input order.
   std::vector<vtkIdType> newId(numInPoints, -1);
   for (vtkIdType f = 0; f < numFaces; ++f)
@@ -616,8 +676,7 @@ int vtkOpenMeshClean::RequestData(
   }
 
   // 10. OpenMesh's view of the result: faces its halfedge structure rejects
-  // (they sit on non-manifold edges or vertices), non-manifold vertices, and
-  // boundary loops.
+  // (they sit on non-manifold edges or vertices) and boundary loops.
   {
     vtkrt_filters::OpenMeshErrorMute mute;
     vtkrt_filters::OpenMeshTriMesh mesh;
@@ -636,13 +695,6 @@ int vtkOpenMeshClean::RequestData(
       if (!fh.is_valid())
       {
         ++this->NumberOfRejectedFaces;
-      }
-    }
-    for (const auto v : mesh.vertices())
-    {
-      if (!mesh.is_manifold(v))
-      {
-        ++this->NumberOfNonManifoldVertices;
       }
     }
     std::vector<unsigned char> seen(mesh.n_halfedges(), 0);

@@ -15,11 +15,11 @@
  * 4. faces are oriented consistently across every manifold edge, per
  *    edge-connected patch (flipping as few faces as possible), and closed
  *    patches are turned to face outward;
- * 5. the topology is checked with OpenMesh's halfedge structure: open
- *    (boundary) edges, non-manifold edges (more than two faces), edges whose
- *    two faces cannot agree on an orientation (Moebius-like patches),
- *    non-manifold vertices, boundary loops (holes) and faces OpenMesh cannot
- *    hold are counted.
+ * 5. the topology is reported: open (boundary) edges, non-manifold edges
+ *    (more than two faces), edges whose two faces cannot agree on an
+ *    orientation (Moebius-like patches), non-manifold vertices (whose faces
+ *    form more than one fan), and, from OpenMesh's halfedge structure, the
+ *    faces it cannot hold and the boundary loops (holes).
  *
  * The counts are stored both in the output's field data (one-tuple
  * vtkIdTypeArray named like the getters without "Get", e.g.

@@ -10,7 +10,9 @@
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkMassProperties.h"
+#include "vtkOBJReader.h"
 #include "vtkPLYReader.h"
+#include "vtkPlatonicSolidSource.h"
 #include "vtkPointData.h"
 #include "vtkSphereSource.h"
 #include "vtkTexturedSphereSource.h"
@@ -413,6 +415,100 @@ void TestMoebiusStripIsInconsistent()
   VTKRT_CHECK(clean->GetNumberOfBoundaryLoops() >= 1, "it has a boundary");
 }
 
+void TestPlatonicSolidsFaceOutward()
+{
+  // VTK's tetrahedron and icosahedron are wound inward; every solid comes
+  // out closed and facing outward.
+  for (int type = VTK_SOLID_TETRAHEDRON; type <= VTK_SOLID_DODECAHEDRON; ++type)
+  {
+    vtkNew<vtkPlatonicSolidSource> solid;
+    solid->SetSolidType(type);
+    vtkNew<vtkOpenMeshClean> clean;
+    clean->SetInputConnection(solid->GetOutputPort());
+    clean->Update();
+    std::cout << "platonic solid " << type << ": " << clean->GetNumberOfFlippedFaces()
+              << " faces flipped" << std::endl;
+    VTKRT_CHECK(clean->IsClosedManifold(), "solid " << type << " closed");
+    VTKRT_CHECK(AllFacesOutward(clean->GetOutput()), "solid " << type << " faces outward");
+    VTKRT_CHECK(JudgeWithOpenMesh(clean->GetOutput()).EulerCharacteristic() == 2, "sphere-like");
+  }
+}
+
+void TestNonManifoldVertices()
+{
+  // Two closed tetrahedra sharing one apex: every edge is manifold, the
+  // shared vertex is not (two fans).
+  vtkNew<vtkPoints> pts;
+  const double coords[][3] = { { 0, 0, 0 }, { 1, 0, -1 }, { -1, 1, -1 }, { -1, -1, -1 },
+    { 1, 0, 1 }, { -1, 1, 1 }, { -1, -1, 1 } };
+  for (const auto& c : coords)
+  {
+    pts->InsertNextPoint(c);
+  }
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType faces[][3] = { { 0, 1, 2 }, { 0, 2, 3 }, { 0, 3, 1 }, { 1, 3, 2 }, { 0, 5, 4 },
+    { 0, 6, 5 }, { 0, 4, 6 }, { 4, 5, 6 } };
+  for (const auto& f : faces)
+  {
+    polys->InsertNextCell(3, f);
+  }
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(pts);
+  pd->SetPolys(polys);
+  vtkNew<vtkOpenMeshClean> clean;
+  clean->SetInputData(pd);
+  clean->Update();
+  VTKRT_CHECK(clean->GetNumberOfNonManifoldVertices() == 1, "the shared apex");
+  VTKRT_CHECK(clean->GetNumberOfNonManifoldEdges() == 0 && clean->GetNumberOfBoundaryEdges() == 0,
+    "edges are fine");
+  VTKRT_CHECK(clean->GetNumberOfComponents() == 2, "two patches");
+  VTKRT_CHECK(!clean->IsClosedManifold(), "not a manifold");
+  // Both outward: the signed volume is the sum of the two (2/3 each).
+  double volume = 0.0;
+  vtkPolyData* out = clean->GetOutput();
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    out->GetPolys()->GetCellAtId(c, n, ids);
+    double a[3], b[3], d[3];
+    out->GetPoint(ids[0], a);
+    out->GetPoint(ids[1], b);
+    out->GetPoint(ids[2], d);
+    volume += vtkMath::Determinant3x3(a, b, d) / 6.0;
+  }
+  VTKRT_CHECK(std::abs(volume - 4.0 / 3.0) < 1e-12, "both tetrahedra face outward: " << volume);
+  VTKRT_CHECK(clean->GetOutput()->GetNumberOfPolys() == 8, "all faces kept");
+}
+
+void TestTeapot(const std::string& path)
+{
+  if (!vtksys::SystemTools::FileExists(path))
+  {
+    std::cout << "teapot: " << path << " absent, skipped" << std::endl;
+    return;
+  }
+  vtkNew<vtkOBJReader> reader;
+  reader->SetFileName(path.c_str());
+  vtkNew<vtkOpenMeshClean> clean;
+  clean->SetInputConnection(reader->GetOutputPort());
+  clean->Update();
+  std::cout << "teapot: " << clean->GetOutput()->GetNumberOfPolys() << " triangles, "
+            << clean->GetNumberOfBoundaryLoops() << " boundary loops, "
+            << clean->GetNumberOfNonManifoldVertices() << " non-manifold vertices, "
+            << clean->GetNumberOfRejectedFaces() << " faces OpenMesh cannot hold, "
+            << clean->GetNumberOfComponents() << " components" << std::endl;
+  VTKRT_CHECK(!clean->IsClosedManifold() && clean->GetNumberOfBoundaryLoops() > 0,
+    "the teapot is open (spout and lid gaps)");
+  // OpenMesh rejects a face only at a non-manifold edge or vertex.
+  VTKRT_CHECK(clean->GetNumberOfRejectedFaces() == 0 ||
+      clean->GetNumberOfNonManifoldVertices() + clean->GetNumberOfNonManifoldEdges() > 0,
+    "rejections are explained");
+  VTKRT_CHECK(JudgeWithOpenMesh(clean->GetOutput()).RejectedFaces ==
+      static_cast<size_t>(clean->GetNumberOfRejectedFaces()),
+    "rejections agree with OpenMesh");
+}
+
 void TestBadInput()
 {
   vtkNew<vtkrt_test::ErrorCatcher> catcher;
@@ -519,8 +615,11 @@ int main(int argc, char* argv[])
   TestPolygonsStripsAndDroppedCells();
   TestDegenerateAndNonManifold();
   TestMoebiusStripIsInconsistent();
+  TestPlatonicSolidsFaceOutward();
+  TestNonManifoldVertices();
   TestBadInput();
   TestBunny(argc > 1 ? argv[1] : "");
+  TestTeapot(argc > 2 ? argv[2] : "");
   std::cout << (vtkrt_test::Failures() ? "FAILED: " : "passed, failures: ")
             << vtkrt_test::Failures() << std::endl;
   return vtkrt_test::Failures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
