@@ -64,7 +64,7 @@ struct BVHNode
 /// Which builder: quality of the tree against build time.
 enum class BuildQuality
 {
-  Fast,   ///< object-median split on the largest centroid axis (dynamic data)
+  Fast,   ///< LBVH: Morton-ordered primitives split at the highest differing bit (dynamic data)
   Medium, ///< binned SAH (default)
   High,   ///< full-sweep SAH (every primitive boundary on every axis)
 };

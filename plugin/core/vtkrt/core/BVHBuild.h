@@ -68,6 +68,10 @@ public:
     {
       return nodes;
     }
+    if (Options.quality == BuildQuality::Fast)
+    {
+      sortByMortonCode();
+    }
     nodes.reserve(2 * Refs.size() / std::max<std::uint32_t>(1, Options.maxLeafSize) + 1);
     nodes.resize(1);
     buildNode(nodes, 0, 0, static_cast<std::uint32_t>(Refs.size()), 0);
@@ -78,6 +82,80 @@ private:
   std::vector<BuildRef>& Refs;
   BuildOptions Options;
   std::atomic<int> FreeThreads{ 0 };
+  std::vector<std::uint64_t> Codes; ///< Fast only: Morton codes parallel to Refs, ascending
+
+  /// Spreads the low 21 bits of x to every third bit.
+  static std::uint64_t expandBits21(std::uint64_t x)
+  {
+    x &= 0x1fffffull;
+    x = (x | x << 32) & 0x1f00000000ffffull;
+    x = (x | x << 16) & 0x1f0000ff0000ffull;
+    x = (x | x << 8) & 0x100f00f00f00f00full;
+    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+    x = (x | x << 2) & 0x1249249249249249ull;
+    return x;
+  }
+
+  /// LBVH preparation (Lauterbach et al. 2009): 63-bit Morton codes of the
+  /// centroids in their bounds; refs sorted by (code, id).
+  void sortByMortonCode()
+  {
+    AABB<double> cb;
+    for (const BuildRef& r : Refs)
+    {
+      cb.extend(r.centroid());
+    }
+    const Vec3<double> ext = cb.diagonal();
+    const double cells = double((1u << 21) - 1);
+    Vec3<double> scale(0.0);
+    for (int k = 0; k < 3; ++k)
+    {
+      scale[k] = ext[k] > 0.0 ? cells / ext[k] : 0.0;
+    }
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(Refs.size());
+    for (std::size_t i = 0; i < Refs.size(); ++i)
+    {
+      const Vec3<double> q = (Refs[i].centroid() - cb.min) * scale;
+      std::uint64_t code = 0;
+      for (int k = 0; k < 3; ++k)
+      {
+        const double c = std::min(std::max(q[k], 0.0), cells);
+        code |= expandBits21(static_cast<std::uint64_t>(c)) << (2 - k);
+      }
+      keyed[i] = { code, static_cast<std::uint32_t>(i) };
+    }
+    std::sort(keyed.begin(), keyed.end(), [this](const auto& a, const auto& b) {
+      return a.first < b.first || (a.first == b.first && Refs[a.second].id < Refs[b.second].id);
+    });
+    std::vector<BuildRef> sorted(Refs.size());
+    Codes.resize(Refs.size());
+    for (std::size_t i = 0; i < keyed.size(); ++i)
+    {
+      sorted[i] = Refs[keyed[i].second];
+      Codes[i] = keyed[i].first;
+    }
+    Refs.swap(sorted);
+  }
+
+  /// LBVH split: the first primitive whose code has the highest bit in
+  /// which the range's codes differ; the middle when all codes are equal.
+  /// Never reorders (sub-ranges stay sorted).
+  std::uint32_t mortonSplit(std::uint32_t begin, std::uint32_t end) const
+  {
+    const std::uint64_t diff = Codes[begin] ^ Codes[end - 1];
+    if (diff == 0)
+    {
+      return begin + (end - begin) / 2;
+    }
+    int bit = 63;
+    while (!(diff >> bit & 1u))
+    {
+      --bit;
+    }
+    const auto it = std::partition_point(Codes.begin() + begin, Codes.begin() + end,
+      [bit](std::uint64_t c) { return !(c >> bit & 1u); });
+    return static_cast<std::uint32_t>(it - Codes.begin());
+  }
 
   AABB<double> rangeBounds(std::uint32_t begin, std::uint32_t end, AABB<double>& centroids) const
   {
@@ -301,12 +379,17 @@ private:
     const std::uint64_t leavesNeeded = (std::uint64_t(count) + Options.maxLeafSize - 1) / Options.maxLeafSize;
     if (kMaxDepth - depth <= ceilLog2(leavesNeeded) + 1)
     {
-      return count <= Options.maxLeafSize ? end : medianSplit(begin, end, centroids);
+      if (count <= Options.maxLeafSize)
+      {
+        return end;
+      }
+      // Fast keeps Morton order: its middle is a spatial median already.
+      return Options.quality == BuildQuality::Fast ? begin + count / 2 : medianSplit(begin, end, centroids);
     }
     switch (Options.quality)
     {
       case BuildQuality::Fast:
-        return count <= Options.maxLeafSize ? end : medianSplit(begin, end, centroids);
+        return count <= Options.maxLeafSize ? end : mortonSplit(begin, end);
       case BuildQuality::High:
         return sweepSplit(begin, end, box, centroids);
       case BuildQuality::Medium:
@@ -320,16 +403,28 @@ private:
   void buildNode(std::vector<BVHNode>& nodes, std::size_t slot, std::uint32_t begin, std::uint32_t end,
     std::uint32_t depth)
   {
+    // The LBVH split needs no bounds: its boxes are merged bottom-up
+    // (O(n) in total instead of a pass over the range at every level).
+    const bool bottomUp = Options.quality == BuildQuality::Fast;
     AABB<double> centroids;
-    const AABB<double> box = rangeBounds(begin, end, centroids);
-    nodes[slot].setBounds(box);
+    AABB<double> box;
+    if (!bottomUp)
+    {
+      box = rangeBounds(begin, end, centroids);
+    }
     const std::uint32_t mid = chooseSplit(begin, end, depth, box, centroids);
     if (mid == end || mid == begin)
     {
+      if (bottomUp)
+      {
+        box = rangeBounds(begin, end, centroids);
+      }
+      nodes[slot].setBounds(box);
       nodes[slot].index = begin;
       nodes[slot].count = end - begin;
       return;
     }
+    nodes[slot].setBounds(box);
     const std::size_t first = nodes.size();
     nodes.resize(first + 2);
     nodes[slot].index = static_cast<std::uint32_t>(first);
@@ -393,6 +488,12 @@ private:
       {
         splice(nodes, first + c, sub[c]);
       }
+    }
+    if (bottomUp)
+    {
+      box = nodes[first].bounds();
+      box.extend(nodes[first + 1].bounds());
+      nodes[slot].setBounds(box);
     }
   }
 
