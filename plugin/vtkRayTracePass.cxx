@@ -35,6 +35,7 @@
 #include "vtkrtRayTraceTriangles.h"
 
 #include "vtkrt/core/BVH.h"
+#include "vtkrt/core/BVHBuild.h"
 
 #include <algorithm>
 #include <cmath>
@@ -50,6 +51,9 @@ using vtkrt::pass::Instance;
 namespace
 {
 constexpr int kInstanceTexels = 10;
+// Scenes with more instances than this walk a top-level BVH over them
+// instead of testing every instance's box.
+constexpr std::size_t kTopLevelMinInstances = 8;
 enum InstanceFlags : std::uint32_t
 {
   kSpheres = 1u,
@@ -124,6 +128,14 @@ struct vtkRayTracePass::Internals
 
   TextureBuffer Nodes, Triangles, TriangleVertices, Spheres, SphereIds, Normals, Colors, Instances;
 
+  // Top-level BVH over the instances' world boxes, for scenes with many
+  // instances; rebuilt when an instance's world box changes (never for a
+  // camera move).
+  TextureBuffer TopNodes;
+  std::vector<double> TopSignature;
+  std::vector<std::uint32_t> TopOrder;
+  vtkrt::core::Vec3<double> TopAnchor{ 0.0 };
+
   void ReleaseGL(vtkWindow* w)
   {
     for (auto& p : this->Programs)
@@ -132,12 +144,13 @@ struct vtkRayTracePass::Internals
     }
     this->Programs.clear();
     for (TextureBuffer* b : { &this->Nodes, &this->Triangles, &this->TriangleVertices, &this->Spheres,
-           &this->SphereIds, &this->Normals, &this->Colors, &this->Instances })
+           &this->SphereIds, &this->Normals, &this->Colors, &this->Instances, &this->TopNodes })
     {
       b->Release(w);
     }
     this->GeometryOnGpu = false;
     this->ColorsOnGpu = false;
+    this->TopSignature.clear();
   }
 };
 
@@ -250,6 +263,10 @@ vtkTypeInt64 vtkRayTracePass::GetLastTracedPrimitives() const
 {
   return static_cast<vtkTypeInt64>(this->Internal->Counters.TracedPrimitives);
 }
+int vtkRayTracePass::GetLastTopLevelBuilds() const
+{
+  return this->Internal->Counters.TopLevelBuilds;
+}
 int vtkRayTracePass::GetLastTracedInstances() const
 {
   return this->Internal->Counters.TracedInstances;
@@ -303,6 +320,10 @@ std::string assembleShader(const Features& f)
   if (f.IdMode)
   {
     s << "#define VTKRT_ID_MODE\n";
+  }
+  if (f.TopLevel)
+  {
+    s << "#define VTKRT_HAS_TOP_LEVEL\n";
   }
   s << "#define VTKRT_NUMBER_OF_CLIP_PLANES " << f.ClipPlanes << "\n";
   s << "#define VTKRT_NUMBER_OF_LIGHTS " << f.Lights << "\n";
@@ -451,6 +472,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     // Per-instance records and clip planes (camera-relative, double -> float).
     std::vector<float> records(instances.size() * kInstanceTexels * 4, 0.0f);
     std::vector<float> planes;
+    std::vector<vtkrt::core::AABB<double>> worldBoxes(instances.size());
     for (std::size_t i = 0; i < instances.size(); ++i)
     {
       const Instance& inst = instances[i];
@@ -468,6 +490,20 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
       }
       vtkNew<vtkMatrix4x4> cameraToLocal;
       vtkMatrix4x4::Invert(localToCamera, cameraToLocal);
+      // The world box (independent of the camera) for the top level.
+      for (int corner = 0; corner < 8; ++corner)
+      {
+        double p[4] = { g.LocalBounds[(corner & 1) ? 1 : 0] + g.Origin[0],
+          g.LocalBounds[(corner & 2) ? 3 : 2] + g.Origin[1],
+          g.LocalBounds[(corner & 4) ? 5 : 4] + g.Origin[2], 1.0 };
+        double w[4];
+        for (int r = 0; r < 4; ++r)
+        {
+          w[r] = inst.Matrix[4 * r] * p[0] + inst.Matrix[4 * r + 1] * p[1] +
+            inst.Matrix[4 * r + 2] * p[2] + inst.Matrix[4 * r + 3];
+        }
+        worldBoxes[i].extend(vtkrt::core::Vec3<double>(w[0] / w[3], w[1] / w[3], w[2] / w[3]));
+      }
       float* rec = records.data() + i * kInstanceTexels * 4;
       for (int r = 0; r < 3; ++r)
       {
@@ -535,6 +571,52 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
             static_cast<float>(d) });
       }
     }
+    const bool topLevel = instances.size() > kTopLevelMinInstances;
+    if (topLevel)
+    {
+      std::vector<double> signature;
+      signature.reserve(6 * worldBoxes.size());
+      for (const auto& b : worldBoxes)
+      {
+        signature.insert(signature.end(), { b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z });
+      }
+      if (signature != in.TopSignature || !in.TopNodes.Texels)
+      {
+        vtkrt::core::BVH top = vtkrt::core::buildBVH(worldBoxes);
+        in.TopAnchor = top.bounds().center();
+        std::vector<float> nodes = vtkrt::core::packNodesForGpu(top, in.TopAnchor);
+        // Pad for the float rounding of the anchor-relative ray origin.
+        float extent = 0.0f;
+        for (std::size_t k = 0; k < std::min<std::size_t>(nodes.size(), 8); ++k)
+        {
+          if (k != 3 && k != 7)
+          {
+            extent = std::max(extent, std::abs(nodes[k]));
+          }
+        }
+        const float pad = 1e-6f * extent;
+        for (std::size_t k = 0; k < nodes.size(); k += 8)
+        {
+          for (int c = 0; c < 3; ++c)
+          {
+            nodes[k + c] -= pad;
+            nodes[k + 4 + c] += pad;
+          }
+        }
+        in.TopOrder = top.primIndex;
+        in.TopSignature = signature;
+        in.Counters.GeometryBytesUploaded += in.TopNodes.Upload(win, nodes);
+        ++in.Counters.TopLevelBuilds;
+      }
+      // Records in top-level leaf order (leaves index them directly).
+      std::vector<float> ordered(in.TopOrder.size() * kInstanceTexels * 4);
+      for (std::size_t k = 0; k < in.TopOrder.size(); ++k)
+      {
+        std::copy_n(records.begin() + in.TopOrder[k] * kInstanceTexels * 4, kInstanceTexels * 4,
+          ordered.begin() + k * kInstanceTexels * 4);
+      }
+      records.swap(ordered);
+    }
     in.Counters.FrameBytesUploaded += in.Instances.Upload(win, records);
 
     // Lights, as vtkOpenGLRenderer hands them to vtkOpenGLPolyDataMapper.
@@ -576,6 +658,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     f.Lights = static_cast<int>(lightCone.size() / 3);
     f.LightComplexity = f.Lights > 0 ? ren->GetLightingComplexity() : 0;
     f.IdMode = this->IdMode;
+    f.TopLevel = topLevel;
     GLint major = 0;
     glGetIntegerv(GL_MAJOR_VERSION, &major);
     f.Fp64 = major >= 4;
@@ -609,6 +692,12 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
         static_cast<float>(-dop[2]) };
       program->SetUniform3f("uViewBack", viewBack);
       program->SetUniformi("uNumberOfInstances", static_cast<int>(instances.size()));
+      if (topLevel)
+      {
+        const float toAnchor[3] = { static_cast<float>(eye[0] - in.TopAnchor.x),
+          static_cast<float>(eye[1] - in.TopAnchor.y), static_cast<float>(eye[2] - in.TopAnchor.z) };
+        program->SetUniform3f("uCameraToAnchor", toAnchor);
+      }
       if (f.ClipPlanes > 0)
       {
         program->SetUniform4fv("uClipPlanes", f.ClipPlanes, planes.data());
@@ -625,7 +714,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
       const std::pair<const char*, TextureBuffer*> samplers[] = { { "uNodes", &in.Nodes },
         { "uTriangles", &in.Triangles }, { "uTriangleVertices", &in.TriangleVertices },
         { "uSpheres", &in.Spheres }, { "uSphereIds", &in.SphereIds }, { "uNormals", &in.Normals },
-        { "uColors", &in.Colors }, { "uInstances", &in.Instances } };
+        { "uColors", &in.Colors }, { "uInstances", &in.Instances }, { "uTopNodes", &in.TopNodes } };
       for (const auto& sampler : samplers)
       {
         if (program->IsUniformUsed(sampler.first))

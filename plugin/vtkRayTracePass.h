@@ -103,6 +103,12 @@ public:
   int GetLastShaderCompiles() const;
   vtkTypeInt64 GetLastTracedPrimitives() const;
   int GetLastTracedInstances() const;
+  /**
+   * Top-level BVH builds of the last frame: scenes with more than 8
+   * instances walk a BVH over the instances' world boxes, rebuilt when an
+   * instance moves or changes (never for a camera move).
+   */
+  int GetLastTopLevelBuilds() const;
   ///@}
 
   /**

@@ -243,7 +243,8 @@ std::string Features::Key() const
   std::ostringstream s;
   s << "T" << this->Triangles << "S" << this->Spheres << "N" << this->VertexNormals << "C"
     << this->Colors << "P" << this->ClipPlanes << "L" << this->Lights << "x"
-    << this->LightComplexity << "I" << this->IdMode << "D" << this->Fp64;
+    << this->LightComplexity << "I" << this->IdMode << "D" << this->Fp64 << "X"
+    << this->TopLevel;
   return s.str();
 }
 

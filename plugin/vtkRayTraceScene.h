@@ -99,6 +99,7 @@ struct Features
   int LightComplexity = 0;
   bool IdMode = false;
   bool Fp64 = false;
+  bool TopLevel = false;
 
   std::string Key() const;
 };
@@ -106,7 +107,8 @@ struct Features
 /// Counters of the work one frame did.
 struct FrameCounters
 {
-  int BVHBuilds = 0;
+  int BVHBuilds = 0;      ///< bottom level (per data object)
+  int TopLevelBuilds = 0; ///< over the instances
   std::size_t GeometryBytesUploaded = 0;
   std::size_t FrameBytesUploaded = 0;
   int ShaderCompiles = 0;

@@ -138,6 +138,153 @@ vec4 fetchColor(int i)
 }
 #endif
 
+// Closest hit of the ray with one instance (its clip planes, its
+// camera-space box, then its bottom-level BVH); updates the best hit.
+void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tBest,
+  inout int hitInstance, inout int hitPrimitive, inout vec2 hitUV)
+{
+  vec4 boxMin = instanceTexel(instance, 3);
+  vec4 boxMax = instanceTexel(instance, 4);
+  uint flags = asUint(boxMax.w);
+  float t0 = 0.0;
+  float t1 = tBest;
+#if VTKRT_NUMBER_OF_CLIP_PLANES > 0
+  vec4 info = instanceTexel(instance, 8);
+  int firstPlane = int(asUint(info.x));
+  int planeCount = int(asUint(info.y));
+  bool clippedAway = false;
+  for (int c = 0; c < planeCount; ++c)
+  {
+    if (!clipRayByPlane(org, dir, uClipPlanes[firstPlane + c], t0, t1))
+    {
+      clippedAway = true;
+    }
+  }
+  if (clippedAway)
+  {
+    return;
+  }
+#endif
+  float tnear;
+  if (!intersectRayAABB(org, invDir, boxMin.xyz, boxMax.xyz, t0, t1, tnear))
+  {
+    return;
+  }
+  vec4 r0 = instanceTexel(instance, 0);
+  vec4 r1 = instanceTexel(instance, 1);
+  vec4 r2 = instanceTexel(instance, 2);
+  vec3 localOrg = vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
+  vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
+  int root = int(asUint(boxMin.w));
+  int primitive = -1;
+  vec2 uv = vec2(0.0);
+#if defined(VTKRT_HAS_TRIANGLES) && defined(VTKRT_HAS_SPHERES)
+  bool hit = (flags & kInstanceSpheres) != 0u
+    ? traverseSpheres(root, localOrg, localDir, t0, t1, primitive)
+    : traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv);
+#elif defined(VTKRT_HAS_TRIANGLES)
+  bool hit = traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv);
+#elif defined(VTKRT_HAS_SPHERES)
+  bool hit = traverseSpheres(root, localOrg, localDir, t0, t1, primitive);
+#else
+  bool hit = false;
+#endif
+  if (hit)
+  {
+    tBest = t1;
+    hitInstance = instance;
+    hitPrimitive = primitive;
+    hitUV = uv;
+  }
+}
+
+#ifdef VTKRT_HAS_TOP_LEVEL
+// Top-level BVH over the instances (same layout as every BVH; leaves index
+// instance records), boxes relative to an anchor: uCameraToAnchor moves the
+// camera-relative ray origin there.
+uniform samplerBuffer uTopNodes;
+uniform vec3 uCameraToAnchor;
+
+void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int hitInstance,
+  inout int hitPrimitive, inout vec2 hitUV)
+{
+  vec3 anchorOrg = org + uCameraToAnchor;
+  float tnear;
+  vec4 lo = texelFetch(uTopNodes, 0);
+  vec4 hi = texelFetch(uTopNodes, 1);
+  if (!intersectRayAABB(anchorOrg, invDir, lo.xyz, hi.xyz, 0.0, tBest, tnear))
+  {
+    return;
+  }
+  int stackNode[VTKRT_STACK_SIZE];
+  float stackNear[VTKRT_STACK_SIZE];
+  int sp = 0;
+  for (;;)
+  {
+    int index = int(floatBitsToUint(lo.w));
+    int count = int(floatBitsToUint(hi.w));
+    bool descended = false;
+    if (count > 0)
+    {
+      for (int i = index; i < index + count; ++i)
+      {
+        traceInstance(i, org, dir, invDir, tBest, hitInstance, hitPrimitive, hitUV);
+      }
+    }
+    else
+    {
+      vec4 lo0 = texelFetch(uTopNodes, 2 * index);
+      vec4 hi0 = texelFetch(uTopNodes, 2 * index + 1);
+      vec4 lo1 = texelFetch(uTopNodes, 2 * index + 2);
+      vec4 hi1 = texelFetch(uTopNodes, 2 * index + 3);
+      float t0, t1;
+      bool h0 = intersectRayAABB(anchorOrg, invDir, lo0.xyz, hi0.xyz, 0.0, tBest, t0);
+      bool h1 = intersectRayAABB(anchorOrg, invDir, lo1.xyz, hi1.xyz, 0.0, tBest, t1);
+      if (h0 && h1)
+      {
+        bool firstNear = t0 <= t1;
+        if (sp < VTKRT_STACK_SIZE)
+        {
+          stackNode[sp] = firstNear ? index + 1 : index;
+          stackNear[sp] = firstNear ? t1 : t0;
+          ++sp;
+        }
+        lo = firstNear ? lo0 : lo1;
+        hi = firstNear ? hi0 : hi1;
+        descended = true;
+      }
+      else if (h0 || h1)
+      {
+        lo = h0 ? lo0 : lo1;
+        hi = h0 ? hi0 : hi1;
+        descended = true;
+      }
+    }
+    if (!descended)
+    {
+      bool found = false;
+      int node = 0;
+      while (sp > 0)
+      {
+        --sp;
+        if (stackNear[sp] <= tBest)
+        {
+          node = stackNode[sp];
+          found = true;
+          break;
+        }
+      }
+      if (!found)
+      {
+        break;
+      }
+      lo = texelFetch(uTopNodes, 2 * node);
+      hi = texelFetch(uTopNodes, 2 * node + 1);
+    }
+  }
+}
+#endif
+
 void main()
 {
   vec2 ndc = texCoord * 2.0 - 1.0;
@@ -151,62 +298,14 @@ void main()
   int hitInstance = -1;
   int hitPrimitive = -1;
   vec2 hitUV = vec2(0.0);
+#ifdef VTKRT_HAS_TOP_LEVEL
+  traceTopLevel(org, dir, invDir, tBest, hitInstance, hitPrimitive, hitUV);
+#else
   for (int instance = 0; instance < uNumberOfInstances; ++instance)
   {
-    vec4 boxMin = instanceTexel(instance, 3);
-    vec4 boxMax = instanceTexel(instance, 4);
-    uint flags = asUint(boxMax.w);
-    float t0 = 0.0;
-    float t1 = tBest;
-#if VTKRT_NUMBER_OF_CLIP_PLANES > 0
-    vec4 info = instanceTexel(instance, 8);
-    int firstPlane = int(asUint(info.x));
-    int planeCount = int(asUint(info.y));
-    bool clippedAway = false;
-    for (int c = 0; c < planeCount; ++c)
-    {
-      if (!clipRayByPlane(org, dir, uClipPlanes[firstPlane + c], t0, t1))
-      {
-        clippedAway = true;
-      }
-    }
-    if (clippedAway)
-    {
-      continue;
-    }
-#endif
-    float tnear;
-    if (!intersectRayAABB(org, invDir, boxMin.xyz, boxMax.xyz, t0, t1, tnear))
-    {
-      continue;
-    }
-    vec4 r0 = instanceTexel(instance, 0);
-    vec4 r1 = instanceTexel(instance, 1);
-    vec4 r2 = instanceTexel(instance, 2);
-    vec3 localOrg = vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
-    vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
-    int root = int(asUint(boxMin.w));
-    int primitive = -1;
-    vec2 uv = vec2(0.0);
-#if defined(VTKRT_HAS_TRIANGLES) && defined(VTKRT_HAS_SPHERES)
-    bool hit = (flags & kInstanceSpheres) != 0u
-      ? traverseSpheres(root, localOrg, localDir, t0, t1, primitive)
-      : traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv);
-#elif defined(VTKRT_HAS_TRIANGLES)
-    bool hit = traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv);
-#elif defined(VTKRT_HAS_SPHERES)
-    bool hit = traverseSpheres(root, localOrg, localDir, t0, t1, primitive);
-#else
-    bool hit = false;
-#endif
-    if (hit)
-    {
-      tBest = t1;
-      hitInstance = instance;
-      hitPrimitive = primitive;
-      hitUV = uv;
-    }
+    traceInstance(instance, org, dir, invDir, tBest, hitInstance, hitPrimitive, hitUV);
   }
+#endif
 
   if (hitInstance < 0)
   {

@@ -683,6 +683,67 @@ void TestIdPick()
   NoVTKOutput("id pick");
 }
 
+// Many actors (more than 8): the pass walks a top-level BVH over them. The
+// image matches raster; the top level is built once, not for camera moves,
+// again when an actor moves; the shared mesh is built once.
+void TestManyActors()
+{
+  auto win = MakeWindow(300, 300);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  ren->SetBackground(0.2, 0.2, 0.2);
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(16);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(sphere->GetOutputPort());
+  std::vector<vtkSmartPointer<vtkActor>> actors;
+  for (int i = 0; i < 6; ++i)
+  {
+    for (int j = 0; j < 6; ++j)
+    {
+      auto actor = vtkSmartPointer<vtkActor>::New();
+      actor->SetMapper(mapper);
+      actor->SetPosition(1.1 * i, 1.1 * j, 0.4 * ((i + j) % 3));
+      actor->SetScale(1.0 + 0.1 * i, 1.0, 1.0 + 0.1 * j);
+      actor->GetProperty()->SetColor(0.3 + 0.1 * i, 0.9 - 0.1 * j, 0.5);
+      ren->AddActor(actor);
+      actors.push_back(actor);
+    }
+  }
+  ren->ResetCamera();
+  ren->GetActiveCamera()->Elevation(35);
+  ren->GetActiveCamera()->Azimuth(20);
+  ren->ResetCameraClippingRange();
+  win->Render();
+  auto raster = Grab(win);
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+  win->Render();
+  auto traced = Grab(win);
+  const double error = Difference(traced, raster);
+  const long differing = CountDifferingPixels(traced, raster, 24);
+  std::ostringstream s;
+  s << "36 actors: ray traced vs raster error " << error << " <= 40, " << differing
+    << " pixels differ (<= 2%)";
+  Check(error <= 40.0 && differing >= 0 && differing <= 300 * 300 / 50, s.str());
+  Check(std::string(pass->GetLastFeatureKey()).find("X1") != std::string::npos,
+    "36 actors: the shader walks a top-level BVH");
+  Check(pass->GetLastBVHBuilds() == 1 && pass->GetLastTopLevelBuilds() == 1,
+    "36 actors: one mesh BVH and one top-level BVH built");
+  ren->GetActiveCamera()->Azimuth(30);
+  win->Render();
+  Check(pass->GetLastBVHBuilds() == 0 && pass->GetLastTopLevelBuilds() == 0 &&
+      pass->GetLastGeometryBytesUploaded() == 0,
+    "36 actors, camera move: nothing built or uploaded but the instance records");
+  actors[7]->AddPosition(0.0, 0.0, 0.5);
+  win->Render();
+  Check(pass->GetLastBVHBuilds() == 0 && pass->GetLastTopLevelBuilds() == 1,
+    "36 actors, one actor moved: the top level only is rebuilt");
+  NoGLError(win, "many actors");
+  NoVTKOutput("many actors");
+}
+
 void TestApp()
 {
   if (AppPath.empty())
@@ -739,6 +800,7 @@ int main(int argc, char* argv[])
     { "TooLarge", TestTooLarge },
     { "SphereSilhouettes", TestSphereSilhouettes },
     { "IdPick", TestIdPick },
+    { "ManyActors", TestManyActors },
     { "App", TestApp },
   };
   const std::string which = argc > 1 ? argv[1] : "";
