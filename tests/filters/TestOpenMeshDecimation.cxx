@@ -39,7 +39,7 @@ constexpr double SampledErrorFactor = 1.25;
 // At the same triangle count our Hausdorff distance (halfedge collapse keeps
 // input vertices) stays within this factor of vtkQuadricDecimation's
 // (which places vertices optimally).
-constexpr double VersusVTKFactor = 3.0;
+constexpr double VersusVTKFactor = 2.5;
 
 vtkSmartPointer<vtkPolyData> Sphere(int theta, int phi)
 {
