@@ -3,7 +3,8 @@
 // the same kernel. Closest hit: same hit/miss, same (instance, triangle)
 // where the nearest hit is unique and not within 1e-9 of an edge, t within
 // 1e-9 relative (the transforms round). Any hit: same hit/miss. Skipped
-// instances: singular transform, empty bottom level.
+// instances: singular transform, empty bottom level. Then a third of the
+// instances move (setTransform + refitTop) and the same checks run again.
 #include "CoreTestUtils.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -57,28 +58,35 @@ int main()
     std::uint32_t instance, prim;
   };
   std::vector<WorldTri> flat;
-  for (std::uint32_t i = 0; i < 60; ++i)
-  {
-    const MeshData& m = meshes[meshOf[i]];
-    for (std::uint32_t t = 0; t < m.triangleCount(); ++t)
+  auto flatten = [&]() {
+    flat.clear();
+    for (std::uint32_t i = 0; i < 60; ++i)
     {
-      WorldTri w;
-      Vec3<double>* v[3] = { &w.a, &w.b, &w.c };
-      for (int k = 0; k < 3; ++k)
+      const MeshData& m = meshes[meshOf[i]];
+      for (std::uint32_t t = 0; t < m.triangleCount(); ++t)
       {
-        *v[k] = Vec3<double>(instances[i].objectToWorld * glm::dvec4(m.vertices[m.indices[3 * t + k]], 1.0));
+        WorldTri w;
+        Vec3<double>* v[3] = { &w.a, &w.b, &w.c };
+        for (int k = 0; k < 3; ++k)
+        {
+          *v[k] = Vec3<double>(instances[i].objectToWorld * glm::dvec4(m.vertices[m.indices[3 * t + k]], 1.0));
+        }
+        w.instance = i;
+        w.prim = t;
+        flat.push_back(w);
       }
-      w.instance = i;
-      w.prim = t;
-      flat.push_back(w);
     }
-  }
+  };
+  flatten();
 
   auto isect = [&](std::uint32_t instance, std::uint32_t prim, const Ray<double>& ray, Hit<double>& hit) {
     const MeshData& m = meshes[meshOf[instance]];
     TriangleHit<double> th;
-    if (!intersectRayTriangle(ray, m.vertices[m.indices[3 * prim]], m.vertices[m.indices[3 * prim + 1]],
-          m.vertices[m.indices[3 * prim + 2]], th))
+    if (!intersectRayTriangle(ray,
+          m.vertices[m.indices[3 * prim]],
+          m.vertices[m.indices[3 * prim + 1]],
+          m.vertices[m.indices[3 * prim + 2]],
+          th))
     {
       return false;
     }
@@ -88,66 +96,82 @@ int main()
     return true;
   };
 
-  int hits = 0, compared = 0, mismatches = 0;
-  for (int r = 0; r < 3000; ++r)
-  {
-    const Vec3<double> o = rng.inBox(Vec3<double>(-9), Vec3<double>(9));
-    const Vec3<double> target = rng.inBox(Vec3<double>(-5), Vec3<double>(5));
-    const Ray<double> ray(o, target - o, 0.0, r % 4 == 0 ? 0.7 : std::numeric_limits<double>::infinity());
-    // brute force
-    double best = std::numeric_limits<double>::infinity(), second = best, bestBary = 0;
-    std::uint32_t bestInst = kInvalidIndex, bestPrim = kInvalidIndex;
-    for (const WorldTri& w : flat)
+  auto checkRays = [&](const char* phase) {
+    int hits = 0, compared = 0, mismatches = 0;
+    for (int r = 0; r < 3000; ++r)
     {
-      TriangleHit<double> th;
-      if (intersectRayTriangle(ray, w.a, w.b, w.c, th))
+      const Vec3<double> o = rng.inBox(Vec3<double>(-9), Vec3<double>(9));
+      const Vec3<double> target = rng.inBox(Vec3<double>(-5), Vec3<double>(5));
+      const Ray<double> ray(o, target - o, 0.0, r % 4 == 0 ? 0.7 : std::numeric_limits<double>::infinity());
+      // brute force
+      double best = std::numeric_limits<double>::infinity(), second = best, bestBary = 0;
+      std::uint32_t bestInst = kInvalidIndex, bestPrim = kInvalidIndex;
+      for (const WorldTri& w : flat)
       {
-        if (th.t < best)
+        TriangleHit<double> th;
+        if (intersectRayTriangle(ray, w.a, w.b, w.c, th))
         {
-          second = best;
-          best = th.t;
-          bestInst = w.instance;
-          bestPrim = w.prim;
-          bestBary = std::min({ th.u, th.v, 1 - th.u - th.v });
-        }
-        else
-        {
-          second = std::min(second, th.t);
+          if (th.t < best)
+          {
+            second = best;
+            best = th.t;
+            bestInst = w.instance;
+            bestPrim = w.prim;
+            bestBary = std::min({ th.u, th.v, 1 - th.u - th.v });
+          }
+          else
+          {
+            second = std::min(second, th.t);
+          }
         }
       }
+      Hit<double> h;
+      const bool found = scene.closestHit(ray, isect, h);
+      Hit<double> any;
+      const bool anyFound = scene.anyHit(ray, isect, any);
+      const bool expected = bestInst != kInvalidIndex;
+      if (expected && bestBary < 1e-9)
+      {
+        continue; // on an edge: transform rounding decides between neighbours
+      }
+      ++compared;
+      hits += expected;
+      if (found != expected || anyFound != expected)
+      {
+        ++mismatches;
+        continue;
+      }
+      if (!found)
+      {
+        continue;
+      }
+      VTKRT_CHECK(any.instance < 60 && any.t >= 0 && any.t <= ray.tmax);
+      if (std::abs(h.t - best) > 1e-9 * best)
+      {
+        ++mismatches;
+      }
+      if (second > best * (1 + 1e-9) && (h.instance != bestInst || h.prim != bestPrim))
+      {
+        ++mismatches;
+      }
     }
-    Hit<double> h;
-    const bool found = scene.closestHit(ray, isect, h);
-    Hit<double> any;
-    const bool anyFound = scene.anyHit(ray, isect, any);
-    const bool expected = bestInst != kInvalidIndex;
-    if (expected && bestBary < 1e-9)
-    {
-      continue; // on an edge: transform rounding decides between neighbours
-    }
-    ++compared;
-    hits += expected;
-    if (found != expected || anyFound != expected)
-    {
-      ++mismatches;
-      continue;
-    }
-    if (!found)
-    {
-      continue;
-    }
-    VTKRT_CHECK(any.instance < 60 && any.t >= 0 && any.t <= ray.tmax);
-    if (std::abs(h.t - best) > 1e-9 * best)
-    {
-      ++mismatches;
-    }
-    if (second > best * (1 + 1e-9) && (h.instance != bestInst || h.prim != bestPrim))
-    {
-      ++mismatches;
-    }
+    std::printf("two-level %s: %d rays compared, %d hits, %d mismatches\n", phase, compared, hits, mismatches);
+    VTKRT_CHECK(mismatches == 0);
+    VTKRT_CHECK(hits > 500);
+  };
+  checkRays("built");
+
+  // Move a third of the instances, refit the top level only, check again.
+  for (std::uint32_t i = 0; i < 60; i += 3)
+  {
+    glm::dmat4 m = glm::translate(glm::dmat4(1.0), rng.inBox(Vec3<double>(-2), Vec3<double>(2)));
+    m = glm::rotate(m, rng.uniform(0, 6.283), rng.unitVector()) * instances[i].objectToWorld;
+    VTKRT_CHECK(scene.setTransform(i, m));
+    instances[i].objectToWorld = m;
   }
-  std::printf("two-level: %d rays compared, %d hits, %d mismatches\n", compared, hits, mismatches);
-  VTKRT_CHECK(mismatches == 0);
-  VTKRT_CHECK(hits > 500);
+  VTKRT_CHECK(!scene.setTransform(1, glm::dmat4(0.0))); // singular: refused
+  scene.refitTop();
+  flatten();
+  checkRays("moved+refit");
   return testResult("TestCoreTwoLevel");
 }

@@ -16,16 +16,18 @@
 //                BuildQuality/BuildOptions/BuildStats, kMaxDepth, kMaxStackSize,
 //                packNodesForGpu(bvh, origin) -> 8 floats per node
 //   BVHBuild.h   buildBVH(vector<AABB<double>>, options): generic builder
+//                (Fast = LBVH, Medium = binned SAH, High = sweep SAH);
+//                refit(bvh, boundsOf) after primitives moved
 //   BVHTraversal.h closestHit / anyHit / allHits (ray + intersector callable),
 //                closestPoint (point + callable, max distance), queryBox;
 //                also over the packed float copy (GpuNodeSource)
 //   Mesh.h       TriangleMesh<T>, SphereSet<T> views; buildTriangleBVH,
 //                buildSphereBVH; TriangleIntersector, SphereIntersector,
 //                TriangleClosestPoint, SphereClosestPoint callables;
-//                trianglesOverlappingBox; refit, refitTriangles
+//                trianglesOverlappingBox; refitTriangles
 //   LocalFrame.h localOrigin, relativeFloatVertices (GPU upload helpers)
 //   TwoLevel.h   Instance (bottom BVH + double 4x4), TwoLevelBVH: closest and
-//                any hit through both levels
+//                any hit through both levels; setTransform + refitTop
 //
 // Typical use (locator):
 //   TriangleMesh<double> mesh(points, indices);

@@ -63,6 +63,29 @@ public:
     Top = buildBVH(bounds, options);
   }
 
+  /// Moves instance i. Call refitTop() after moving some, before querying.
+  /// An instance skipped at build time stays skipped (rebuild to add it);
+  /// a singular new transform keeps the previous one and returns false.
+  bool setTransform(std::uint32_t instance, const glm::dmat4& objectToWorld)
+  {
+    const double det = glm::determinant(objectToWorld);
+    if (instance >= Instances.size() || !(std::abs(det) > 0.0) || !std::isfinite(det))
+    {
+      return false;
+    }
+    Instances[instance].objectToWorld = objectToWorld;
+    WorldToObject[instance] = glm::inverse(objectToWorld);
+    return true;
+  }
+
+  /// Refits the top level to the current transforms (no rebuild).
+  void refitTop()
+  {
+    refit(Top, [this](std::uint32_t i) {
+      return transformBounds(Instances[i].objectToWorld, Instances[i].bvh->bounds());
+    });
+  }
+
   const BVH& top() const { return Top; }
   const std::vector<Instance>& instances() const { return Instances; }
   const glm::dmat4& worldToObject(std::uint32_t instance) const { return WorldToObject[instance]; }
