@@ -32,6 +32,7 @@
 #endif
 
 #include <malloc.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -52,6 +53,15 @@ using Clock = std::chrono::steady_clock;
 double Seconds(Clock::time_point a, Clock::time_point b)
 {
   return std::chrono::duration<double>(b - a).count();
+}
+
+/// CPU time of the calling thread: single-thread query rates stay
+/// meaningful on a shared, loaded machine.
+double ThreadSeconds()
+{
+  timespec t;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 /// Bytes malloc currently hands out (arena + mmapped chunks).
@@ -160,23 +170,28 @@ Result Measure(const Peer& peer, vtkPolyData* pd, const std::vector<Segment>& se
 {
   Result r;
   r.Name = peer.Name;
-  // First pick: a fresh locator, its build, one query.
+  // First pick: a fresh locator, its build, one query (best of 3: wall
+  // clock, the machine is shared).
+  r.FirstPickSeconds = 1e30;
+  r.BuildSeconds = 1e30;
+  for (int rep = 0; rep < 3; ++rep)
   {
-    const long long heap0 = HeapInUse();
     auto t0 = Clock::now();
     void* loc = peer.Create(pd);
     peer.Build(loc);
     double t;
     peer.Query(loc, segs[0], t);
-    r.FirstPickSeconds = Seconds(t0, Clock::now());
+    r.FirstPickSeconds = std::min(r.FirstPickSeconds, Seconds(t0, Clock::now()));
     peer.Destroy(loc);
-    (void)heap0;
+    loc = peer.Create(pd);
+    t0 = Clock::now();
+    peer.Build(loc);
+    r.BuildSeconds = std::min(r.BuildSeconds, Seconds(t0, Clock::now()));
+    peer.Destroy(loc);
   }
   const long long heap0 = HeapInUse();
   void* loc = peer.Create(pd);
-  auto t0 = Clock::now();
   peer.Build(loc);
-  r.BuildSeconds = Seconds(t0, Clock::now());
   // One query first: lazy peers (vtkModifiedBSPTree) finish building here.
   double t;
   peer.Query(loc, segs[0], t);
@@ -184,7 +199,7 @@ Result Measure(const Peer& peer, vtkPolyData* pd, const std::vector<Segment>& se
 
   r.RaysTimed = std::min(static_cast<int>(segs.size()), peer.MaxRays);
   std::vector<double> ts(static_cast<size_t>(r.RaysTimed), -1.0);
-  t0 = Clock::now();
+  const double c0 = ThreadSeconds();
   for (int i = 0; i < r.RaysTimed; ++i)
   {
     double tt;
@@ -194,7 +209,7 @@ Result Measure(const Peer& peer, vtkPolyData* pd, const std::vector<Segment>& se
       ++r.Hits;
     }
   }
-  const double secs = Seconds(t0, Clock::now());
+  const double secs = ThreadSeconds() - c0;
   r.RaysPerSecond = r.RaysTimed / secs;
   peer.Destroy(loc);
   r.LeakBytes = HeapInUse() - heap0;
@@ -210,7 +225,7 @@ Result Measure(const Peer& peer, vtkPolyData* pd, const std::vector<Segment>& se
       for (int i = 0; i < r.RaysTimed; ++i)
       {
         const double a = ts[i], b = (*refT)[i];
-        r.Agree += ((a < 0) == (b < 0) && (a < 0 || std::abs(a - b) < 1e-9)) ? 1 : 0;
+        r.Agree += ((a < 0) == (b < 0) && (a < 0 || std::abs(a - b) < 1e-6)) ? 1 : 0;
       }
     }
   }

@@ -12,6 +12,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellType.h"
+#include "vtkDoubleArray.h"
 #include "vtkDataSet.h"
 #include "vtkGenericCell.h"
 #include "vtkIdList.h"
@@ -28,6 +29,8 @@
 #include "vtkrt/core/BVHTraversal.h"
 #include "vtkrt/core/Ray.h"
 #include "vtkrt/core/Triangle.h"
+
+#include <emmintrin.h> // SSE2: both children of a node in one slab test
 
 #include <algorithm>
 #include <cmath>
@@ -84,13 +87,16 @@ class BVHCellLocatorData
 public:
   Vec3d Origin = Vec3d(0.0);
   std::vector<Vec3d> Points;             ///< local copy (point - Origin), fast path only
-  std::vector<std::uint32_t> TriVerts;   ///< 3 point ids per triangle
+  std::vector<std::uint32_t> TriVerts;   ///< 3 point ids per triangle (extraction only)
+  std::vector<Vec3d> TriV;               ///< 3 local vertices per triangle, leaf order
   std::vector<vtkIdType> TriCell;        ///< original cell id per triangle
   std::vector<std::int32_t> TriSub;      ///< subId per triangle (strips: triangle index)
   std::vector<std::uint8_t> TriFlags;    ///< TriangleFlags
   std::vector<vtkIdType> GenCell;        ///< original cell id per general primitive
   std::vector<Box> GenBox;               ///< its bounds, local, slightly widened
   core::BVH Tree;
+  std::vector<float> PackedNodes;        ///< float copy of Tree.nodes for the segment queries
+  size_t PackedOffset = 0;               ///< where node 0 starts in PackedNodes (alignment)
   TreeStats Stats;
   vtkIdType SkippedCells = 0;   ///< cells in no leaf (non-finite or empty bounds)
   vtkIdType NonFiniteCells = 0; ///< surface cells dropped at extraction
@@ -111,11 +117,11 @@ public:
   size_t MemorySize() const
   {
     return this->Points.capacity() * sizeof(Vec3d) +
-      this->TriVerts.capacity() * sizeof(std::uint32_t) +
+      this->TriVerts.capacity() * sizeof(std::uint32_t) + this->TriV.capacity() * sizeof(Vec3d) +
       this->TriCell.capacity() * sizeof(vtkIdType) +
       this->TriSub.capacity() * sizeof(std::int32_t) + this->TriFlags.capacity() +
       this->GenCell.capacity() * sizeof(vtkIdType) + this->GenBox.capacity() * sizeof(Box) +
-      this->Tree.memoryBytes();
+      this->Tree.memoryBytes() + this->PackedNodes.capacity() * sizeof(float);
   }
 
   //----------------------------------------------------------------------------
@@ -123,7 +129,6 @@ public:
   //----------------------------------------------------------------------------
   void Extract(vtkDataSet* ds)
   {
-    this->ComputeOrigin(ds);
     if (auto* pd = vtkPolyData::SafeDownCast(ds))
     {
       this->CopyPoints(pd->GetPoints());
@@ -136,6 +141,7 @@ public:
     }
     else
     {
+      this->ComputeOrigin(ds);
       const vtkIdType n = ds->GetNumberOfCells();
       for (vtkIdType c = 0; c < n; ++c)
       {
@@ -174,12 +180,70 @@ public:
                                    : (quality == 2 ? core::BuildQuality::High : core::BuildQuality::Medium);
     options.maxLeafSize = static_cast<std::uint32_t>(std::max(leafSize, 1));
     this->Tree = core::buildBVH(boxes, options);
+    this->Reorder(nTri);
+    // Local coordinates already: origin 0 keeps the outward rounding exact.
+    // Sibling pairs start at odd indices (the root is alone at 0): placing
+    // node 0 at 32 mod 64 bytes puts each pair (64 bytes) in one cache line.
+    const std::vector<float> packed = core::packNodesForGpu(this->Tree, Vec3d(0.0));
+    this->PackedNodes.assign(packed.size() + 32, 0.0f); // room for the up to 24-float shift
+    const std::uintptr_t base = reinterpret_cast<std::uintptr_t>(this->PackedNodes.data());
+    const std::uintptr_t aligned = ((base + 63) & ~std::uintptr_t(63)) + 32;
+    this->PackedOffset = (aligned - base) / sizeof(float);
+    std::copy(packed.begin(), packed.end(), this->PackedNodes.begin() + this->PackedOffset);
     this->Stats.Nodes = static_cast<vtkIdType>(this->Tree.stats.nodeCount);
     this->Stats.Leaves = static_cast<vtkIdType>(this->Tree.stats.leafCount);
     this->Stats.Depth = static_cast<int>(this->Tree.stats.maxDepth);
     this->Stats.SAHCost = this->Tree.stats.sahCost;
     this->SkippedCells =
       this->NonFiniteCells + static_cast<vtkIdType>(this->Tree.stats.skippedPrimitives);
+  }
+
+  /// Renumbers the primitives in leaf order (triangles first, then general
+  /// cells) and stores each triangle's vertices inline, so that a leaf's
+  /// primitives are adjacent in memory and a triangle test reads one cache
+  /// line run instead of chasing point ids. Skipped primitives are dropped.
+  void Reorder(size_t nTri)
+  {
+    std::vector<std::uint32_t>& order = this->Tree.primIndex;
+    size_t builtTri = 0;
+    for (const std::uint32_t p : order)
+    {
+      builtTri += p < nTri ? 1 : 0;
+    }
+    std::vector<Vec3d> triV(3 * builtTri);
+    std::vector<vtkIdType> triCell(builtTri), genCell(order.size() - builtTri);
+    std::vector<std::int32_t> triSub(builtTri);
+    std::vector<std::uint8_t> triFlags(builtTri);
+    std::vector<Box> genBox(order.size() - builtTri);
+    std::uint32_t t = 0, g = 0;
+    for (std::uint32_t& p : order)
+    {
+      if (p < nTri)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          triV[3 * t + k] = this->Points[this->TriVerts[3 * p + k]];
+        }
+        triCell[t] = this->TriCell[p];
+        triSub[t] = this->TriSub[p];
+        triFlags[t] = this->TriFlags[p];
+        p = t++;
+      }
+      else
+      {
+        genCell[g] = this->GenCell[p - nTri];
+        genBox[g] = this->GenBox[p - nTri];
+        p = static_cast<std::uint32_t>(builtTri) + g++;
+      }
+    }
+    this->TriV.swap(triV);
+    this->TriCell.swap(triCell);
+    this->TriSub.swap(triSub);
+    this->TriFlags.swap(triFlags);
+    this->GenCell.swap(genCell);
+    this->GenBox.swap(genBox);
+    std::vector<std::uint32_t>().swap(this->TriVerts);
+    std::vector<Vec3d>().swap(this->Points);
   }
 
   //----------------------------------------------------------------------------
@@ -303,9 +367,9 @@ public:
         {
           h.X[k] = p1[k] + t * r.dir[k];
         }
-        const Vec3d& v0 = this->Points[this->TriVerts[3 * prim]];
-        const Vec3d& v1 = this->Points[this->TriVerts[3 * prim + 1]];
-        const Vec3d& v2 = this->Points[this->TriVerts[3 * prim + 2]];
+        const Vec3d& v0 = this->TriV[3 * prim];
+        const Vec3d& v1 = this->TriV[3 * prim + 1];
+        const Vec3d& v2 = this->TriV[3 * prim + 2];
         double side = glm::dot(core::triangleNormal(v0, v1, v2), r.dir);
         if (this->TriFlags[prim] & FlipOrientation)
         {
@@ -400,9 +464,9 @@ public:
     auto fn = [&](std::uint32_t prim, const Vec3d& p, core::PointHit<double>& cand) {
       if (static_cast<vtkIdType>(prim) < nTri)
       {
-        const Vec3d& v0 = this->Points[this->TriVerts[3 * prim]];
-        const Vec3d& v1 = this->Points[this->TriVerts[3 * prim + 1]];
-        const Vec3d& v2 = this->Points[this->TriVerts[3 * prim + 2]];
+        const Vec3d& v0 = this->TriV[3 * prim];
+        const Vec3d& v1 = this->TriV[3 * prim + 1];
+        const Vec3d& v2 = this->TriV[3 * prim + 2];
         cand.point = core::closestPointOnTriangle(p, v0, v1, v2);
         const Vec3d d = p - cand.point;
         cand.dist2 = glm::dot(d, d);
@@ -534,7 +598,7 @@ private:
       Box b;
       for (int k = 0; k < 3; ++k)
       {
-        b.extend(this->Points[this->TriVerts[3 * prim + k]]);
+        b.extend(this->TriV[3 * prim + k]);
       }
       return b;
     }
@@ -547,18 +611,29 @@ private:
     return static_cast<vtkIdType>(prim) < nTri ? this->TriCell[prim] : this->GenCell[prim - nTri];
   }
 
-  /// The core's nodes with every box grown by tol (a cell within tol of the
-  /// segment may lie outside its box by up to tol).
-  struct GrownNodeSource
+  /// The nodes as the packed float copy (packNodesForGpu: boxes rounded
+  /// outward, so never smaller than the double boxes), read back in double
+  /// and grown by tol (a cell within tol of the segment may lie outside its
+  /// box by up to tol). The slab test itself stays the core's robust double
+  /// test; the float copy halves the memory the segment queries stream.
+  struct PackedNodeSource
   {
     using Scalar = double;
-    const core::BVHNode* nodes = nullptr;
+    const float* data = nullptr;
     std::size_t size = 0;
-    Vec3d grow;
-    Vec3d lo(std::uint32_t i) const { return nodes[i].min - grow; }
-    Vec3d hi(std::uint32_t i) const { return nodes[i].max + grow; }
-    std::uint32_t index(std::uint32_t i) const { return nodes[i].index; }
-    std::uint32_t count(std::uint32_t i) const { return nodes[i].count; }
+    double grow = 0.0;
+    Vec3d lo(std::uint32_t i) const
+    {
+      const float* d = data + 8 * static_cast<std::size_t>(i);
+      return Vec3d(double(d[0]) - grow, double(d[1]) - grow, double(d[2]) - grow);
+    }
+    Vec3d hi(std::uint32_t i) const
+    {
+      const float* d = data + 8 * static_cast<std::size_t>(i) + 4;
+      return Vec3d(double(d[0]) + grow, double(d[1]) + grow, double(d[2]) + grow);
+    }
+    std::uint32_t index(std::uint32_t i) const { return core::floatBitsToUint(data[8 * static_cast<std::size_t>(i) + 3]); }
+    std::uint32_t count(std::uint32_t i) const { return core::floatBitsToUint(data[8 * static_cast<std::size_t>(i) + 7]); }
   };
 
   bool MakeSegment(const double p1[3], const double p2[3], core::Ray<double>& ray) const
@@ -578,23 +653,131 @@ private:
   bool WalkSegment(const core::Ray<double>& ray, double tol, Isect& isect, core::Hit<double>& hit) const
   {
     const std::uint32_t* primIndex = this->Tree.primIndex.data();
-    if (tol > 0.0)
-    {
-      GrownNodeSource nodes{ this->Tree.nodes.data(), this->Tree.nodes.size(), Vec3d(tol) };
-      if (Mode == 0)
-      {
-        return core::closestHit(nodes, primIndex, ray, isect, hit);
-      }
-      core::allHits(nodes, primIndex, ray, isect);
-      return false;
-    }
-    const core::NodeSource nodes(this->Tree);
+    const PackedNodeSource nodes{ this->PackedNodes.data() + this->PackedOffset, this->Tree.nodes.size(), tol };
     if (Mode == 0)
     {
+      if (ray.dir.x != 0.0 && ray.dir.y != 0.0 && ray.dir.z != 0.0)
+      {
+        return this->ClosestHitPairs(nodes, ray, isect, hit);
+      }
+      // Axis-parallel segments: the core's traversal handles the 0 * inf slabs.
       return core::closestHit(nodes, primIndex, ray, isect, hit);
     }
     core::allHits(nodes, primIndex, ray, isect);
     return false;
+  }
+
+  /// The picking hot path: core::closestHit's ordered traversal (same
+  /// visiting order, same intersector contract), with both children's boxes
+  /// tested at once (SSE2, two doubles per register: one lane per child).
+  /// The slab arithmetic is the core's robust test in double on the
+  /// outward-rounded float boxes; only for segments with no zero direction
+  /// component (no 0 * inf), which WalkSegment checks.
+  template <class Isect>
+  bool ClosestHitPairs(const PackedNodeSource& nodes, core::Ray<double> ray, Isect& isect,
+    core::Hit<double>& hit) const
+  {
+    hit = core::Hit<double>();
+    if (nodes.size == 0 || !ray.isValid())
+    {
+      return false;
+    }
+    const std::uint32_t* primIndex = this->Tree.primIndex.data();
+    const core::RayBoxPrecomputed<double> pre(ray);
+    double tnear;
+    if (!core::intersectRayAABB(pre, nodes.lo(0), nodes.hi(0), ray.tmin, ray.tmax, tnear))
+    {
+      return false;
+    }
+    constexpr double farScale = 1.0 + 2.0 * core::gammaBound<double>(3);
+    const __m128d grow = _mm_set1_pd(nodes.grow);
+    const __m128d org[3] = { _mm_set1_pd(ray.org.x), _mm_set1_pd(ray.org.y), _mm_set1_pd(ray.org.z) };
+    const __m128d inv[3] = { _mm_set1_pd(1.0 / ray.dir.x), _mm_set1_pd(1.0 / ray.dir.y),
+      _mm_set1_pd(1.0 / ray.dir.z) };
+    const __m128d scale = _mm_set1_pd(farScale);
+    const __m128d tmin0 = _mm_set1_pd(ray.tmin);
+    struct Entry
+    {
+      std::uint32_t Node;
+      double Dist;
+    };
+    Entry stack[core::kMaxStackSize];
+    std::uint32_t sp = 0;
+    bool found = false;
+    std::uint32_t cur = 0;
+    for (;;)
+    {
+      const float* n = nodes.data + 8 * static_cast<std::size_t>(cur);
+      const std::uint32_t count = core::floatBitsToUint(n[7]);
+      const std::uint32_t index = core::floatBitsToUint(n[3]);
+      bool descend = false;
+      if (count > 0)
+      {
+        for (std::uint32_t k = 0; k < count; ++k)
+        {
+          const std::uint32_t prim = primIndex[index + k];
+          core::Hit<double> candidate = hit;
+          if (isect(prim, ray, candidate))
+          {
+            candidate.prim = prim;
+            found = true;
+            hit = candidate;
+            ray.tmax = hit.t;
+          }
+        }
+      }
+      else
+      {
+        const float* a = nodes.data + 8 * static_cast<std::size_t>(index);
+        const float* b = a + 8;
+        __m128d t0v = tmin0;
+        __m128d t1v = _mm_set1_pd(ray.tmax);
+        for (int axis = 0; axis < 3; ++axis)
+        {
+          const __m128d lo = _mm_sub_pd(_mm_set_pd(double(b[axis]), double(a[axis])), grow);
+          const __m128d hi = _mm_add_pd(_mm_set_pd(double(b[4 + axis]), double(a[4 + axis])), grow);
+          const __m128d ta = _mm_mul_pd(_mm_sub_pd(lo, org[axis]), inv[axis]);
+          const __m128d tb = _mm_mul_pd(_mm_sub_pd(hi, org[axis]), inv[axis]);
+          t0v = _mm_max_pd(t0v, _mm_min_pd(ta, tb));
+          t1v = _mm_min_pd(t1v, _mm_mul_pd(_mm_max_pd(ta, tb), scale));
+        }
+        const int mask = _mm_movemask_pd(_mm_cmple_pd(t0v, t1v));
+        alignas(16) double t0[2];
+        _mm_store_pd(t0, t0v);
+        const bool h0 = (mask & 1) != 0, h1 = (mask & 2) != 0;
+        if (h0 && h1)
+        {
+          const bool firstNear = t0[0] <= t0[1];
+          stack[sp++] = { firstNear ? index + 1 : index, firstNear ? t0[1] : t0[0] };
+          cur = firstNear ? index : index + 1;
+          descend = true;
+        }
+        else if (h0 || h1)
+        {
+          cur = h0 ? index : index + 1;
+          descend = true;
+        }
+      }
+      if (descend)
+      {
+        continue;
+      }
+      bool popped = false;
+      while (sp > 0)
+      {
+        const Entry e = stack[--sp];
+        if (e.Dist <= ray.tmax)
+        {
+          cur = e.Node;
+          popped = true;
+          break;
+        }
+      }
+      if (!popped)
+      {
+        return found;
+      }
+    }
   }
 
   /// Watertight hit, or (tol > 0) VTK's rule: the crossing of the plane lies
@@ -602,9 +785,9 @@ private:
   bool IntersectTriangle(std::uint32_t prim, const core::RayTrianglePrecomputed<double>& pre,
     const core::Ray<double>& ray, double tol, double& t, double& u, double& v) const
   {
-    const Vec3d& v0 = this->Points[this->TriVerts[3 * prim]];
-    const Vec3d& v1 = this->Points[this->TriVerts[3 * prim + 1]];
-    const Vec3d& v2 = this->Points[this->TriVerts[3 * prim + 2]];
+    const Vec3d& v0 = this->TriV[3 * prim];
+    const Vec3d& v1 = this->TriV[3 * prim + 1];
+    const Vec3d& v2 = this->TriV[3 * prim + 2];
     core::TriangleHit<double> hit;
     if (core::intersectRayTriangle(pre, v0, v1, v2, ray.tmin, ray.tmax, hit))
     {
@@ -660,9 +843,9 @@ private:
   /// Whether x projects into the triangle (vtkTriangle::EvaluatePosition == 1).
   bool ProjectsInside(std::uint32_t prim, const Vec3d& x) const
   {
-    const Vec3d& v0 = this->Points[this->TriVerts[3 * prim]];
-    const Vec3d& v1 = this->Points[this->TriVerts[3 * prim + 1]];
-    const Vec3d& v2 = this->Points[this->TriVerts[3 * prim + 2]];
+    const Vec3d& v0 = this->TriV[3 * prim];
+    const Vec3d& v1 = this->TriV[3 * prim + 1];
+    const Vec3d& v2 = this->TriV[3 * prim + 2];
     double u, v;
     Barycentric(x, v0, v1 - v0, v2 - v0, u, v);
     return u >= 0.0 && v >= 0.0 && u + v <= 1.0;
@@ -686,18 +869,45 @@ private:
     this->Origin = b.isEmpty() ? Vec3d(0.0) : b.center();
   }
 
+  /// Local copy of the points around the center of their finite bounds
+  /// (NaN/inf points would poison the center).
   void CopyPoints(vtkPoints* pts)
   {
     const vtkIdType n = pts ? pts->GetNumberOfPoints() : 0;
     this->Points.resize(static_cast<size_t>(n));
-    vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
-      double p[3];
-      for (vtkIdType i = b; i < e; ++i)
+    if (n == 0)
+    {
+      return;
+    }
+    if (auto* d = vtkDoubleArray::FastDownCast(pts->GetData()))
+    {
+      std::copy_n(reinterpret_cast<const Vec3d*>(d->GetPointer(0)), n, this->Points.data());
+    }
+    else
+    {
+      vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
+        double p[3];
+        for (vtkIdType i = b; i < e; ++i)
+        {
+          pts->GetPoint(i, p);
+          this->Points[i] = Vec3d(p[0], p[1], p[2]);
+        }
+      });
+    }
+    Box b;
+    for (const Vec3d& p : this->Points)
+    {
+      if (core::isFinite(p))
       {
-        pts->GetPoint(i, p);
-        this->Points[i] = this->ToLocal(p);
+        b.extend(p);
       }
-    });
+    }
+    this->Origin = b.isEmpty() ? Vec3d(0.0) : b.center();
+    const Vec3d o = this->Origin;
+    for (Vec3d& p : this->Points)
+    {
+      p -= o;
+    }
   }
 
   void AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cellId, int sub, std::uint8_t flags)
@@ -837,6 +1047,7 @@ private:
     const bool indexable = this->Points.size() < std::numeric_limits<std::uint32_t>::max();
     vtkIdType cellId = 0;
     vtkCellArray* arrays[4] = { pd->GetVerts(), pd->GetLines(), pd->GetPolys(), pd->GetStrips() };
+    this->ReserveTriangles(arrays[2], arrays[3]);
     for (int a = 0; a < 4; ++a)
     {
       vtkCellArray* ca = arrays[a];
@@ -865,6 +1076,25 @@ private:
         }
       }
     }
+  }
+
+  /// Room for the triangles of polys (n-2 per polygon) and strips.
+  void ReserveTriangles(vtkCellArray* polys, vtkCellArray* strips)
+  {
+    size_t tris = 0;
+    for (vtkCellArray* ca : { polys, strips })
+    {
+      if (ca)
+      {
+        const vtkIdType conn = ca->GetNumberOfConnectivityIds();
+        const vtkIdType cells = ca->GetNumberOfCells();
+        tris += static_cast<size_t>(std::max<vtkIdType>(conn - 2 * cells, 0));
+      }
+    }
+    this->TriVerts.reserve(3 * tris);
+    this->TriCell.reserve(tris);
+    this->TriSub.reserve(tris);
+    this->TriFlags.reserve(tris);
   }
 
   void ExtractUnstructuredGrid(vtkUnstructuredGrid* ug)
