@@ -4,10 +4,12 @@
 // is unique, t within 1e-12 relative), any hit, all hits, closest point
 // (distance, with and without a radius), box overlap. Also the packed float
 // GPU copy walked on the CPU: it must find every hit the double tree finds
-// away from edges (conservative boxes).
+// away from edges (conservative boxes). Concurrent queries on one tree
+// give the sequential answers.
 #include "CoreTestUtils.h"
 
 #include <set>
+#include <thread>
 
 using namespace vtkrt::core;
 using namespace vtkrt::test;
@@ -340,6 +342,41 @@ int main()
       checkRayQueries(qualityNames[q], bvh, centers.size(), rays, SphereIntersector<double>(spheres));
       checkPointQueries(qualityNames[q], bvh, centers.size(), rng, SphereClosestPoint<double>(spheres));
     }
+  }
+
+  // Queries are const and thread-safe: 4 threads (one intersector each)
+  // over one tree give the sequential answers.
+  {
+    const MeshData& mesh = meshes[1];
+    const BVH bvh = buildTriangleBVH(mesh.view());
+    const std::vector<Ray<double>> rays = makeRays(rng, mesh, 4000);
+    std::vector<Hit<double>> sequential(rays.size()), parallel(rays.size());
+    TriangleIntersector<double> isect(mesh.view());
+    for (std::size_t i = 0; i < rays.size(); ++i)
+    {
+      closestHit(bvh, rays[i], isect, sequential[i]);
+    }
+    std::vector<std::thread> pool;
+    for (unsigned k = 0; k < 4; ++k)
+    {
+      pool.emplace_back([&, k]() {
+        TriangleIntersector<double> own(mesh.view());
+        for (std::size_t i = k; i < rays.size(); i += 4)
+        {
+          closestHit(bvh, rays[i], own, parallel[i]);
+        }
+      });
+    }
+    for (auto& t : pool)
+    {
+      t.join();
+    }
+    int differ = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i)
+    {
+      differ += sequential[i].prim != parallel[i].prim || sequential[i].t != parallel[i].t;
+    }
+    VTKRT_CHECK(differ == 0);
   }
 
   VTKRT_CHECK_MSG(disagreements == 0, "%d disagreements with brute force", disagreements);
