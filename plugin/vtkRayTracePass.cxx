@@ -209,6 +209,7 @@ void vtkRayTracePass::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "IdMode: " << this->IdMode << "\n";
+  os << indent << "BuildQuality: " << this->BuildQuality << "\n";
   os << indent << "MaximumTextureBufferTexels: " << this->MaximumTextureBufferTexels << "\n";
   os << indent << "DelegatePass: " << this->DelegatePass << "\n";
   os << indent << "LastFeatureKey: " << this->Internal->LastKey << "\n";
@@ -378,6 +379,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
   // Lights follow the camera and VTK computes the lighting complexity.
   in.Lights->Render(s);
 
+  in.Scene.SetBuildQuality(this->BuildQuality);
   in.Scene.Extract(ren, s->GetPropArray(), s->GetPropArrayCount(), in.Traced, in.Others, in.Counters);
 
   if (this->IdMode)

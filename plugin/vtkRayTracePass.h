@@ -129,11 +129,22 @@ public:
   vtkSetMacro(MaximumTextureBufferTexels, vtkTypeInt64);
   vtkGetMacro(MaximumTextureBufferTexels, vtkTypeInt64);
 
+  ///@{
+  /**
+   * Quality of the bottom-level BVHs: 0 fast build (LBVH, for data that
+   * changes often), 1 binned SAH (default), 2 full-sweep SAH (slowest build,
+   * fastest frames). Changing it rebuilds the geometry on the next frame.
+   */
+  vtkSetClampMacro(BuildQuality, int, 0, 2);
+  vtkGetMacro(BuildQuality, int);
+  ///@}
+
 protected:
   vtkRayTracePass();
   ~vtkRayTracePass() override;
 
   bool IdMode = false;
+  int BuildQuality = 1;
   vtkTypeInt64 MaximumTextureBufferTexels = 0;
   vtkRenderPass* DelegatePass = nullptr;
 

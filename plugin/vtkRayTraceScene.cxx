@@ -90,7 +90,7 @@ bool hasUntraceableCells(vtkPolyData* poly, bool pointsAsSpheres)
 
 /// Triangles of polys (fan, as VTK's raster) and strips (VTK's winding),
 /// with their VTK cell ids, and the BVH over them.
-std::unique_ptr<Geometry> buildTriangles(vtkPolyData* poly)
+std::unique_ptr<Geometry> buildTriangles(vtkPolyData* poly, const core::BuildOptions& options)
 {
   auto g = std::make_unique<Geometry>();
   std::vector<Vec3<double>> points;
@@ -123,7 +123,7 @@ std::unique_ptr<Geometry> buildTriangles(vtkPolyData* poly)
   }
 
   core::TriangleMesh<double> mesh(points, indices);
-  core::BVH bvh = core::buildTriangleBVH(mesh);
+  core::BVH bvh = core::buildTriangleBVH(mesh, options);
   g->Spheres = false;
   g->VertexCount = points.size();
   g->SkippedPrimitives = bvh.stats.skippedPrimitives;
@@ -180,13 +180,14 @@ std::unique_ptr<Geometry> buildTriangles(vtkPolyData* poly)
 }
 
 /// Spheres (centers, radii, VTK point ids) and the BVH over them.
-std::unique_ptr<Geometry> buildSpheres(
-  const std::vector<Vec3<double>>& centers, const std::vector<double>& radii, const std::vector<std::uint32_t>& ids)
+std::unique_ptr<Geometry> buildSpheres(const std::vector<Vec3<double>>& centers,
+  const std::vector<double>& radii, const std::vector<std::uint32_t>& ids,
+  const core::BuildOptions& options)
 {
   auto g = std::make_unique<Geometry>();
   g->Spheres = true;
   core::SphereSet<double> set(centers, radii);
-  core::BVH bvh = core::buildSphereBVH(set);
+  core::BVH bvh = core::buildSphereBVH(set, options);
   g->SkippedPrimitives = bvh.stats.skippedPrimitives;
   if (bvh.empty())
   {
@@ -264,7 +265,9 @@ bool Scene::IsTraceable(vtkProp* prop)
   }
   vtkProperty* property = actor->GetProperty();
   if (property->GetOpacity() < 1.0 || actor->GetTexture() || property->GetNumberOfTextures() > 0 ||
-    property->GetEdgeVisibility() || actor->GetBackfaceProperty())
+    property->GetEdgeVisibility() || actor->GetBackfaceProperty() ||
+    property->GetBackfaceCulling() || property->GetFrontfaceCulling() ||
+    property->GetInterpolation() == VTK_PBR)
   {
     return false;
   }
@@ -274,7 +277,8 @@ bool Scene::IsTraceable(vtkProp* prop)
   {
     return false;
   }
-  return true;
+  // Translucent scalars (colors with alpha) or a forced translucency.
+  return !actor->HasTranslucentPolygonalGeometry();
 }
 
 void Scene::FillMaterial(vtkActor* actor, vtkMapper* mapper, Instance& inst) const
@@ -377,9 +381,10 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     (poly->GetNumberOfPolys() > 0 || poly->GetNumberOfStrips() > 0))
   {
     auto& entry = this->TriangleCache[poly];
-    if (!entry || entry->SourceTime != time)
+    if (!entry || entry->SourceTime != time || entry->Quality != this->BuildQuality)
     {
-      entry = buildTriangles(poly);
+      entry = buildTriangles(poly, this->Options());
+      entry->Quality = this->BuildQuality;
       entry->SourceTime = time;
       entry->Keep = poly;
       ++counters.BVHBuilds;
@@ -407,7 +412,8 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     std::ostringstream key;
     key << "points:" << property->GetPointSize() << ":" << property->GetRepresentation();
     auto& entry = this->SphereCache[poly];
-    if (!entry || entry->SourceTime != time || entry->SourceKey != key.str())
+    if (!entry || entry->SourceTime != time || entry->SourceKey != key.str() ||
+      entry->Quality != this->BuildQuality)
     {
       std::vector<Vec3<double>> all;
       readPoints(poly->GetPoints(), all);
@@ -469,7 +475,8 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
         radii.push_back(radius);
         ids.push_back(static_cast<std::uint32_t>(i));
       }
-      entry = buildSpheres(centers, radii, ids);
+      entry = buildSpheres(centers, radii, ids, this->Options());
+      entry->Quality = this->BuildQuality;
       entry->SourceTime = time;
       entry->SourceKey = key.str();
       entry->Keep = poly;
@@ -519,7 +526,7 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
   vtkMTimeType time =
     std::max({ mapper->vtkObject::GetMTime(), input->GetMTime(), sphere->GetMTime() });
   auto& entry = this->SphereCache[mapper];
-  if (!entry || entry->SourceTime != time)
+  if (!entry || entry->SourceTime != time || entry->Quality != this->BuildQuality)
   {
     vtkDataArray* mask = mapper->GetMasking() ? glyphArray(mapper, vtkGlyph3DMapper::MASK, input) : nullptr;
     const double r0 = sphere->GetRadius();
@@ -565,7 +572,8 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
       radii.push_back(std::abs(s) * r0);
       ids.push_back(static_cast<std::uint32_t>(i));
     }
-    entry = buildSpheres(centers, radii, ids);
+    entry = buildSpheres(centers, radii, ids, this->Options());
+    entry->Quality = this->BuildQuality;
     entry->SourceTime = time;
     entry->Keep = mapper;
     ++counters.BVHBuilds;
@@ -826,6 +834,15 @@ int Scene::MaxClipPlanes() const
     total += i.ClipPlanes.size();
   }
   return static_cast<int>(total);
+}
+
+core::BuildOptions Scene::Options() const
+{
+  core::BuildOptions options;
+  options.quality = this->BuildQuality == 0
+    ? core::BuildQuality::Fast
+    : (this->BuildQuality == 2 ? core::BuildQuality::High : core::BuildQuality::Medium);
+  return options;
 }
 
 void Scene::Clear()

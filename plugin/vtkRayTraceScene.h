@@ -37,6 +37,7 @@ struct Geometry
   bool Spheres = false;
   vtkMTimeType SourceTime = 0; ///< cache key part: MTime of what it was built from
   std::string SourceKey;       ///< extra key (e.g. sphere radius settings)
+  int Quality = -1;            ///< the build quality it was built with
   std::array<double, 3> Origin{ { 0, 0, 0 } }; ///< local origin (model coordinates)
   std::array<double, 6> LocalBounds{ { 0, 0, 0, 0, 0, 0 } }; ///< relative to Origin
   std::vector<float> Nodes;      ///< packNodesForGpu, local indices
@@ -144,6 +145,10 @@ public:
 
   void Clear();
 
+  /// 0: fast (LBVH), 1: binned SAH (default), 2: full-sweep SAH. Geometry
+  /// built with another quality is rebuilt on its next use.
+  void SetBuildQuality(int quality) { this->BuildQuality = quality; }
+
   /// Whether this prop would be traced (public for documentation/tests).
   static bool IsTraceable(vtkProp* prop);
 
@@ -154,6 +159,9 @@ private:
   Colors* GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time);
   void FillMaterial(vtkActor* actor, vtkMapper* mapper, Instance& inst) const;
 
+  core::BuildOptions Options() const;
+
+  int BuildQuality = 1;
   std::map<const void*, std::unique_ptr<Geometry>> TriangleCache;
   std::map<const void*, std::unique_ptr<Geometry>> SphereCache;
   std::map<std::pair<const void*, const void*>, std::unique_ptr<Colors>> ColorCache;

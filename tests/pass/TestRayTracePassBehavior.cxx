@@ -37,6 +37,7 @@
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
 #include "vtkTriangleFilter.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtk_glew.h"
 
@@ -263,6 +264,9 @@ void TestCounters()
     "a scene without spheres compiles no sphere code");
   glyphs->VisibilityOn();
   frame("glyphs shown again (their BVH was dropped with them)", 1, true, 0);
+  pass->SetBuildQuality(0);
+  frame("build quality changed: both BVHs rebuilt", 2, true, 0);
+  frame("unchanged after the quality change", 0, false, 0);
   NoGLError(win, "counters");
   NoVTKOutput("counters");
 }
@@ -744,6 +748,115 @@ void TestManyActors()
   NoVTKOutput("many actors");
 }
 
+// Which props the pass traces and which it leaves to the raster delegate.
+void TestClassification()
+{
+  auto win = MakeWindow(100, 100);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  std::vector<std::pair<std::string, vtkSmartPointer<vtkActor>>> traced, raster;
+  auto meshActor = [](vtkPolyData* poly) {
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(poly);
+    auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(mapper);
+    return actor;
+  };
+  vtkNew<vtkSphereSource> sphere;
+  sphere->Update();
+  vtkPolyData* mesh = sphere->GetOutput();
+  traced.emplace_back("opaque mesh", meshActor(mesh));
+  auto translucent = meshActor(mesh);
+  translucent->GetProperty()->SetOpacity(0.5);
+  raster.emplace_back("translucent property", translucent);
+  auto wire = meshActor(mesh);
+  wire->GetProperty()->SetRepresentationToWireframe();
+  raster.emplace_back("wireframe", wire);
+  auto edges = meshActor(mesh);
+  edges->GetProperty()->EdgeVisibilityOn();
+  raster.emplace_back("edge visibility", edges);
+  auto culled = meshActor(mesh);
+  culled->GetProperty()->BackfaceCullingOn();
+  raster.emplace_back("backface culling", culled);
+  auto points = meshActor(mesh);
+  points->GetProperty()->SetRepresentationToPoints();
+  raster.emplace_back("points without RenderPointsAsSpheres", points);
+  auto spheres = meshActor(mesh);
+  spheres->GetProperty()->SetRepresentationToPoints();
+  spheres->GetProperty()->RenderPointsAsSpheresOn();
+  traced.emplace_back("points with RenderPointsAsSpheres", spheres);
+  // Scalars with alpha make the actor translucent in VTK.
+  auto alphaMesh = vtkSmartPointer<vtkPolyData>::New();
+  alphaMesh->DeepCopy(mesh);
+  vtkNew<vtkUnsignedCharArray> rgba;
+  rgba->SetNumberOfComponents(4);
+  for (vtkIdType i = 0; i < alphaMesh->GetNumberOfPoints(); ++i)
+  {
+    const unsigned char c[4] = { 255, 0, 0, 100 };
+    rgba->InsertNextTypedTuple(c);
+  }
+  alphaMesh->GetPointData()->SetScalars(rgba);
+  auto alpha = meshActor(alphaMesh);
+  vtkPolyDataMapper::SafeDownCast(alpha->GetMapper())->SetColorModeToDirectScalars();
+  raster.emplace_back("scalars with alpha", alpha);
+  // Lines cannot be traced: the whole actor falls back.
+  vtkNew<vtkConeSource> cone;
+  cone->Update();
+  auto withLines = vtkSmartPointer<vtkPolyData>::New();
+  withLines->DeepCopy(cone->GetOutput());
+  vtkNew<vtkCellArray> lines;
+  const vtkIdType line[2] = { 0, 1 };
+  lines->InsertNextCell(2, line);
+  withLines->SetLines(lines);
+  raster.emplace_back("polydata with lines", meshActor(withLines));
+  vtkNew<vtkGlyph3DMapper> coneGlyphs;
+  coneGlyphs->SetInputData(mesh);
+  coneGlyphs->SetSourceConnection(cone->GetOutputPort());
+  auto coneActor = vtkSmartPointer<vtkActor>::New();
+  coneActor->SetMapper(coneGlyphs);
+  raster.emplace_back("glyphs of a cone", coneActor);
+  vtkNew<vtkGlyph3DMapper> sphereGlyphs;
+  sphereGlyphs->SetInputData(mesh);
+  sphereGlyphs->SetSourceConnection(sphere->GetOutputPort());
+  auto sphereActor = vtkSmartPointer<vtkActor>::New();
+  sphereActor->SetMapper(sphereGlyphs);
+  traced.emplace_back("glyphs of a sphere", sphereActor);
+
+  for (auto* list : { &traced, &raster })
+  {
+    for (auto& e : *list)
+    {
+      ren->AddActor(e.second);
+    }
+  }
+  ren->ResetCamera();
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+  win->Render();
+  auto isTraced = [&](vtkActor* a) {
+    for (int i = 0; i < pass->GetNumberOfTracedProps(); ++i)
+    {
+      if (pass->GetTracedProp(i) == a)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  for (auto& e : traced)
+  {
+    Check(isTraced(e.second), "traced: " + e.first);
+  }
+  for (auto& e : raster)
+  {
+    Check(!isTraced(e.second), "left to raster: " + e.first);
+  }
+  Check(pass->GetNumberOfRenderedProps() == static_cast<int>(traced.size() + raster.size()),
+    "every prop is rendered by the pass or its delegate");
+  NoGLError(win, "classification");
+  NoVTKOutput("classification");
+}
+
 void TestApp()
 {
   if (AppPath.empty())
@@ -801,6 +914,7 @@ int main(int argc, char* argv[])
     { "SphereSilhouettes", TestSphereSilhouettes },
     { "IdPick", TestIdPick },
     { "ManyActors", TestManyActors },
+    { "Classification", TestClassification },
     { "App", TestApp },
   };
   const std::string which = argc > 1 ? argv[1] : "";
