@@ -64,6 +64,12 @@ int vtkBVHBoxes::RequestData(
 
   vtkrt_filters::TriangleSoup soup;
   vtkrt_filters::TriangulatePolyData(input, soup);
+  if (soup.Triangles.empty())
+  {
+    vtkErrorMacro("Input has no valid polygon or strip (" << soup.NumberOfInvalidCells
+                                                          << " with < 3 points or bad point ids).");
+    return 1;
+  }
   std::vector<core::Vec3<double>> vertices(numPoints);
   vtkPoints* pts = input->GetPoints();
   vtkSMPTools::For(0, numPoints,
@@ -82,9 +88,7 @@ int vtkBVHBoxes::RequestData(
   {
     for (vtkIdType id : tri)
     {
-      // Out-of-range ids become an index the core rejects (empty bounds).
-      indices.push_back(id >= 0 && id < numPoints ? static_cast<std::uint32_t>(id)
-                                                  : std::numeric_limits<std::uint32_t>::max());
+      indices.push_back(static_cast<std::uint32_t>(id)); // in range: checked by the triangulation
     }
   }
   core::TriangleMesh<double> mesh(vertices, indices);

@@ -2,9 +2,9 @@
  * @class   vtkBVHBoxes
  * @brief   the boxes of the ray tracer's BVH over a mesh, one level at a time
  *
- * vtkBVHBoxes builds the same bounding volume hierarchy the vtkrt tracer and
- * locator build (vtkrt::core::buildTriangleBVH, same builders and options)
- * over the input's triangles (polygons and strips are triangulated;
+ * vtkBVHBoxes builds a bounding volume hierarchy with the builder the vtkrt
+ * tracer and locator use (vtkrt::core::buildTriangleBVH, same options) over
+ * the input's triangles (polygons and strips are triangulated;
  * vertices and lines are ignored) and outputs the boxes of the nodes at
  * depth Level (the root has depth 0), together with the leaves above that
  * depth, so that the boxes always hold every triangle between them. With

@@ -668,28 +668,20 @@ int vtkOpenMeshDecimation::RequestData(
   vtkrt_filters::TriangulatePolyData(input, soup);
   const vtkIdType numTris = static_cast<vtkIdType>(soup.Triangles.size());
 
+  if (soup.Triangles.empty())
+  {
+    vtkErrorMacro("Input has no valid polygon or strip (" << soup.NumberOfInvalidCells
+                                                          << " with < 3 points or bad point ids).");
+    return 1;
+  }
   // Non-finite points poison the quadrics and distances: refuse them.
   std::vector<unsigned char> used(numInPoints, 0);
-  vtkIdType badIds = 0;
   for (const Triangle& tri : soup.Triangles)
   {
     for (vtkIdType id : tri)
     {
-      if (id < 0 || id >= numInPoints)
-      {
-        ++badIds;
-      }
-      else
-      {
-        used[id] = 1;
-      }
+      used[id] = 1;
     }
-  }
-  if (badIds)
-  {
-    vtkErrorMacro("Input faces use " << badIds << " point ids outside [0, " << numInPoints
-                                     << "): the input is corrupt.");
-    return 1;
   }
   std::vector<unsigned char> nonFinite(numInPoints, 0);
   vtkSMPTools::For(0, numInPoints,
@@ -929,6 +921,7 @@ int vtkOpenMeshDecimation::RequestData(
   vtkrt_filters::AddFieldCount(fd, "NumberOfLockedVertices", this->NumberOfLockedVertices);
   vtkrt_filters::AddFieldCount(fd, "NumberOfDroppedVerts", soup.NumberOfDroppedVerts);
   vtkrt_filters::AddFieldCount(fd, "NumberOfDroppedLines", soup.NumberOfDroppedLines);
+  vtkrt_filters::AddFieldCount(fd, "NumberOfInvalidCells", soup.NumberOfInvalidCells);
   vtkrt_filters::AddFieldStrings(fd, "DroppedArrays", dropped);
   return 1;
 }

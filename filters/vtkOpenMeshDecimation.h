@@ -45,7 +45,9 @@
  *
  * Field data of the output: "NumberOfInputTriangles", "NumberOfOutputTriangles",
  * "NumberOfPassedThroughFaces", "NumberOfLockedVertices",
- * "NumberOfDroppedVerts", "NumberOfDroppedLines", "DroppedArrays".
+ * "NumberOfDroppedVerts", "NumberOfDroppedLines", "NumberOfInvalidCells"
+ * (polygons or strips with < 3 points or point ids out of range, skipped),
+ * "DroppedArrays".
  *
  * Empty input, input without polygons, or faces using non-finite points give
  * an error and an empty output.

@@ -90,7 +90,7 @@ struct TriangleSoup
   std::vector<vtkIdType> SourceCells;
   vtkIdType NumberOfDroppedVerts = 0;
   vtkIdType NumberOfDroppedLines = 0;
-  vtkIdType NumberOfInvalidCells = 0; // polygons with < 3 points, strips with < 3 points
+  vtkIdType NumberOfInvalidCells = 0; // polygons/strips with < 3 points or bad point ids
 };
 
 inline bool IsFinite(const double p[3])
@@ -164,11 +164,25 @@ inline void TriangulateQuad(vtkPoints* pts, const vtkIdType* q, TriangleSoup& so
   soup.SourceCells.push_back(cellId);
 }
 
+inline bool IdsInRange(const vtkIdType* ids, vtkIdType n, vtkIdType numPoints)
+{
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    if (ids[i] < 0 || ids[i] >= numPoints)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 // Triangulates every polygon and strip of `input`. Vertices and lines are
-// counted and dropped: a ray tracer hits surfaces only.
+// counted and dropped: a ray tracer hits surfaces only. Cells with fewer
+// than 3 points or with point ids out of range are counted as invalid.
 inline void TriangulatePolyData(vtkPolyData* input, TriangleSoup& soup)
 {
   vtkPoints* pts = input->GetPoints();
+  const vtkIdType numPoints = input->GetNumberOfPoints();
   const vtkIdType nVerts = input->GetNumberOfVerts();
   const vtkIdType nLines = input->GetNumberOfLines();
   const vtkIdType nPolys = input->GetNumberOfPolys();
@@ -187,7 +201,7 @@ inline void TriangulatePolyData(vtkPolyData* input, TriangleSoup& soup)
     for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell(), ++cellId)
     {
       iter->GetCurrentCell(n, ids);
-      if (n < 3)
+      if (n < 3 || !IdsInRange(ids, n, numPoints))
       {
         ++soup.NumberOfInvalidCells;
       }
@@ -239,7 +253,7 @@ inline void TriangulatePolyData(vtkPolyData* input, TriangleSoup& soup)
     for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell(), ++cellId)
     {
       iter->GetCurrentCell(n, ids);
-      if (n < 3)
+      if (n < 3 || !IdsInRange(ids, n, numPoints))
       {
         ++soup.NumberOfInvalidCells;
         continue;

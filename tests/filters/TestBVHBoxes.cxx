@@ -249,6 +249,18 @@ void TestBadInput()
     "lines only: " << catcher->Errors);
   catcher->Clear();
 
+  vtkNew<vtkPolyData> corrupt;
+  corrupt->SetPoints(pts);
+  vtkNew<vtkCellArray> badPolys;
+  const vtkIdType bad[] = { 0, 1, 5 };
+  badPolys->InsertNextCell(3, bad);
+  corrupt->SetPolys(badPolys);
+  boxes->SetInputData(corrupt);
+  boxes->Update();
+  VTKRT_CHECK(catcher->Errors.find("no valid polygon") != std::string::npos,
+    "bad point ids: " << catcher->Errors);
+  catcher->Clear();
+
   // NaN triangles are skipped by the builder, not an error.
   vtkNew<vtkPolyData> withNaN;
   vtkNew<vtkPoints> p2;

@@ -348,6 +348,8 @@ void TestDegenerateAndNonManifold()
   {
     polys->InsertNextCell(3, f);
   }
+  const vtkIdType corrupt[] = { 0, 1, 99, 2 }; // a point id out of range
+  polys->InsertNextCell(4, corrupt);
   pd->SetPolys(polys);
   vtkNew<vtkOpenMeshClean> clean;
   clean->SetInputData(pd);
@@ -358,6 +360,7 @@ void TestDegenerateAndNonManifold()
   VTKRT_CHECK(clean->GetNumberOfNonFiniteFaces() == 1, "NaN face");
   VTKRT_CHECK(clean->GetNumberOfNonFinitePoints() == 1, "NaN point");
   VTKRT_CHECK(clean->GetNumberOfDuplicateFaces() == 1, "duplicate face");
+  VTKRT_CHECK(clean->GetNumberOfInvalidCells() == 1, "the cell with a bad point id");
   VTKRT_CHECK(clean->GetNumberOfNonManifoldEdges() == 1, "edge 0-1 is non-manifold");
   VTKRT_CHECK(clean->GetNumberOfBoundaryEdges() == 6, "six open edges");
   VTKRT_CHECK(clean->GetNumberOfRejectedFaces() == 1, "OpenMesh holds two of the three faces");

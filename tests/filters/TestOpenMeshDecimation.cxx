@@ -496,6 +496,19 @@ void TestBadInput()
   VTKRT_CHECK(decimate->GetOutput()->GetNumberOfCells() == 0, "empty output");
   catcher->Clear();
 
+  vtkNew<vtkPolyData> corrupt;
+  corrupt->SetPoints(pts);
+  vtkNew<vtkCellArray> badPolys;
+  const vtkIdType bad[] = { 0, 1, 7 };
+  badPolys->InsertNextCell(3, bad);
+  corrupt->SetPolys(badPolys);
+  decimate->SetInputData(corrupt);
+  decimate->Update();
+  VTKRT_CHECK(catcher->Errors.find("no valid polygon") != std::string::npos,
+    "bad point ids: " << catcher->Errors);
+  VTKRT_CHECK(decimate->GetOutput()->GetNumberOfPoints() == 0, "empty output");
+  catcher->Clear();
+
   auto withNaN = vtkSmartPointer<vtkPolyData>::New();
   withNaN->DeepCopy(Sphere(8, 8));
   withNaN->GetPoints()->SetPoint(3, std::numeric_limits<double>::quiet_NaN(), 0, 0);
