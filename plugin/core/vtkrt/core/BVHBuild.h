@@ -72,9 +72,17 @@ public:
     {
       sortByMortonCode();
     }
+    else if (Options.quality == BuildQuality::High)
+    {
+      presort();
+    }
     nodes.reserve(2 * Refs.size() / std::max<std::uint32_t>(1, Options.maxLeafSize) + 1);
     nodes.resize(1);
     buildNode(nodes, 0, 0, static_cast<std::uint32_t>(Refs.size()), 0);
+    if (Options.quality == BuildQuality::High)
+    {
+      finishPresorted();
+    }
     return nodes;
   }
 
@@ -83,6 +91,12 @@ private:
   BuildOptions Options;
   std::atomic<int> FreeThreads{ 0 };
   std::vector<std::uint64_t> Codes; ///< Fast only: Morton codes parallel to Refs, ascending
+  std::vector<std::uint32_t> Order[3]; ///< High only: Refs indices sorted per axis, by node range
+  std::vector<std::uint8_t> Side;      ///< High only: 1 = goes left in the current split
+  std::vector<std::uint32_t> Scratch;  ///< High only: partition buffer (disjoint ranges per task)
+
+  /// The primitive at position pos of the current order.
+  const BuildRef& refAt(std::uint32_t pos) const { return Order[0].empty() ? Refs[pos] : Refs[Order[0][pos]]; }
 
   /// Spreads the low 21 bits of x to every third bit.
   static std::uint64_t expandBits21(std::uint64_t x)
@@ -162,8 +176,9 @@ private:
     AABB<double> box;
     for (std::uint32_t i = begin; i < end; ++i)
     {
-      box.extend(Refs[i].box);
-      centroids.extend(Refs[i].centroid());
+      const BuildRef& r = refAt(i);
+      box.extend(r.box);
+      centroids.extend(r.centroid());
     }
     return box;
   }
@@ -185,6 +200,12 @@ private:
   {
     const std::uint32_t mid = begin + (end - begin) / 2;
     const Vec3<double> ext = centroids.diagonal();
+    if (!Order[0].empty())
+    {
+      const bool spread = ext.x > 0.0 || ext.y > 0.0 || ext.z > 0.0;
+      partitionPresorted(begin, end, spread ? centroids.largestAxis() : 0, mid - begin);
+      return mid;
+    }
     if (ext.x > 0.0 || ext.y > 0.0 || ext.z > 0.0)
     {
       const int axis = centroids.largestAxis();
@@ -308,7 +329,8 @@ private:
     return std::min(b, nb - 1);
   }
 
-  /// Full-sweep SAH: every primitive boundary in centroid order on each axis.
+  /// Full-sweep SAH: every primitive boundary in centroid order on each
+  /// axis, over the presorted orders (no sorting per node: O(n log n) in all).
   std::uint32_t sweepSplit(std::uint32_t begin, std::uint32_t end, const AABB<double>& box,
     const AABB<double>& centroids)
   {
@@ -316,7 +338,6 @@ private:
     std::vector<double> rightArea(count);
     double bestCost = std::numeric_limits<double>::infinity();
     int bestAxis = -1;
-    int sortedAxis = -1;
     std::uint32_t bestSplit = 0;
     for (int axis = 0; axis < 3; ++axis)
     {
@@ -324,18 +345,17 @@ private:
       {
         continue;
       }
-      sortedAxis = axis;
-      std::sort(Refs.begin() + begin, Refs.begin() + end, AxisLess{ axis });
+      const std::uint32_t* order = Order[axis].data() + begin;
       AABB<double> acc;
       for (std::uint32_t i = count - 1; i > 0; --i)
       {
-        acc.extend(Refs[begin + i].box);
+        acc.extend(Refs[order[i]].box);
         rightArea[i] = acc.halfArea();
       }
       acc = AABB<double>();
       for (std::uint32_t i = 1; i < count; ++i)
       {
-        acc.extend(Refs[begin + i - 1].box);
+        acc.extend(Refs[order[i - 1]].box);
         const double cost = acc.halfArea() * i + rightArea[i] * (count - i);
         if (cost < bestCost)
         {
@@ -356,11 +376,78 @@ private:
     {
       return end;
     }
-    if (bestAxis != sortedAxis)
-    {
-      std::sort(Refs.begin() + begin, Refs.begin() + end, AxisLess{ bestAxis });
-    }
+    partitionPresorted(begin, end, bestAxis, bestSplit);
     return begin + bestSplit;
+  }
+
+  /// High only: the first k entries of Order[axis][begin, end) go left; the
+  /// other two orders are partitioned the same way, stably, so each stays
+  /// sorted within both halves.
+  void partitionPresorted(std::uint32_t begin, std::uint32_t end, int axis, std::uint32_t k)
+  {
+    for (std::uint32_t i = begin; i < end; ++i)
+    {
+      Side[Order[axis][i]] = i < begin + k ? 1 : 0;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      if (a == axis)
+      {
+        continue;
+      }
+      std::uint32_t* order = Order[a].data();
+      std::uint32_t left = begin, right = begin;
+      for (std::uint32_t i = begin; i < end; ++i)
+      {
+        const std::uint32_t r = order[i];
+        if (Side[r])
+        {
+          order[left++] = r;
+        }
+        else
+        {
+          Scratch[right++] = r;
+        }
+      }
+      std::copy(Scratch.begin() + begin, Scratch.begin() + right, order + left);
+    }
+  }
+
+  /// High only: sort the three orders once; Refs stay put until finish.
+  void presort()
+  {
+    const std::uint32_t n = static_cast<std::uint32_t>(Refs.size());
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      Order[axis].resize(n);
+      for (std::uint32_t i = 0; i < n; ++i)
+      {
+        Order[axis][i] = i;
+      }
+      const AxisLess less{ axis };
+      std::sort(Order[axis].begin(), Order[axis].end(),
+        [&](std::uint32_t x, std::uint32_t y) { return less(Refs[x], Refs[y]); });
+    }
+    Side.assign(n, 0);
+    Scratch.resize(n);
+  }
+
+  /// High only: Refs in leaf order (any of the three orders, they agree on
+  /// every leaf range).
+  void finishPresorted()
+  {
+    std::vector<BuildRef> sorted(Refs.size());
+    for (std::size_t i = 0; i < Refs.size(); ++i)
+    {
+      sorted[i] = Refs[Order[0][i]];
+    }
+    Refs.swap(sorted);
+    for (auto& o : Order)
+    {
+      std::vector<std::uint32_t>().swap(o);
+    }
+    std::vector<std::uint8_t>().swap(Side);
+    std::vector<std::uint32_t>().swap(Scratch);
   }
 
   /// Where to split [begin, end), or `end` for a leaf.
