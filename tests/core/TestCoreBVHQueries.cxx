@@ -2,7 +2,8 @@
 // several leaf sizes, on random triangle soups, a noisy closed sphere and
 // random spheres: closest hit (hit/miss, primitive id where the nearest hit
 // is unique, t within 1e-12 relative), any hit, all hits, closest point
-// (distance, with and without a radius), box overlap. Also the packed float
+// (distance, with and without a radius), box overlap. Rays include
+// axis-aligned ones and origins lying exactly on node box planes. Also the packed float
 // GPU copy walked on the CPU: it must find every hit the double tree finds
 // away from edges (conservative boxes). Concurrent queries on one tree
 // give the sequential answers.
@@ -24,8 +25,8 @@ std::vector<Ray<double>> makeRays(Rng& rng, const MeshData& mesh, std::size_t co
   std::vector<Ray<double>> rays;
   for (std::size_t i = 0; i < count; ++i)
   {
-    const Vec3<double> org = rng.inBox(Vec3<double>(-1), Vec3<double>(2));
-    Vec3<double> dir;
+    Vec3<double> org = rng.inBox(Vec3<double>(-1), Vec3<double>(2));
+    Vec3<double> dir(0.0);
     if (i % 2 == 0 && mesh.triangleCount() > 0)
     {
       // Aim at a random point of a random triangle (hits likely).
@@ -37,6 +38,26 @@ std::vector<Ray<double>> makeRays(Rng& rng, const MeshData& mesh, std::size_t co
     else
     {
       dir = rng.unitVector() * rng.uniform(0.1, 3.0);
+    }
+    if (i % 5 == 1)
+    {
+      // Axis-aligned (zero direction components, as picks along an axis).
+      dir = Vec3<double>(0.0);
+      dir[i / 5 % 3] = (i / 15) % 2 ? 1.0 : -1.0;
+    }
+    if (i % 7 == 3 && mesh.triangleCount() > 0)
+    {
+      // Origin coordinates copied from a vertex: exactly on node box planes.
+      const Vec3<double>& v = mesh.vertices[mesh.indices[3 * rng.index(mesh.triangleCount())]];
+      org.x = v.x;
+      if (i % 2)
+      {
+        org.y = v.y;
+      }
+      if (dir.x != 0.0 && dir.y != 0.0 && dir.z != 0.0 && i % 3 == 0)
+      {
+        dir.x = 0.0; // and parallel to that plane
+      }
     }
     // Mix segments and half-infinite rays.
     const double tmax = i % 3 == 0 ? rng.uniform(0.2, 2.0) : std::numeric_limits<double>::infinity();
