@@ -154,7 +154,10 @@ inline float relativeUpper(double x, double origin)
 /// boxes relative to `origin` (use the same origin for the vertices, see
 /// LocalFrame.h) and rounded outward so float traversal never misses what
 /// double traversal would hit. Ready for glBufferData into an RGBA32F
-/// texture buffer (2 texels per node).
+/// texture buffer (2 texels per node). Triangle vertices rounded to nearest
+/// float always lie inside these boxes; a sphere whose float center and
+/// radius both round outward can poke out by about one float ulp (a
+/// sub-ulp silhouette difference, no missing geometry).
 inline std::vector<float> packNodesForGpu(
   const std::vector<BVHNode>& nodes, const Vec3<double>& origin = Vec3<double>(0.0))
 {
