@@ -11,6 +11,7 @@
 #include "vtkGenericDataObjectReader.h"
 #include "vtkGeometryFilter.h"
 #include "vtkGlyph3DMapper.h"
+#include "vtkLogger.h"
 #include "vtkLookupTable.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
@@ -247,13 +248,32 @@ class CapturingOutputWindow : public vtkOutputWindow
 public:
   static CapturingOutputWindow* New();
   vtkTypeMacro(CapturingOutputWindow, vtkOutputWindow);
-  bool Capturing = false;
   std::vector<std::string> Captured;
+
+  // While capturing, VTK's text is kept here and vtkLogger's own copy on
+  // stderr is muted; our one message replaces both.
+  void StartCapture()
+  {
+    this->Captured.clear();
+    this->Capturing = true;
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  }
+  void StopCapture()
+  {
+    if (this->Capturing)
+    {
+      this->Capturing = false;
+      // VTK 9.1 cannot query the level; INFO is loguru's default.
+      vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_INFO);
+    }
+  }
   void DisplayErrorText(const char* text) override { this->Handle(text); }
   void DisplayWarningText(const char* text) override { this->Handle(text); }
   void DisplayGenericWarningText(const char* text) override { this->Handle(text); }
 
 private:
+  bool Capturing = false;
+
   void Handle(const char* text)
   {
     if (this->Capturing)
@@ -300,8 +320,7 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, CapturingOutputWi
   }
   const std::string ext =
     vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path));
-  output->Captured.clear();
-  output->Capturing = true;
+  output->StartCapture();
   vtkSmartPointer<vtkDataObject> data;
   if (ext == ".vtp")
   {
@@ -340,7 +359,7 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, CapturingOutputWi
   }
   else
   {
-    output->Capturing = false;
+    output->StopCapture();
     throw Failure{ "cannot read mesh '" + path + "': unknown extension '" + ext +
         "' (expected .vtp .vtk .ply .obj .stl)",
       ExitRuntimeError };
@@ -355,7 +374,7 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, CapturingOutputWi
     surface->Update();
     mesh = surface->GetOutput();
   }
-  output->Capturing = false;
+  output->StopCapture();
   if (!output->Captured.empty())
   {
     throw Failure{ "cannot read mesh '" + path + "': " + MessageOf(output->Captured.front()),
@@ -584,6 +603,14 @@ int Run(const Options& opt)
     }
   }
 
+  // Fail before any work when the image cannot go where asked.
+  const std::string outputDir = vtksys::SystemTools::GetFilenamePath(opt.Output);
+  if (!outputDir.empty() && !vtksys::SystemTools::FileIsDirectory(outputDir))
+  {
+    throw Failure{ "cannot write '" + opt.Output + "': no directory '" + outputDir + "'",
+      ExitRuntimeError };
+  }
+
   const auto t0 = Clock::now();
   Scene scene;
   if (opt.Demo)
@@ -711,13 +738,12 @@ int Run(const Options& opt)
   grab->ReadFrontBufferOn();
   grab->ShouldRerenderOff();
   grab->Update();
-  output->Captured.clear();
-  output->Capturing = true;
+  output->StartCapture();
   vtkNew<vtkPNGWriter> writer;
   writer->SetInputConnection(grab->GetOutputPort());
   writer->SetFileName(opt.Output.c_str());
   writer->Write();
-  output->Capturing = false;
+  output->StopCapture();
   if (!output->Captured.empty() || !vtksys::SystemTools::FileExists(opt.Output, true))
   {
     throw Failure{ "cannot write '" + opt.Output + "'" +
