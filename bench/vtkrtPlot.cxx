@@ -149,7 +149,8 @@ bool WritePNG(const Chart& chart, const std::string& path)
     table->AddColumn(xs);
     table->AddColumn(ys);
 
-    vtkPlot* plot = xy->AddPlot(vtkChart::LINE);
+    // A line needs two points (VTK reports an error otherwise): markers only.
+    vtkPlot* plot = xy->AddPlot(xs->GetNumberOfTuples() >= 2 ? vtkChart::LINE : vtkChart::POINTS);
     plot->SetInputData(table, 0, 1);
     plot->SetLabel(s.Name);
     const unsigned char* pal = kPalette[index % 8];
@@ -183,21 +184,14 @@ bool WritePNG(const Chart& chart, const std::string& path)
   {
     MakeLogAxis(xy->GetAxis(vtkAxis::LEFT), range[1][0], range[1][1]);
   }
-  switch (chart.Legend)
-  {
-    case LegendCorner::TopLeft:
-      xy->GetLegend()->SetHorizontalAlignment(vtkChartLegend::LEFT);
-      break;
-    case LegendCorner::BottomLeft:
-      xy->GetLegend()->SetHorizontalAlignment(vtkChartLegend::LEFT);
-      xy->GetLegend()->SetVerticalAlignment(vtkChartLegend::BOTTOM);
-      break;
-    case LegendCorner::BottomRight:
-      xy->GetLegend()->SetVerticalAlignment(vtkChartLegend::BOTTOM);
-      break;
-    default:
-      break;
-  }
+  const LegendCorner corner = chart.Legend;
+  const bool bottom = corner == LegendCorner::BottomLeft || corner == LegendCorner::BottomCenter ||
+    corner == LegendCorner::BottomRight;
+  const bool left = corner == LegendCorner::TopLeft || corner == LegendCorner::BottomLeft;
+  const bool center = corner == LegendCorner::TopCenter || corner == LegendCorner::BottomCenter;
+  xy->GetLegend()->SetVerticalAlignment(bottom ? vtkChartLegend::BOTTOM : vtkChartLegend::TOP);
+  xy->GetLegend()->SetHorizontalAlignment(
+    left ? vtkChartLegend::LEFT : (center ? vtkChartLegend::CENTER : vtkChartLegend::RIGHT));
 
   window->Render();
 

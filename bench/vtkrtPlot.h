@@ -9,7 +9,8 @@
 
 namespace vtkrtPlot
 {
-/// One curve: points joined in the order given, each drawn with a marker.
+/// One curve: points joined in the order given, each drawn with a marker
+/// (a single point is drawn as a marker only).
 struct Series
 {
   std::string Name;
@@ -20,11 +21,14 @@ struct Series
   bool Dashed = false;
 };
 
+/// Where the legend goes inside the plot area (choose where no data is).
 enum class LegendCorner
 {
   TopRight,
+  TopCenter,
   TopLeft,
   BottomLeft,
+  BottomCenter,
   BottomRight
 };
 

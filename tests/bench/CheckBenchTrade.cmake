@@ -1,7 +1,8 @@
 # Runs `vtkrtBenchTrade --quick --out OUT` and checks what it wrote:
 # - trade.csv: the reference settings have zero error against themselves;
 #   decimating more removes triangles and raises the surface error; every
-#   BVH builder setting picks the same points (the locator is exact);
+#   BVH builder setting picks the same points (the locator is exact), and
+#   every vtkRayTracePass BuildQuality draws the same picture;
 # - precision.csv: the untranslated scene has zero pick error; picking with
 #   vtkBVHCellLocator stays exact to ~1e-6 of the object 1e8 units away, and
 #   the traced image stays close to the untranslated one;
@@ -111,6 +112,22 @@ endforeach ()
 if (builders LESS 3)
   fail("only ${builders} builder rows")
 endif ()
+set(pass_builders 0)
+foreach (r RANGE ${last})
+  if (t_${r}_knob STREQUAL "pass builder")
+    math(EXPR pass_builders "${pass_builders} + 1")
+    expect_le("${t_${r}_image_rmse}" 2 "pass BuildQuality ${t_${r}_setting} image RMSE vs HIGH")
+    if (t_${r}_setting STREQUAL "HIGH")
+      expect_le("${t_${r}_image_rmse}" 0 "pass BuildQuality HIGH against itself")
+    endif ()
+    if (NOT t_${r}_first_frame_s GREATER 0)
+      fail("pass BuildQuality ${t_${r}_setting}: no first frame time")
+    endif ()
+  endif ()
+endforeach ()
+if (NOT pass_builders EQUAL 3)
+  fail("${pass_builders} pass builder rows, expected 3")
+endif ()
 
 #------------------------------------------------------------------------------
 read_csv("${OUT}/precision.csv" p)
@@ -141,7 +158,7 @@ expect_le("${far_locator}" "${diag}e-6" "vtkBVHCellLocator pick error at transla
 expect_le("${far_traced}" 5 "traced image RMSE at translation ${max_t}")
 
 #------------------------------------------------------------------------------
-foreach (png trade_lod_frame trade_lod_first_frame trade_lod_error trade_builder
+foreach (png trade_lod_frame trade_lod_error trade_builder trade_pass_builder
     precision_pick precision_image)
   set(path "${OUT}/${png}.png")
   if (NOT EXISTS "${path}")
