@@ -41,6 +41,9 @@
 //   std::vector<float> nodes = packNodesForGpu(bvh, o);      // RGBA32F, 2 texels/node
 //   std::vector<float> verts = relativeFloatVertices(mesh.vertices, n, o);
 //   primIndex: bvh.primIndex (uint32) -> R32UI texture buffer
+// Threads: builds are deterministic whatever BuildOptions::numThreads; all
+// queries are const on the tree, but intersector objects cache per-ray data:
+// give each thread its own.
 #ifndef vtkrt_core_Core_h
 #define vtkrt_core_Core_h
 
