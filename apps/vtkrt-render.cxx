@@ -76,8 +76,9 @@ plus sphere glyphs) headless through EGL and writes a PNG.
   --samples N          samples per pixel (raster: MSAA samples; default 0)
   --frames N           orbit steps timed for the steady frame time (default 8;
                        0 skips them)
-  --pick X Y           pick the pixel (X, Y) of the image (origin top left)
-                       with vtkCellPicker; prints the cell id and world point
+  --pick X Y           pick the pixel (X, Y) of the image (origin top left;
+                       the ray through its centre) with vtkCellPicker; prints
+                       the cell id and world point (or the glyph sphere hit)
   --help               this text
 
 Exit status: 0 success, 1 runtime error (unreadable file, no EGL/GL context,
@@ -674,8 +675,9 @@ int Run(const Options& opt)
   if (opt.Pick)
   {
     pickReport << std::setprecision(9);
-    // Image rows run top down; VTK's display coordinates bottom up.
-    const double x = opt.PickX, y = opt.Height - 1 - opt.PickY;
+    // Image rows run top down, VTK's display coordinates bottom up; the ray
+    // goes through the pixel's centre, as the image's own rays do.
+    const double x = opt.PickX + 0.5, y = opt.Height - 1 - opt.PickY + 0.5;
     vtkNew<vtkCellPicker> picker;
     picker->SetTolerance(0.0);
     const std::string how = PrepareLocator(picker, scene.Mesh);
