@@ -177,8 +177,8 @@ void TestGlyphs()
     40.0);
 }
 // Several actors with transforms (translation, rotation, non-uniform and
-// mirroring scale); four share one polydata, which is stored (and built)
-// once: two-level BVH instances.
+// mirroring scale), one flat shaded; four share one polydata, which is
+// stored (and built) once: two-level BVH instances.
 void TestActors()
 {
   CompareWithRaster("Actors",
@@ -203,6 +203,10 @@ void TestActors()
         actor->SetPosition(1.2 * (i % 2), 1.2 * (i / 2), 0.1 * i);
         actor->RotateZ(25.0 * i);
         actor->SetScale(1.0 + 0.3 * i, 1.0, i == 2 ? -0.6 : 0.8);
+        if (i == 1)
+        {
+          actor->GetProperty()->SetInterpolationToFlat(); // faceted despite its normals
+        }
         ren->AddActor(actor);
       }
       vtkNew<vtkConeSource> cone;
@@ -397,8 +401,8 @@ void TestFallback()
     },
     40.0);
 }
-// vtkCompositePolyDataMapper2 over a multiblock (three meshes, one a
-// triangle-strip surface), and points drawn with RenderPointsAsSpheres.
+// vtkCompositePolyDataMapper2 over a multiblock of three meshes (one
+// without normals), over a gradient background.
 void TestComposite()
 {
   CompareWithRaster("Composite",
@@ -429,6 +433,8 @@ void TestComposite()
       actor->GetProperty()->SetSpecular(0.3);
       ren->AddActor(actor);
       ren->SetBackground(0.15, 0.15, 0.15);
+      ren->SetBackground2(0.4, 0.4, 0.6);
+      ren->GradientBackgroundOn();
       ren->ResetCamera();
       ren->GetActiveCamera()->Elevation(30);
       ren->ResetCameraClippingRange();
@@ -436,6 +442,7 @@ void TestComposite()
     40.0);
 }
 
+// Points of a mesh drawn with RenderPointsAsSpheres: analytic spheres.
 void TestPointsAsSpheres()
 {
   CompareWithRaster("PointsAsSpheres",
