@@ -13,6 +13,9 @@
 #include "vtkStaticPointLocator.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "vtkrt/core/BVHBuild.h"
+#include "vtkrt/core/BVHTraversal.h"
+
 #include <algorithm>
 #include <atomic>
 #include <deque>
@@ -61,6 +64,151 @@ enum FaceStatus : unsigned char
 // Relative to the longest edge squared: below this a triangle's height is
 // floating-point noise of its edge length.
 constexpr double DegenerateRatio = 1e-12;
+
+// Whether `p` is inside the closed surface made of `faces` (kept-face ids):
+// the parity of the crossings of a ray. A ray that grazes an edge or a
+// vertex is retried in another direction.
+bool InsideClosedSurface(const double p[3], vtkPoints* pts, const std::vector<Triangle>& triangles,
+  const std::vector<vtkIdType>& kept, const vtkIdType* faces, size_t count)
+{
+  static const double directions[3][3] = { { 0.5773502691896258, 0.5773502691896258,
+                                             0.5773502691896257 },
+    { -0.2672612419124244, 0.5345224838248488, 0.8017837257372732 },
+    { 0.7071067811865476, -0.4082482904638631, 0.5773502691896258 } };
+  constexpr double eps = 1e-9;
+  bool inside = false;
+  for (const auto& d : directions)
+  {
+    bool ambiguous = false;
+    size_t crossings = 0;
+    for (size_t i = 0; i < count && !ambiguous; ++i)
+    {
+      const Triangle& tri = triangles[kept[faces[i]]];
+      double a[3], b[3], c[3], e1[3], e2[3], h[3], sv[3], q[3];
+      pts->GetPoint(tri[0], a);
+      pts->GetPoint(tri[1], b);
+      pts->GetPoint(tri[2], c);
+      vtkMath::Subtract(b, a, e1);
+      vtkMath::Subtract(c, a, e2);
+      vtkMath::Cross(d, e2, h);
+      const double det = vtkMath::Dot(e1, h);
+      const double scale = vtkMath::Norm(e1) * vtkMath::Norm(e2);
+      if (std::abs(det) <= eps * scale)
+      {
+        continue; // the ray runs parallel to the face
+      }
+      vtkMath::Subtract(p, a, sv);
+      const double u = vtkMath::Dot(sv, h) / det;
+      vtkMath::Cross(sv, e1, q);
+      const double v = vtkMath::Dot(d, q) / det;
+      const double t = vtkMath::Dot(e2, q) / det;
+      if (u < -eps || v < -eps || u + v > 1 + eps || t < -eps * scale)
+      {
+        continue;
+      }
+      if (u < eps || v < eps || u + v > 1 - eps || t < eps * scale)
+      {
+        ambiguous = true; // through an edge or vertex, or p on the face
+        break;
+      }
+      ++crossings;
+    }
+    inside = crossings % 2 == 1;
+    if (!ambiguous)
+    {
+      break;
+    }
+  }
+  return inside;
+}
+
+// Turns each closed patch to face away from the solid it bounds: outward
+// (positive enclosed volume) for an outer shell, inward for a cavity's wall,
+// that is a patch inside an odd number of other closed patches. Candidates
+// for "contains" come from a BVH over the patches' bounds (the core's).
+void OrientClosedPatches(vtkPoints* pts, const std::vector<Triangle>& triangles,
+  const std::vector<vtkIdType>& kept, const std::vector<vtkIdType>& patchFaces,
+  const std::vector<size_t>& patchStart, const std::vector<unsigned char>& patchClosed,
+  std::vector<unsigned char>& flip)
+{
+  namespace core = vtkrt::core;
+  const size_t numPatches = patchClosed.size();
+  std::vector<core::AABB<double>> bounds(numPatches); // empty for open patches
+  std::vector<double> volume(numPatches, 0.0);
+  for (size_t patch = 0; patch < numPatches; ++patch)
+  {
+    if (!patchClosed[patch])
+    {
+      continue;
+    }
+    double origin[3];
+    pts->GetPoint(triangles[kept[patchFaces[patchStart[patch]]]][0], origin);
+    for (size_t i = patchStart[patch]; i < patchStart[patch + 1]; ++i)
+    {
+      const vtkIdType f = patchFaces[i];
+      const Triangle& tri = triangles[kept[f]];
+      double p[3][3];
+      for (int k = 0; k < 3; ++k)
+      {
+        pts->GetPoint(tri[k], p[k]);
+        bounds[patch].extend(core::Vec3<double>(p[k][0], p[k][1], p[k][2]));
+        for (int c = 0; c < 3; ++c)
+        {
+          p[k][c] -= origin[c];
+        }
+      }
+      const double det = vtkMath::Determinant3x3(p[0], p[1], p[2]);
+      volume[patch] += flip[f] ? -det : det;
+    }
+  }
+  core::BuildOptions options;
+  options.numThreads = 1;
+  const core::BVH bvh = core::buildBVH(bounds, options); // open patches skipped (empty bounds)
+  for (size_t patch = 0; patch < numPatches; ++patch)
+  {
+    if (!patchClosed[patch])
+    {
+      continue;
+    }
+    // A point of this patch: the centroid of its first face.
+    const Triangle& tri = triangles[kept[patchFaces[patchStart[patch]]]];
+    double probe[3] = { 0, 0, 0 };
+    for (int k = 0; k < 3; ++k)
+    {
+      double q[3];
+      pts->GetPoint(tri[k], q);
+      for (int c = 0; c < 3; ++c)
+      {
+        probe[c] += q[c] / 3.0;
+      }
+    }
+    const core::AABB<double>& box = bounds[patch];
+    size_t depth = 0;
+    core::queryBox(bvh, box,
+      [&](std::uint32_t other)
+      {
+        const core::AABB<double>& outer = bounds[other];
+        if (other == patch || !(outer.min.x <= box.min.x && outer.min.y <= box.min.y &&
+                                outer.min.z <= box.min.z && box.max.x <= outer.max.x &&
+                                box.max.y <= outer.max.y && box.max.z <= outer.max.z))
+        {
+          return;
+        }
+        depth += InsideClosedSurface(probe, pts, triangles, kept,
+                   patchFaces.data() + patchStart[other], patchStart[other + 1] - patchStart[other])
+          ? 1
+          : 0;
+      });
+    const bool cavity = depth % 2 == 1;
+    if ((volume[patch] < 0.0) != cavity)
+    {
+      for (size_t i = patchStart[patch]; i < patchStart[patch + 1]; ++i)
+      {
+        flip[patchFaces[i]] ^= 1;
+      }
+    }
+  }
+}
 
 } // namespace
 
@@ -363,8 +511,11 @@ int vtkOpenMeshClean::RequestData(
   // 6. Orientation: breadth-first over manifold edges, one patch at a time.
   std::vector<unsigned char> flip(numFaces, 0);
   std::vector<vtkIdType> patchOf(numFaces, -1);
+  std::vector<vtkIdType> patchFaces; // faces grouped by patch
+  std::vector<size_t> patchStart{ 0 };
+  std::vector<unsigned char> patchClosed;
+  patchFaces.reserve(numFaces);
   {
-    std::vector<vtkIdType> patchFaces;
     std::deque<vtkIdType> queue;
     for (vtkIdType seed = 0; seed < numFaces; ++seed)
     {
@@ -373,7 +524,7 @@ int vtkOpenMeshClean::RequestData(
         continue;
       }
       const vtkIdType patch = this->NumberOfComponents++;
-      patchFaces.clear();
+      const size_t first = patchFaces.size();
       patchOf[seed] = patch;
       queue.push_back(seed);
       bool closed = true;
@@ -402,50 +553,31 @@ int vtkOpenMeshClean::RequestData(
           }
         }
       }
+      patchStart.push_back(patchFaces.size());
+      patchClosed.push_back(closed ? 1 : 0);
       if (!this->ConsistentOrientation)
       {
         continue;
       }
       // Either orientation of a patch is consistent: keep the one that flips
-      // fewer input faces...
+      // fewer input faces (closed patches are settled below).
       size_t flipped = 0;
-      for (vtkIdType f : patchFaces)
+      for (size_t i = first; i < patchFaces.size(); ++i)
       {
-        flipped += flip[f];
+        flipped += flip[patchFaces[i]];
       }
-      bool invert = 2 * flipped > patchFaces.size();
-      // ...unless the patch is closed, where outward is the right answer:
-      // a positive enclosed volume.
-      if (closed && this->OrientClosedSurfacesOutward)
+      if (2 * flipped > patchFaces.size() - first)
       {
-        double origin[3];
-        inPts->GetPoint(face(patchFaces[0])[0], origin);
-        double volume = 0.0;
-        for (vtkIdType f : patchFaces)
+        for (size_t i = first; i < patchFaces.size(); ++i)
         {
-          const Triangle& tri = face(f);
-          double p[3][3];
-          for (int k = 0; k < 3; ++k)
-          {
-            inPts->GetPoint(tri[k], p[k]);
-            for (int c = 0; c < 3; ++c)
-            {
-              p[k][c] -= origin[c];
-            }
-          }
-          const double det = vtkMath::Determinant3x3(p[0], p[1], p[2]);
-          volume += flip[f] ? -det : det;
-        }
-        invert = volume < 0.0;
-      }
-      if (invert)
-      {
-        for (vtkIdType f : patchFaces)
-        {
-          flip[f] ^= 1;
+          flip[patchFaces[i]] ^= 1;
         }
       }
     }
+  }
+  if (this->ConsistentOrientation && this->OrientClosedSurfacesOutward)
+  {
+    OrientClosedPatches(inPts, soup.Triangles, kept, patchFaces, patchStart, patchClosed, flip);
   }
   for (vtkIdType f = 0; f < numFaces; ++f)
   {

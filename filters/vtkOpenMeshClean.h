@@ -14,7 +14,9 @@
  *    order) are removed;
  * 4. faces are oriented consistently across every manifold edge, per
  *    edge-connected patch (flipping as few faces as possible), and closed
- *    patches are turned to face outward;
+ *    patches are turned to face away from the solid they bound: outward, or
+ *    inward for the wall of a cavity (a closed patch inside an odd number of
+ *    other closed patches, by ray parity);
  * 5. the topology is reported: open (boundary) edges, non-manifold edges
  *    (more than two faces), edges whose two faces cannot agree on an
  *    orientation (Moebius-like patches), non-manifold vertices (whose faces
@@ -79,7 +81,8 @@ public:
   ///@{
   /**
    * Orient faces consistently within each patch (default on), and turn
-   * closed patches outward (default on).
+   * closed patches away from the solid they bound (default on): outward,
+   * inward for cavity walls.
    */
   vtkSetMacro(ConsistentOrientation, bool);
   vtkGetMacro(ConsistentOrientation, bool);

@@ -4,6 +4,7 @@
 
 #include "vtkOpenMeshClean.h"
 
+#include "vtkAppendPolyData.h"
 #include "vtkCellData.h"
 #include "vtkCleanPolyData.h"
 #include "vtkCubeSource.h"
@@ -512,6 +513,59 @@ void TestTeapot(const std::string& path)
     "rejections agree with OpenMesh");
 }
 
+void TestNestedShells()
+{
+  // Three concentric spheres (radius 3, 2, 1) and one beside them, all
+  // wound outward by their source: the radius-2 shell is the wall of a
+  // cavity and must face inward; the others outward.
+  vtkNew<vtkAppendPolyData> append;
+  const double radii[] = { 3.0, 2.0, 1.0, 0.5 };
+  const double centers[][3] = { { 0, 0, 0 }, { 0.1, 0, 0 }, { 0.2, 0.1, 0 }, { 10, 0, 0 } };
+  vtkIdType facesPerSphere = 0;
+  for (int i = 0; i < 4; ++i)
+  {
+    vtkNew<vtkSphereSource> sphere;
+    sphere->SetRadius(radii[i]);
+    sphere->SetCenter(centers[i][0], centers[i][1], centers[i][2]);
+    sphere->SetThetaResolution(24);
+    sphere->SetPhiResolution(12);
+    sphere->Update();
+    facesPerSphere = sphere->GetOutput()->GetNumberOfPolys();
+    append->AddInputData(sphere->GetOutput());
+  }
+  vtkNew<vtkOpenMeshClean> clean;
+  clean->SetInputConnection(append->GetOutputPort());
+  clean->Update();
+  vtkPolyData* out = clean->GetOutput();
+  VTKRT_CHECK(clean->GetNumberOfComponents() == 4, "four shells");
+  VTKRT_CHECK(clean->IsClosedManifold(), "all closed");
+  VTKRT_CHECK(clean->GetNumberOfFlippedFaces() == facesPerSphere, "only the cavity wall flipped");
+  // Per shell, faces point away from (+1) or toward (-1) its center.
+  for (int i = 0; i < 4; ++i)
+  {
+    int away = 0, toward = 0;
+    for (vtkIdType c = i * facesPerSphere; c < (i + 1) * facesPerSphere; ++c)
+    {
+      vtkIdType n;
+      const vtkIdType* ids;
+      out->GetPolys()->GetCellAtId(c, n, ids);
+      double a[3], b[3], d[3], u[3], v[3], nrm[3], r[3];
+      out->GetPoint(ids[0], a);
+      out->GetPoint(ids[1], b);
+      out->GetPoint(ids[2], d);
+      vtkMath::Subtract(b, a, u);
+      vtkMath::Subtract(d, a, v);
+      vtkMath::Cross(u, v, nrm);
+      vtkMath::Subtract(a, centers[i], r);
+      (vtkMath::Dot(nrm, r) > 0 ? away : toward)++;
+    }
+    const bool wantAway = i != 1;
+    VTKRT_CHECK((wantAway ? away : toward) == facesPerSphere,
+      "shell " << i << (wantAway ? " faces outward" : " (cavity wall) faces inward") << ": "
+               << away << " away, " << toward << " toward");
+  }
+}
+
 void TestBadInput()
 {
   vtkNew<vtkrt_test::ErrorCatcher> catcher;
@@ -620,6 +674,7 @@ int main(int argc, char* argv[])
   TestMoebiusStripIsInconsistent();
   TestPlatonicSolidsFaceOutward();
   TestNonManifoldVertices();
+  TestNestedShells();
   TestBadInput();
   TestBunny(argc > 1 ? argv[1] : "");
   TestTeapot(argc > 2 ? argv[2] : "");
