@@ -3,15 +3,15 @@
 #include "vtkOpenMeshInternals.h"
 
 #include "vtkCellData.h"
-#include "vtkGenericCell.h"
-#include "vtkStaticCellLocator.h"
 #include "vtkFieldData.h"
+#include "vtkGenericCell.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
+#include "vtkStaticCellLocator.h"
 
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
@@ -22,11 +22,11 @@
 #pragma GCC diagnostic ignored "-Wdeprecated-copy"
 #pragma GCC diagnostic ignored "-Wsign-compare"
 #endif
+#include <OpenMesh/Core/Geometry/QuadricT.hh>
 #include <OpenMesh/Tools/Decimater/CollapseInfoT.hh>
 #include <OpenMesh/Tools/Decimater/ModAspectRatioT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalDeviationT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
-#include <OpenMesh/Core/Geometry/QuadricT.hh>
 #if defined(__GNUC__)
 #pragma GCC diagnostic pop
 #endif
@@ -465,10 +465,11 @@ struct DecimationLimits
   double BoundaryWeight = 1.0;
 };
 
-// Greedy halfedge collapses in quadric order (OpenMesh's DecimaterT loop),
-// with OpenMesh's modules for priority and shape limits. The distance guard
-// is costly, so it runs only on the collapse about to happen; a refused
-// halfedge is skipped until its neighbourhood changes.
+// Greedy halfedge collapses in quadric order: OpenMesh's DecimaterT loop,
+// rewritten so that the distance guard, which is costly, runs only on the
+// collapse about to happen rather than on every candidate the heap weighs
+// (a refused halfedge is skipped until its neighbourhood changes).
+// OpenMesh's modules still judge normals and shapes.
 void Decimate(Mesh& mesh, size_t targetFaces, const DecimationLimits& limits, vtkStaticCellLocator* input)
 {
   namespace D = OpenMesh::Decimater;

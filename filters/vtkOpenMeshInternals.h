@@ -57,7 +57,9 @@ using OpenMeshTriMesh = OpenMesh::TriMesh_ArrayKernelT<OpenMeshTraits>;
 
 // OpenMesh reports rejected faces ("complex edge") on its global error
 // stream. The filters count those rejections themselves, so the stream is
-// muted for the lifetime of this guard.
+// muted for the lifetime of this guard. The stream is process-wide: filters
+// running concurrently in several threads may restore it early or late
+// (only OpenMesh's messages are affected).
 class OpenMeshErrorMute
 {
 public:
