@@ -189,6 +189,8 @@ Result Measure(const Peer& peer, vtkPolyData* pd, const std::vector<Segment>& se
     r.BuildSeconds = std::min(r.BuildSeconds, Seconds(t0, Clock::now()));
     peer.Destroy(loc);
   }
+  r.RaysTimed = std::min(static_cast<int>(segs.size()), peer.MaxRays);
+  std::vector<double> ts(static_cast<size_t>(r.RaysTimed), -1.0);
   const long long heap0 = HeapInUse();
   void* loc = peer.Create(pd);
   peer.Build(loc);
@@ -197,8 +199,6 @@ Result Measure(const Peer& peer, vtkPolyData* pd, const std::vector<Segment>& se
   peer.Query(loc, segs[0], t);
   r.HeapBytes = HeapInUse() - heap0;
 
-  r.RaysTimed = std::min(static_cast<int>(segs.size()), peer.MaxRays);
-  std::vector<double> ts(static_cast<size_t>(r.RaysTimed), -1.0);
   const double c0 = ThreadSeconds();
   for (int i = 0; i < r.RaysTimed; ++i)
   {
@@ -474,6 +474,11 @@ void RunMesh(const std::string& name, vtkPolyData* pd, int rays, bool quick)
 
 int main(int argc, char* argv[])
 {
+  // glibc's default malloc returns big blocks to the kernel and page-faults
+  // them back on the next build, which dominates build times on this VM
+  // (NOTES-vtk91.md): same setting for every peer.
+  mallopt(M_MMAP_THRESHOLD, 256 << 20);
+  mallopt(M_TRIM_THRESHOLD, 512 << 20);
   bool big = false, quick = false;
   int rays = 100000;
   for (int i = 1; i < argc; ++i)

@@ -31,6 +31,7 @@
 #include "vtkrt/core/Triangle.h"
 
 #include <emmintrin.h> // SSE2: both children of a node in one slab test
+#include <xmmintrin.h> // _mm_prefetch
 
 #include <algorithm>
 #include <cmath>
@@ -730,6 +731,21 @@ private:
       {
         const float* a = nodes.data + 8 * static_cast<std::size_t>(index);
         const float* b = a + 8;
+        // Both children share this cache line: start fetching what each
+        // leads to (their children pairs, or their first primitives) while
+        // their boxes are tested.
+        for (const float* c : { a, b })
+        {
+          const std::uint32_t ci = core::floatBitsToUint(c[3]);
+          if (core::floatBitsToUint(c[7]) == 0)
+          {
+            _mm_prefetch(reinterpret_cast<const char*>(nodes.data + 8 * static_cast<std::size_t>(ci)), _MM_HINT_T0);
+          }
+          else if (primIndex[ci] < this->TriCell.size())
+          {
+            _mm_prefetch(reinterpret_cast<const char*>(this->TriV.data() + 3 * static_cast<std::size_t>(primIndex[ci])), _MM_HINT_T0);
+          }
+        }
         __m128d t0v = tmin0;
         __m128d t1v = _mm_set1_pd(ray.tmax);
         for (int axis = 0; axis < 3; ++axis)
