@@ -12,6 +12,8 @@
 #include "vtkCompositePolyDataMapper2.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
+#include "vtkDataObjectTree.h"
+#include "vtkDataObjectTreeIterator.h"
 #include "vtkGlyph3DMapper.h"
 #include "vtkInformation.h"
 #include "vtkMath.h"
@@ -237,6 +239,70 @@ vtkDataArray* glyphArray(vtkGlyph3DMapper* mapper, int idx, vtkDataSet* input)
   return nullptr;
 }
 
+/// A polydata leaf of a composite input with its inherited block color.
+struct Piece
+{
+  vtkPolyData* Poly;
+  bool HasColor;
+  std::array<double, 3> Color;
+};
+
+/// Walks a composite dataset as vtkCompositePolyDataMapper2 does: block
+/// visibility, color and opacity apply to the block and everything below
+/// it. Returns false when something cannot be traced (a translucent block,
+/// a non-polydata leaf).
+bool collectPieces(vtkDataObject* object, vtkCompositeDataDisplayAttributes* attributes,
+  bool visible, double opacity, Piece inherited, std::vector<Piece>& pieces)
+{
+  if (!object)
+  {
+    return true;
+  }
+  if (attributes)
+  {
+    if (attributes->HasBlockVisibility(object))
+    {
+      visible = attributes->GetBlockVisibility(object);
+    }
+    if (attributes->HasBlockOpacity(object))
+    {
+      opacity = attributes->GetBlockOpacity(object);
+    }
+    if (attributes->HasBlockColor(object))
+    {
+      inherited.HasColor = true;
+      attributes->GetBlockColor(object, inherited.Color.data());
+    }
+  }
+  if (auto* poly = vtkPolyData::SafeDownCast(object))
+  {
+    if (!visible)
+    {
+      return true;
+    }
+    if (opacity < 1.0)
+    {
+      return false;
+    }
+    inherited.Poly = poly;
+    pieces.push_back(inherited);
+    return true;
+  }
+  if (auto* tree = vtkDataObjectTree::SafeDownCast(object))
+  {
+    auto it = vtk::TakeSmartPointer(tree->NewTreeIterator());
+    it->TraverseSubTreeOff();
+    it->VisitOnlyLeavesOff();
+    bool ok = true;
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      ok = collectPieces(it->GetCurrentDataObject(), attributes, visible, opacity, inherited, pieces) && ok;
+    }
+    return ok;
+  }
+  return false;
+}
+
 } // namespace
 
 std::string Features::Key() const
@@ -367,7 +433,7 @@ Colors* Scene::GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time
 }
 
 bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
-  vtkRenderer* ren, FrameCounters& counters)
+  vtkRenderer* ren, FrameCounters& counters, const double* blockColor)
 {
   vtkProperty* property = actor->GetProperty();
   const bool pointsAsSpheres = property->GetRenderPointsAsSpheres() &&
@@ -376,6 +442,15 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
   Instance inst;
   inst.PropIndex = propIndex;
   this->FillMaterial(actor, mapper, inst);
+  if (blockColor)
+  {
+    // A block color replaces the ambient and diffuse colors.
+    for (int k = 0; k < 3; ++k)
+    {
+      inst.Ambient[k] = static_cast<float>(property->GetAmbient() * blockColor[k]);
+      inst.Diffuse[k] = static_cast<float>(property->GetDiffuse() * blockColor[k]);
+    }
+  }
 
   if (property->GetRepresentation() == VTK_SURFACE &&
     (poly->GetNumberOfPolys() > 0 || poly->GetNumberOfStrips() > 0))
@@ -639,49 +714,36 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
       mapper->Update();
       vtkDataObject* input = mapper->GetInputDataObject(0, 0);
       const bool pointsAsSpheres = actor->GetProperty()->GetRenderPointsAsSpheres();
-      std::vector<vtkPolyData*> pieces;
+      std::vector<Piece> pieces;
       ok = true;
       if (auto* poly = vtkPolyData::SafeDownCast(input))
       {
-        pieces.push_back(poly);
+        pieces.push_back({ poly, false, { { 0, 0, 0 } } });
       }
-      else if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
+      else if (vtkCompositeDataSet::SafeDownCast(input))
       {
         vtkCompositeDataDisplayAttributes* attributes = nullptr;
         if (auto* m2 = vtkCompositePolyDataMapper2::SafeDownCast(mapper))
         {
           attributes = m2->GetCompositeDataDisplayAttributes();
         }
-        auto it = vtk::TakeSmartPointer(composite->NewIterator());
-        for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
-        {
-          vtkDataObject* leaf = it->GetCurrentDataObject();
-          auto* poly = vtkPolyData::SafeDownCast(leaf);
-          if (!poly)
-          {
-            ok = ok && leaf == nullptr;
-            continue;
-          }
-          if (attributes && attributes->HasBlockVisibility(poly) && !attributes->GetBlockVisibility(poly))
-          {
-            continue;
-          }
-          pieces.push_back(poly);
-        }
+        Piece root{ nullptr, false, { { 0, 0, 0 } } };
+        ok = collectPieces(input, attributes, true, 1.0, root, pieces);
       }
       else if (input)
       {
         ok = false;
       }
-      for (vtkPolyData* poly : pieces)
+      for (const Piece& piece : pieces)
       {
-        ok = ok && !hasUntraceableCells(poly, pointsAsSpheres);
+        ok = ok && !hasUntraceableCells(piece.Poly, pointsAsSpheres);
       }
       if (ok)
       {
-        for (vtkPolyData* poly : pieces)
+        for (const Piece& piece : pieces)
         {
-          this->AddPolyData(actor, mapper, poly, propIndex, ren, counters);
+          this->AddPolyData(actor, mapper, piece.Poly, propIndex, ren, counters,
+            piece.HasColor ? piece.Color.data() : nullptr);
         }
       }
     }

@@ -154,7 +154,7 @@ public:
 
 private:
   bool AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
-    vtkRenderer* ren, FrameCounters& counters);
+    vtkRenderer* ren, FrameCounters& counters, const double* blockColor = nullptr);
   bool AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, FrameCounters& counters);
   Colors* GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time);
   void FillMaterial(vtkActor* actor, vtkMapper* mapper, Instance& inst) const;

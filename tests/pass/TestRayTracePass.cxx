@@ -22,6 +22,8 @@
 #include "vtkSphereSource.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtkCellData.h"
+#include "vtkColor.h"
+#include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkCompositePolyDataMapper2.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkConeSource.h"
@@ -401,8 +403,9 @@ void TestFallback()
     },
     40.0);
 }
-// vtkCompositePolyDataMapper2 over a multiblock of three meshes (one
-// without normals), over a gradient background.
+// vtkCompositePolyDataMapper2 over a multiblock of meshes (one without
+// normals; block colors, one inherited; a hidden block), over a gradient
+// background.
 void TestComposite()
 {
   CompareWithRaster("Composite",
@@ -425,8 +428,31 @@ void TestComposite()
         }
         blocks->SetBlock(i, poly);
       }
+      // A nested multiblock: its color is inherited by its two leaves, one
+      // of which is hidden.
+      vtkNew<vtkMultiBlockDataSet> nested;
+      nested->SetNumberOfBlocks(2);
+      for (int i = 0; i < 2; ++i)
+      {
+        vtkNew<vtkSphereSource> sphere;
+        sphere->SetCenter(0.6 + 1.2 * i, 1.1, 0.2);
+        sphere->SetRadius(0.35);
+        sphere->SetThetaResolution(24);
+        sphere->SetPhiResolution(16);
+        sphere->Update();
+        vtkNew<vtkPolyData> poly;
+        poly->DeepCopy(sphere->GetOutput());
+        nested->SetBlock(i, poly);
+      }
+      blocks->SetNumberOfBlocks(4);
+      blocks->SetBlock(3, nested);
       vtkNew<vtkCompositePolyDataMapper2> mapper;
       mapper->SetInputDataObject(blocks);
+      vtkNew<vtkCompositeDataDisplayAttributes> attributes;
+      attributes->SetBlockColor(nested, vtkColor3d(1.0, 0.4, 0.2).GetData());
+      attributes->SetBlockVisibility(nested->GetBlock(1), false);
+      attributes->SetBlockColor(blocks->GetBlock(0), vtkColor3d(0.9, 0.9, 0.3).GetData());
+      mapper->SetCompositeDataDisplayAttributes(attributes);
       vtkNew<vtkActor> actor;
       actor->SetMapper(mapper);
       actor->GetProperty()->SetColor(0.4, 0.8, 0.9);
