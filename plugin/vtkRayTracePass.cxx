@@ -284,6 +284,8 @@ const char* vtkRayTracePass::GetLastFragmentShaderSource() const
 void vtkRayTracePass::ReleaseGraphicsResources(vtkWindow* w)
 {
   this->Internal->ReleaseGL(w);
+  // The window may be going away: the next Render starts afresh.
+  this->Internal->Window = nullptr;
   if (this->DelegatePass)
   {
     this->DelegatePass->ReleaseGraphicsResources(w);

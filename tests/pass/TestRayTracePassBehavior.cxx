@@ -883,6 +883,42 @@ void TestClassification()
   NoVTKOutput("classification");
 }
 
+// Removing the pass gives raster back; the pass survives its window being
+// destroyed and renders the same renderer in a new window.
+void TestLifecycle()
+{
+  vtkNew<vtkRenderer> ren;
+  ren->AddActor(MeshActor(ReadPolyData("bunny.vtp")));
+  ren->SetBackground(0.1, 0.2, 0.3);
+  ren->ResetCamera();
+  vtkNew<vtkRayTracePass> pass;
+  vtkSmartPointer<vtkImageData> raster, traced;
+  {
+    auto win = MakeWindow(160, 160);
+    win->AddRenderer(ren);
+    win->Render();
+    raster = Grab(win);
+    ren->SetPass(pass);
+    win->Render();
+    traced = Grab(win);
+    ren->SetPass(nullptr);
+    win->Render();
+    Check(Difference(Grab(win), raster) == 0.0, "pass removed: the raster image is back");
+    ren->SetPass(pass);
+    win->Render();
+    win->RemoveRenderer(ren);
+    win->Finalize();
+  }
+  auto win2 = MakeWindow(160, 160);
+  win2->AddRenderer(ren);
+  win2->Render();
+  Check(pass->GetLastGeometryBytesUploaded() > 0 && pass->GetLastShaderCompiles() == 1,
+    "new window: geometry uploaded and shader compiled again");
+  Check(Difference(Grab(win2), traced) == 0.0, "new window: the same traced image");
+  NoGLError(win2, "lifecycle");
+  NoVTKOutput("lifecycle");
+}
+
 void TestApp()
 {
   if (AppPath.empty())
@@ -941,6 +977,7 @@ int main(int argc, char* argv[])
     { "IdPick", TestIdPick },
     { "ManyActors", TestManyActors },
     { "Classification", TestClassification },
+    { "Lifecycle", TestLifecycle },
     { "App", TestApp },
   };
   const std::string which = argc > 1 ? argv[1] : "";
