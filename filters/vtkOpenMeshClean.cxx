@@ -738,12 +738,14 @@ int vtkOpenMeshClean::RequestData(
     });
   output->SetPoints(outPts);
 
-  vtkPointData* inPD = input->GetPointData();
+  std::vector<std::string> dropped;
+  auto inPD = vtkrt_filters::ArraysWithTuples(
+    input->GetPointData(), numInPoints, "point:", dropped);
   vtkPointData* outPD = output->GetPointData();
-  outPD->CopyAllocate(inPD, numOutPoints);
+  outPD->CopyAllocate(inPD.Get(), numOutPoints);
   for (vtkIdType i = 0; i < numOutPoints; ++i)
   {
-    outPD->CopyData(inPD, outToIn[i], i);
+    outPD->CopyData(inPD.Get(), outToIn[i], i);
   }
 
   // 9. Output triangles, oriented, with their cells' data.
@@ -774,12 +776,13 @@ int vtkOpenMeshClean::RequestData(
   polys->SetData(offsets, connectivity);
   output->SetPolys(polys);
 
-  vtkCellData* inCD = input->GetCellData();
+  auto inCD = vtkrt_filters::ArraysWithTuples(
+    input->GetCellData(), input->GetNumberOfCells(), "cell:", dropped);
   vtkCellData* outCD = output->GetCellData();
-  outCD->CopyAllocate(inCD, numFaces);
+  outCD->CopyAllocate(inCD.Get(), numFaces);
   for (vtkIdType f = 0; f < numFaces; ++f)
   {
-    outCD->CopyData(inCD, soup.SourceCells[kept[f]], f);
+    outCD->CopyData(inCD.Get(), soup.SourceCells[kept[f]], f);
   }
   if (vtkDataArray* cellNormals = outCD->GetNormals())
   {
@@ -867,6 +870,7 @@ int vtkOpenMeshClean::RequestData(
   vtkrt_filters::AddFieldCount(fd, "NumberOfBoundaryLoops", this->NumberOfBoundaryLoops);
   vtkrt_filters::AddFieldCount(fd, "NumberOfRejectedFaces", this->NumberOfRejectedFaces);
   vtkrt_filters::AddFieldCount(fd, "IsClosedManifold", this->IsClosedManifold() ? 1 : 0);
+  vtkrt_filters::AddFieldStrings(fd, "DroppedArrays", dropped);
 
   if (this->GenerateProblemEdges && !problemEdges.empty())
   {

@@ -29,7 +29,9 @@
  * after Update()). Point data follows the weld (each output point takes the
  * attributes of the lowest-id input point merged into it); cell data follows
  * the face each triangle came from, with cell normals negated on flipped
- * faces. Unused points are not passed.
+ * faces. Unused points are not passed. Arrays with fewer tuples than points
+ * (or cells) are malformed: they are dropped and named in the field data
+ * string array "DroppedArrays" ("point:Name", "cell:Name").
  *
  * Output port 1 (when GenerateProblemEdges is on) holds the problem edges as
  * two-point lines sharing output 0's points, with a cell array "EdgeType":

@@ -861,12 +861,14 @@ int vtkOpenMeshDecimation::RequestData(
       }
     });
   output->SetPoints(outPts);
-  vtkPointData* inPD = input->GetPointData();
+  std::vector<std::string> dropped;
+  auto inPD = vtkrt_filters::ArraysWithTuples(
+    input->GetPointData(), numInPoints, "point:", dropped);
   vtkPointData* outPD = output->GetPointData();
-  outPD->CopyAllocate(inPD, numOutPoints);
+  outPD->CopyAllocate(inPD.Get(), numOutPoints);
   for (vtkIdType i = 0; i < numOutPoints; ++i)
   {
-    outPD->CopyData(inPD, outToIn[i], i);
+    outPD->CopyData(inPD.Get(), outToIn[i], i);
   }
 
   // Output triangles: the decimated faces, then the passed-through ones.
@@ -899,18 +901,18 @@ int vtkOpenMeshDecimation::RequestData(
 
   // Cell data from the face each triangle descends from; cell normals no
   // longer describe the moved faces.
-  std::vector<std::string> dropped;
-  vtkCellData* inCD = input->GetCellData();
+  auto inCD = vtkrt_filters::ArraysWithTuples(
+    input->GetCellData(), input->GetNumberOfCells(), "cell:", dropped);
   vtkCellData* outCD = output->GetCellData();
   if (vtkDataArray* normals = inCD->GetNormals())
   {
     dropped.push_back(std::string("cell:") + (normals->GetName() ? normals->GetName() : "Normals"));
     outCD->CopyNormalsOff();
   }
-  outCD->CopyAllocate(inCD, numOutFaces);
+  outCD->CopyAllocate(inCD.Get(), numOutFaces);
   for (vtkIdType f = 0; f < numOutFaces; ++f)
   {
-    outCD->CopyData(inCD, sourceCell[f], f);
+    outCD->CopyData(inCD.Get(), sourceCell[f], f);
   }
 
   vtkFieldData* fd = output->GetFieldData();

@@ -34,7 +34,9 @@
  * point is an input point and all point data is carried unchanged. Cell data
  * is carried from the input face each output triangle descends from, except
  * cell normals, which no longer hold; the names of arrays not carried are
- * listed in the output's field data string array "DroppedArrays".
+ * listed in the output's field data string array "DroppedArrays" (as
+ * "cell:Name" or "point:Name"), along with any array shorter than its
+ * points or cells (malformed input, never read past its end).
  *
  * Polygons and strips are triangulated first; vertices and lines are
  * dropped (counted in field data). Faces OpenMesh's halfedge structure

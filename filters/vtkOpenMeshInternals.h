@@ -15,6 +15,7 @@
 #include "vtkPolyData.h"
 #include "vtkPolygon.h"
 #include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 
 // OpenMesh's headers are not warning-clean under -Wall -Wextra: keep their
@@ -275,6 +276,27 @@ inline void TriangulatePolyData(vtkPolyData* input, TriangleSoup& soup)
       }
     }
   }
+}
+
+// A shallow copy of `in` without the arrays that have fewer than `count`
+// tuples (malformed input: copying from them would read past their end);
+// their names, prefixed, go to `dropped`.
+template <class Attributes>
+vtkSmartPointer<Attributes> ArraysWithTuples(
+  Attributes* in, vtkIdType count, const char* prefix, std::vector<std::string>& dropped)
+{
+  auto out = vtkSmartPointer<Attributes>::New();
+  out->ShallowCopy(in);
+  for (int i = out->GetNumberOfArrays() - 1; i >= 0; --i)
+  {
+    vtkAbstractArray* a = out->GetAbstractArray(i);
+    if (a && a->GetNumberOfTuples() < count)
+    {
+      dropped.push_back(std::string(prefix) + (a->GetName() ? a->GetName() : "(unnamed)"));
+      out->RemoveArray(i);
+    }
+  }
+  return out;
 }
 
 inline void AddFieldCount(vtkFieldData* fd, const char* name, vtkIdType value)

@@ -294,6 +294,14 @@ void TestNonManifoldAndDegenerate()
             << decimate->GetNumberOfLockedVertices() << std::endl;
   VTKRT_CHECK(catcher->Errors.empty() && catcher->Warnings.empty(), "no message");
   VTKRT_CHECK(decimate->GetNumberOfPassedThroughFaces() >= 1, "the third face on the edge");
+  // The sphere's normals were not extended to the two added points: a
+  // malformed array is dropped and named, never read past its end.
+  auto* dropped =
+    vtkStringArray::SafeDownCast(out->GetFieldData()->GetAbstractArray("DroppedArrays"));
+  VTKRT_CHECK(dropped && dropped->GetNumberOfValues() == 1 &&
+      dropped->GetValue(0) == "point:Normals",
+    "short normals array dropped");
+  VTKRT_CHECK(out->GetPointData()->GetNormals() == nullptr, "and not in the output");
   VTKRT_CHECK(std::abs(out->GetNumberOfPolys() - 300) <= CountTolerance, "on target");
   // The points of the passed-through faces survive.
   bool apexKept = false;
