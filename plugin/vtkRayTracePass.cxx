@@ -125,6 +125,8 @@ struct vtkRayTracePass::Internals
   bool GeometryOnGpu = false;
   bool ColorsOnGpu = false;
   bool GeometryValid = true;
+  bool ColorsValid = true;
+  std::size_t CheckedLimit = 0; ///< the texel limit the buffers were checked against
 
   TextureBuffer Nodes, Triangles, TriangleVertices, Spheres, SphereIds, Normals, Colors, Instances;
 
@@ -400,7 +402,10 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
   {
     limit = std::min(limit, static_cast<std::size_t>(this->MaximumTextureBufferTexels));
   }
-  if (in.Scene.GeometryChanged() || !in.GeometryOnGpu)
+  // A scene refused for its size is tried again when the limit changes.
+  const bool limitChanged = limit != in.CheckedLimit;
+  in.CheckedLimit = limit;
+  if (in.Scene.GeometryChanged() || !in.GeometryOnGpu || (!in.GeometryValid && limitChanged))
   {
     std::vector<float> nodes, tris, triVerts, spheres, sphereIds, normals;
     in.Scene.PackGeometry(nodes, tris, triVerts, spheres, sphereIds, normals);
@@ -429,16 +434,16 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     }
     in.GeometryOnGpu = true;
   }
-  if (in.Scene.ColorsChanged() || !in.ColorsOnGpu)
+  if (in.Scene.ColorsChanged() || !in.ColorsOnGpu || (!in.ColorsValid && limitChanged))
   {
     std::vector<float> colors;
     in.Scene.PackColors(colors);
-    if (colors.size() / 4 > limit)
+    in.ColorsValid = colors.size() / 4 <= limit;
+    if (!in.ColorsValid)
     {
       vtkErrorMacro("The ray-traced scene's colors need " << colors.size() / 4
                                                           << " texels, more than the limit of "
                                                           << limit << ": nothing is traced.");
-      in.GeometryValid = false;
     }
     else
     {
@@ -448,7 +453,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
   }
 
   const std::vector<Instance>& instances = in.Scene.GetInstances();
-  if (!instances.empty() && in.GeometryValid)
+  if (!instances.empty() && in.GeometryValid && in.ColorsValid)
   {
     // Camera: VTK's own matrices (the ones raster uses), made relative to
     // the eye in double.
