@@ -176,13 +176,28 @@ bool WritePNG(const Chart& chart, const std::string& path)
     ++index;
   }
 
-  if (chart.LogX && range[0][0] <= range[0][1])
+  const bool log[2] = { chart.LogX, chart.LogY };
+  const bool fromZero[2] = { chart.XFromZero, chart.YFromZero };
+  vtkAxis* axes[2] = { xy->GetAxis(vtkAxis::BOTTOM), xy->GetAxis(vtkAxis::LEFT) };
+  for (int k = 0; k < 2; ++k)
   {
-    MakeLogAxis(xy->GetAxis(vtkAxis::BOTTOM), range[0][0], range[0][1]);
-  }
-  if (chart.LogY && range[1][0] <= range[1][1])
-  {
-    MakeLogAxis(xy->GetAxis(vtkAxis::LEFT), range[1][0], range[1][1]);
+    if (range[k][0] > range[k][1])
+    {
+      continue; // no data
+    }
+    if (log[k])
+    {
+      MakeLogAxis(axes[k], range[k][0], range[k][1]);
+    }
+    else
+    {
+      // Markers on the plot's edge are cut: pad the data range.
+      double lo = fromZero[k] ? std::min(0.0, range[k][0]) : range[k][0];
+      double hi = fromZero[k] ? std::max(0.0, range[k][1]) : range[k][1];
+      const double span = hi > lo ? hi - lo : std::max(1e-12, 0.1 * std::abs(hi));
+      axes[k]->SetBehavior(vtkAxis::FIXED);
+      axes[k]->SetRange(lo == 0.0 && fromZero[k] ? 0.0 : lo - 0.06 * span, hi + 0.06 * span);
+    }
   }
   const LegendCorner corner = chart.Legend;
   const bool bottom = corner == LegendCorner::BottomLeft || corner == LegendCorner::BottomCenter ||
@@ -192,6 +207,7 @@ bool WritePNG(const Chart& chart, const std::string& path)
   xy->GetLegend()->SetVerticalAlignment(bottom ? vtkChartLegend::BOTTOM : vtkChartLegend::TOP);
   xy->GetLegend()->SetHorizontalAlignment(
     left ? vtkChartLegend::LEFT : (center ? vtkChartLegend::CENTER : vtkChartLegend::RIGHT));
+  xy->GetLegend()->SetInline(corner != LegendCorner::OutsideRight);
 
   window->Render();
 

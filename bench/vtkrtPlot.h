@@ -29,7 +29,8 @@ enum class LegendCorner
   TopLeft,
   BottomLeft,
   BottomCenter,
-  BottomRight
+  BottomRight,
+  OutsideRight ///< right of the plot area, which shrinks to make room
 };
 
 struct Chart
@@ -42,8 +43,11 @@ struct Chart
   // On a log axis, values <= 0 cannot be drawn: they are raised to this
   // floor (say so in the axis label when it matters).
   double LogFloor = 1e-9;
-  LegendCorner Legend = LegendCorner::TopRight;
-  int Width = 720;
+  // A linear axis spans the data (padded a little), stretched to 0 when set.
+  bool XFromZero = false;
+  bool YFromZero = false;
+  LegendCorner Legend = LegendCorner::OutsideRight;
+  int Width = 880;
   int Height = 480;
   std::vector<Series> Curves;
 };
