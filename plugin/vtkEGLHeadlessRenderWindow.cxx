@@ -697,6 +697,7 @@ int vtkEGLHeadlessRenderWindow::GetZbufferData(int x1, int y1, int x2, int y2, f
 {
   if (!this->ContextReady)
   {
+    this->WarnNotRendered("GetZbufferData");
     return VTK_ERROR;
   }
   this->MakeCurrent();
@@ -709,9 +710,21 @@ int vtkEGLHeadlessRenderWindow::ReadPixels(
 {
   if (!this->ContextReady)
   {
+    this->WarnNotRendered("pixel readback");
     return VTK_ERROR;
   }
   return this->Superclass::ReadPixels(rect, front, glFormat, glType, data, right);
+}
+
+//------------------------------------------------------------------------------
+void vtkEGLHeadlessRenderWindow::WarnNotRendered(const char* what)
+{
+  // A failed window said why once already; one that never rendered has
+  // nothing to read yet.
+  if (!this->Failed)
+  {
+    vtkWarningMacro(<< what << " before the first Render(): nothing to read yet.");
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -137,7 +137,8 @@ protected:
   ~vtkEGLHeadlessRenderWindow() override;
 
   /**
-   * Silent VTK_ERROR on a failed window (the failure was reported once).
+   * VTK_ERROR before the first Render() (with a warning) or on a failed
+   * window (silently: the failure was reported once).
    */
   int ReadPixels(const vtkRecti& rect, int front, int glFormat, int glType, void* data,
     int right) override;
@@ -145,6 +146,7 @@ protected:
   bool CreateContext();
   void DestroyContext();
   void ReportFailure(const std::string& why);
+  void WarnNotRendered(const char* what);
 
   bool ContextReady = false;
   bool Failed = false;

@@ -507,6 +507,23 @@ void TestTeardown()
       auto never = MakeWindow(32, 32); // never rendered
       auto finalizedOnly = MakeWindow(32, 32);
       finalizedOnly->Finalize();
+      auto empty = MakeWindow(32, 32); // no renderer at all
+      empty->Render();
+      Check(empty->IsContextReady(), "a window without renderers renders");
+    }
+    {
+      // Reading before the first Render: a warning, VTK_ERROR, no crash.
+      auto early = MakeWindow(16, 16);
+      vtkNew<vtkUnsignedCharArray> rgb;
+      vtkNew<vtkFloatArray> z;
+      Output->SetEcho(false);
+      const int a = early->GetPixelData(0, 0, 15, 15, 1, rgb.Get(), 0);
+      const int b = early->GetZbufferData(0, 0, 15, 15, z.Get());
+      Output->SetEcho(true);
+      Check(a == VTK_ERROR && b == VTK_ERROR && Output->GetNumberOfWarnings() == 2 &&
+          Output->GetNumberOfErrors() == 0,
+        "readbacks before the first Render warn and return VTK_ERROR");
+      Output->Clear();
     }
   }
   NoVTKOutput("teardown");
