@@ -17,7 +17,6 @@
 #include "vtkrt/core/BVHTraversal.h"
 
 #include <algorithm>
-#include <atomic>
 #include <deque>
 #include <tuple>
 
@@ -40,7 +39,7 @@ struct EdgeUse
 
 struct Neighbor
 {
-  vtkIdType Face = -1;   // the face across a manifold edge, -1 if none
+  vtkIdType Face = -1;        // the face across a manifold edge, -1 if none
   bool SameDirection = false; // both faces walk the edge the same way
 };
 
@@ -188,9 +187,9 @@ void OrientClosedPatches(vtkPoints* pts, const std::vector<Triangle>& triangles,
       [&](std::uint32_t other)
       {
         const core::AABB<double>& outer = bounds[other];
-        if (other == patch || !(outer.min.x <= box.min.x && outer.min.y <= box.min.y &&
-                                outer.min.z <= box.min.z && box.max.x <= outer.max.x &&
-                                box.max.y <= outer.max.y && box.max.z <= outer.max.z))
+        if (other == patch ||
+          !(outer.min.x <= box.min.x && outer.min.y <= box.min.y && outer.min.z <= box.min.z &&
+            box.max.x <= outer.max.x && box.max.y <= outer.max.y && box.max.z <= outer.max.z))
         {
           return;
         }
@@ -453,10 +452,10 @@ int vtkOpenMeshClean::RequestData(
   const vtkIdType numFaces = static_cast<vtkIdType>(kept.size());
   if (numFaces == 0)
   {
-    vtkErrorMacro("No valid face left: of " << numTris << " triangles, "
-      << this->NumberOfNonFiniteFaces << " touch non-finite points, "
-      << this->NumberOfDegenerateFaces << " are degenerate and "
-      << this->NumberOfDuplicateFaces << " are duplicates.");
+    vtkErrorMacro("No valid face left: of "
+      << numTris << " triangles, " << this->NumberOfNonFiniteFaces << " touch non-finite points, "
+      << this->NumberOfDegenerateFaces << " are degenerate and " << this->NumberOfDuplicateFaces
+      << " are duplicates.");
     return 1;
   }
   auto face = [&](vtkIdType f) -> const Triangle& { return soup.Triangles[kept[f]]; };
@@ -739,8 +738,8 @@ int vtkOpenMeshClean::RequestData(
   output->SetPoints(outPts);
 
   std::vector<std::string> dropped;
-  auto inPD = vtkrt_filters::ArraysWithTuples(
-    input->GetPointData(), numInPoints, "point:", dropped);
+  auto inPD =
+    vtkrt_filters::ArraysWithTuples(input->GetPointData(), numInPoints, "point:", dropped);
   vtkPointData* outPD = output->GetPointData();
   outPD->CopyAllocate(inPD.Get(), numOutPoints);
   for (vtkIdType i = 0; i < numOutPoints; ++i)
@@ -879,8 +878,8 @@ int vtkOpenMeshClean::RequestData(
     vtkNew<vtkUnsignedCharArray> types;
     types->SetName("EdgeType");
     types->SetNumberOfValues(static_cast<vtkIdType>(problemEdges.size()));
-    lines->AllocateExact(static_cast<vtkIdType>(problemEdges.size()),
-      2 * static_cast<vtkIdType>(problemEdges.size()));
+    lines->AllocateExact(
+      static_cast<vtkIdType>(problemEdges.size()), 2 * static_cast<vtkIdType>(problemEdges.size()));
     vtkIdType e = 0;
     for (const auto& pe : problemEdges)
     {

@@ -186,8 +186,8 @@ public:
         f = mesh.face_handle(mesh.opposite_halfedge_handle(h));
       }
       mesh.property(this->Samples, f)
-        .push_back(Sample{ 0.5 * (mesh.point(mesh.from_vertex_handle(h)) +
-                             mesh.point(mesh.to_vertex_handle(h))),
+        .push_back(Sample{
+          0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h))),
           f.idx() });
     }
     this->CandidateStamp.assign(mesh.n_faces(), 0);
@@ -451,7 +451,10 @@ public:
     return static_cast<float>(std::max(0.0, q(ci.p1)));
   }
 
-  void Collapsed(const CollapseInfo& ci) { this->Quadrics[ci.v1.idx()] += this->Quadrics[ci.v0.idx()]; }
+  void Collapsed(const CollapseInfo& ci)
+  {
+    this->Quadrics[ci.v1.idx()] += this->Quadrics[ci.v0.idx()];
+  }
 
 private:
   std::vector<Quadric> Quadrics;
@@ -470,7 +473,8 @@ struct DecimationLimits
 // collapse about to happen rather than on every candidate the heap weighs
 // (a refused halfedge is skipped until its neighbourhood changes).
 // OpenMesh's modules still judge normals and shapes.
-void Decimate(Mesh& mesh, size_t targetFaces, const DecimationLimits& limits, vtkStaticCellLocator* input)
+void Decimate(
+  Mesh& mesh, size_t targetFaces, const DecimationLimits& limits, vtkStaticCellLocator* input)
 {
   namespace D = OpenMesh::Decimater;
   BoundaryQuadrics quadric(mesh, limits.BoundaryWeight);
@@ -480,7 +484,8 @@ void Decimate(Mesh& mesh, size_t targetFaces, const DecimationLimits& limits, vt
   std::vector<D::ModBaseT<Mesh>*> binary{ &flipping };
   if (limits.MaximumNormalDeviation < 180.0)
   {
-    deviation.reset(new D::ModNormalDeviationT<Mesh>(mesh, static_cast<float>(limits.MaximumNormalDeviation)));
+    deviation.reset(
+      new D::ModNormalDeviationT<Mesh>(mesh, static_cast<float>(limits.MaximumNormalDeviation)));
     binary.push_back(deviation.get());
   }
   if (limits.MaximumAspectRatio > 0.0)
@@ -862,8 +867,8 @@ int vtkOpenMeshDecimation::RequestData(
     });
   output->SetPoints(outPts);
   std::vector<std::string> dropped;
-  auto inPD = vtkrt_filters::ArraysWithTuples(
-    input->GetPointData(), numInPoints, "point:", dropped);
+  auto inPD =
+    vtkrt_filters::ArraysWithTuples(input->GetPointData(), numInPoints, "point:", dropped);
   vtkPointData* outPD = output->GetPointData();
   outPD->CopyAllocate(inPD.Get(), numOutPoints);
   for (vtkIdType i = 0; i < numOutPoints; ++i)
@@ -919,8 +924,7 @@ int vtkOpenMeshDecimation::RequestData(
   fd->PassData(input->GetFieldData());
   vtkrt_filters::AddFieldCount(fd, "NumberOfInputTriangles", this->NumberOfInputTriangles);
   vtkrt_filters::AddFieldCount(fd, "NumberOfOutputTriangles", this->NumberOfOutputTriangles);
-  vtkrt_filters::AddFieldCount(
-    fd, "NumberOfPassedThroughFaces", this->NumberOfPassedThroughFaces);
+  vtkrt_filters::AddFieldCount(fd, "NumberOfPassedThroughFaces", this->NumberOfPassedThroughFaces);
   vtkrt_filters::AddFieldCount(fd, "NumberOfLockedVertices", this->NumberOfLockedVertices);
   vtkrt_filters::AddFieldCount(fd, "NumberOfDroppedVerts", soup.NumberOfDroppedVerts);
   vtkrt_filters::AddFieldCount(fd, "NumberOfDroppedLines", soup.NumberOfDroppedLines);

@@ -126,7 +126,8 @@ inline void TriangleNormal(const double a[3], const double b[3], const double c[
 // Splits a quad along the diagonal that keeps both triangles facing the
 // quad's normal (the only valid one for a non-convex quad); otherwise along
 // the shorter diagonal, which gives better-shaped triangles.
-inline void TriangulateQuad(vtkPoints* pts, const vtkIdType* q, TriangleSoup& soup, vtkIdType cellId)
+inline void TriangulateQuad(
+  vtkPoints* pts, const vtkIdType* q, TriangleSoup& soup, vtkIdType cellId)
 {
   double p[4][3];
   for (int i = 0; i < 4; ++i)
@@ -150,8 +151,8 @@ inline void TriangulateQuad(vtkPoints* pts, const vtkIdType* q, TriangleSoup& so
   }
   else
   {
-    use02 = vtkMath::Distance2BetweenPoints(p[0], p[2]) <=
-      vtkMath::Distance2BetweenPoints(p[1], p[3]);
+    use02 =
+      vtkMath::Distance2BetweenPoints(p[0], p[2]) <= vtkMath::Distance2BetweenPoints(p[1], p[3]);
   }
   if (use02)
   {
@@ -191,7 +192,8 @@ inline void TriangulatePolyData(vtkPolyData* input, TriangleSoup& soup)
   const vtkIdType nPolys = input->GetNumberOfPolys();
   soup.NumberOfDroppedVerts = nVerts;
   soup.NumberOfDroppedLines = nLines;
-  soup.Triangles.reserve(static_cast<size_t>(nPolys + input->GetStrips()->GetNumberOfConnectivityIds()));
+  soup.Triangles.reserve(
+    static_cast<size_t>(nPolys + input->GetStrips()->GetNumberOfConnectivityIds()));
   soup.SourceCells.reserve(soup.Triangles.capacity());
 
   vtkNew<vtkPolygon> polygon;
@@ -308,7 +310,8 @@ inline void AddFieldCount(vtkFieldData* fd, const char* name, vtkIdType value)
   fd->AddArray(a);
 }
 
-inline void AddFieldStrings(vtkFieldData* fd, const char* name, const std::vector<std::string>& values)
+inline void AddFieldStrings(
+  vtkFieldData* fd, const char* name, const std::vector<std::string>& values)
 {
   vtkNew<vtkStringArray> a;
   a->SetName(name);

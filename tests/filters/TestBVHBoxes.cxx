@@ -132,8 +132,8 @@ void TestLevels()
   std::cout << "sphere " << numTris << " triangles: " << boxes->GetNumberOfNodes() << " nodes, "
             << boxes->GetNumberOfLeaves() << " leaves, depth " << boxes->GetMaximumDepth()
             << std::endl;
-  VTKRT_CHECK(vtkrt_test::FieldCount(boxes->GetOutput(), "BVHNodeCount") ==
-      boxes->GetNumberOfNodes(),
+  VTKRT_CHECK(
+    vtkrt_test::FieldCount(boxes->GetOutput(), "BVHNodeCount") == boxes->GetNumberOfNodes(),
     "field data");
   VTKRT_CHECK(boxes->GetNumberOfNodes() == 2 * boxes->GetNumberOfLeaves() - 1, "binary tree");
 
@@ -245,8 +245,8 @@ void TestBadInput()
   linesOnly->SetLines(lines);
   boxes->SetInputData(linesOnly);
   boxes->Update();
-  VTKRT_CHECK(catcher->Errors.find("no polygons") != std::string::npos,
-    "lines only: " << catcher->Errors);
+  VTKRT_CHECK(
+    catcher->Errors.find("no polygons") != std::string::npos, "lines only: " << catcher->Errors);
   catcher->Clear();
 
   vtkNew<vtkPolyData> corrupt;

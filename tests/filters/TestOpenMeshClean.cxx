@@ -131,10 +131,10 @@ void TestSplitSphereIsWeldedAndOriented()
   vtkClean->SetInputData(soup);
   vtkClean->Update();
   std::cout << "split sphere: " << soup->GetNumberOfPoints() << " points in, "
-            << out->GetNumberOfPoints() << " out (vtkCleanPolyData: "
-            << vtkClean->GetOutput()->GetNumberOfPoints() << ", sphere source: "
-            << sphere->GetNumberOfPoints() << "), " << clean->GetNumberOfFlippedFaces()
-            << " faces flipped" << std::endl;
+            << out->GetNumberOfPoints()
+            << " out (vtkCleanPolyData: " << vtkClean->GetOutput()->GetNumberOfPoints()
+            << ", sphere source: " << sphere->GetNumberOfPoints() << "), "
+            << clean->GetNumberOfFlippedFaces() << " faces flipped" << std::endl;
 
   VTKRT_CHECK(out->GetNumberOfPoints() == sphere->GetNumberOfPoints(), "weld restores the sphere");
   VTKRT_CHECK(out->GetNumberOfPoints() == vtkClean->GetOutput()->GetNumberOfPoints(),
@@ -144,8 +144,8 @@ void TestSplitSphereIsWeldedAndOriented()
   VTKRT_CHECK(FieldCount(out, "IsClosedManifold") == 1, "field data says closed");
   VTKRT_CHECK(FieldCount(out, "NumberOfBoundaryEdges") == 0, "no boundary edge");
   VTKRT_CHECK(clean->GetNumberOfComponents() == 1, "one component");
-  VTKRT_CHECK(clean->GetNumberOfMergedPoints() ==
-      soup->GetNumberOfPoints() - sphere->GetNumberOfPoints(),
+  VTKRT_CHECK(
+    clean->GetNumberOfMergedPoints() == soup->GetNumberOfPoints() - sphere->GetNumberOfPoints(),
     "merged count");
   const vtkIdType scrambled = (sphere->GetNumberOfPolys() + 2) / 3;
   VTKRT_CHECK(clean->GetNumberOfFlippedFaces() == scrambled,
@@ -159,8 +159,7 @@ void TestSplitSphereIsWeldedAndOriented()
 
   // Point data through the weld: each output point carries the data of the
   // lowest-id input point at its position.
-  auto* outPointIds =
-    vtkIdTypeArray::SafeDownCast(out->GetPointData()->GetArray("InputPointId"));
+  auto* outPointIds = vtkIdTypeArray::SafeDownCast(out->GetPointData()->GetArray("InputPointId"));
   VTKRT_CHECK(outPointIds != nullptr, "point array carried");
   std::map<std::array<double, 3>, vtkIdType> lowestAt;
   for (vtkIdType i = soup->GetNumberOfPoints() - 1; i >= 0; --i)
@@ -179,8 +178,7 @@ void TestSplitSphereIsWeldedAndOriented()
   VTKRT_CHECK(pointDataOk, "point data follows the weld");
   // Cell data follows the faces.
   auto* outCellIds = vtkIdTypeArray::SafeDownCast(out->GetCellData()->GetArray("InputCellId"));
-  auto* origIds =
-    vtkIdTypeArray::SafeDownCast(out->GetCellData()->GetArray("vtkOriginalCellIds"));
+  auto* origIds = vtkIdTypeArray::SafeDownCast(out->GetCellData()->GetArray("vtkOriginalCellIds"));
   bool cellDataOk = outCellIds && origIds;
   for (vtkIdType i = 0; cellDataOk && i < out->GetNumberOfCells(); ++i)
   {
@@ -208,18 +206,19 @@ void TestTexturedSphereSeam()
   vtkPolyData* out = clean->GetOutput();
   auto before = JudgeWithOpenMesh(in);
   auto after = JudgeWithOpenMesh(out);
-  std::cout << "textured sphere: " << in->GetNumberOfPoints() << " -> "
-            << out->GetNumberOfPoints() << " points, " << in->GetNumberOfPolys() << " -> "
-            << out->GetNumberOfPolys() << " triangles, boundary halfedges "
-            << before.BoundaryHalfedges << " -> " << after.BoundaryHalfedges << ", degenerate "
-            << clean->GetNumberOfDegenerateFaces() << std::endl;
+  std::cout << "textured sphere: " << in->GetNumberOfPoints() << " -> " << out->GetNumberOfPoints()
+            << " points, " << in->GetNumberOfPolys() << " -> " << out->GetNumberOfPolys()
+            << " triangles, boundary halfedges " << before.BoundaryHalfedges << " -> "
+            << after.BoundaryHalfedges << ", degenerate " << clean->GetNumberOfDegenerateFaces()
+            << std::endl;
   VTKRT_CHECK(!before.ClosedManifold(), "the source has an open seam");
   VTKRT_CHECK(after.ClosedManifold(), "OpenMesh: closed manifold after cleaning");
   VTKRT_CHECK(after.EulerCharacteristic() == 2, "sphere topology");
   VTKRT_CHECK(clean->IsClosedManifold(), "filter reports closed");
   // theta+1 columns x (phi+1) rows, seam column and pole rows collapse.
   VTKRT_CHECK(out->GetNumberOfPoints() == 20 * (12 - 1) + 2, "seam and poles welded");
-  VTKRT_CHECK(clean->GetNumberOfDegenerateFaces() == in->GetNumberOfPolys() - out->GetNumberOfPolys(),
+  VTKRT_CHECK(
+    clean->GetNumberOfDegenerateFaces() == in->GetNumberOfPolys() - out->GetNumberOfPolys(),
     "faces lost are exactly the degenerate ones");
   VTKRT_CHECK(out->GetPointData()->GetTCoords() != nullptr, "texture coordinates carried");
 }
@@ -561,8 +560,8 @@ void TestNestedShells()
     }
     const bool wantAway = i != 1;
     VTKRT_CHECK((wantAway ? away : toward) == facesPerSphere,
-      "shell " << i << (wantAway ? " faces outward" : " (cavity wall) faces inward") << ": "
-               << away << " away, " << toward << " toward");
+      "shell " << i << (wantAway ? " faces outward" : " (cavity wall) faces inward") << ": " << away
+               << " away, " << toward << " toward");
   }
 }
 
@@ -610,8 +609,8 @@ void TestBadInput()
   allNan->SetPolys(tri);
   clean->SetInputData(allNan);
   clean->Update();
-  VTKRT_CHECK(catcher->Errors.find("non-finite") != std::string::npos,
-    "all-NaN error: " << catcher->Errors);
+  VTKRT_CHECK(
+    catcher->Errors.find("non-finite") != std::string::npos, "all-NaN error: " << catcher->Errors);
   VTKRT_CHECK(clean->GetOutput()->GetNumberOfPoints() == 0, "empty output");
   catcher->Clear();
 

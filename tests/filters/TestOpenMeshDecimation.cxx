@@ -182,11 +182,11 @@ void TestVersusVTK(vtkPolyData* mesh, const char* name, double reduction)
   const double aHausdorff = std::max(aFwd.Max, aBwd.Max);
   const double bHausdorff = std::max(bFwd.Max, bBwd.Max);
   std::cout << name << " reduction " << reduction << ": " << mesh->GetNumberOfPolys()
-            << " triangles -> vtkOpenMeshDecimation " << a->GetNumberOfPolys()
-            << " (Hausdorff " << aHausdorff << ", mean " << aFwd.Mean << "/" << aBwd.Mean
-            << "), vtkQuadricDecimation " << b->GetNumberOfPolys() << " (Hausdorff "
-            << bHausdorff << ", mean " << bFwd.Mean << "/" << bBwd.Mean << "), ratio "
-            << aHausdorff / bHausdorff << std::endl;
+            << " triangles -> vtkOpenMeshDecimation " << a->GetNumberOfPolys() << " (Hausdorff "
+            << aHausdorff << ", mean " << aFwd.Mean << "/" << aBwd.Mean
+            << "), vtkQuadricDecimation " << b->GetNumberOfPolys() << " (Hausdorff " << bHausdorff
+            << ", mean " << bFwd.Mean << "/" << bBwd.Mean << "), ratio " << aHausdorff / bHausdorff
+            << std::endl;
   const vtkIdType wanted =
     static_cast<vtkIdType>(std::llround((1 - reduction) * mesh->GetNumberOfPolys()));
   VTKRT_CHECK(std::abs(a->GetNumberOfPolys() - wanted) <= CountTolerance, "ours on target");
@@ -222,8 +222,8 @@ void TestBoundaries()
     }
   }
   std::cout << "wavy grid: " << grid->GetNumberOfPolys() << " -> " << out->GetNumberOfPolys()
-            << " triangles, boundary points kept " << kept << "/" << boundaryPoints
-            << ", locked " << decimate->GetNumberOfLockedVertices() << std::endl;
+            << " triangles, boundary points kept " << kept << "/" << boundaryPoints << ", locked "
+            << decimate->GetNumberOfLockedVertices() << std::endl;
   VTKRT_CHECK(boundaryPoints == 160 && kept == boundaryPoints, "boundary preserved");
   VTKRT_CHECK(decimate->GetNumberOfLockedVertices() == boundaryPoints, "boundary locked");
   VTKRT_CHECK(out->GetNumberOfPolys() < grid->GetNumberOfPolys() / 2, "interior decimated");
@@ -298,8 +298,8 @@ void TestNonManifoldAndDegenerate()
   // malformed array is dropped and named, never read past its end.
   auto* dropped =
     vtkStringArray::SafeDownCast(out->GetFieldData()->GetAbstractArray("DroppedArrays"));
-  VTKRT_CHECK(dropped && dropped->GetNumberOfValues() == 1 &&
-      dropped->GetValue(0) == "point:Normals",
+  VTKRT_CHECK(
+    dropped && dropped->GetNumberOfValues() == 1 && dropped->GetValue(0) == "point:Normals",
     "short normals array dropped");
   VTKRT_CHECK(out->GetPointData()->GetNormals() == nullptr, "and not in the output");
   VTKRT_CHECK(std::abs(out->GetNumberOfPolys() - 300) <= CountTolerance, "on target");
@@ -375,8 +375,8 @@ void TestAttributes()
   }
   VTKRT_CHECK(pointsOk, "point data carried exactly (points are input points)");
   auto* outCellIds = vtkIdTypeArray::SafeDownCast(out->GetCellData()->GetArray("InputCellId"));
-  VTKRT_CHECK(outCellIds && outCellIds->GetNumberOfValues() == out->GetNumberOfPolys(),
-    "cell data carried");
+  VTKRT_CHECK(
+    outCellIds && outCellIds->GetNumberOfValues() == out->GetNumberOfPolys(), "cell data carried");
   VTKRT_CHECK(out->GetCellData()->GetNormals() == nullptr, "cell normals dropped");
   auto* dropped =
     vtkStringArray::SafeDownCast(out->GetFieldData()->GetAbstractArray("DroppedArrays"));
@@ -454,8 +454,8 @@ void TestShapeLimits()
             << freeCount << " triangles), limit 10 deg -> " << limitedDeviation << " deg ("
             << decimate->GetOutput()->GetNumberOfPolys() << " triangles)" << std::endl;
   VTKRT_CHECK(freeDeviation > 15.0, "the unlimited run deviates (the check can fail)");
-  VTKRT_CHECK(limitedDeviation <= 10.0 + WorstRadialDeviation(sphere) + 1.0,
-    "normals stay within the limit");
+  VTKRT_CHECK(
+    limitedDeviation <= 10.0 + WorstRadialDeviation(sphere) + 1.0, "normals stay within the limit");
   decimate->SetMaximumNormalDeviation(180.0);
 
   // Aspect ratio: no triangle worse than the limit, unless the input had one.
@@ -499,8 +499,8 @@ void TestBadInput()
   linesOnly->SetLines(lines);
   decimate->SetInputData(linesOnly);
   decimate->Update();
-  VTKRT_CHECK(catcher->Errors.find("no polygons") != std::string::npos,
-    "lines only: " << catcher->Errors);
+  VTKRT_CHECK(
+    catcher->Errors.find("no polygons") != std::string::npos, "lines only: " << catcher->Errors);
   VTKRT_CHECK(decimate->GetOutput()->GetNumberOfCells() == 0, "empty output");
   catcher->Clear();
 
