@@ -13,6 +13,8 @@
 #include "vtkGlyph3DMapper.h"
 #include "vtkLogger.h"
 #include "vtkLookupTable.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
 #include "vtkOutputWindow.h"
@@ -40,6 +42,7 @@
 #include "vtkBVHCellLocator.h"
 #endif
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -448,10 +451,12 @@ void AddMesh(Scene& scene, vtkPolyData* mesh, const double color[3])
   vtkSmartPointer<vtkPolyData> shaded = mesh;
   if (!mesh->GetPointData()->GetNormals())
   {
-    // Smooth shading for files without normals; keeps cell ids (no splitting).
+    // Shading normals for files without them: smooth, but split at sharp
+    // edges (30 degrees) so boxes stay boxes. Cells keep their ids.
     vtkNew<vtkPolyDataNormals> normals;
     normals->SetInputData(mesh);
-    normals->SplittingOff();
+    normals->SplittingOn();
+    normals->SetFeatureAngle(30.0);
     normals->ComputeCellNormalsOff();
     normals->Update();
     shaded = normals->GetOutput();
@@ -581,6 +586,75 @@ PickRay MakePickRay(vtkRenderer* renderer, double x, double y)
   return PickRay{ vtkrt::core::Ray<double>(a, b - a, 0.0, 1.0) };
 }
 
+// ResetCamera fits the bounding sphere, which leaves most scenes small: zoom
+// until the scene's projected points (mesh vertices, glyph spheres' boxes)
+// fill 90% of the image's tighter side.
+void FrameScene(vtkRenderer* renderer, const std::vector<double>& points, double aspect)
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  renderer->ResetCameraClippingRange();
+  if (points.empty())
+  {
+    return;
+  }
+  for (int iteration = 0; iteration < 4; ++iteration)
+  {
+    vtkMatrix4x4* m = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
+    double extent = 0.0;
+    for (size_t i = 0; i + 2 < points.size(); i += 3)
+    {
+      const double p[4] = { points[i], points[i + 1], points[i + 2], 1.0 };
+      double q[4];
+      m->MultiplyPoint(p, q);
+      if (q[3] <= 0.0)
+      {
+        return; // a point behind the eye: keep ResetCamera's framing
+      }
+      extent = std::max({ extent, std::abs(q[0] / q[3]), std::abs(q[1] / q[3]) });
+    }
+    if (extent <= 0.0 || std::abs(extent - 0.9) < 0.005)
+    {
+      break;
+    }
+    camera->Zoom(0.9 / extent);
+  }
+  renderer->ResetCameraClippingRange();
+}
+
+// The points FrameScene fits: the mesh's vertices and each glyph sphere's box.
+std::vector<double> FramingPoints(const Scene& scene)
+{
+  std::vector<double> points;
+  if (scene.Mesh)
+  {
+    const vtkIdType n = scene.Mesh->GetNumberOfPoints();
+    points.reserve(3 * static_cast<size_t>(n));
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      double p[3];
+      scene.Mesh->GetPoint(i, p);
+      points.insert(points.end(), p, p + 3);
+    }
+  }
+  if (scene.SphereCentres)
+  {
+    vtkDataArray* radius = scene.SphereCentres->GetPointData()->GetArray("radius");
+    for (vtkIdType i = 0; i < scene.SphereCentres->GetNumberOfPoints(); ++i)
+    {
+      double c[3];
+      scene.SphereCentres->GetPoint(i, c);
+      const double r = radius->GetTuple1(i);
+      for (int corner = 0; corner < 8; ++corner)
+      {
+        points.push_back(c[0] + ((corner & 1) ? r : -r));
+        points.push_back(c[1] + ((corner & 2) ? r : -r));
+        points.push_back(c[2] + ((corner & 4) ? r : -r));
+      }
+    }
+  }
+  return points;
+}
+
 double Milliseconds(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b)
 {
   return std::chrono::duration<double, std::milli>(b - a).count();
@@ -638,11 +712,10 @@ int Run(const Options& opt)
 
   vtkCamera* camera = scene.Renderer->GetActiveCamera();
   scene.Renderer->ResetCamera();
-  camera->Dolly(1.4); // ResetCamera frames the bounding sphere loosely
   camera->Azimuth(opt.Azimuth);
   camera->Elevation(opt.Elevation);
   camera->OrthogonalizeViewUp();
-  scene.Renderer->ResetCameraClippingRange();
+  FrameScene(scene.Renderer, FramingPoints(scene), static_cast<double>(opt.Width) / opt.Height);
   const auto t1 = Clock::now();
 
   window->Render();

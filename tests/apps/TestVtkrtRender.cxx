@@ -8,6 +8,7 @@
 #include "vtkHexahedron.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkPLYWriter.h"
 #include "vtkPNGReader.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -258,6 +259,37 @@ void TestFiles()
   Check(r.Code == 0, ".obj: exit status 0");
   Check(ReportNumber(r.Output, "triangles") == 12, ".obj: 6 quads reported as 12 triangles");
   CheckImage(out2, 150, 150, 0.10);
+
+  // Binary PLY (a coarse sphere) and the shipped bunny .vtp as a file argument.
+  const std::string ply = Tmp + "/sphere.ply";
+  vtkIdType plyTriangles = 0;
+  {
+    vtkNew<vtkSphereSource> sphere;
+    sphere->SetThetaResolution(12);
+    sphere->SetPhiResolution(9);
+    sphere->Update();
+    plyTriangles = sphere->GetOutput()->GetNumberOfPolys();
+    vtkNew<vtkPLYWriter> writer;
+    writer->SetInputConnection(sphere->GetOutputPort());
+    writer->SetFileTypeToBinary();
+    writer->SetFileName(ply.c_str());
+    writer->Write();
+  }
+  const std::string out4 = Tmp + "/sphere-ply.png";
+  vtksys::SystemTools::RemoveFile(out4);
+  r = RunApp("'" + ply + "' --size 100x90 --frames 0 --output '" + out4 + "'");
+  Check(r.Code == 0 && ReportNumber(r.Output, "triangles") == plyTriangles,
+    ".ply: exit status 0 and its triangle count");
+  CheckImage(out4, 100, 90, 0.10);
+  const std::string out5 = Tmp + "/bunny-vtp.png";
+  vtksys::SystemTools::RemoveFile(out5);
+  r = RunApp("'" VTKRT_DATA_DIR "/bunny.vtp' --size 120x100 --frames 0 --output '" + out5 + "'");
+  vtkNew<vtkXMLPolyDataReader> bunny;
+  bunny->SetFileName(VTKRT_DATA_DIR "/bunny.vtp");
+  bunny->Update();
+  Check(r.Code == 0 && ReportNumber(r.Output, "triangles") == bunny->GetOutput()->GetNumberOfPolys(),
+    ".vtp: exit status 0 and its triangle count");
+  CheckImage(out5, 120, 100, 0.10);
 
   // Legacy .vtk unstructured grid: one hexahedron, rendered as its surface.
   const std::string vtk = Tmp + "/hex.vtk";
