@@ -69,7 +69,7 @@ float bits(std::uint32_t u)
   return vtkrt::core::uintBitsToFloat(u);
 }
 
-/// One RGBA32F texture buffer (the GLSL's samplerBuffer).
+/// One texture buffer of 4 x 32-bit texels (the GLSL's usamplerBuffer).
 struct TextureBuffer
 {
   vtkNew<vtkOpenGLBufferObject> Buffer;
@@ -85,7 +85,11 @@ struct TextureBuffer
     const std::size_t n = data.empty() ? 4 : data.size();
     this->Buffer->Upload(ptr, n, vtkOpenGLBufferObject::TextureBuffer);
     this->Texture->SetContext(win);
-    this->Texture->CreateTextureBuffer(static_cast<unsigned int>(n / 4), 4, VTK_FLOAT, this->Buffer);
+    // RGBA32UI (read by a usamplerBuffer): integer fields come back bit
+    // exact, floats are reinterpreted in the shader.
+    this->Texture->SetInternalFormat(GL_RGBA32UI);
+    this->Texture->CreateTextureBuffer(
+      static_cast<unsigned int>(n / 4), 4, VTK_UNSIGNED_INT, this->Buffer);
     this->Texels = n / 4;
     return n * sizeof(float);
   }

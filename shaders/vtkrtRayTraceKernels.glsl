@@ -58,16 +58,26 @@ bool clipRayByPlane(vec3 org, vec3 dir, vec4 plane, inout float tmin, inout floa
   return tmin <= tmax;
 }
 
-// Node i of the flattened BVH: two texels, lo = (min, bits(index)),
-// hi = (max, bits(count)); count == 0: interior with children index and
-// index + 1; count > 0: leaf over primitives [index, index + count).
-uniform samplerBuffer uNodes;
+// Every scene buffer is an RGBA32UI texture buffer read through a
+// usamplerBuffer: integer fields (indices, counts, ids, packed colors) come
+// back bit exact (a float view may flush the denormal floats that small
+// integers are), float fields are uintBitsToFloat of their bits.
+
+// Node i of the flattened BVH: two texels, lo = (min, index), hi = (max,
+// count) (the core's layout: floats stored as bits); count == 0: interior
+// with children index and index + 1; count > 0: leaf over primitives
+// [index, index + count).
+uniform usamplerBuffer uNodes;
+
+vec3 boxCorner(uvec4 texel)
+{
+  return uintBitsToFloat(texel.xyz);
+}
 
 // Four 32-bit values packed per texel (ids and RGBA8 colors).
-uint fetchPacked(samplerBuffer buffer, int i)
+uint fetchPacked(usamplerBuffer buffer, int i)
 {
-  vec4 texel = texelFetch(buffer, i >> 2);
+  uvec4 texel = texelFetch(buffer, i >> 2);
   int c = i & 3;
-  float v = c == 0 ? texel.x : (c == 1 ? texel.y : (c == 2 ? texel.z : texel.w));
-  return floatBitsToUint(v);
+  return c == 0 ? texel.x : (c == 1 ? texel.y : (c == 2 ? texel.z : texel.w));
 }

@@ -29,7 +29,7 @@ uniform int uNumberOfInstances;
 // 8: bits(first clip plane, clip plane count, prop index, 0)
 // 9: (ambient intensity, diffuse intensity, 0, 0): scalar colors replace
 //    the ambient and diffuse colors, weighted by these (as VTK 9.1 does)
-uniform samplerBuffer uInstances;
+uniform usamplerBuffer uInstances;
 
 const uint kInstanceSpheres = 1u;
 const uint kInstanceLit = 2u;
@@ -39,16 +39,16 @@ const uint kInstanceCellColors = 16u;
 const uint kInstanceMirrored = 32u;
 
 #ifdef VTKRT_HAS_COLORS
-uniform samplerBuffer uColors; // packed RGBA8, four per texel
+uniform usamplerBuffer uColors; // packed RGBA8, four per texel
 #endif
 #ifdef VTKRT_HAS_VERTEX_NORMALS
-uniform samplerBuffer uNormals; // one texel per vertex (xyz)
+uniform usamplerBuffer uNormals; // one texel per vertex (xyz)
 #endif
 #ifdef VTKRT_HAS_TRIANGLE_VERTICES
-uniform samplerBuffer uTriangleVertices; // bits(i0, i1, i2, 0) per triangle
+uniform usamplerBuffer uTriangleVertices; // bits(i0, i1, i2, 0) per triangle
 #endif
 #ifdef VTKRT_HAS_SPHERES
-uniform samplerBuffer uSphereIds; // VTK point id per sphere, four per texel
+uniform usamplerBuffer uSphereIds; // VTK point id per sphere, four per texel
 #endif
 #if VTKRT_NUMBER_OF_CLIP_PLANES > 0
 uniform vec4 uClipPlanes[VTKRT_NUMBER_OF_CLIP_PLANES]; // n.p + d >= 0 is kept
@@ -63,12 +63,12 @@ uniform vec3 uLightCone[VTKRT_NUMBER_OF_LIGHTS]; // (cone angle, exponent, posit
 
 vec4 instanceTexel(int instance, int i)
 {
-  return texelFetch(uInstances, instance * VTKRT_INSTANCE_TEXELS + i);
+  return uintBitsToFloat(texelFetch(uInstances, instance * VTKRT_INSTANCE_TEXELS + i));
 }
 
-uint asUint(float f)
+uvec4 instanceBits(int instance, int i)
 {
-  return floatBitsToUint(f);
+  return texelFetch(uInstances, instance * VTKRT_INSTANCE_TEXELS + i);
 }
 
 // VTK's vtkOpenGLPolyDataMapper lighting, for the renderer's lighting
@@ -145,13 +145,13 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
 {
   vec4 boxMin = instanceTexel(instance, 3);
   vec4 boxMax = instanceTexel(instance, 4);
-  uint flags = asUint(boxMax.w);
+  uint flags = instanceBits(instance, 4).w;
   float t0 = 0.0;
   float t1 = tBest;
 #if VTKRT_NUMBER_OF_CLIP_PLANES > 0
-  vec4 info = instanceTexel(instance, 8);
-  int firstPlane = int(asUint(info.x));
-  int planeCount = int(asUint(info.y));
+  uvec4 info = instanceBits(instance, 8);
+  int firstPlane = int(info.x);
+  int planeCount = int(info.y);
   bool clippedAway = false;
   for (int c = 0; c < planeCount; ++c)
   {
@@ -175,7 +175,7 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
   vec4 r2 = instanceTexel(instance, 2);
   vec3 localOrg = vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
   vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
-  int root = int(asUint(boxMin.w));
+  int root = int(instanceBits(instance, 3).w);
   int primitive = -1;
   vec2 uv = vec2(0.0);
 #if defined(VTKRT_HAS_TRIANGLES) && defined(VTKRT_HAS_SPHERES)
@@ -202,7 +202,7 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
 // Top-level BVH over the instances (same layout as every BVH; leaves index
 // instance records), boxes relative to an anchor: uCameraToAnchor moves the
 // camera-relative ray origin there.
-uniform samplerBuffer uTopNodes;
+uniform usamplerBuffer uTopNodes;
 uniform vec3 uCameraToAnchor;
 
 void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int hitInstance,
@@ -210,9 +210,9 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int
 {
   vec3 anchorOrg = org + uCameraToAnchor;
   float tnear;
-  vec4 lo = texelFetch(uTopNodes, 0);
-  vec4 hi = texelFetch(uTopNodes, 1);
-  if (!intersectRayAABB(anchorOrg, invDir, lo.xyz, hi.xyz, 0.0, tBest, tnear))
+  uvec4 lo = texelFetch(uTopNodes, 0);
+  uvec4 hi = texelFetch(uTopNodes, 1);
+  if (!intersectRayAABB(anchorOrg, invDir, boxCorner(lo), boxCorner(hi), 0.0, tBest, tnear))
   {
     return;
   }
@@ -221,8 +221,8 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int
   int sp = 0;
   for (;;)
   {
-    int index = int(floatBitsToUint(lo.w));
-    int count = int(floatBitsToUint(hi.w));
+    int index = int(lo.w);
+    int count = int(hi.w);
     bool descended = false;
     if (count > 0)
     {
@@ -233,13 +233,13 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int
     }
     else
     {
-      vec4 lo0 = texelFetch(uTopNodes, 2 * index);
-      vec4 hi0 = texelFetch(uTopNodes, 2 * index + 1);
-      vec4 lo1 = texelFetch(uTopNodes, 2 * index + 2);
-      vec4 hi1 = texelFetch(uTopNodes, 2 * index + 3);
+      uvec4 lo0 = texelFetch(uTopNodes, 2 * index);
+      uvec4 hi0 = texelFetch(uTopNodes, 2 * index + 1);
+      uvec4 lo1 = texelFetch(uTopNodes, 2 * index + 2);
+      uvec4 hi1 = texelFetch(uTopNodes, 2 * index + 3);
       float t0, t1;
-      bool h0 = intersectRayAABB(anchorOrg, invDir, lo0.xyz, hi0.xyz, 0.0, tBest, t0);
-      bool h1 = intersectRayAABB(anchorOrg, invDir, lo1.xyz, hi1.xyz, 0.0, tBest, t1);
+      bool h0 = intersectRayAABB(anchorOrg, invDir, boxCorner(lo0), boxCorner(hi0), 0.0, tBest, t0);
+      bool h1 = intersectRayAABB(anchorOrg, invDir, boxCorner(lo1), boxCorner(hi1), 0.0, tBest, t1);
       if (h0 && h1)
       {
         bool firstNear = t0 <= t1;
@@ -325,8 +325,8 @@ void main()
   vec4 r0 = instanceTexel(hitInstance, 0);
   vec4 r1 = instanceTexel(hitInstance, 1);
   vec4 r2 = instanceTexel(hitInstance, 2);
-  uint flags = asUint(instanceTexel(hitInstance, 4).w);
-  vec4 info = instanceTexel(hitInstance, 8);
+  uint flags = instanceBits(hitInstance, 4).w;
+  uvec4 info = instanceBits(hitInstance, 8);
 
   // Local normals map to camera space by the transpose of the camera-to-local
   // matrix (the inverse transpose of local-to-camera).
@@ -340,7 +340,7 @@ void main()
   {
     vec3 localOrg = vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
     vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
-    vec4 s = texelFetch(uSpheres, hitPrimitive);
+    vec4 s = uintBitsToFloat(texelFetch(uSpheres, hitPrimitive));
     localNormal = localOrg + tBest * localDir - s.xyz;
     geometricNormal = localNormal;
     mirror = 1.0;
@@ -348,7 +348,7 @@ void main()
 #ifdef VTKRT_HAS_COLORS
     if ((flags & (kInstancePointColors | kInstanceCellColors)) != 0u)
     {
-      scalarColor = fetchColor(int(asUint(instanceTexel(hitInstance, 6).w)) + int(vtkId));
+      scalarColor = fetchColor(int(instanceBits(hitInstance, 6).w) + int(vtkId));
     }
 #endif
   }
@@ -356,32 +356,34 @@ void main()
 #ifdef VTKRT_HAS_TRIANGLES
   if ((flags & kInstanceSpheres) == 0u)
   {
-    vec4 a = texelFetch(uTriangles, 3 * hitPrimitive);
-    vec3 b = texelFetch(uTriangles, 3 * hitPrimitive + 1).xyz;
-    vec3 c = texelFetch(uTriangles, 3 * hitPrimitive + 2).xyz;
+    uvec4 aBits = texelFetch(uTriangles, 3 * hitPrimitive);
+    vec4 a = vec4(uintBitsToFloat(aBits.xyz), 0.0);
+    vec3 b = uintBitsToFloat(texelFetch(uTriangles, 3 * hitPrimitive + 1).xyz);
+    vec3 c = uintBitsToFloat(texelFetch(uTriangles, 3 * hitPrimitive + 2).xyz);
     geometricNormal = cross(b - a.xyz, c - a.xyz);
     localNormal = geometricNormal;
-    vtkId = asUint(a.w);
+    vtkId = aBits.w;
     float w0 = 1.0 - hitUV.x - hitUV.y;
 #ifdef VTKRT_HAS_TRIANGLE_VERTICES
     if ((flags & (kInstanceVertexNormals | kInstancePointColors)) != 0u)
     {
-      vec4 iv = texelFetch(uTriangleVertices, hitPrimitive);
-      int i0 = int(asUint(iv.x));
-      int i1 = int(asUint(iv.y));
-      int i2 = int(asUint(iv.z));
+      uvec4 iv = texelFetch(uTriangleVertices, hitPrimitive);
+      int i0 = int(iv.x);
+      int i1 = int(iv.y);
+      int i2 = int(iv.z);
 #ifdef VTKRT_HAS_VERTEX_NORMALS
       if ((flags & kInstanceVertexNormals) != 0u)
       {
-        int nb = int(asUint(instanceTexel(hitInstance, 7).w));
-        localNormal = w0 * texelFetch(uNormals, nb + i0).xyz +
-          hitUV.x * texelFetch(uNormals, nb + i1).xyz + hitUV.y * texelFetch(uNormals, nb + i2).xyz;
+        int nb = int(instanceBits(hitInstance, 7).w);
+        localNormal = w0 * uintBitsToFloat(texelFetch(uNormals, nb + i0).xyz) +
+          hitUV.x * uintBitsToFloat(texelFetch(uNormals, nb + i1).xyz) +
+          hitUV.y * uintBitsToFloat(texelFetch(uNormals, nb + i2).xyz);
       }
 #endif
 #ifdef VTKRT_HAS_COLORS
       if ((flags & kInstancePointColors) != 0u)
       {
-        int cb = int(asUint(instanceTexel(hitInstance, 6).w));
+        int cb = int(instanceBits(hitInstance, 6).w);
         scalarColor = w0 * fetchColor(cb + i0) + hitUV.x * fetchColor(cb + i1) +
           hitUV.y * fetchColor(cb + i2);
       }
@@ -391,7 +393,7 @@ void main()
 #ifdef VTKRT_HAS_COLORS
     if ((flags & kInstanceCellColors) != 0u)
     {
-      scalarColor = fetchColor(int(asUint(instanceTexel(hitInstance, 6).w)) + int(vtkId));
+      scalarColor = fetchColor(int(instanceBits(hitInstance, 6).w) + int(vtkId));
     }
 #endif
   }
@@ -399,7 +401,7 @@ void main()
 
 #ifdef VTKRT_ID_MODE
   // RGB: the VTK cell (or point, for spheres) id, 24 bits; A: prop index + 1.
-  uint prop = asUint(info.z) + 1u;
+  uint prop = info.z + 1u;
   fragOutput0 = vec4(float(vtkId & 255u), float((vtkId >> 8) & 255u),
                   float((vtkId >> 16) & 255u), float(prop & 255u)) / 255.0;
 #else

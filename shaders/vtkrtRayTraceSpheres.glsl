@@ -3,7 +3,7 @@
 
 // Spheres in BVH leaf order, one texel each: (center, radius), center
 // relative to the sphere set's center.
-uniform samplerBuffer uSpheres;
+uniform usamplerBuffer uSpheres;
 
 // Mirrors core::raySphereRoots (Haines, Guenther & Akenine-Moeller, Ray
 // Tracing Gems ch. 7): discriminant a * (r^2 - |f - (b'/a) d|^2), roots
@@ -63,9 +63,9 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
   sphere = -1;
   vec3 invDir = safeInverse(dir);
   float tnear;
-  vec4 rootLo = texelFetch(uNodes, 2 * root);
-  vec4 rootHi = texelFetch(uNodes, 2 * root + 1);
-  if (!intersectRayAABB(org, invDir, rootLo.xyz, rootHi.xyz, tmin, tmax, tnear))
+  uvec4 rootLo = texelFetch(uNodes, 2 * root);
+  uvec4 rootHi = texelFetch(uNodes, 2 * root + 1);
+  if (!intersectRayAABB(org, invDir, boxCorner(rootLo), boxCorner(rootHi), tmin, tmax, tnear))
   {
     return false;
   }
@@ -73,18 +73,18 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
   float stackNear[VTKRT_STACK_SIZE];
   int sp = 0;
   int node = root;
-  vec4 lo = rootLo;
-  vec4 hi = rootHi;
+  uvec4 lo = rootLo;
+  uvec4 hi = rootHi;
   for (;;)
   {
-    int index = int(floatBitsToUint(lo.w));
-    int count = int(floatBitsToUint(hi.w));
+    int index = int(lo.w);
+    int count = int(hi.w);
     bool descended = false;
     if (count > 0)
     {
       for (int i = index; i < index + count; ++i)
       {
-        vec4 s = texelFetch(uSpheres, i);
+        vec4 s = uintBitsToFloat(texelFetch(uSpheres, i));
         float t;
         if (intersectRaySphere(org, dir, s.xyz, s.w, tmin, tmax, t))
         {
@@ -95,13 +95,13 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
     }
     else
     {
-      vec4 lo0 = texelFetch(uNodes, 2 * index);
-      vec4 hi0 = texelFetch(uNodes, 2 * index + 1);
-      vec4 lo1 = texelFetch(uNodes, 2 * index + 2);
-      vec4 hi1 = texelFetch(uNodes, 2 * index + 3);
+      uvec4 lo0 = texelFetch(uNodes, 2 * index);
+      uvec4 hi0 = texelFetch(uNodes, 2 * index + 1);
+      uvec4 lo1 = texelFetch(uNodes, 2 * index + 2);
+      uvec4 hi1 = texelFetch(uNodes, 2 * index + 3);
       float t0, t1;
-      bool h0 = intersectRayAABB(org, invDir, lo0.xyz, hi0.xyz, tmin, tmax, t0);
-      bool h1 = intersectRayAABB(org, invDir, lo1.xyz, hi1.xyz, tmin, tmax, t1);
+      bool h0 = intersectRayAABB(org, invDir, boxCorner(lo0), boxCorner(hi0), tmin, tmax, t0);
+      bool h1 = intersectRayAABB(org, invDir, boxCorner(lo1), boxCorner(hi1), tmin, tmax, t1);
       if (h0 && h1)
       {
         bool firstNear = t0 <= t1;

@@ -1,9 +1,9 @@
 // Triangle meshes: the watertight ray/triangle test and closest-hit BVH
 // traversal. Included only in shaders of scenes that have triangles.
 
-// Triangles in BVH leaf order, three texels each: (v0, bits(VTK cell id)),
-// (v1, 0), (v2, 0); coordinates relative to the mesh's center.
-uniform samplerBuffer uTriangles;
+// Triangles in BVH leaf order, three texels each: (v0, VTK cell id),
+// (v1, 0), (v2, 0); coordinates (as float bits) relative to the mesh's center.
+uniform usamplerBuffer uTriangles;
 
 // Per-ray data of the watertight test (core::RayTrianglePrecomputed). The
 // axis permutation and shear are stored as three rows so that
@@ -107,9 +107,9 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
   uv = vec2(0.0);
   vec3 invDir = safeInverse(dir);
   float tnear;
-  vec4 rootLo = texelFetch(uNodes, 2 * root);
-  vec4 rootHi = texelFetch(uNodes, 2 * root + 1);
-  if (!intersectRayAABB(org, invDir, rootLo.xyz, rootHi.xyz, tmin, tmax, tnear))
+  uvec4 rootLo = texelFetch(uNodes, 2 * root);
+  uvec4 rootHi = texelFetch(uNodes, 2 * root + 1);
+  if (!intersectRayAABB(org, invDir, boxCorner(rootLo), boxCorner(rootHi), tmin, tmax, tnear))
   {
     return false;
   }
@@ -118,20 +118,20 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
   float stackNear[VTKRT_STACK_SIZE];
   int sp = 0;
   int node = root;
-  vec4 lo = rootLo;
-  vec4 hi = rootHi;
+  uvec4 lo = rootLo;
+  uvec4 hi = rootHi;
   for (;;)
   {
-    int index = int(floatBitsToUint(lo.w));
-    int count = int(floatBitsToUint(hi.w));
+    int index = int(lo.w);
+    int count = int(hi.w);
     bool descended = false;
     if (count > 0)
     {
       for (int i = index; i < index + count; ++i)
       {
-        vec3 v0 = texelFetch(uTriangles, 3 * i).xyz;
-        vec3 v1 = texelFetch(uTriangles, 3 * i + 1).xyz;
-        vec3 v2 = texelFetch(uTriangles, 3 * i + 2).xyz;
+        vec3 v0 = uintBitsToFloat(texelFetch(uTriangles, 3 * i).xyz);
+        vec3 v1 = uintBitsToFloat(texelFetch(uTriangles, 3 * i + 1).xyz);
+        vec3 v2 = uintBitsToFloat(texelFetch(uTriangles, 3 * i + 2).xyz);
         vec3 h;
         if (intersectRayTriangle(pre, v0, v1, v2, tmin, tmax, h))
         {
@@ -143,13 +143,13 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
     }
     else
     {
-      vec4 lo0 = texelFetch(uNodes, 2 * index);
-      vec4 hi0 = texelFetch(uNodes, 2 * index + 1);
-      vec4 lo1 = texelFetch(uNodes, 2 * index + 2);
-      vec4 hi1 = texelFetch(uNodes, 2 * index + 3);
+      uvec4 lo0 = texelFetch(uNodes, 2 * index);
+      uvec4 hi0 = texelFetch(uNodes, 2 * index + 1);
+      uvec4 lo1 = texelFetch(uNodes, 2 * index + 2);
+      uvec4 hi1 = texelFetch(uNodes, 2 * index + 3);
       float t0, t1;
-      bool h0 = intersectRayAABB(org, invDir, lo0.xyz, hi0.xyz, tmin, tmax, t0);
-      bool h1 = intersectRayAABB(org, invDir, lo1.xyz, hi1.xyz, tmin, tmax, t1);
+      bool h0 = intersectRayAABB(org, invDir, boxCorner(lo0), boxCorner(hi0), tmin, tmax, t0);
+      bool h1 = intersectRayAABB(org, invDir, boxCorner(lo1), boxCorner(hi1), tmin, tmax, t1);
       if (h0 && h1)
       {
         bool firstNear = t0 <= t1;
