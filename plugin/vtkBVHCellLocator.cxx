@@ -87,7 +87,7 @@ vtkBVHCellLocator::vtkBVHCellLocator()
   , Internals(new vtkInternals)
 {
   // Small leaves suit a BVH (VTK's default of 32 suits bucket locators).
-  this->NumberOfCellsPerNode = 4;
+  this->NumberOfCellsPerNode = 8;
   this->CacheCellBounds = 0;
 }
 

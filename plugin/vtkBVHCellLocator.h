@@ -44,7 +44,8 @@
  * argument use an internal cell only when they need one (non-triangle cells),
  * so they should not be called concurrently on a general dataset.
  *
- * NumberOfCellsPerNode is the BVH leaf size (default 4 here).
+ * NumberOfCellsPerNode is the BVH leaf size (default 8 here: on 1M triangles
+ * fewer, fuller leaves mean fewer cache misses per ray).
  *
  * @sa vtkAbstractCellLocator vtkStaticCellLocator vtkCellPicker
  */
