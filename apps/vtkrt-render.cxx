@@ -718,12 +718,22 @@ int Run(const Options& opt)
   FrameScene(scene.Renderer, FramingPoints(scene), static_cast<double>(opt.Width) / opt.Height);
   const auto t1 = Clock::now();
 
+  // The first frame creates the context: a failure there becomes our one
+  // message; anything else VTK says is passed on.
+  output->StartCapture();
   window->Render();
+  output->StopCapture();
+  const auto t2 = Clock::now();
   if (!window->IsContextReady())
   {
-    throw Failure{ "no usable EGL/OpenGL context (see the error above)", ExitRuntimeError };
+    throw Failure{ output->Captured.empty() ? std::string("no usable EGL/OpenGL context")
+                                            : MessageOf(output->Captured.front()),
+      ExitRuntimeError };
   }
-  const auto t2 = Clock::now();
+  for (const std::string& text : output->Captured)
+  {
+    std::cerr << text;
+  }
 
   // Steady frames: orbit one full turn in opt.Frames steps, then return to
   // the requested view exactly.

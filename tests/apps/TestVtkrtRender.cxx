@@ -56,10 +56,11 @@ struct Result
   std::string Output; // stdout and stderr together
 };
 
-Result RunApp(const std::string& args)
+Result RunApp(const std::string& args, const std::string& environment = "")
 {
-  const std::string command = "'" + App + "' " + args + " 2>&1";
-  std::cout << "$ vtkrt-render " << args << "\n";
+  const std::string command = environment + " '" + App + "' " + args + " 2>&1";
+  std::cout << "$ " << environment << (environment.empty() ? "" : " ") << "vtkrt-render " << args
+            << "\n";
   Result r;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe)
@@ -431,6 +432,7 @@ void TestBadArguments()
     std::string Args;
     int Code;
     std::string Message;
+    std::string Environment = "";
   };
   const std::string garbage = Tmp + "/garbage.ply";
   {
@@ -459,10 +461,12 @@ void TestBadArguments()
     { "'" + noExt + "'", 1, "unknown extension '.xyz'" },
     { "--demo --frames 0 --size 64x64 --output /nonexistent-dir/x.png", 1,
       "cannot write '/nonexistent-dir/x.png'" },
+    { "--demo --frames 0 --size 64x64 --output '" + Tmp + "/no-egl.png'", 1,
+      "No usable EGL display.*EGL device 99", "VTKRT_EGL_DEVICE=99" },
   };
   for (const Case& c : cases)
   {
-    const Result r = RunApp(c.Args);
+    const Result r = RunApp(c.Args, c.Environment);
     Check(r.Code == c.Code && Contains(r.Output, "vtkrt-render: .*" + c.Message),
       "'" + c.Args + "': exit " + std::to_string(c.Code) + " and says '" + c.Message + "'");
     // One clear message of ours, not VTK's error dump.
