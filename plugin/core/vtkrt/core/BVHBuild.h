@@ -141,14 +141,35 @@ private:
     std::sort(keyed.begin(), keyed.end(), [this](const auto& a, const auto& b) {
       return a.first < b.first || (a.first == b.first && Refs[a.second].id < Refs[b.second].id);
     });
-    std::vector<BuildRef> sorted(Refs.size());
     Codes.resize(Refs.size());
     for (std::size_t i = 0; i < keyed.size(); ++i)
     {
-      sorted[i] = Refs[keyed[i].second];
       Codes[i] = keyed[i].first;
     }
-    Refs.swap(sorted);
+    // Refs[i] = old Refs[keyed[i].second], in place by following cycles
+    // (no second array of refs: fresh pages are costly).
+    constexpr std::uint32_t done = 0xffffffffu;
+    for (std::uint32_t i = 0; i < keyed.size(); ++i)
+    {
+      if (keyed[i].second == done)
+      {
+        continue;
+      }
+      const BuildRef first = Refs[i];
+      std::uint32_t j = i;
+      for (;;)
+      {
+        const std::uint32_t k = keyed[j].second;
+        keyed[j].second = done;
+        if (k == i)
+        {
+          Refs[j] = first;
+          break;
+        }
+        Refs[j] = Refs[k];
+        j = k;
+      }
+    }
   }
 
   /// LBVH split: the first primitive whose code has the highest bit in
@@ -597,7 +618,13 @@ private:
       return n;
     };
     nodes[slot] = remap(sub[0]);
-    nodes.reserve(base + sub.size() - 1);
+    // Grow geometrically: reserving the exact size at every splice would
+    // copy the whole array once per task.
+    const std::size_t needed = base + sub.size() - 1;
+    if (nodes.capacity() < needed)
+    {
+      nodes.reserve(std::max(needed, 2 * nodes.capacity()));
+    }
     for (std::size_t i = 1; i < sub.size(); ++i)
     {
       nodes.push_back(remap(sub[i]));
