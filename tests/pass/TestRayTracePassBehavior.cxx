@@ -18,7 +18,9 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkBVHCellLocator.h"
 #include "vtkCellArray.h"
+#include "vtkCellPicker.h"
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkCompositePolyDataMapper2.h"
 #include "vtkConeSource.h"
@@ -684,6 +686,51 @@ void TestIdPick()
       offEdge += edge ? 0 : 1;
     }
   }
+  // The same check through VTK's own picking: vtkCellPicker with a
+  // vtkBVHCellLocator over the mesh (the glyphs are not pickable, so only
+  // pixels the GPU gives to the mesh or to nothing are compared), on every
+  // fifth pixel of every fifth row.
+  glyphs->PickableOff();
+  vtkNew<vtkBVHCellLocator> locator;
+  locator->SetDataSet(bunnyData);
+  locator->BuildLocator();
+  vtkNew<vtkCellPicker> picker;
+  picker->AddLocator(locator);
+  picker->SetTolerance(0.0);
+  long picked = 0, pickMismatches = 0, pickOffEdge = 0;
+  for (int j = 2; j < h; j += 5)
+  {
+    for (int i = 2; i < w; i += 5)
+    {
+      const std::size_t p = static_cast<std::size_t>(j) * w + i;
+      if (gpu[p] >= 100000000L)
+      {
+        continue; // a sphere in front
+      }
+      ++picked;
+      const bool hit = picker->Pick(i + 0.5, j + 0.5, 0.0, ren) != 0;
+      const long id = hit && picker->GetActor() == bunny ? static_cast<long>(picker->GetCellId()) : -1;
+      if (id != gpu[p])
+      {
+        ++pickMismatches;
+        bool edge = false;
+        for (int dj = -1; dj <= 1; ++dj)
+        {
+          for (int di = -1; di <= 1; ++di)
+          {
+            const std::size_t q = static_cast<std::size_t>(j + dj) * w + (i + di);
+            edge = edge || gpu[q] != gpu[p];
+          }
+        }
+        pickOffEdge += edge ? 0 : 1;
+      }
+    }
+  }
+  std::ostringstream pk;
+  pk << "id mode vs vtkCellPicker + vtkBVHCellLocator: " << picked << " pixels, "
+     << pickMismatches << " disagree, " << pickOffEdge << " away from an edge (want 0)";
+  Check(picked > 1000 && pickOffEdge == 0 && pickMismatches <= picked / 100, pk.str());
+
   std::ostringstream s;
   s << "id mode vs CPU pick: " << hits << " pixels hit, " << mismatches
     << " disagree (bound: 0.5% of pixels), " << offEdge << " of them away from an edge (want 0)";
