@@ -763,8 +763,11 @@ int Run(const Options& opt)
     const double x = opt.PickX + 0.5, y = opt.Height - 1 - opt.PickY + 0.5;
     vtkNew<vtkCellPicker> picker;
     picker->SetTolerance(0.0);
+    const auto p0 = Clock::now();
     const std::string how = PrepareLocator(picker, scene.Mesh);
+    const auto p1 = Clock::now();
     const bool meshHit = picker->Pick(x, y, 0.0, scene.Renderer) && picker->GetCellId() >= 0;
+    const auto p2 = Clock::now();
 
     // Glyph spheres have no cells for vtkCellPicker: intersect the same pick
     // ray (near to far plane, t in [0, 1]) with them as analytic spheres,
@@ -815,6 +818,8 @@ int Run(const Options& opt)
     {
       pickReport << "nothing [" << how << "]";
     }
+    pickReport << std::fixed << std::setprecision(2) << " (locator build "
+               << Milliseconds(p0, p1) << " ms, mesh pick " << Milliseconds(p1, p2) << " ms)";
   }
 
   vtkNew<vtkWindowToImageFilter> grab;
