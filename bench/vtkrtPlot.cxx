@@ -41,17 +41,19 @@ void StyleAxis(vtkAxis* axis, const std::string& title)
   axis->GetLabelProperties()->SetFontSize(13);
 }
 
+// A tick value on a log axis (1, 2 or 5 times a power of ten): plain
+// decimals in a readable range, "2e-4" style outside it.
 std::string DecadeLabel(double value)
 {
   char buf[32];
   if (value >= 1e-3 && value < 1e5)
   {
     std::snprintf(buf, sizeof(buf), "%g", value);
+    return buf;
   }
-  else
-  {
-    std::snprintf(buf, sizeof(buf), "1e%d", static_cast<int>(std::lround(std::log10(value))));
-  }
+  const int exponent = static_cast<int>(std::floor(std::log10(value) + 1e-9));
+  const long mantissa = std::lround(value / std::pow(10.0, exponent));
+  std::snprintf(buf, sizeof(buf), "%lde%d", mantissa, exponent);
   return buf;
 }
 
