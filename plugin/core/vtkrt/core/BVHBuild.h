@@ -670,27 +670,30 @@ inline void computeTreeStats(BVH& bvh, const BuildOptions& options = BuildOption
   }
 }
 
-/// Builds a BVH over primitives given by their bounds (primitive id = index
-/// in `bounds`). Primitives with empty, NaN or infinite bounds are skipped
-/// and counted in stats.skippedPrimitives.
-inline BVH buildBVH(const std::vector<AABB<double>>& bounds, const BuildOptions& options = BuildOptions())
+/// Builds a BVH over primitives given by a callable: boundsOf(i) for i in
+/// [0, count) returns primitive i's box. Primitives with empty, NaN or
+/// infinite bounds are skipped and counted in stats.skippedPrimitives. (No
+/// intermediate array of boxes: the builder's references are filled
+/// directly.)
+template <class BoundsFn>
+BVH buildBVH(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options = BuildOptions())
 {
   const auto start = std::chrono::steady_clock::now();
   BVH bvh;
   std::vector<detail::BuildRef> refs;
-  refs.reserve(bounds.size());
-  for (std::size_t i = 0; i < bounds.size(); ++i)
+  refs.reserve(count);
+  for (std::size_t i = 0; i < count; ++i)
   {
-    const AABB<double>& b = bounds[i];
+    const AABB<double> b = boundsOf(i);
     if (b.isEmpty() || !b.isFinite())
     {
       continue;
     }
     refs.push_back({ b, static_cast<std::uint32_t>(i) });
   }
-  bvh.stats.inputPrimitives = bounds.size();
+  bvh.stats.inputPrimitives = count;
   bvh.stats.builtPrimitives = refs.size();
-  bvh.stats.skippedPrimitives = bounds.size() - refs.size();
+  bvh.stats.skippedPrimitives = count - refs.size();
   {
     detail::Builder builder(refs, options);
     bvh.nodes = builder.build();
@@ -704,6 +707,13 @@ inline BVH buildBVH(const std::vector<AABB<double>>& bounds, const BuildOptions&
   bvh.stats.buildSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return bvh;
+}
+
+/// Builds a BVH over primitives given by their bounds (primitive id = index
+/// in `bounds`).
+inline BVH buildBVH(const std::vector<AABB<double>>& bounds, const BuildOptions& options = BuildOptions())
+{
+  return buildBVH(bounds.size(), [&bounds](std::size_t i) { return bounds[i]; }, options);
 }
 
 /// Refit after the primitives moved (same topology, same validity): leaf

@@ -65,8 +65,43 @@ struct SphereSet
   T radiusOf(std::size_t i) const { return radii ? radii[i] : radius; }
 };
 
-/// Bounds of every triangle; empty boxes for degenerate (zero area), NaN/inf
-/// or out-of-range triangles, which the builder then skips. Counts go to
+/// Why a primitive has no box.
+enum class PrimitiveStatus
+{
+  Valid,
+  Degenerate, ///< zero area / zero radius
+  NonFinite,  ///< NaN or infinite coordinates, or an index out of range
+};
+
+/// Bounds of triangle i; an empty box (skipped by the builders) for
+/// degenerate, non-finite or out-of-range triangles.
+inline AABB<double> triangleBox(const TriangleMesh<double>& mesh, std::size_t i, PrimitiveStatus* status = nullptr)
+{
+  Vec3<double> a(0.0), b(0.0), c(0.0);
+  AABB<double> box;
+  PrimitiveStatus st = PrimitiveStatus::Valid;
+  if (!mesh.triangle(i, a, b, c) || !isFinite(a) || !isFinite(b) || !isFinite(c))
+  {
+    st = PrimitiveStatus::NonFinite;
+  }
+  else if (!isValidTriangle(a, b, c))
+  {
+    st = PrimitiveStatus::Degenerate;
+  }
+  else
+  {
+    box.extend(a);
+    box.extend(b);
+    box.extend(c);
+  }
+  if (status)
+  {
+    *status = st;
+  }
+  return box;
+}
+
+/// Bounds of every triangle (see triangleBox). Counts go to
 /// stats.degeneratePrimitives / nonFinitePrimitives when given.
 inline std::vector<AABB<double>> triangleBounds(const TriangleMesh<double>& mesh, BuildStats* stats = nullptr)
 {
@@ -74,20 +109,10 @@ inline std::vector<AABB<double>> triangleBounds(const TriangleMesh<double>& mesh
   std::size_t degenerate = 0, nonFinite = 0;
   for (std::size_t i = 0; i < mesh.triangleCount; ++i)
   {
-    Vec3<double> a(0.0), b(0.0), c(0.0);
-    if (!mesh.triangle(i, a, b, c) || !isFinite(a) || !isFinite(b) || !isFinite(c))
-    {
-      ++nonFinite;
-      continue;
-    }
-    if (!isValidTriangle(a, b, c))
-    {
-      ++degenerate;
-      continue;
-    }
-    bounds[i].extend(a);
-    bounds[i].extend(b);
-    bounds[i].extend(c);
+    PrimitiveStatus st;
+    bounds[i] = triangleBox(mesh, i, &st);
+    degenerate += st == PrimitiveStatus::Degenerate;
+    nonFinite += st == PrimitiveStatus::NonFinite;
   }
   if (stats)
   {
@@ -127,12 +152,19 @@ inline std::vector<AABB<double>> sphereBounds(const SphereSet<double>& spheres, 
 
 inline BVH buildTriangleBVH(const TriangleMesh<double>& mesh, const BuildOptions& options = BuildOptions())
 {
-  BuildStats counts;
-  const auto start = std::chrono::steady_clock::now();
-  BVH bvh = buildBVH(triangleBounds(mesh, &counts), options);
-  bvh.stats.degeneratePrimitives = counts.degeneratePrimitives;
-  bvh.stats.nonFinitePrimitives = counts.nonFinitePrimitives;
-  bvh.stats.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::size_t degenerate = 0, nonFinite = 0;
+  BVH bvh = buildBVH(
+    mesh.triangleCount,
+    [&](std::size_t i) {
+      PrimitiveStatus st;
+      const AABB<double> box = triangleBox(mesh, i, &st);
+      degenerate += st == PrimitiveStatus::Degenerate;
+      nonFinite += st == PrimitiveStatus::NonFinite;
+      return box;
+    },
+    options);
+  bvh.stats.degeneratePrimitives = degenerate;
+  bvh.stats.nonFinitePrimitives = nonFinite;
   return bvh;
 }
 
