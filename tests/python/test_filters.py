@@ -45,3 +45,47 @@ bad.SetInputData(vtkPolyData())
 bad.Update()
 check(len(errors) >= 1, "empty input reported as an error")
 check(bad.GetOutput().GetNumberOfCells() == 0, "empty output for empty input")
+
+# vtkOpenMeshDecimation: halve the welded sphere by count; then decimate by
+# an error bound, and check every input vertex stays within that bound of the
+# decimated surface (distance through vtkBVHCellLocator).
+import math
+from vtkmodules.vtkCommonCore import reference
+decimate = vtkrt.vtkOpenMeshDecimation()
+decimate.SetInputData(cleaned)
+decimate.SetTargetModeToCount()
+target = cleaned.GetNumberOfCells() // 2
+decimate.SetTargetNumberOfTriangles(target)
+decimate.Update()
+check(abs(decimate.GetOutput().GetNumberOfCells() - target) <= 2,
+      "decimated to %d triangles (target %d)" % (decimate.GetOutput().GetNumberOfCells(), target))
+
+bound = 0.01
+decimate.SetTargetModeToErrorBound()
+decimate.SetMaximumError(bound)
+decimate.Update()
+decimated = decimate.GetOutput()
+check(0 < decimated.GetNumberOfCells() < cleaned.GetNumberOfCells(),
+      "error-bounded decimation removed triangles: %d -> %d" % (cleaned.GetNumberOfCells(), decimated.GetNumberOfCells()))
+locator = vtkrt.vtkBVHCellLocator()
+locator.SetDataSet(decimated)
+locator.BuildLocator()
+closest = [0.0, 0.0, 0.0]
+cell_id, sub_id, dist2 = reference(0), reference(0), reference(0.0)
+worst = 0.0
+for i in range(cleaned.GetNumberOfPoints()):
+    locator.FindClosestPoint(cleaned.GetPoint(i), closest, cell_id, sub_id, dist2)
+    worst = max(worst, math.sqrt(float(dist2)))
+check(0 < worst <= bound, "input vertices within the bound %g of the decimated surface (max %g)" % (bound, worst))
+
+# vtkBVHBoxes: the root box (level 0) is the mesh's bounding box.
+boxes = vtkrt.vtkBVHBoxes()
+boxes.SetInputData(cleaned)
+boxes.SetLevel(0)
+boxes.Update()
+b, m = boxes.GetOutput().GetBounds(), cleaned.GetBounds()
+check(max(abs(b[k] - m[k]) for k in range(6)) < 1e-6, "BVH root box equals the mesh bounds: %s" % (b,))
+boxes.SetLevel(3)
+boxes.Update()
+check(boxes.GetOutput().GetNumberOfCells() > 1, "level 3 has several boxes")
+check(out.GetOutput() == "", "VTK printed nothing: %r" % out.GetOutput())
