@@ -300,7 +300,23 @@ int vtkBVHCellLocator::IntersectWithLine(const double p1[3], const double p2[3],
     std::vector<double> weights(static_cast<size_t>(std::max<vtkIdType>(c->GetNumberOfPoints(), 1)));
     c->EvaluatePosition(x, closest, subId, pcoords, dist2, weights.data());
   }
-  if (cell)
+  if (cell && hit.TrianglePointIds)
+  {
+    // What DataSet->GetCell(cellId, cell) gives for a triangle, from the ids
+    // kept with the triangle (skips the dataset's cell lookup).
+    cell->SetCellTypeToTriangle();
+    cell->PointIds->SetNumberOfIds(3);
+    cell->Points->SetNumberOfPoints(3);
+    for (int k = 0; k < 3; ++k)
+    {
+      const vtkIdType id = hit.TrianglePointIds[k];
+      double p[3];
+      this->DataSet->GetPoint(id, p);
+      cell->PointIds->SetId(k, id);
+      cell->Points->SetPoint(k, p);
+    }
+  }
+  else if (cell)
   {
     this->DataSet->GetCell(cellId, cell);
   }

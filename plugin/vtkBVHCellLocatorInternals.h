@@ -56,6 +56,7 @@ struct LineHit
   vtkIdType CellId = -1;
   bool NeedsEvaluate = false; ///< pcoords/subId must come from the cell's EvaluatePosition
   bool Leaving = false;       ///< the segment leaves through an outward-facing triangle
+  const std::uint32_t* TrianglePointIds = nullptr; ///< set when the cell is that VTK_TRIANGLE
 };
 
 /// One closest-point result, in world coordinates.
@@ -81,6 +82,7 @@ enum TriangleFlags : std::uint8_t
 {
   FlipOrientation = 1, ///< odd triangle of a strip: its cell's winding is reversed
   EvaluateInCell = 2,  ///< part of a quad or polygon: pcoords come from the cell
+  WholeTriangle = 4,   ///< a VTK_TRIANGLE cell, vertices in the cell's order
 };
 
 class BVHCellLocatorData
@@ -90,6 +92,7 @@ public:
   std::vector<Vec3d> Points;             ///< local copy (point - Origin), fast path only
   std::vector<std::uint32_t> TriVerts;   ///< 3 point ids per triangle (extraction only)
   std::vector<Vec3d> TriV;               ///< 3 local vertices per triangle, leaf order
+  std::vector<std::uint32_t> TriIds;     ///< their point ids, leaf order
   std::vector<vtkIdType> TriCell;        ///< original cell id per triangle
   std::vector<std::int32_t> TriSub;      ///< subId per triangle (strips: triangle index)
   std::vector<std::uint8_t> TriFlags;    ///< TriangleFlags
@@ -131,6 +134,7 @@ public:
   {
     return this->Points.capacity() * sizeof(Vec3d) +
       this->TriVerts.capacity() * sizeof(std::uint32_t) + this->TriV.capacity() * sizeof(Vec3d) +
+      this->TriIds.capacity() * sizeof(std::uint32_t) +
       this->TriCell.capacity() * sizeof(vtkIdType) +
       this->TriSub.capacity() * sizeof(std::int32_t) + this->TriFlags.capacity() +
       this->GenCell.capacity() * sizeof(vtkIdType) + this->GenBox.capacity() * sizeof(Box) +
@@ -302,6 +306,7 @@ public:
     std::vector<vtkIdType> triCell(builtTri), genCell(order.size() - builtTri);
     std::vector<std::int32_t> triSub(builtTri);
     std::vector<std::uint8_t> triFlags(builtTri);
+    std::vector<std::uint32_t> triIds(3 * builtTri);
     std::vector<Box> genBox(order.size() - builtTri);
     std::uint32_t t = 0, g = 0;
     for (std::uint32_t& p : order)
@@ -315,6 +320,10 @@ public:
         triCell[t] = this->TriCell[p];
         triSub[t] = this->TriSub[p];
         triFlags[t] = this->TriFlags[p];
+        for (int k = 0; k < 3; ++k)
+        {
+          triIds[3 * t + k] = this->TriVerts[3 * p + k];
+        }
         p = t++;
       }
       else
@@ -328,6 +337,7 @@ public:
     this->TriCell.swap(triCell);
     this->TriSub.swap(triSub);
     this->TriFlags.swap(triFlags);
+    this->TriIds.swap(triIds);
     this->GenCell.swap(genCell);
     this->GenBox.swap(genBox);
     std::vector<std::uint32_t>().swap(this->TriVerts);
@@ -421,6 +431,8 @@ public:
       out.X[k] = p1[k] + hit.t * ray.dir[k];
     }
     out.NeedsEvaluate = (this->TriFlags[prim] & EvaluateInCell) != 0;
+    out.TrianglePointIds =
+      (this->TriFlags[prim] & WholeTriangle) ? this->TriIds.data() + 3 * static_cast<std::size_t>(prim) : nullptr;
     out.SubId = this->TriSub[prim];
     out.PCoords[0] = hit.u;
     out.PCoords[1] = hit.v;
@@ -1052,7 +1064,7 @@ private:
         {
           return false;
         }
-        this->AddTriangle(pts[0], pts[1], pts[2], cellId, 0, 0);
+        this->AddTriangle(pts[0], pts[1], pts[2], cellId, 0, WholeTriangle);
         return true;
       case VTK_QUAD:
         if (npts != 4)
