@@ -4,8 +4,9 @@
 #   BVH builder setting picks the same points (the locator is exact), and
 #   every vtkRayTracePass BuildQuality draws the same picture;
 # - precision.csv: the untranslated scene has zero pick error; picking with
-#   vtkBVHCellLocator stays exact to ~1e-6 of the object 1e8 units away, and
-#   the traced image stays close to the untranslated one;
+#   vtkBVHCellLocator stays exact to ~1e-6 of the object 1e8 units away, the
+#   traced image stays close to the untranslated one, and the pass's id-mode
+#   picks there name the locator's cells (at most 10% differ: edges);
 # - six PNG plots exist, are PNG files, and are neither empty nor huge.
 # Usage: cmake -DBENCH=<vtkrtBenchTrade> -DOUT=<dir> -P CheckBenchTrade.cmake
 cmake_minimum_required(VERSION 3.16)
@@ -134,6 +135,7 @@ read_csv("${OUT}/precision.csv" p)
 math(EXPR last "${p_rows} - 1")
 set(far_locator "")
 set(far_traced "")
+set(far_ids "")
 set(max_t 0)
 foreach (r RANGE ${last})
   if (p_${r}_translation GREATER max_t)
@@ -144,18 +146,21 @@ if (NOT max_t GREATER_EQUAL 1e8)
   fail("precision sweep stops at ${max_t}, not 1e8")
 endif ()
 foreach (r RANGE ${last})
-  if (p_${r}_translation EQUAL 0)
+  if (p_${r}_translation EQUAL 0 AND NOT p_${r}_method MATCHES "IdMode")
     expect_le("${p_${r}_pick_err_mean}" 0 "${p_${r}_method} untranslated against itself")
   elseif (p_${r}_translation EQUAL max_t)
     if (p_${r}_method MATCHES "BVHCellLocator")
       set(far_locator "${p_${r}_pick_err_mean}")
-    elseif (p_${r}_method MATCHES "^traced")
+    elseif (p_${r}_method MATCHES "^traced depth")
       set(far_traced "${p_${r}_image_rmse}")
+    elseif (p_${r}_method MATCHES "IdMode")
+      set(far_ids "${p_${r}_id_mismatch}")
     endif ()
   endif ()
 endforeach ()
 expect_le("${far_locator}" "${diag}e-6" "vtkBVHCellLocator pick error at translation ${max_t}")
 expect_le("${far_traced}" 5 "traced image RMSE at translation ${max_t}")
+expect_le("${far_ids}" 0.1 "traced id-mode picks differing from the locator's at ${max_t}")
 
 #------------------------------------------------------------------------------
 foreach (png trade_lod_frame trade_lod_error trade_builder trade_pass_builder
