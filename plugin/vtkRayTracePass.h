@@ -12,10 +12,11 @@
  *
  * Traced (everything else falls back to the delegate):
  * - vtkActor + vtkPolyDataMapper / vtkCompositePolyDataMapper(2), opaque,
- *   surface representation, no texture, no edge visibility, no backface
- *   property: polygons (fan triangulated, like VTK), triangle strips.
- *   An actor whose data also has lines, or vertices without
- *   RenderPointsAsSpheres, falls back whole.
+ *   surface representation, no texture, no edge visibility, no culling, no
+ *   PBR, no backface property: polygons (fan triangulated, like VTK),
+ *   triangle strips; composite block visibility and colors (inherited).
+ *   An actor whose data also has lines, vertices without
+ *   RenderPointsAsSpheres, or a translucent block falls back whole.
  * - Points of such an actor with RenderPointsAsSpheres (vertices, or every
  *   point with the points representation) as analytic spheres whose radius
  *   is PointSize/2 pixels at the set's center when the set is built.
@@ -28,9 +29,12 @@
  * Background: VTK's own clear (solid, gradient) shows where rays miss.
  *
  * Geometry is cached per data object and rebuilt only when its MTime
- * changes; camera, light or property changes upload only the per-instance
- * records. Shaders are assembled from the scene's features and cached by
- * feature key. The per-frame counters say what the last frame did.
+ * changes (a mesh shared by several actors is stored once; more than 8
+ * instances are walked through a top-level BVH); camera, light or property
+ * changes upload only the per-instance records, whose matrices are made
+ * camera-relative in double. Shaders are assembled from the scene's
+ * features and cached by feature key. The per-frame counters say what the
+ * last frame did. One pass serves one renderer.
  */
 #ifndef vtkRayTracePass_h
 #define vtkRayTracePass_h
