@@ -99,8 +99,6 @@ public:
   std::vector<vtkIdType> GenCell;        ///< original cell id per general primitive
   std::vector<Box> GenBox;               ///< its bounds, local, slightly widened
   core::BVH Tree;
-  std::vector<float> PackedNodes;        ///< float copy of Tree.nodes for the segment queries
-  size_t PackedOffset = 0;               ///< where node 0 starts in PackedNodes (alignment)
   /// The same tree seen four children at a time (a re-layout of the core's
   /// binary nodes, no new split decisions): half the levels, so about half
   /// the cache misses on the picking path. Boxes are the packed float ones.
@@ -138,7 +136,7 @@ public:
       this->TriCell.capacity() * sizeof(vtkIdType) +
       this->TriSub.capacity() * sizeof(std::int32_t) + this->TriFlags.capacity() +
       this->GenCell.capacity() * sizeof(vtkIdType) + this->GenBox.capacity() * sizeof(Box) +
-      this->Tree.memoryBytes() + this->PackedNodes.capacity() * sizeof(float) +
+      this->Tree.memoryBytes() +
       this->Wide.capacity() * sizeof(WideNode);
   }
 
@@ -199,20 +197,14 @@ public:
     options.maxLeafSize = static_cast<std::uint32_t>(std::max(leafSize, 1));
     this->Tree = core::buildBVH(boxes, options);
     this->Reorder(nTri);
-    // Local coordinates already: origin 0 keeps the outward rounding exact.
-    // Sibling pairs start at odd indices (the root is alone at 0): placing
-    // node 0 at 32 mod 64 bytes puts each pair (64 bytes) in one cache line.
-    const std::vector<float> packed = core::packNodesForGpu(this->Tree, Vec3d(0.0));
-    this->PackedNodes.assign(packed.size() + 32, 0.0f); // room for the up to 24-float shift
-    const std::uintptr_t base = reinterpret_cast<std::uintptr_t>(this->PackedNodes.data());
-    const std::uintptr_t aligned = ((base + 63) & ~std::uintptr_t(63)) + 32;
-    this->PackedOffset = (aligned - base) / sizeof(float);
-    std::copy(packed.begin(), packed.end(), this->PackedNodes.begin() + this->PackedOffset);
+    // The four-wide view reads its boxes from the float copy: local
+    // coordinates already, so origin 0 keeps the outward rounding exact.
     this->Wide.clear();
     if (!this->Tree.empty() && !this->Tree.nodes[0].isLeaf())
     {
+      const std::vector<float> packed = core::packNodesForGpu(this->Tree, Vec3d(0.0));
       this->Wide.reserve(this->Tree.nodes.size() / 2 + 1);
-      this->Collapse(0);
+      this->Collapse(0, packed.data());
     }
     this->Stats.Nodes = static_cast<vtkIdType>(this->Tree.stats.nodeCount);
     this->Stats.Leaves = static_cast<vtkIdType>(this->Tree.stats.leafCount);
@@ -225,7 +217,7 @@ public:
   /// Wide node for binary interior node `b`: its children, then repeatedly
   /// the interior child of largest area replaced by its two children, up to
   /// four. Returns the wide node's index.
-  std::uint32_t Collapse(std::uint32_t b)
+  std::uint32_t Collapse(std::uint32_t b, const float* packed)
   {
     const auto& nodes = this->Tree.nodes;
     std::uint32_t kids[4] = { nodes[b].index, nodes[b].index + 1, 0, 0 };
@@ -253,7 +245,6 @@ public:
     }
     const std::uint32_t w = static_cast<std::uint32_t>(this->Wide.size());
     this->Wide.emplace_back();
-    const float* packed = this->PackedNodes.data() + this->PackedOffset;
     WideNode node;
     node.Valid = 0;
     for (int i = 0; i < 4; ++i)
@@ -283,7 +274,7 @@ public:
       }
       else
       {
-        node.Child[i] = this->Collapse(kids[i]);
+        node.Child[i] = this->Collapse(kids[i], packed);
       }
     }
     this->Wide[w] = node;
@@ -711,29 +702,18 @@ private:
     return static_cast<vtkIdType>(prim) < nTri ? this->TriCell[prim] : this->GenCell[prim - nTri];
   }
 
-  /// The nodes as the packed float copy (packNodesForGpu: boxes rounded
-  /// outward, so never smaller than the double boxes), read back in double
-  /// and grown by tol (a cell within tol of the segment may lie outside its
-  /// box by up to tol). The slab test itself stays the core's robust double
-  /// test; the float copy halves the memory the segment queries stream.
-  struct PackedNodeSource
+  /// The core's nodes with every box grown by tol (a cell within tol of the
+  /// segment may lie outside its box by up to tol).
+  struct GrownNodeSource
   {
     using Scalar = double;
-    const float* data = nullptr;
+    const core::BVHNode* nodes = nullptr;
     std::size_t size = 0;
     double grow = 0.0;
-    Vec3d lo(std::uint32_t i) const
-    {
-      const float* d = data + 8 * static_cast<std::size_t>(i);
-      return Vec3d(double(d[0]) - grow, double(d[1]) - grow, double(d[2]) - grow);
-    }
-    Vec3d hi(std::uint32_t i) const
-    {
-      const float* d = data + 8 * static_cast<std::size_t>(i) + 4;
-      return Vec3d(double(d[0]) + grow, double(d[1]) + grow, double(d[2]) + grow);
-    }
-    std::uint32_t index(std::uint32_t i) const { return core::floatBitsToUint(data[8 * static_cast<std::size_t>(i) + 3]); }
-    std::uint32_t count(std::uint32_t i) const { return core::floatBitsToUint(data[8 * static_cast<std::size_t>(i) + 7]); }
+    Vec3d lo(std::uint32_t i) const { return nodes[i].min - Vec3d(grow); }
+    Vec3d hi(std::uint32_t i) const { return nodes[i].max + Vec3d(grow); }
+    std::uint32_t index(std::uint32_t i) const { return nodes[i].index; }
+    std::uint32_t count(std::uint32_t i) const { return nodes[i].count; }
   };
 
   bool MakeSegment(const double p1[3], const double p2[3], core::Ray<double>& ray) const
@@ -753,7 +733,7 @@ private:
   bool WalkSegment(const core::Ray<double>& ray, double tol, Isect& isect, core::Hit<double>& hit) const
   {
     const std::uint32_t* primIndex = this->Tree.primIndex.data();
-    const PackedNodeSource nodes{ this->PackedNodes.data() + this->PackedOffset, this->Tree.nodes.size(), tol };
+    const GrownNodeSource nodes{ this->Tree.nodes.data(), this->Tree.nodes.size(), tol };
     if (Mode == 0)
     {
       if (ray.dir.x != 0.0 && ray.dir.y != 0.0 && ray.dir.z != 0.0)
@@ -774,7 +754,7 @@ private:
   /// boxes; only for segments with no zero direction component (no 0 * inf),
   /// which WalkSegment checks.
   template <class Isect>
-  bool ClosestHitWide(const PackedNodeSource& nodes, core::Ray<double> ray, Isect& isect,
+  bool ClosestHitWide(const GrownNodeSource& nodes, core::Ray<double> ray, Isect& isect,
     core::Hit<double>& hit) const
   {
     hit = core::Hit<double>();
