@@ -26,8 +26,8 @@
 // Output: DIR/trade.csv, DIR/precision.csv and PNG plots in DIR (default
 // ./results). A timing never decides anything here beyond being reported.
 //
-// Usage: vtkrtBenchTrade [--quick] [--out DIR] [--mesh FILE.ply|generated]
-//                        [--size PIXELS]
+// Usage: vtkrtBenchTrade [--quick] [--out DIR] [--size PIXELS]
+//                        [--mesh FILE.ply|.obj|.stl|.vtp|generated]
 #include "vtkrtPlot.h"
 
 #include "vtkBVHCellLocator.h"
@@ -44,6 +44,7 @@
 #include "vtkImageDifference.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
+#include "vtkOBJReader.h"
 #include "vtkPLYReader.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -53,9 +54,11 @@
 #include "vtkSMPThreadLocalObject.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
+#include "vtkSTLReader.h"
 #include "vtkSphereSource.h"
 #include "vtkTriangleFilter.h"
 #include "vtkWindowToImageFilter.h"
+#include "vtkXMLPolyDataReader.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
@@ -890,6 +893,11 @@ bool RunLOD(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::vect
       decimate->Update();
       prep = Seconds(t0, Clock::now());
       lod = DoubleTriangles(decimate->GetOutput());
+      if (lod->GetNumberOfCells() == 0)
+      {
+        std::printf("  lod %.2f: decimation gave no triangles, skipped\n", ratio);
+        continue;
+      }
     }
 
     auto locator = vtkSmartPointer<vtkBVHCellLocator>::New();
@@ -1321,8 +1329,8 @@ bool ParseArgs(int argc, char* argv[], Options& opt)
     }
     else
     {
-      std::cerr << "usage: vtkrtBenchTrade [--quick] [--out DIR] [--mesh FILE.ply|generated] "
-                   "[--size PIXELS]\n";
+      std::cerr << "usage: vtkrtBenchTrade [--quick] [--out DIR] [--size PIXELS] "
+                   "[--mesh FILE.ply|.obj|.stl|.vtp|generated]\n";
       return false;
     }
   }
@@ -1376,10 +1384,46 @@ int main(int argc, char* argv[])
       std::cerr << "vtkrtBenchTrade: no mesh " << opt.Mesh << "\n";
       return 2;
     }
-    vtkNew<vtkPLYReader> reader;
-    reader->SetFileName(opt.Mesh.c_str());
+    const std::string ext =
+      vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(opt.Mesh));
+    vtkSmartPointer<vtkAlgorithm> reader;
+    if (ext == ".ply")
+    {
+      auto r = vtkSmartPointer<vtkPLYReader>::New();
+      r->SetFileName(opt.Mesh.c_str());
+      reader = r;
+    }
+    else if (ext == ".obj")
+    {
+      auto r = vtkSmartPointer<vtkOBJReader>::New();
+      r->SetFileName(opt.Mesh.c_str());
+      reader = r;
+    }
+    else if (ext == ".stl")
+    {
+      auto r = vtkSmartPointer<vtkSTLReader>::New();
+      r->SetFileName(opt.Mesh.c_str());
+      reader = r;
+    }
+    else if (ext == ".vtp")
+    {
+      auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+      r->SetFileName(opt.Mesh.c_str());
+      reader = r;
+    }
+    else
+    {
+      std::cerr << "vtkrtBenchTrade: " << opt.Mesh << ": not .ply, .obj, .stl or .vtp\n";
+      return 2;
+    }
     reader->Update();
-    mesh = DoubleTriangles(reader->GetOutput());
+    auto* read = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
+    if (!read)
+    {
+      std::cerr << "vtkrtBenchTrade: could not read " << opt.Mesh << "\n";
+      return 2;
+    }
+    mesh = DoubleTriangles(read);
     meshName = vtksys::SystemTools::GetFilenameName(opt.Mesh);
   }
   if (mesh->GetNumberOfCells() == 0)
