@@ -83,6 +83,7 @@ public:
     {
       finishPresorted();
     }
+    nodes.shrink_to_fit(); // splices grow it geometrically
     return nodes;
   }
 
