@@ -13,6 +13,7 @@
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLCamera.h"
 #include "vtkOpenGLError.h"
+#include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
@@ -31,6 +32,7 @@
 
 #include "vtkrtRayTraceKernels.h"
 #include "vtkrtRayTraceMain.h"
+#include "vtkrtRayTraceResolve.h"
 #include "vtkrtRayTraceSpheres.h"
 #include "vtkrtRayTraceTriangles.h"
 
@@ -142,8 +144,30 @@ struct vtkRayTracePass::Internals
   std::vector<std::uint32_t> TopOrder;
   vtkrt::core::Vec3<double> TopAnchor{ 0.0 };
 
+  // Sub-pixel sampling: float accumulation buffer (sum of hit colors, hit
+  // count), its depth, the resolve program, and what the accumulated frames
+  // were traced from (any change restarts the accumulation).
+  vtkNew<vtkOpenGLFramebufferObject> AccumulationFBO;
+  vtkNew<vtkTextureObject> AccumulationColor;
+  vtkNew<vtkTextureObject> AccumulationDepth;
+  std::unique_ptr<vtkOpenGLQuadHelper> Resolve;
+  int AccumulationSize[2] = { 0, 0 };
+  std::vector<float> AccumulationSignature;
+  int AccumulatedFrames = 0;
+
   void ReleaseGL(vtkWindow* w)
   {
+    if (this->Resolve)
+    {
+      this->Resolve->ReleaseGraphicsResources(w);
+      this->Resolve.reset();
+    }
+    this->AccumulationFBO->ReleaseGraphicsResources(w);
+    this->AccumulationColor->ReleaseGraphicsResources(w);
+    this->AccumulationDepth->ReleaseGraphicsResources(w);
+    this->AccumulationSize[0] = this->AccumulationSize[1] = 0;
+    this->AccumulationSignature.clear();
+    this->AccumulatedFrames = 0;
     for (auto& p : this->Programs)
     {
       p.second->ReleaseGraphicsResources(w);
@@ -216,6 +240,9 @@ void vtkRayTracePass::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "IdMode: " << this->IdMode << "\n";
   os << indent << "BuildQuality: " << this->BuildQuality << "\n";
+  os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
+  os << indent << "ProgressiveAccumulation: " << this->ProgressiveAccumulation << "\n";
+  os << indent << "AccumulatedFrames: " << this->Internal->AccumulatedFrames << "\n";
   os << indent << "MaximumTextureBufferTexels: " << this->MaximumTextureBufferTexels << "\n";
   os << indent << "DelegatePass: " << this->DelegatePass << "\n";
   os << indent << "LastFeatureKey: " << this->Internal->LastKey << "\n";
@@ -248,6 +275,11 @@ vtkProp* vtkRayTracePass::GetTracedProp(int index) const
 {
   const auto& t = this->Internal->Traced;
   return index >= 0 && index < static_cast<int>(t.size()) ? t[index] : nullptr;
+}
+
+int vtkRayTracePass::GetAccumulatedFrames() const
+{
+  return this->Internal->AccumulatedFrames;
 }
 
 int vtkRayTracePass::GetLastBVHBuilds() const
@@ -334,6 +366,10 @@ std::string assembleShader(const Features& f)
   {
     s << "#define VTKRT_HAS_TOP_LEVEL\n";
   }
+  if (f.SamplesPerPixel > 0)
+  {
+    s << "#define VTKRT_SAMPLES_PER_PIXEL " << f.SamplesPerPixel << "\n";
+  }
   s << "#define VTKRT_NUMBER_OF_CLIP_PLANES " << f.ClipPlanes << "\n";
   s << "#define VTKRT_NUMBER_OF_LIGHTS " << f.Lights << "\n";
   s << "#define VTKRT_LIGHT_COMPLEXITY " << f.LightComplexity << "\n";
@@ -388,6 +424,8 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
   in.Lights->Render(s);
 
   in.Scene.SetBuildQuality(this->BuildQuality);
+  const int accumulatedBefore = in.AccumulatedFrames;
+  in.AccumulatedFrames = 0;
   in.Scene.Extract(ren, s->GetPropArray(), s->GetPropArrayCount(), in.Traced, in.Others, in.Counters);
 
   if (this->IdMode)
@@ -672,6 +710,11 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     f.LightComplexity = f.Lights > 0 ? ren->GetLightingComplexity() : 0;
     f.IdMode = this->IdMode;
     f.TopLevel = topLevel;
+    // Sub-pixel sampling goes through the accumulation buffer (not in id
+    // mode: ids do not average).
+    const bool sampled =
+      !this->IdMode && (this->SamplesPerPixel > 1 || this->ProgressiveAccumulation);
+    f.SamplesPerPixel = sampled ? this->SamplesPerPixel : 0;
     GLint major = 0;
     glGetIntegerv(GL_MAJOR_VERSION, &major);
     f.Fp64 = major >= 4;
@@ -746,7 +789,114 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
       ostate->vtkglDepthFunc(GL_ALWAYS);
       ostate->vtkglDepthMask(GL_TRUE);
       ostate->vtkglDisable(GL_BLEND);
-      helper->Render();
+      if (sampled)
+      {
+        // What the image is traced from: any change restarts accumulating.
+        std::vector<float> signature(m, m + 16);
+        toGLSL(cameraToClip, m);
+        signature.insert(signature.end(), m, m + 16);
+        for (const auto* a : { &records, &planes, &lightColor, &lightDirection, &lightPosition,
+               &lightAttenuation, &lightCone })
+        {
+          signature.push_back(static_cast<float>(a->size()));
+          signature.insert(signature.end(), a->begin(), a->end());
+        }
+        signature.push_back(static_cast<float>(this->SamplesPerPixel));
+        int width = 0, height = 0, originX = 0, originY = 0;
+        ren->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);
+        width = std::max(width, 1);
+        height = std::max(height, 1);
+        const bool resized = width != in.AccumulationSize[0] || height != in.AccumulationSize[1];
+        const bool restart = !this->ProgressiveAccumulation || resized ||
+          in.Counters.GeometryBytesUploaded > 0 || in.Counters.ShaderCompiles > 0 ||
+          accumulatedBefore == 0 || signature != in.AccumulationSignature;
+        if (resized)
+        {
+          in.AccumulationColor->SetContext(win);
+          in.AccumulationColor->Allocate2D(width, height, 4, VTK_FLOAT);
+          in.AccumulationDepth->SetContext(win);
+          in.AccumulationDepth->AllocateDepth(width, height, vtkTextureObject::Float32);
+          in.AccumulationFBO->SetContext(win);
+          ostate->PushFramebufferBindings();
+          in.AccumulationFBO->Bind();
+          in.AccumulationFBO->AddColorAttachment(0, in.AccumulationColor);
+          in.AccumulationFBO->AddDepthAttachment(in.AccumulationDepth);
+          ostate->PopFramebufferBindings();
+          in.AccumulationSize[0] = width;
+          in.AccumulationSize[1] = height;
+        }
+        in.AccumulatedFrames = restart ? 1 : accumulatedBefore + 1;
+        in.AccumulationSignature.swap(signature);
+        {
+          ostate->PushFramebufferBindings();
+          in.AccumulationFBO->Bind();
+          in.AccumulationFBO->ActivateDrawBuffers(1);
+          vtkOpenGLState::ScopedglViewport viewport(ostate);
+          vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+          vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
+          ostate->vtkglViewport(0, 0, width, height);
+          ostate->vtkglDisable(GL_SCISSOR_TEST);
+          if (restart)
+          {
+            vtkOpenGLState::ScopedglClearColor clearColor(ostate);
+            ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+            ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+          }
+          // The depth is the first frame's; later frames only add colors.
+          ostate->vtkglDepthMask(restart ? GL_TRUE : GL_FALSE);
+          ostate->vtkglEnable(GL_BLEND);
+          ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+          program->SetUniformi(
+            "uFirstSample", (in.AccumulatedFrames - 1) * this->SamplesPerPixel);
+          const float pixelSize[2] = { 2.0f / width, 2.0f / height };
+          program->SetUniform2f("uPixelSize", pixelSize);
+          helper->Render();
+          ostate->PopFramebufferBindings();
+        }
+        for (vtkTextureObject* t : active)
+        {
+          t->Deactivate();
+        }
+        active.clear();
+
+        // Resolve: the average, blended by coverage over the background.
+        if (!in.Resolve)
+        {
+          const std::string resolveSource = std::string("#version 330 core\n") + vtkrtRayTraceResolve;
+          in.Resolve.reset(new vtkOpenGLQuadHelper(win, nullptr, resolveSource.c_str(), ""));
+          ++in.Counters.ShaderCompiles;
+        }
+        else
+        {
+          win->GetShaderCache()->ReadyShaderProgram(in.Resolve->Program);
+        }
+        vtkShaderProgram* resolve = in.Resolve->Program;
+        if (!resolve || !resolve->GetCompiled())
+        {
+          vtkErrorMacro("vtkRayTracePass: the accumulation resolve shader failed to compile.");
+        }
+        else
+        {
+          vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
+          ostate->vtkglDepthMask(GL_TRUE);
+          ostate->vtkglEnable(GL_BLEND);
+          ostate->vtkglBlendFuncSeparate(
+            GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+          in.AccumulationColor->Activate();
+          in.AccumulationDepth->Activate();
+          resolve->SetUniformi("uAccumulation", in.AccumulationColor->GetTextureUnit());
+          resolve->SetUniformi("uAccumulationDepth", in.AccumulationDepth->GetTextureUnit());
+          resolve->SetUniformf("uInverseSamples",
+            1.0f / static_cast<float>(in.AccumulatedFrames * this->SamplesPerPixel));
+          in.Resolve->Render();
+          in.AccumulationColor->Deactivate();
+          in.AccumulationDepth->Deactivate();
+        }
+      }
+      else
+      {
+        helper->Render();
+      }
       for (vtkTextureObject* t : active)
       {
         t->Deactivate();

@@ -143,12 +143,50 @@ public:
   vtkGetMacro(BuildQuality, int);
   ///@}
 
+  ///@{
+  /**
+   * Rays per pixel per frame (default 1, at most 256): above 1, each pixel
+   * is the average of jittered sub-pixel samples (a deterministic R2
+   * low-discrepancy sequence over the pixel square whose first point is the
+   * pixel center), accumulated in a float buffer owned by the pass and
+   * blended over the background by coverage, so silhouettes are
+   * anti-aliased. With 1 and ProgressiveAccumulation off the pass draws
+   * straight to the framebuffer (no accumulation buffer, no sampling code in
+   * the shader).
+   */
+  vtkSetClampMacro(SamplesPerPixel, int, 1, 256);
+  vtkGetMacro(SamplesPerPixel, int);
+  ///@}
+
+  ///@{
+  /**
+   * Progressive accumulation (default off): successive frames continue the
+   * sample sequence and average into the accumulation buffer for as long as
+   * nothing the traced image depends on changes (camera, lights, props and
+   * their properties or matrices, data, viewport size, knobs); any change
+   * starts again from one frame. N frames of 1 sample give the image of one
+   * frame of N samples. The depth written is the nearest hit among the
+   * first accumulated frame's samples (which include the pixel center).
+   */
+  vtkSetMacro(ProgressiveAccumulation, bool);
+  vtkGetMacro(ProgressiveAccumulation, bool);
+  vtkBooleanMacro(ProgressiveAccumulation, bool);
+  ///@}
+
+  /**
+   * Frames averaged into the last image: 0 when the pass drew straight to
+   * the framebuffer, 1 after a reset, n after n unchanged progressive frames.
+   */
+  int GetAccumulatedFrames() const;
+
 protected:
   vtkRayTracePass();
   ~vtkRayTracePass() override;
 
   bool IdMode = false;
   int BuildQuality = 1;
+  int SamplesPerPixel = 1;
+  bool ProgressiveAccumulation = false;
   vtkTypeInt64 MaximumTextureBufferTexels = 0;
   vtkRenderPass* DelegatePass = nullptr;
 

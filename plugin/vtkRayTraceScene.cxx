@@ -311,7 +311,7 @@ std::string Features::Key() const
   s << "T" << this->Triangles << "S" << this->Spheres << "N" << this->VertexNormals << "C"
     << this->Colors << "P" << this->ClipPlanes << "L" << this->Lights << "x"
     << this->LightComplexity << "I" << this->IdMode << "D" << this->Fp64 << "X"
-    << this->TopLevel;
+    << this->TopLevel << "A" << this->SamplesPerPixel;
   return s.str();
 }
 

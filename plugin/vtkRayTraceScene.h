@@ -101,6 +101,7 @@ struct Features
   bool IdMode = false;
   bool Fp64 = false;
   bool TopLevel = false;
+  int SamplesPerPixel = 0; ///< 0: one centered ray straight to the framebuffer
 
   std::string Key() const;
 };

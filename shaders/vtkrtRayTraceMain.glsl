@@ -285,9 +285,13 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int
 }
 #endif
 
-void main()
+// Traces and shades the ray through a point of the viewport (normalized
+// device coordinates): false on a miss, else the shaded color (the encoded
+// id in id mode) and the hit's window depth.
+bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 {
-  vec2 ndc = texCoord * 2.0 - 1.0;
+  outColor = vec4(0.0);
+  outDepth = 1.0;
   vec4 nearPoint = uClipToCamera * vec4(ndc, -1.0, 1.0);
   vec4 farPoint = uClipToCamera * vec4(ndc, 1.0, 1.0);
   vec3 org = nearPoint.xyz / nearPoint.w;
@@ -309,18 +313,12 @@ void main()
 
   if (hitInstance < 0)
   {
-#ifdef VTKRT_ID_MODE
-    fragOutput0 = vec4(0.0);
-    gl_FragDepth = 1.0;
-    return;
-#else
-    discard;
-#endif
+    return false;
   }
 
   vec3 p = org + tBest * dir;
   vec4 clip = uCameraToClip * vec4(p, 1.0);
-  gl_FragDepth = clamp(0.5 * (clip.z / clip.w) + 0.5, 0.0, 1.0);
+  outDepth = clamp(0.5 * (clip.z / clip.w) + 0.5, 0.0, 1.0);
 
   vec4 r0 = instanceTexel(hitInstance, 0);
   vec4 r1 = instanceTexel(hitInstance, 1);
@@ -402,8 +400,8 @@ void main()
 #ifdef VTKRT_ID_MODE
   // RGB: the VTK cell (or point, for spheres) id, 24 bits; A: prop index + 1.
   uint prop = info.z + 1u;
-  fragOutput0 = vec4(float(vtkId & 255u), float((vtkId >> 8) & 255u),
-                  float((vtkId >> 16) & 255u), float(prop & 255u)) / 255.0;
+  outColor = vec4(float(vtkId & 255u), float((vtkId >> 8) & 255u),
+                float((vtkId >> 16) & 255u), float(prop & 255u)) / 255.0;
 #else
   mat3 cameraToLocal = mat3(r0.xyz, r1.xyz, r2.xyz); // columns = rows of the matrix
   vec3 n = normalize(cameraToLocal * localNormal);
@@ -442,6 +440,68 @@ void main()
   }
   vec3 color = shadeLikeVTK(p, n, ambientColor, diffuseColor, t7.xyz, t5.w,
     (flags & kInstanceLit) != 0u);
-  fragOutput0 = vec4(clamp(color, 0.0, 1.0), 1.0);
+  outColor = vec4(clamp(color, 0.0, 1.0), 1.0);
 #endif
+  return true;
 }
+
+#ifdef VTKRT_SAMPLES_PER_PIXEL
+// Jittered sub-pixel sampling: VTKRT_SAMPLES_PER_PIXEL rays per pixel, the
+// k-th at the R2 low-discrepancy point k of the pixel square (point 0 is the
+// pixel center), k counting on from uFirstSample so successive accumulated
+// frames continue one sequence. The output is the sum of the hits' colors in
+// RGB and the number of hits in A (added into the pass's float accumulation
+// buffer); the depth is the nearest hit's.
+uniform int uFirstSample;
+uniform vec2 uPixelSize; // one pixel in normalized device coordinates
+
+vec2 samplePoint(int k)
+{
+  // R2 (Roberts 2018): fract(0.5 + k / (g, g^2)), g the plastic number.
+  const vec2 alpha = vec2(0.7548776662466927, 0.5698402909980532);
+  return fract(vec2(0.5) + float(k) * alpha);
+}
+
+void main()
+{
+  vec2 pixelCorner = texCoord * 2.0 - 1.0 - 0.5 * uPixelSize;
+  vec3 sum = vec3(0.0);
+  float hits = 0.0;
+  float nearest = 1.0;
+  for (int s = 0; s < VTKRT_SAMPLES_PER_PIXEL; ++s)
+  {
+    vec4 color;
+    float depth;
+    if (shadeRay(pixelCorner + samplePoint(uFirstSample + s) * uPixelSize, color, depth))
+    {
+      sum += color.rgb;
+      hits += 1.0;
+      nearest = min(nearest, depth);
+    }
+  }
+  if (hits == 0.0)
+  {
+    discard;
+  }
+  fragOutput0 = vec4(sum, hits);
+  gl_FragDepth = nearest;
+}
+#else
+void main()
+{
+  vec4 color;
+  float depth;
+  if (!shadeRay(texCoord * 2.0 - 1.0, color, depth))
+  {
+#ifdef VTKRT_ID_MODE
+    fragOutput0 = vec4(0.0);
+    gl_FragDepth = 1.0;
+    return;
+#else
+    discard;
+#endif
+  }
+  fragOutput0 = color;
+  gl_FragDepth = depth;
+}
+#endif
