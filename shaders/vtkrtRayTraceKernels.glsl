@@ -7,31 +7,56 @@
 // culls a box the ray touches. gamma(3) = 3u/(1-3u), u = 2^-24.
 const float kFarScale = 1.0 + 2.0 * (3.0 * 5.9604645e-8) / (1.0 - 3.0 * 5.9604645e-8);
 
-// Zero direction component maps to +inf, as core::RayBoxPrecomputed does.
-vec3 safeInverse(vec3 d)
+// Mirrors core::RayBoxPrecomputed::safeInverse: a zero (or subnormal)
+// direction component, whose inverse is not finite, maps to 0, which marks
+// the axis as parallel for clipSlab.
+float safeInverse(float d)
 {
-  const float inf = uintBitsToFloat(0x7f800000u);
-  return vec3(d.x == 0.0 ? inf : 1.0 / d.x, d.y == 0.0 ? inf : 1.0 / d.y,
-    d.z == 0.0 ? inf : 1.0 / d.z);
+  float inv = 1.0 / d;
+  return abs(inv) <= 3.40282347e38 ? inv : 0.0;
 }
 
-// Mirrors core::intersectRayAABB: NaN (origin on a slab plane with a zero
-// direction component) leaves the interval unchanged, i.e. counts as hit.
+vec3 safeInverse(vec3 d)
+{
+  return vec3(safeInverse(d.x), safeInverse(d.y), safeInverse(d.z));
+}
+
+// Mirrors core::detail::clipSlab: one slab of the box. A parallel axis is
+// decided by the origin alone (closed interval), so no NaN can arise.
+bool clipSlab(float lo, float hi, float org, float invDir, inout float tmin, inout float tmax)
+{
+  if (invDir == 0.0)
+  {
+    return org >= lo && org <= hi;
+  }
+  float t0 = (lo - org) * invDir;
+  float t1 = (hi - org) * invDir;
+  if (t1 < t0)
+  {
+    float tmp = t0;
+    t0 = t1;
+    t1 = tmp;
+  }
+  t1 *= kFarScale;
+  tmin = t0 > tmin ? t0 : tmin;
+  tmax = t1 < tmax ? t1 : tmax;
+  return true;
+}
+
+// Mirrors core::intersectRayAABB: on hit, tnear is the entry distance clamped
+// to [tmin, tmax].
 bool intersectRayAABB(vec3 org, vec3 invDir, vec3 bmin, vec3 bmax, float tmin, float tmax,
   out float tnear)
 {
-  vec3 t0 = (bmin - org) * invDir;
-  vec3 t1 = (bmax - org) * invDir;
-  vec3 tlo = min(t0, t1);
-  vec3 thi = max(t0, t1) * kFarScale;
-  tmin = tlo.x > tmin ? tlo.x : tmin;
-  tmax = thi.x < tmax ? thi.x : tmax;
-  tmin = tlo.y > tmin ? tlo.y : tmin;
-  tmax = thi.y < tmax ? thi.y : tmax;
-  tmin = tlo.z > tmin ? tlo.z : tmin;
-  tmax = thi.z < tmax ? thi.z : tmax;
   tnear = tmin;
-  return tmin <= tmax && !isinf(tmin);
+  if (!clipSlab(bmin.x, bmax.x, org.x, invDir.x, tmin, tmax) ||
+    !clipSlab(bmin.y, bmax.y, org.y, invDir.y, tmin, tmax) ||
+    !clipSlab(bmin.z, bmax.z, org.z, invDir.z, tmin, tmax))
+  {
+    return false;
+  }
+  tnear = tmin;
+  return tmin <= tmax;
 }
 
 // Mirrors core::intersectRayPlane for a plane n.p + d = 0, used to clip the
