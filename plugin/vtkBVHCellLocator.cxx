@@ -83,7 +83,7 @@ private:
 
 //------------------------------------------------------------------------------
 vtkBVHCellLocator::vtkBVHCellLocator()
-  : BuildQuality(SAH)
+  : BuildQuality(FAST)
   , Internals(new vtkInternals)
 {
   // Small leaves suit a BVH (VTK's default of 32 suits bucket locators).

@@ -74,9 +74,10 @@ public:
   using vtkAbstractCellLocator::IntersectWithLine;
 
   /**
-   * BVH builder quality: FAST (quick median-style build, lowest first-pick
-   * latency), SAH (binned surface area heuristic, the default) or HIGH
-   * (slower build, fastest queries).
+   * BVH builder quality, mapped to the core's builders: FAST (the default:
+   * quickest build, lowest first-pick latency and memory, and in
+   * vtkrtBenchLocator picking as fast as the others or faster), SAH (binned
+   * surface area heuristic) or HIGH (full-sweep SAH, slowest build).
    */
   enum BuildQualityType
   {
