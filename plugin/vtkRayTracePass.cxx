@@ -242,6 +242,10 @@ void vtkRayTracePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BuildQuality: " << this->BuildQuality << "\n";
   os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
   os << indent << "ProgressiveAccumulation: " << this->ProgressiveAccumulation << "\n";
+  os << indent << "Shadows: " << this->Shadows << "\n";
+  os << indent << "AmbientOcclusionSamples: " << this->AmbientOcclusionSamples << "\n";
+  os << indent << "AmbientOcclusionRadius: " << this->AmbientOcclusionRadius << "\n";
+  os << indent << "MaximumTraversalSteps: " << this->MaximumTraversalSteps << "\n";
   os << indent << "AccumulatedFrames: " << this->Internal->AccumulatedFrames << "\n";
   os << indent << "MaximumTextureBufferTexels: " << this->MaximumTextureBufferTexels << "\n";
   os << indent << "DelegatePass: " << this->DelegatePass << "\n";
@@ -370,6 +374,12 @@ std::string assembleShader(const Features& f)
   {
     s << "#define VTKRT_SAMPLES_PER_PIXEL " << f.SamplesPerPixel << "\n";
   }
+  if (f.Shadows)
+  {
+    s << "#define VTKRT_SHADOWS\n";
+  }
+  s << "#define VTKRT_AMBIENT_OCCLUSION_SAMPLES " << f.AmbientOcclusionSamples << "\n";
+  s << "#define VTKRT_MAXIMUM_TRAVERSAL_STEPS " << f.MaximumTraversalSteps << "\n";
   s << "#define VTKRT_NUMBER_OF_CLIP_PLANES " << f.ClipPlanes << "\n";
   s << "#define VTKRT_NUMBER_OF_LIGHTS " << f.Lights << "\n";
   s << "#define VTKRT_LIGHT_COMPLEXITY " << f.LightComplexity << "\n";
@@ -715,6 +725,24 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     const bool sampled =
       !this->IdMode && (this->SamplesPerPixel > 1 || this->ProgressiveAccumulation);
     f.SamplesPerPixel = sampled ? this->SamplesPerPixel : 0;
+    // Secondary rays only where they change the image: shaded, lit frames.
+    const bool shaded = !this->IdMode && f.LightComplexity > 0;
+    f.Shadows = shaded && this->Shadows;
+    f.AmbientOcclusionSamples = shaded ? this->AmbientOcclusionSamples : 0;
+    f.MaximumTraversalSteps = this->MaximumTraversalSteps;
+    double occlusionRadius = this->AmbientOcclusionRadius;
+    if (occlusionRadius <= 0.0)
+    {
+      vtkrt::core::AABB<double> all;
+      for (const auto& b : worldBoxes)
+      {
+        all.extend(b.min);
+        all.extend(b.max);
+      }
+      const auto diagonal = all.max - all.min;
+      occlusionRadius =
+        0.1 * std::sqrt(diagonal.x * diagonal.x + diagonal.y * diagonal.y + diagonal.z * diagonal.z);
+    }
     GLint major = 0;
     glGetIntegerv(GL_MAJOR_VERSION, &major);
     f.Fp64 = major >= 4;
@@ -748,6 +776,10 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
         static_cast<float>(-dop[2]) };
       program->SetUniform3f("uViewBack", viewBack);
       program->SetUniformi("uNumberOfInstances", static_cast<int>(instances.size()));
+      if (f.AmbientOcclusionSamples > 0)
+      {
+        program->SetUniformf("uAmbientOcclusionRadius", static_cast<float>(occlusionRadius));
+      }
       if (topLevel)
       {
         const float toAnchor[3] = { static_cast<float>(eye[0] - in.TopAnchor.x),
@@ -801,7 +833,8 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
           signature.push_back(static_cast<float>(a->size()));
           signature.insert(signature.end(), a->begin(), a->end());
         }
-        signature.push_back(static_cast<float>(this->SamplesPerPixel));
+        signature.push_back(static_cast<float>(occlusionRadius));
+        signature.insert(signature.end(), in.LastKey.begin(), in.LastKey.end());
         int width = 0, height = 0, originX = 0, originY = 0;
         ren->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);
         width = std::max(width, 1);

@@ -311,7 +311,8 @@ std::string Features::Key() const
   s << "T" << this->Triangles << "S" << this->Spheres << "N" << this->VertexNormals << "C"
     << this->Colors << "P" << this->ClipPlanes << "L" << this->Lights << "x"
     << this->LightComplexity << "I" << this->IdMode << "D" << this->Fp64 << "X"
-    << this->TopLevel << "A" << this->SamplesPerPixel;
+    << this->TopLevel << "A" << this->SamplesPerPixel << "H" << this->Shadows << "O"
+    << this->AmbientOcclusionSamples << "M" << this->MaximumTraversalSteps;
   return s.str();
 }
 

@@ -102,6 +102,9 @@ struct Features
   bool Fp64 = false;
   bool TopLevel = false;
   int SamplesPerPixel = 0; ///< 0: one centered ray straight to the framebuffer
+  bool Shadows = false;
+  int AmbientOcclusionSamples = 0;
+  int MaximumTraversalSteps = 0; ///< 0: unlimited
 
   std::string Key() const;
 };

@@ -71,12 +71,88 @@ uvec4 instanceBits(int instance, int i)
   return texelFetch(uInstances, instance * VTKRT_INSTANCE_TEXELS + i);
 }
 
+#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+// Any hit of a ray from org along dir within (0, tmax] (the core's anyHit).
+bool anyHit(vec3 org, vec3 dir, float tmax);
+
+// Wächter & Binder, "A Fast and Robust Method for Avoiding
+// Self-Intersection" (Ray Tracing Gems, ch. 6): moves a hit point off its
+// surface along the unit geometric normal n by a fixed number of float ulps
+// (integer arithmetic on the bits, so the offset scales with the point's
+// magnitude), or by a tiny absolute amount near the origin.
+vec3 offsetRayOrigin(vec3 p, vec3 n)
+{
+  const float kOrigin = 1.0 / 32.0;
+  const float kFloatScale = 1.0 / 65536.0;
+  const float kIntScale = 256.0;
+  ivec3 offset = ivec3(kIntScale * n);
+  vec3 pi = intBitsToFloat(floatBitsToInt(p) +
+    ivec3(p.x < 0.0 ? -offset.x : offset.x, p.y < 0.0 ? -offset.y : offset.y,
+      p.z < 0.0 ? -offset.z : offset.z));
+  return vec3(abs(p.x) < kOrigin ? p.x + kFloatScale * n.x : pi.x,
+    abs(p.y) < kOrigin ? p.y + kFloatScale * n.y : pi.y,
+    abs(p.z) < kOrigin ? p.z + kFloatScale * n.z : pi.z);
+}
+#endif
+
+#ifdef VTKRT_SHADOWS
+// 1 when nothing lies between the surface point p (unit geometric normal ng)
+// and the light along toLight within tmax, else 0 (hard shadows).
+float lightVisibility(vec3 p, vec3 ng, vec3 toLight, float tmax)
+{
+  vec3 side = dot(ng, toLight) >= 0.0 ? ng : -ng;
+  return anyHit(offsetRayOrigin(p, side), toLight, tmax) ? 0.0 : 1.0;
+}
+#endif
+
+#if VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+uniform float uAmbientOcclusionRadius; // world units
+int gSampleIndex = 0; // the pixel's sample (sub-pixel sampling), seeds the rays
+
+uint hashUint(uint x)
+{
+  // PCG-style integer hash (Jarzynski & Olano 2020).
+  uint state = x * 747796405u + 2891336453u;
+  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+
+// Unoccluded fraction of the hemisphere above p (unit geometric normal ng
+// facing the viewer): cosine-weighted rays of length uAmbientOcclusionRadius,
+// deterministic per pixel and sample.
+float ambientVisibility(vec3 p, vec3 ng)
+{
+  vec3 org = offsetRayOrigin(p, ng);
+  vec3 helper = abs(ng.x) > 0.5 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+  vec3 tangent = normalize(cross(helper, ng));
+  vec3 bitangent = cross(ng, tangent);
+  uint seed = hashUint(uint(gl_FragCoord.x) + hashUint(uint(gl_FragCoord.y) +
+    hashUint(uint(gSampleIndex))));
+  float unoccluded = 0.0;
+  for (int k = 0; k < VTKRT_AMBIENT_OCCLUSION_SAMPLES; ++k)
+  {
+    seed = hashUint(seed);
+    float u1 = float(seed >> 8) / 16777216.0;
+    seed = hashUint(seed);
+    float u2 = float(seed >> 8) / 16777216.0;
+    float r = sqrt(u1);
+    float phi = 6.283185307179586 * u2;
+    vec3 d = r * cos(phi) * tangent + r * sin(phi) * bitangent + sqrt(max(0.0, 1.0 - u1)) * ng;
+    unoccluded += anyHit(org, d * uAmbientOcclusionRadius, 1.0) ? 0.0 : 1.0;
+  }
+  return unoccluded / float(VTKRT_AMBIENT_OCCLUSION_SAMPLES);
+}
+#endif
+
 // VTK's vtkOpenGLPolyDataMapper lighting, for the renderer's lighting
 // complexity (0: none, 1: headlight, 2: directional lights, 3: positional),
 // evaluated in camera-relative world space (a rotation of VTK's view space,
 // so every dot product is the same).
-vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ambientColor, vec3 diffuseColor, vec3 specularColor,
-  float specularPower, bool lit)
+// With shadows, a light blocked from p contributes nothing; with ambient
+// occlusion, the ambient and diffuse terms are scaled by the unoccluded
+// fraction of the hemisphere (ng: unit geometric normal facing the viewer).
+vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ng, vec3 ambientColor, vec3 diffuseColor,
+  vec3 specularColor, float specularPower, bool lit)
 {
 #if VTKRT_LIGHT_COMPLEXITY == 0 || VTKRT_NUMBER_OF_LIGHTS == 0
   return ambientColor + diffuseColor;
@@ -85,10 +161,21 @@ vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ambientColor, vec3 diffuseColor, vec3 spe
   {
     return ambientColor + diffuseColor;
   }
+#if VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+  float ao = ambientVisibility(p, ng);
+#else
+  float ao = 1.0;
+#endif
 #if VTKRT_LIGHT_COMPLEXITY == 1
   float df = max(0.0, dot(n, uViewBack));
-  float sf = pow(df, specularPower);
-  return ambientColor + df * diffuseColor * uLightColor[0] +
+#ifdef VTKRT_SHADOWS
+  if (df > 0.0)
+  {
+    df *= lightVisibility(p, ng, uViewBack, 1.0e30);
+  }
+#endif
+  float sf = df > 0.0 ? pow(df, specularPower) : 0.0;
+  return ao * (ambientColor + df * diffuseColor * uLightColor[0]) +
     sf * specularColor * uLightColor[0];
 #else
   vec3 diffuse = vec3(0.0);
@@ -120,13 +207,26 @@ vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ambientColor, vec3 diffuseColor, vec3 spe
       }
     }
 #endif
+#ifdef VTKRT_SHADOWS
+    if (attenuation > 0.0 && dot(n, -lightDirection) > 0.0)
+    {
+#if VTKRT_LIGHT_COMPLEXITY == 3
+      // Positional lights: the segment to the light (t in (0, 1]).
+      attenuation *= uLightCone[i].z != 0.0
+        ? lightVisibility(p, ng, uLightPosition[i] - p, 1.0)
+        : lightVisibility(p, ng, -lightDirection, 1.0e30);
+#else
+      attenuation *= lightVisibility(p, ng, -lightDirection, 1.0e30);
+#endif
+    }
+#endif
     float df = max(0.0, attenuation * dot(n, -lightDirection));
     diffuse += df * uLightColor[i];
     float sf = sign(df) * attenuation *
       pow(max(0.0, dot(reflect(lightDirection, n), viewDirection)), specularPower);
     specular += sf * uLightColor[i];
   }
-  return ambientColor + diffuse * diffuseColor + specular * specularColor;
+  return ao * (ambientColor + diffuse * diffuseColor) + specular * specularColor;
 #endif
 #endif
 }
@@ -141,7 +241,7 @@ vec4 fetchColor(int i)
 // Closest hit of the ray with one instance (its clip planes, its
 // camera-space box, then its bottom-level BVH); updates the best hit.
 void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tBest,
-  inout int hitInstance, inout int hitPrimitive, inout vec2 hitUV)
+  inout int hitInstance, inout int hitPrimitive, inout vec2 hitUV, bool stopAtFirstHit)
 {
   vec4 boxMin = instanceTexel(instance, 3);
   vec4 boxMax = instanceTexel(instance, 4);
@@ -180,12 +280,12 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
   vec2 uv = vec2(0.0);
 #if defined(VTKRT_HAS_TRIANGLES) && defined(VTKRT_HAS_SPHERES)
   bool hit = (flags & kInstanceSpheres) != 0u
-    ? traverseSpheres(root, localOrg, localDir, t0, t1, primitive)
-    : traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv);
+    ? traverseSpheres(root, localOrg, localDir, t0, t1, primitive, stopAtFirstHit)
+    : traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv, stopAtFirstHit);
 #elif defined(VTKRT_HAS_TRIANGLES)
-  bool hit = traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv);
+  bool hit = traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv, stopAtFirstHit);
 #elif defined(VTKRT_HAS_SPHERES)
-  bool hit = traverseSpheres(root, localOrg, localDir, t0, t1, primitive);
+  bool hit = traverseSpheres(root, localOrg, localDir, t0, t1, primitive, stopAtFirstHit);
 #else
   bool hit = false;
 #endif
@@ -206,7 +306,7 @@ uniform usamplerBuffer uTopNodes;
 uniform vec3 uCameraToAnchor;
 
 void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int hitInstance,
-  inout int hitPrimitive, inout vec2 hitUV)
+  inout int hitPrimitive, inout vec2 hitUV, bool stopAtFirstHit)
 {
   vec3 anchorOrg = org + uCameraToAnchor;
   float tnear;
@@ -228,7 +328,11 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int
     {
       for (int i = index; i < index + count; ++i)
       {
-        traceInstance(i, org, dir, invDir, tBest, hitInstance, hitPrimitive, hitUV);
+        traceInstance(i, org, dir, invDir, tBest, hitInstance, hitPrimitive, hitUV, stopAtFirstHit);
+        if (stopAtFirstHit && hitInstance >= 0)
+        {
+          return;
+        }
       }
     }
     else
@@ -285,6 +389,26 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int
 }
 #endif
 
+#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+bool anyHit(vec3 org, vec3 dir, float tmax)
+{
+  vec3 invDir = safeInverse(dir);
+  float t = tmax;
+  int hitInstance = -1;
+  int hitPrimitive = -1;
+  vec2 hitUV = vec2(0.0);
+#ifdef VTKRT_HAS_TOP_LEVEL
+  traceTopLevel(org, dir, invDir, t, hitInstance, hitPrimitive, hitUV, true);
+#else
+  for (int instance = 0; instance < uNumberOfInstances && hitInstance < 0; ++instance)
+  {
+    traceInstance(instance, org, dir, invDir, t, hitInstance, hitPrimitive, hitUV, true);
+  }
+#endif
+  return hitInstance >= 0;
+}
+#endif
+
 // Traces and shades the ray through a point of the viewport (normalized
 // device coordinates): false on a miss, else the shaded color (the encoded
 // id in id mode) and the hit's window depth.
@@ -303,11 +427,11 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
   int hitPrimitive = -1;
   vec2 hitUV = vec2(0.0);
 #ifdef VTKRT_HAS_TOP_LEVEL
-  traceTopLevel(org, dir, invDir, tBest, hitInstance, hitPrimitive, hitUV);
+  traceTopLevel(org, dir, invDir, tBest, hitInstance, hitPrimitive, hitUV, false);
 #else
   for (int instance = 0; instance < uNumberOfInstances; ++instance)
   {
-    traceInstance(instance, org, dir, invDir, tBest, hitInstance, hitPrimitive, hitUV);
+    traceInstance(instance, org, dir, invDir, tBest, hitInstance, hitPrimitive, hitUV, false);
   }
 #endif
 
@@ -438,7 +562,13 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
     ambientColor = intensities.x * scalarColor.rgb;
     diffuseColor = intensities.y * scalarColor.rgb;
   }
-  vec3 color = shadeLikeVTK(p, n, ambientColor, diffuseColor, t7.xyz, t5.w,
+  // Unit geometric normal on the viewer's side (secondary ray offsets).
+  vec3 ngView = normalize(ng);
+  if (dot(ngView, dir) > 0.0)
+  {
+    ngView = -ngView;
+  }
+  vec3 color = shadeLikeVTK(p, n, ngView, ambientColor, diffuseColor, t7.xyz, t5.w,
     (flags & kInstanceLit) != 0u);
   outColor = vec4(clamp(color, 0.0, 1.0), 1.0);
 #endif
@@ -472,6 +602,9 @@ void main()
   {
     vec4 color;
     float depth;
+#if VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+    gSampleIndex = uFirstSample + s;
+#endif
     if (shadeRay(pixelCorner + samplePoint(uFirstSample + s) * uPixelSize, color, depth))
     {
       sum += color.rgb;

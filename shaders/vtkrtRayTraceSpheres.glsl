@@ -58,7 +58,8 @@ bool intersectRaySphere(vec3 org, vec3 dir, vec3 center, float radius, float tmi
 
 // Closest hit in the sphere BVH whose root node is `root`; see
 // traverseTriangles.
-bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax, out int sphere)
+bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax, out int sphere,
+  bool stopAtFirstHit)
 {
   sphere = -1;
   vec3 invDir = safeInverse(dir);
@@ -72,11 +73,18 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
   int stackNode[VTKRT_STACK_SIZE];
   float stackNear[VTKRT_STACK_SIZE];
   int sp = 0;
+  int steps = 0;
   int node = root;
   uvec4 lo = rootLo;
   uvec4 hi = rootHi;
   for (;;)
   {
+#if VTKRT_MAXIMUM_TRAVERSAL_STEPS > 0
+    if (++steps > VTKRT_MAXIMUM_TRAVERSAL_STEPS)
+    {
+      break;
+    }
+#endif
     int index = int(lo.w);
     int count = int(hi.w);
     bool descended = false;
@@ -90,6 +98,10 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
         {
           tmax = t;
           sphere = i;
+          if (stopAtFirstHit)
+          {
+            return true;
+          }
         }
       }
     }

@@ -99,9 +99,10 @@ bool intersectRayTriangle(RayTrianglePrecomputed r, vec3 v0, vec3 v1, vec3 v2, f
 
 // Closest hit in the triangle BVH whose root node is `root`: on a hit, tmax
 // becomes the hit distance, tri the triangle's leaf-order index (global) and
-// uv its barycentrics.
+// uv its barycentrics. stopAtFirstHit: any hit (core::anyHit) instead, for
+// occlusion rays.
 bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tmax, out int tri,
-  out vec2 uv)
+  out vec2 uv, bool stopAtFirstHit)
 {
   tri = -1;
   uv = vec2(0.0);
@@ -117,11 +118,20 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
   int stackNode[VTKRT_STACK_SIZE];
   float stackNear[VTKRT_STACK_SIZE];
   int sp = 0;
+  int steps = 0;
   int node = root;
   uvec4 lo = rootLo;
   uvec4 hi = rootHi;
   for (;;)
   {
+#if VTKRT_MAXIMUM_TRAVERSAL_STEPS > 0
+    // The traversal step cap (a speed/accuracy knob): what is not reached
+    // within the cap is missed.
+    if (++steps > VTKRT_MAXIMUM_TRAVERSAL_STEPS)
+    {
+      break;
+    }
+#endif
     int index = int(lo.w);
     int count = int(hi.w);
     bool descended = false;
@@ -138,6 +148,10 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
           tmax = h.x;
           tri = i;
           uv = h.yz;
+          if (stopAtFirstHit)
+          {
+            return true;
+          }
         }
       }
     }

@@ -9,6 +9,9 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkCubeSource.h"
+#include "vtkLight.h"
+#include "vtkPlaneSource.h"
 #include "vtkNew.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -16,7 +19,9 @@
 #include "vtkSphereSource.h"
 
 #include <cmath>
+#include <algorithm>
 #include <cstdlib>
+#include <vector>
 #include <functional>
 #include <iostream>
 #include <map>
@@ -177,6 +182,220 @@ void TestSampling()
   NoVTKOutput("Sampling");
   ren->SetPass(nullptr);
 }
+/// The red channel at the pixel showing world point (x, y, z).
+int RedAt(vtkRenderer* ren, vtkImageData* image, double x, double y, double z)
+{
+  ren->SetWorldPoint(x, y, z, 1.0);
+  ren->WorldToDisplay();
+  double d[3];
+  ren->GetDisplayPoint(d);
+  int dims[3];
+  image->GetDimensions(dims);
+  const int i = std::min(std::max(static_cast<int>(d[0]), 0), dims[0] - 1);
+  const int j = std::min(std::max(static_cast<int>(d[1]), 0), dims[1] - 1);
+  return static_cast<const unsigned char*>(image->GetScalarPointer(i, j, 0))[0];
+}
+
+/// Mean red channel over the (2r+1)^2 pixels around world point (x, y, z).
+double MeanRedAround(vtkRenderer* ren, vtkImageData* image, double x, double y, double z, int r)
+{
+  ren->SetWorldPoint(x, y, z, 1.0);
+  ren->WorldToDisplay();
+  double d[3];
+  ren->GetDisplayPoint(d);
+  int dims[3];
+  image->GetDimensions(dims);
+  double sum = 0.0;
+  int count = 0;
+  for (int j = static_cast<int>(d[1]) - r; j <= static_cast<int>(d[1]) + r; ++j)
+  {
+    for (int i = static_cast<int>(d[0]) - r; i <= static_cast<int>(d[0]) + r; ++i)
+    {
+      if (i >= 0 && j >= 0 && i < dims[0] && j < dims[1])
+      {
+        sum += static_cast<const unsigned char*>(image->GetScalarPointer(i, j, 0))[0];
+        ++count;
+      }
+    }
+  }
+  return count ? sum / count : -1.0;
+}
+
+vtkSmartPointer<vtkActor> FloorActor(double half)
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-half, 0.0, -half);
+  plane->SetPoint1(half, 0.0, -half);
+  plane->SetPoint2(-half, 0.0, half);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(plane->GetOutputPort());
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetAmbient(0.1);
+  return actor;
+}
+
+/// Hard shadows: a sphere over a floor, lit by one directional scene light
+/// from above and behind; the shadow falls in front of the sphere.
+void TestShadows()
+{
+  auto win = MakeWindow(200, 160);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  ren->SetBackground(0.2, 0.3, 0.4);
+  ren->AddActor(FloorActor(3.0));
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0.0, 1.0, 0.0);
+  sphere->SetRadius(0.5);
+  sphere->SetThetaResolution(32);
+  sphere->SetPhiResolution(32);
+  vtkNew<vtkPolyDataMapper> sphereMapper;
+  sphereMapper->SetInputConnection(sphere->GetOutputPort());
+  vtkNew<vtkActor> ball;
+  ball->SetMapper(sphereMapper);
+  ball->GetProperty()->SetColor(1.0, 0.6, 0.3);
+  ren->AddActor(ball);
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPosition(0.5, 2.0, -1.0);
+  light->SetFocalPoint(0.0, 0.0, 0.0);
+  ren->AddLight(light);
+  ren->GetActiveCamera()->SetPosition(0.0, 3.0, 6.0);
+  ren->GetActiveCamera()->SetFocalPoint(0.0, 0.3, 0.0);
+  ren->ResetCameraClippingRange();
+
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+  win->Render();
+  Check(!HasDefine(pass, "VTKRT_SHADOWS"), "shadows off: no shadow code in the shader");
+  auto unshadowed = Grab(win);
+  pass->ShadowsOn();
+  win->Render();
+  Check(HasDefine(pass, "VTKRT_SHADOWS"), "shadows on: shadow code compiled");
+  auto shadowed = Grab(win);
+
+  // The shadow's center: the sphere's center projected along the light.
+  const int lit = RedAt(ren, shadowed, 1.5, 0.0, 1.0);
+  const int dark = RedAt(ren, shadowed, -0.25, 0.0, 0.5);
+  const int darkBefore = RedAt(ren, unshadowed, -0.25, 0.0, 0.5);
+  Check(lit - dark > 100, "shadow: shadowed floor " + std::to_string(dark) +
+      " much darker than lit floor " + std::to_string(lit));
+  Check(std::abs(darkBefore - lit) <= 2,
+    "without shadows the same floor point is lit (" + std::to_string(darkBefore) + ")");
+  // No acne: lit floor points all over the image keep the unshadowed color.
+  int worst = 0;
+  for (double x : { -2.5, -2.0, -1.5, 1.5, 2.0, 2.5 })
+  {
+    for (double z : { -2.0, -1.0, 0.0, 1.0, 2.0 })
+    {
+      worst = std::max(worst, std::abs(RedAt(ren, shadowed, x, 0.0, z) - lit));
+      worst = std::max(
+        worst, std::abs(RedAt(ren, shadowed, x, 0.0, z) - RedAt(ren, unshadowed, x, 0.0, z)));
+    }
+  }
+  Check(worst <= 2, "no shadow acne: lit floor uniform within 2/255 (worst " +
+      std::to_string(worst) + ")");
+  // The sphere does not shadow its own lit top.
+  const int top = RedAt(ren, shadowed, 0.0, 1.5, 0.0);
+  const int topBefore = RedAt(ren, unshadowed, 0.0, 1.5, 0.0);
+  Check(std::abs(top - topBefore) <= 2 && top > 100,
+    "no self-shadowing on the lit sphere (" + std::to_string(top) + " vs " +
+      std::to_string(topBefore) + ")");
+  // Only darker: shadows never brighten a pixel.
+  Check(CountDifferingPixels(shadowed, unshadowed, 2) > 0, "shadows change the image");
+  Check(vtkrtCompareWithBaseline(shadowed, "pass_Shadows") == 1, "shadows: matches its baseline");
+  NoVTKOutput("Shadows");
+  ren->SetPass(nullptr);
+}
+
+/// Ambient occlusion: a cube on a floor under the headlight; the floor at
+/// the cube's foot (a crease) is darker than open floor.
+void TestAmbientOcclusion()
+{
+  auto win = MakeWindow(200, 160);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  ren->AddActor(FloorActor(3.0));
+  vtkNew<vtkCubeSource> cube;
+  cube->SetCenter(0.0, 0.5, 0.0);
+  vtkNew<vtkPolyDataMapper> cubeMapper;
+  cubeMapper->SetInputConnection(cube->GetOutputPort());
+  vtkNew<vtkActor> box;
+  box->SetMapper(cubeMapper);
+  ren->AddActor(box);
+  ren->GetActiveCamera()->SetPosition(1.0, 3.0, 5.0);
+  ren->GetActiveCamera()->SetFocalPoint(0.0, 0.3, 0.0);
+  ren->ResetCameraClippingRange();
+
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+  win->Render();
+  auto plain = Grab(win);
+  Check(HasDefine(pass, "VTKRT_AMBIENT_OCCLUSION_SAMPLES 0"), "occlusion off: no occlusion rays");
+  pass->SetAmbientOcclusionSamples(16);
+  pass->SetAmbientOcclusionRadius(0.5);
+  pass->SetSamplesPerPixel(4);
+  win->Render();
+  Check(HasDefine(pass, "VTKRT_AMBIENT_OCCLUSION_SAMPLES 16"), "occlusion on: 16 rays compiled");
+  auto occluded = Grab(win);
+  // Floor just in front of the cube's front face (z = 0.5) vs open floor
+  // (farther than the radius from the cube), 3x3 pixel means.
+  const double crease = MeanRedAround(ren, occluded, 0.0, 0.0, 0.62, 1);
+  const double open = MeanRedAround(ren, occluded, 1.2, 0.0, 1.5, 1);
+  const double creasePlain = MeanRedAround(ren, plain, 0.0, 0.0, 0.62, 1);
+  const double openPlain = MeanRedAround(ren, plain, 1.2, 0.0, 1.5, 1);
+  Check(std::abs(creasePlain - openPlain) <= 3,
+    "without occlusion crease and open floor match (" + std::to_string(creasePlain) + ", " +
+      std::to_string(openPlain) + ")");
+  Check(crease < 0.85 * open, "crease " + std::to_string(crease) + " darker than open floor " +
+      std::to_string(open));
+  Check(std::abs(open - openPlain) <= 0.05 * openPlain,
+    "open floor barely occluded (" + std::to_string(open) + " vs " + std::to_string(openPlain) + ")");
+  Check(vtkrtCompareWithBaseline(occluded, "pass_AmbientOcclusion", 20.0) == 1,
+    "occlusion: matches its baseline");
+  NoVTKOutput("AmbientOcclusion");
+  ren->SetPass(nullptr);
+}
+
+/// The traversal step cap: tiny caps miss, a cap above what any ray needs
+/// changes nothing.
+void TestTraversalSteps()
+{
+  auto win = MakeWindow(160, 160);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(96);
+  sphere->SetPhiResolution(96);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(sphere->GetOutputPort());
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  ren->AddActor(actor);
+  ren->ResetCamera();
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+  win->Render();
+  Check(HasDefine(pass, "VTKRT_MAXIMUM_TRAVERSAL_STEPS 0"),
+    "unlimited: no step counter compiled");
+  auto full = Grab(win);
+  const long fullCount = CountForegroundPixels(full, ren->GetBackground());
+  pass->SetMaximumTraversalSteps(4);
+  win->Render();
+  auto capped = Grab(win);
+  const long cappedCount = CountForegroundPixels(capped, ren->GetBackground());
+  Check(cappedCount < fullCount / 2, "cap 4: visible misses (" + std::to_string(cappedCount) +
+      " of " + std::to_string(fullCount) + " pixels hit)");
+  pass->SetMaximumTraversalSteps(1000000);
+  win->Render();
+  auto generous = Grab(win);
+  const long same = CountDifferingPixels(generous, full, 0);
+  Check(same == 0, "a cap no ray reaches matches unlimited (" + std::to_string(same) + " differ)");
+  pass->SetMaximumTraversalSteps(-5);
+  Check(pass->GetMaximumTraversalSteps() == 0, "negative caps clamp to 0 (unlimited)");
+  NoVTKOutput("TraversalSteps");
+  ren->SetPass(nullptr);
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -184,6 +403,9 @@ int main(int argc, char* argv[])
   Output = vtkrtTestOutputWindow::Install();
   const std::map<std::string, std::function<void()>> cases = {
     { "Sampling", TestSampling },
+    { "Shadows", TestShadows },
+    { "AmbientOcclusion", TestAmbientOcclusion },
+    { "TraversalSteps", TestTraversalSteps },
   };
   const std::string which = argc > 1 ? argv[1] : "";
   auto it = cases.find(which);
