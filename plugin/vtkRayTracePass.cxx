@@ -21,6 +21,7 @@
 #include "vtkOpenGLState.h"
 #include "vtkOverlayPass.h"
 #include "vtkProp.h"
+#include "vtkPropCollection.h"
 #include "vtkRenderPassCollection.h"
 #include "vtkRenderState.h"
 #include "vtkSequencePass.h"
@@ -436,7 +437,40 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
   in.Scene.SetBuildQuality(this->BuildQuality);
   const int accumulatedBefore = in.AccumulatedFrames;
   in.AccumulatedFrames = 0;
-  in.Scene.Extract(ren, s->GetPropArray(), s->GetPropArrayCount(), in.Traced, in.Others, in.Counters);
+  if (!this->IdMode && (this->Shadows || this->AmbientOcclusionSamples > 0))
+  {
+    // Secondary rays see props out of view too (VTK's culler left them out of
+    // the render state): trace every visible prop, and leave to raster only
+    // the render state's own.
+    std::vector<vtkProp*> all;
+    vtkPropCollection* props = ren->GetViewProps();
+    vtkCollectionSimpleIterator pit;
+    props->InitTraversal(pit);
+    while (vtkProp* prop = props->GetNextProp(pit))
+    {
+      if (prop->GetVisibility())
+      {
+        all.push_back(prop);
+      }
+    }
+    std::vector<vtkProp*> others;
+    in.Scene.Extract(ren, all.data(), static_cast<int>(all.size()), in.Traced, others, in.Counters);
+    vtkProp** stateProps = s->GetPropArray();
+    const int stateCount = s->GetPropArrayCount();
+    in.Others.clear();
+    for (vtkProp* prop : others)
+    {
+      if (std::find(stateProps, stateProps + stateCount, prop) != stateProps + stateCount)
+      {
+        in.Others.push_back(prop);
+      }
+    }
+  }
+  else
+  {
+    in.Scene.Extract(
+      ren, s->GetPropArray(), s->GetPropArrayCount(), in.Traced, in.Others, in.Counters);
+  }
 
   if (this->IdMode)
   {

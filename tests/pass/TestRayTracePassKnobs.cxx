@@ -8,6 +8,7 @@
 #include "vtkrtTestOutputWindow.h"
 
 #include "vtkActor.h"
+#include "vtkActorCollection.h"
 #include "vtkCamera.h"
 #include "vtkCubeSource.h"
 #include "vtkLight.h"
@@ -179,6 +180,33 @@ void TestSampling()
   progressive->SetSamplesPerPixel(2);
   win->Render();
   Check(progressive->GetAccumulatedFrames() == 1, "samples per pixel changed: restarts");
+
+  // Depth: a raster wireframe grid through the sphere's center is hidden by
+  // the sphere's front half with sampling as without (a wrong depth would
+  // show the grid's lines across the sphere).
+  vtkNew<vtkPlaneSource> grid;
+  grid->SetOrigin(-1.0, -1.0, 0.0);
+  grid->SetPoint1(1.0, -1.0, 0.0);
+  grid->SetPoint2(-1.0, 1.0, 0.0);
+  grid->SetResolution(8, 8);
+  vtkNew<vtkPolyDataMapper> gridMapper;
+  gridMapper->SetInputConnection(grid->GetOutputPort());
+  vtkNew<vtkActor> wire;
+  wire->SetMapper(gridMapper);
+  wire->GetProperty()->SetRepresentationToWireframe();
+  wire->GetProperty()->LightingOff();
+  wire->GetProperty()->SetColor(0.0, 1.0, 0.0);
+  ren->AddActor(wire);
+  ren->SetPass(direct);
+  win->Render();
+  auto gridDirect = Grab(win);
+  ren->SetPass(sampled);
+  win->Render();
+  auto gridSampled = Grab(win);
+  const long gridDiff = CountDifferingPixels(gridDirect, gridSampled, 64);
+  Check(gridDiff >= 0 && gridDiff < perimeter,
+    "sampled depth composites raster like one ray (" + std::to_string(gridDiff) + " pixels differ, < " +
+      std::to_string(perimeter) + ")");
   NoVTKOutput("Sampling");
   ren->SetPass(nullptr);
 }
@@ -304,6 +332,66 @@ void TestShadows()
   // Only darker: shadows never brighten a pixel.
   Check(CountDifferingPixels(shadowed, unshadowed, 2) > 0, "shadows change the image");
   Check(vtkrtCompareWithBaseline(shadowed, "pass_Shadows") == 1, "shadows: matches its baseline");
+
+  // Many instances (a top-level BVH): the same shadows. Extra spheres below
+  // the floor, out of view and out of the light's way.
+  std::vector<vtkSmartPointer<vtkActor>> extras;
+  for (int k = 0; k < 9; ++k)
+  {
+    auto extra = vtkSmartPointer<vtkActor>::New();
+    extra->SetMapper(sphereMapper);
+    extra->SetPosition(k - 4.0, -20.0, 0.0);
+    ren->AddActor(extra);
+    extras.push_back(extra);
+  }
+  win->Render();
+  Check(pass->GetLastTracedInstances() == 11 && pass->GetLastTopLevelBuilds() == 1,
+    "top level: 11 instances traced (" + std::to_string(pass->GetLastTracedInstances()) + ")");
+  auto manyShadowed = Grab(win);
+  const long manyDiff = CountDifferingPixels(manyShadowed, shadowed, 2);
+  Check(manyDiff == 0,
+    "top level: the same shadowed image (" + std::to_string(manyDiff) + " pixels differ)");
+  for (const auto& extra : extras)
+  {
+    ren->RemoveActor(extra);
+  }
+
+  // A scene a thousand times larger: offsets scale with the coordinates.
+  for (vtkActor* a : { ball.GetPointer() })
+  {
+    a->SetScale(1000.0);
+  }
+  vtkActor* floorActor = nullptr;
+  {
+    vtkActorCollection* actors = ren->GetActors();
+    actors->InitTraversal();
+    while (vtkActor* a = actors->GetNextActor())
+    {
+      if (a != ball.GetPointer())
+      {
+        floorActor = a;
+      }
+    }
+  }
+  floorActor->SetScale(1000.0);
+  ren->GetActiveCamera()->SetPosition(0.0, 3000.0, 6000.0);
+  ren->GetActiveCamera()->SetFocalPoint(0.0, 300.0, 0.0);
+  ren->ResetCameraClippingRange();
+  win->Render();
+  auto large = Grab(win);
+  const int largeLit = RedAt(ren, large, 1500.0, 0.0, 1000.0);
+  const int largeDark = RedAt(ren, large, -250.0, 0.0, 500.0);
+  int largeWorst = 0;
+  for (double x : { -2500.0, -2000.0, -1500.0, 1500.0, 2000.0, 2500.0 })
+  {
+    for (double z : { -2000.0, -1000.0, 0.0, 1000.0, 2000.0 })
+    {
+      largeWorst = std::max(largeWorst, std::abs(RedAt(ren, large, x, 0.0, z) - largeLit));
+    }
+  }
+  Check(largeLit - largeDark > 100 && largeWorst <= 2,
+    "1000x scene: shadow " + std::to_string(largeDark) + " vs lit " + std::to_string(largeLit) +
+      ", lit floor uniform (worst " + std::to_string(largeWorst) + ")");
   NoVTKOutput("Shadows");
   ren->SetPass(nullptr);
 }
