@@ -587,9 +587,11 @@ uniform vec2 uPixelSize; // one pixel in normalized device coordinates
 
 vec2 samplePoint(int k)
 {
-  // R2 (Roberts 2018): fract(0.5 + k / (g, g^2)), g the plastic number.
-  const vec2 alpha = vec2(0.7548776662466927, 0.5698402909980532);
-  return fract(vec2(0.5) + float(k) * alpha);
+  // R2 (Roberts 2018): fract(0.5 + k / (g, g^2)), g the plastic number, in
+  // 0.32 fixed point (uint arithmetic wraps like fract, exactly, for any k).
+  const uvec2 alpha = uvec2(3242174889u, 2447445414u);
+  uvec2 q = uvec2(0x80000000u) + uint(k) * alpha;
+  return vec2(q >> 8u) * (1.0 / 16777216.0);
 }
 
 void main()
