@@ -150,7 +150,8 @@ public:
    * low-discrepancy sequence over the pixel square whose first point is the
    * pixel center), accumulated in a float buffer owned by the pass and
    * blended over the background by coverage, so silhouettes are
-   * anti-aliased. With 1 and ProgressiveAccumulation off the pass draws
+   * anti-aliased (not in id mode: ids do not average; id mode traces one
+   * centered ray). With 1 and ProgressiveAccumulation off the pass draws
    * straight to the framebuffer (no accumulation buffer, no sampling code in
    * the shader).
    */

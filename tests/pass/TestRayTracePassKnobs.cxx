@@ -11,6 +11,9 @@
 #include "vtkActorCollection.h"
 #include "vtkCamera.h"
 #include "vtkCubeSource.h"
+#include "vtkGlyph3DMapper.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkLight.h"
 #include "vtkPlaneSource.h"
 #include "vtkNew.h"
@@ -394,6 +397,48 @@ void TestShadows()
       ", lit floor uniform (worst " + std::to_string(largeWorst) + ")");
   NoVTKOutput("Shadows");
   ren->SetPass(nullptr);
+
+  // Analytic spheres (a sphere glyph) cast and receive shadows the same way.
+  auto win2 = MakeWindow(200, 160);
+  vtkNew<vtkRenderer> ren2;
+  win2->AddRenderer(ren2);
+  ren2->AddActor(FloorActor(3.0));
+  vtkNew<vtkPoints> centers;
+  centers->InsertNextPoint(0.0, 1.0, 0.0);
+  vtkNew<vtkPolyData> centerData;
+  centerData->SetPoints(centers);
+  vtkNew<vtkSphereSource> glyphSource;
+  glyphSource->SetRadius(0.5);
+  vtkNew<vtkGlyph3DMapper> glyphs;
+  glyphs->SetInputData(centerData);
+  glyphs->SetSourceConnection(glyphSource->GetOutputPort());
+  glyphs->ScalingOff();
+  vtkNew<vtkActor> glyphActor;
+  glyphActor->SetMapper(glyphs);
+  ren2->AddActor(glyphActor);
+  vtkNew<vtkLight> light2;
+  light2->SetLightTypeToSceneLight();
+  light2->SetPosition(0.5, 2.0, -1.0);
+  light2->SetFocalPoint(0.0, 0.0, 0.0);
+  ren2->AddLight(light2);
+  ren2->GetActiveCamera()->SetPosition(0.0, 3.0, 6.0);
+  ren2->GetActiveCamera()->SetFocalPoint(0.0, 0.3, 0.0);
+  ren2->ResetCameraClippingRange();
+  vtkNew<vtkRayTracePass> pass2;
+  pass2->ShadowsOn();
+  ren2->SetPass(pass2);
+  win2->Render();
+  auto glyphShadowed = Grab(win2);
+  Check(std::string(pass2->GetLastFeatureKey()).find("S1") != std::string::npos,
+    "glyph scene traces analytic spheres");
+  const int glyphLit = RedAt(ren2, glyphShadowed, 1.5, 0.0, 1.0);
+  const int glyphDark = RedAt(ren2, glyphShadowed, -0.25, 0.0, 0.5);
+  const int glyphTop = RedAt(ren2, glyphShadowed, 0.0, 1.5, 0.0);
+  Check(glyphLit - glyphDark > 100 && glyphTop > 100,
+    "analytic sphere: shadow " + std::to_string(glyphDark) + " vs lit floor " +
+      std::to_string(glyphLit) + ", lit top " + std::to_string(glyphTop));
+  NoVTKOutput("Shadows (spheres)");
+  ren2->SetPass(nullptr);
 }
 
 /// Ambient occlusion: a cube on a floor under the headlight; the floor at
