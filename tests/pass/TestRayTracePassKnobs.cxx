@@ -486,6 +486,40 @@ void TestAmbientOcclusion()
     "open floor barely occluded (" + std::to_string(open) + " vs " + std::to_string(openPlain) + ")");
   Check(vtkrtCompareWithBaseline(occluded, "pass_AmbientOcclusion", 20.0) == 1,
     "occlusion: matches its baseline");
+
+  // Progressive accumulation converges: the pixel-to-pixel noise of the
+  // partly occluded floor in front of the cube falls with the frames.
+  pass->SetSamplesPerPixel(1);
+  pass->SetAmbientOcclusionSamples(4);
+  pass->ProgressiveAccumulationOn();
+  auto noise = [&](vtkImageData* image) {
+    ren->SetWorldPoint(0.0, 0.0, 0.8, 1.0);
+    ren->WorldToDisplay();
+    double d[3];
+    ren->GetDisplayPoint(d);
+    double sum = 0.0;
+    for (int j = static_cast<int>(d[1]) - 5; j <= static_cast<int>(d[1]) + 5; ++j)
+    {
+      for (int i = static_cast<int>(d[0]) - 8; i <= static_cast<int>(d[0]) + 8; ++i)
+      {
+        const auto* a = static_cast<const unsigned char*>(image->GetScalarPointer(i, j, 0));
+        const auto* b = static_cast<const unsigned char*>(image->GetScalarPointer(i + 1, j, 0));
+        sum += std::abs(int(a[0]) - int(b[0]));
+      }
+    }
+    return sum;
+  };
+  win->Render();
+  const double noisy = noise(Grab(win));
+  for (int k = 1; k < 16; ++k)
+  {
+    win->Render();
+  }
+  const double converged = noise(Grab(win));
+  Check(pass->GetAccumulatedFrames() == 16 && converged < 0.5 * noisy,
+    "accumulated occlusion converges: neighbor noise " + std::to_string(noisy) + " -> " +
+      std::to_string(converged) + " after " + std::to_string(pass->GetAccumulatedFrames()) +
+      " frames");
   NoVTKOutput("AmbientOcclusion");
   ren->SetPass(nullptr);
 }
