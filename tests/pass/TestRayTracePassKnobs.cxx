@@ -210,6 +210,31 @@ void TestSampling()
   Check(gridDiff >= 0 && gridDiff < perimeter,
     "sampled depth composites raster like one ray (" + std::to_string(gridDiff) + " pixels differ, < " +
       std::to_string(perimeter) + ")");
+
+  // A renderer on the right half of its window: the accumulation buffer
+  // covers the renderer's viewport and resolves onto it.
+  ren->RemoveActor(wire);
+  auto halfWin = MakeWindow(2 * size, size);
+  vtkNew<vtkRenderer> half;
+  half->SetViewport(0.5, 0.0, 1.0, 1.0);
+  half->SetBackground(0.0, 0.0, 0.3);
+  half->AddActor(actor);
+  half->ResetCamera();
+  halfWin->AddRenderer(half);
+  vtkNew<vtkRayTracePass> halfDirect;
+  half->SetPass(halfDirect);
+  halfWin->Render();
+  auto halfOne = Grab(halfWin);
+  vtkNew<vtkRayTracePass> halfSampled;
+  halfSampled->SetSamplesPerPixel(4);
+  half->SetPass(halfSampled);
+  halfWin->Render();
+  auto halfFour = Grab(halfWin);
+  const long halfDiff = CountDifferingPixels(halfOne, halfFour, 64);
+  Check(halfDiff >= 0 && halfDiff < perimeter,
+    "sub-viewport: sampled image lines up with one ray (" + std::to_string(halfDiff) +
+      " pixels differ)");
+  half->SetPass(nullptr);
   NoVTKOutput("Sampling");
   ren->SetPass(nullptr);
 }
