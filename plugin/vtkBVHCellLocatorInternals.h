@@ -171,31 +171,27 @@ public:
   {
     const size_t nTri = this->TriCell.size();
     const size_t n = nTri + this->GenCell.size();
-    std::vector<Box> boxes(n);
-    vtkSMPTools::For(0, static_cast<vtkIdType>(nTri), [&](vtkIdType b, vtkIdType e) {
-      for (vtkIdType i = b; i < e; ++i)
-      {
+    core::BuildOptions options;
+    options.quality = quality == 0 ? core::BuildQuality::Fast
+                                   : (quality == 2 ? core::BuildQuality::High : core::BuildQuality::Medium);
+    options.maxLeafSize = static_cast<std::uint32_t>(std::max(leafSize, 1));
+    // Boxes straight into the builder's references: no intermediate array
+    // of n boxes (fresh pages cost more than the arithmetic here).
+    this->Tree = core::buildBVH(
+      n,
+      [this, nTri](size_t i) {
+        if (i >= nTri)
+        {
+          return this->GenBox[i - nTri];
+        }
         Box box;
         for (int k = 0; k < 3; ++k)
         {
           box.extend(this->Points[this->TriVerts[3 * i + k]]);
         }
-        if (!box.isFinite())
-        {
-          box = Box(); // empty: the builder skips it
-        }
-        boxes[i] = box;
-      }
-    });
-    for (size_t g = 0; g < this->GenCell.size(); ++g)
-    {
-      boxes[nTri + g] = this->GenBox[g];
-    }
-    core::BuildOptions options;
-    options.quality = quality == 0 ? core::BuildQuality::Fast
-                                   : (quality == 2 ? core::BuildQuality::High : core::BuildQuality::Medium);
-    options.maxLeafSize = static_cast<std::uint32_t>(std::max(leafSize, 1));
-    this->Tree = core::buildBVH(boxes, options);
+        return box; // non-finite or empty: the builder skips it
+      },
+      options);
     this->Reorder(nTri);
     // The four-wide view reads its boxes from the float copy: local
     // coordinates already, so origin 0 keeps the outward rounding exact.

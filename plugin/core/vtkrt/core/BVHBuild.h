@@ -61,6 +61,9 @@ public:
     FreeThreads = static_cast<int>(std::max(1u, threads)) - 1;
   }
 
+  /// The id of the primitive at leaf position pos (after build()).
+  std::uint32_t idAt(std::uint32_t pos) const { return refAt(pos).id; }
+
   std::vector<BVHNode> build()
   {
     std::vector<BVHNode> nodes;
@@ -83,6 +86,7 @@ public:
     {
       finishPresorted();
     }
+    std::vector<std::uint64_t>().swap(Codes);
     nodes.shrink_to_fit(); // splices grow it geometrically
     return nodes;
   }
@@ -91,13 +95,17 @@ private:
   std::vector<BuildRef>& Refs;
   BuildOptions Options;
   std::atomic<int> FreeThreads{ 0 };
-  std::vector<std::uint64_t> Codes; ///< Fast only: Morton codes parallel to Refs, ascending
+  std::vector<std::uint64_t> Codes; ///< Fast only: Morton codes by position, ascending
+  std::vector<std::uint32_t> Perm;  ///< Fast only: Refs index at each position
   std::vector<std::uint32_t> Order[3]; ///< High only: Refs indices sorted per axis, by node range
   std::vector<std::uint8_t> Side;      ///< High only: 1 = goes left in the current split
   std::vector<std::uint32_t> Scratch;  ///< High only: partition buffer (disjoint ranges per task)
 
   /// The primitive at position pos of the current order.
-  const BuildRef& refAt(std::uint32_t pos) const { return Order[0].empty() ? Refs[pos] : Refs[Order[0][pos]]; }
+  const BuildRef& refAt(std::uint32_t pos) const
+  {
+    return !Perm.empty() ? Refs[Perm[pos]] : (Order[0].empty() ? Refs[pos] : Refs[Order[0][pos]]);
+  }
 
   /// Spreads the low 21 bits of x to every third bit.
   static std::uint64_t expandBits21(std::uint64_t x)
@@ -112,9 +120,12 @@ private:
   }
 
   /// LBVH preparation (Lauterbach et al. 2009): 63-bit Morton codes of the
-  /// centroids in their bounds; refs sorted by (code, id).
+  /// centroids in their bounds; Perm lists the refs by (code, id). The refs
+  /// themselves never move (a permutation of large refs costs random writes
+  /// over the whole array): positions go through Perm.
   void sortByMortonCode()
   {
+    const std::size_t n = Refs.size();
     AABB<double> cb;
     for (const BuildRef& r : Refs)
     {
@@ -127,8 +138,10 @@ private:
     {
       scale[k] = ext[k] > 0.0 ? cells / ext[k] : 0.0;
     }
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(Refs.size());
-    for (std::size_t i = 0; i < Refs.size(); ++i)
+    Codes.resize(n);
+    Perm.resize(n);
+    bool idsAscending = true;
+    for (std::size_t i = 0; i < n; ++i)
     {
       const Vec3<double> q = (Refs[i].centroid() - cb.min) * scale;
       std::uint64_t code = 0;
@@ -137,39 +150,67 @@ private:
         const double c = std::min(std::max(q[k], 0.0), cells);
         code |= expandBits21(static_cast<std::uint64_t>(c)) << (2 - k);
       }
-      keyed[i] = { code, static_cast<std::uint32_t>(i) };
+      Codes[i] = code;
+      Perm[i] = static_cast<std::uint32_t>(i);
+      idsAscending = idsAscending && (i == 0 || Refs[i - 1].id < Refs[i].id);
     }
-    std::sort(keyed.begin(), keyed.end(), [this](const auto& a, const auto& b) {
-      return a.first < b.first || (a.first == b.first && Refs[a.second].id < Refs[b.second].id);
-    });
-    Codes.resize(Refs.size());
-    for (std::size_t i = 0; i < keyed.size(); ++i)
+    if (idsAscending)
     {
-      Codes[i] = keyed[i].first;
+      // Stable radix sort on the code: ties keep index order = id order.
+      radixSortByCode();
     }
-    // Refs[i] = old Refs[keyed[i].second], in place by following cycles
-    // (no second array of refs: fresh pages are costly).
-    constexpr std::uint32_t done = 0xffffffffu;
-    for (std::uint32_t i = 0; i < keyed.size(); ++i)
+    else
     {
-      if (keyed[i].second == done)
+      std::sort(Perm.begin(), Perm.end(), [this](std::uint32_t a, std::uint32_t b) {
+        return Codes[a] < Codes[b] || (Codes[a] == Codes[b] && Refs[a].id < Refs[b].id);
+      });
+      std::vector<std::uint64_t> sorted(n);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        sorted[i] = Codes[Perm[i]];
+      }
+      Codes.swap(sorted);
+    }
+  }
+
+  /// LSD radix sort of (Codes, Perm) by Codes, 8 bits a pass, stable; passes
+  /// in which every code has the same digit are skipped.
+  void radixSortByCode()
+  {
+    const std::size_t n = Codes.size();
+    constexpr int kPasses = 8;
+    std::vector<std::uint32_t> hist(kPasses * 256, 0);
+    for (const std::uint64_t c : Codes)
+    {
+      for (int p = 0; p < kPasses; ++p)
+      {
+        hist[p * 256 + ((c >> (8 * p)) & 0xffu)]++;
+      }
+    }
+    std::vector<std::uint64_t> codes2(n);
+    std::vector<std::uint32_t> perm2(n);
+    for (int p = 0; p < kPasses; ++p)
+    {
+      std::uint32_t* h = hist.data() + p * 256;
+      if (h[(Codes[0] >> (8 * p)) & 0xffu] == n)
       {
         continue;
       }
-      const BuildRef first = Refs[i];
-      std::uint32_t j = i;
-      for (;;)
+      std::uint32_t sum = 0;
+      for (int b = 0; b < 256; ++b)
       {
-        const std::uint32_t k = keyed[j].second;
-        keyed[j].second = done;
-        if (k == i)
-        {
-          Refs[j] = first;
-          break;
-        }
-        Refs[j] = Refs[k];
-        j = k;
+        const std::uint32_t c = h[b];
+        h[b] = sum;
+        sum += c;
       }
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const std::uint32_t dst = h[(Codes[i] >> (8 * p)) & 0xffu]++;
+        codes2[dst] = Codes[i];
+        perm2[dst] = Perm[i];
+      }
+      Codes.swap(codes2);
+      Perm.swap(perm2);
     }
   }
 
@@ -698,11 +739,11 @@ BVH buildBVH(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options
   {
     detail::Builder builder(refs, options);
     bvh.nodes = builder.build();
-  }
-  bvh.primIndex.resize(refs.size());
-  for (std::size_t i = 0; i < refs.size(); ++i)
-  {
-    bvh.primIndex[i] = refs[i].id;
+    bvh.primIndex.resize(refs.size());
+    for (std::size_t i = 0; i < refs.size(); ++i)
+    {
+      bvh.primIndex[i] = builder.idAt(static_cast<std::uint32_t>(i));
+    }
   }
   computeTreeStats(bvh, options);
   bvh.stats.buildSeconds =
