@@ -295,29 +295,44 @@ public:
     std::vector<std::uint8_t> triFlags(builtTri);
     std::vector<std::uint32_t> triIds(3 * builtTri);
     std::vector<Box> genBox(order.size() - builtTri);
-    std::uint32_t t = 0, g = 0;
-    for (std::uint32_t& p : order)
-    {
-      if (p < nTri)
+    auto placeTriangle = [&](std::uint32_t p, std::uint32_t t) {
+      for (int k = 0; k < 3; ++k)
       {
-        for (int k = 0; k < 3; ++k)
-        {
-          triV[3 * t + k] = this->Points[this->TriVerts[3 * p + k]];
-        }
-        triCell[t] = this->TriCell[p];
-        triSub[t] = this->TriSub[p];
-        triFlags[t] = this->TriFlags[p];
-        for (int k = 0; k < 3; ++k)
-        {
-          triIds[3 * t + k] = this->TriVerts[3 * p + k];
-        }
-        p = t++;
+        triV[3 * t + k] = this->Points[this->TriVerts[3 * p + k]];
+        triIds[3 * t + k] = this->TriVerts[3 * p + k];
       }
-      else
+      triCell[t] = this->TriCell[p];
+      triSub[t] = this->TriSub[p];
+      triFlags[t] = this->TriFlags[p];
+    };
+    std::uint32_t t = 0, g = 0;
+    if (builtTri == order.size())
+    {
+      // Triangles only (the common case): slot j is triangle j, so the
+      // gather runs in parallel.
+      vtkSMPTools::For(0, static_cast<vtkIdType>(order.size()), [&](vtkIdType b, vtkIdType e) {
+        for (vtkIdType j = b; j < e; ++j)
+        {
+          placeTriangle(order[j], static_cast<std::uint32_t>(j));
+          order[j] = static_cast<std::uint32_t>(j);
+        }
+      });
+    }
+    else
+    {
+      for (std::uint32_t& p : order)
       {
-        genCell[g] = this->GenCell[p - nTri];
-        genBox[g] = this->GenBox[p - nTri];
-        p = static_cast<std::uint32_t>(builtTri) + g++;
+        if (p < nTri)
+        {
+          placeTriangle(p, t);
+          p = t++;
+        }
+        else
+        {
+          genCell[g] = this->GenCell[p - nTri];
+          genBox[g] = this->GenBox[p - nTri];
+          p = static_cast<std::uint32_t>(builtTri) + g++;
+        }
       }
     }
     this->TriV.swap(triV);
