@@ -20,8 +20,10 @@
 //   point under a pixel from each one's depth buffer (what
 //   vtkWorldPointPicker does), vtkCellPicker with vtkBVHCellLocator, and
 //   vtkCellPicker without a locator.
-// The pass has no other knob yet (samples per pixel, precision mode, traversal
-// steps, shadows, AO, leaf size): see the README.
+// - pass knobs: SamplesPerPixel, MaximumTraversalSteps, Shadows,
+//   AmbientOcclusionSamples, each against its best setting (first frame,
+//   steady frame, image and depth error).
+// The pass has no precision mode (always camera-relative) and no leaf size.
 //
 // Output: DIR/trade.csv, DIR/precision.csv and PNG plots in DIR (default
 // ./results). A timing never decides anything here beyond being reported.
@@ -290,8 +292,18 @@ struct Stage
 /// Renders `mesh` in a fresh window (so the first frame pays for everything:
 /// BVH build, upload, shader compile); passQuality >= 0 sets the pass's
 /// BuildQuality.
+/// Pass knobs of one traced stage (defaults: the pass's own).
+struct PassSettings
+{
+  int Quality = -1; // BuildQuality; -1 keeps the default
+  int SamplesPerPixel = 1;
+  int MaximumTraversalSteps = 0;
+  bool Shadows = false;
+  int AmbientOcclusionSamples = 0;
+};
+
 std::unique_ptr<Stage> RenderStage(vtkPolyData* mesh, const Scene& scene, const Point& offset,
-  bool traced, const Options& opt, int passQuality = -1)
+  bool traced, const Options& opt, const PassSettings& knobs = PassSettings())
 {
   auto st = std::make_unique<Stage>();
   st->Offset = offset;
@@ -315,10 +327,14 @@ std::unique_ptr<Stage> RenderStage(vtkPolyData* mesh, const Scene& scene, const 
   if (traced)
   {
     st->Pass = vtkSmartPointer<vtkRayTracePass>::New();
-    if (passQuality >= 0)
+    if (knobs.Quality >= 0)
     {
-      st->Pass->SetBuildQuality(passQuality);
+      st->Pass->SetBuildQuality(knobs.Quality);
     }
+    st->Pass->SetSamplesPerPixel(knobs.SamplesPerPixel);
+    st->Pass->SetMaximumTraversalSteps(knobs.MaximumTraversalSteps);
+    st->Pass->SetShadows(knobs.Shadows);
+    st->Pass->SetAmbientOcclusionSamples(knobs.AmbientOcclusionSamples);
     st->Renderer->SetPass(st->Pass);
   }
 
@@ -835,7 +851,9 @@ bool RunPassBuilder(vtkPolyData* mesh, const Scene& scene, const Options& opt, s
   std::unique_ptr<Stage> reference;
   for (int q : { 2, 0, 1 }) // reference (HIGH) first
   {
-    std::unique_ptr<Stage> st = RenderStage(mesh, scene, zero, true, opt, q);
+    PassSettings knobs;
+    knobs.Quality = q;
+    std::unique_ptr<Stage> st = RenderStage(mesh, scene, zero, true, opt, knobs);
     if (!st)
     {
       std::cerr << "vtkrtBenchTrade: no EGL context\n";
@@ -864,6 +882,77 @@ bool RunPassBuilder(vtkPolyData* mesh, const Scene& scene, const Options& opt, s
     if (!reference)
     {
       reference = std::move(st);
+    }
+  }
+  return true;
+}
+
+/// The pass's shading and sampling knobs on the full mesh, each against its
+/// own highest-quality setting (listed first).
+bool RunPassKnobs(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::vector<TradeRow>& rows)
+{
+  struct Knob
+  {
+    std::string Name;
+    std::vector<int> Values; // reference first
+    void (*Apply)(PassSettings&, int);
+  };
+  const std::vector<Knob> knobs = {
+    { "pass samples per pixel", opt.Quick ? std::vector<int>{ 4, 1 } : std::vector<int>{ 16, 1, 2, 4, 8 },
+      [](PassSettings& k, int v) { k.SamplesPerPixel = v; } },
+    { "pass max traversal steps",
+      opt.Quick ? std::vector<int>{ 0, 16 } : std::vector<int>{ 0, 16, 32, 64, 128 },
+      [](PassSettings& k, int v) { k.MaximumTraversalSteps = v; } },
+    { "pass shadows", { 1, 0 }, [](PassSettings& k, int v) { k.Shadows = v != 0; } },
+    { "pass AO samples", opt.Quick ? std::vector<int>{ 4, 0 } : std::vector<int>{ 16, 0, 1, 4 },
+      [](PassSettings& k, int v) { k.AmbientOcclusionSamples = v; } },
+  };
+  Options fewer = opt;
+  fewer.Frames = std::min(opt.Frames, 3); // many-sample frames are slow on llvmpipe
+  const Point zero{ { 0, 0, 0 } };
+  for (const Knob& knob : knobs)
+  {
+    std::unique_ptr<Stage> reference;
+    for (int v : knob.Values)
+    {
+      PassSettings settings;
+      knob.Apply(settings, v);
+      std::unique_ptr<Stage> st = RenderStage(mesh, scene, zero, true, fewer, settings);
+      if (!st)
+      {
+        std::cerr << "vtkrtBenchTrade: no EGL context\n";
+        return false;
+      }
+      const Stage& ref = reference ? *reference : *st;
+      const DepthError de = CompareDepth(ref, *st);
+      TradeRow row;
+      row.Knob = knob.Name;
+      row.Setting = (v == 0 && knob.Name.find("steps") != std::string::npos)
+        ? std::string("unlimited")
+        : std::to_string(v);
+      if (!reference)
+      {
+        row.Setting += " (reference)";
+      }
+      row.Method = "vtkRayTracePass";
+      row.Value = v;
+      row.Triangles = mesh->GetNumberOfCells();
+      row.FirstFrameS = st->FirstSeconds;
+      row.SteadyFrameS = st->SteadySeconds;
+      row.SteadyMinS = st->SteadyMinSeconds;
+      row.ImageRMSE = ImageRMSE(ref.Image, st->Image);
+      row.ImageDiff = ImageDifference(ref.Image, st->Image);
+      row.DepthErr = de.Mean;
+      row.Coverage = de.Coverage;
+      rows.push_back(row);
+      std::printf("  %-25s %-18s first %6.0f ms  frame %7.1f ms (min %7.1f)  rmse %6.2f  "
+                  "diff %7.1f  coverage %.3g\n",
+        knob.Name.c_str(), row.Setting.c_str(), 1e3 * st->FirstSeconds, 1e3 * st->SteadySeconds,
+        1e3 * st->SteadyMinSeconds, row.ImageRMSE, row.ImageDiff, de.Coverage);
+      if (!reference)
+      {
+        reference = std::move(st);
+      }
     }
   }
   return true;
@@ -1249,6 +1338,45 @@ bool WritePlots(const std::string& dir, const std::vector<TradeRow>& trade,
   }
   {
     vtkrtPlot::Chart c;
+    c.Title = "vtkRayTracePass knobs: steady frame time vs image error";
+    c.XLabel = "steady frame (ms, fastest of the timed frames)";
+    c.YLabel = "image RMSE vs the knob's best setting (0-255; 0 drawn at 0.01)";
+    c.LogX = true;
+    c.LogY = true;
+    c.LogFloor = 0.01;
+    const char* knobs[][2] = { { "pass samples per pixel", "samples per pixel 1..16" },
+      { "pass max traversal steps", "max traversal steps 16..unlimited" },
+      { "pass shadows", "shadows off/on" }, { "pass AO samples", "AO samples 0..16" } };
+    for (const auto& k : knobs)
+    {
+      vtkrtPlot::Series s = Curve(k[1], trade, k[0], "", &TradeRow::SteadyMinS, &TradeRow::ImageRMSE, 1e3);
+      // Reference first in the CSV; draw the curve in knob order.
+      std::vector<size_t> order(s.X.size());
+      for (size_t i = 0; i < order.size(); ++i)
+      {
+        order[i] = i;
+      }
+      vtkrtPlot::Series sorted = s;
+      std::vector<double> values;
+      for (const TradeRow& r : trade)
+      {
+        if (r.Knob == k[0])
+        {
+          values.push_back(r.Value == 0 && std::string(k[0]).find("steps") != std::string::npos ? 1e9 : r.Value);
+        }
+      }
+      std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return values[a] < values[b]; });
+      for (size_t i = 0; i < order.size(); ++i)
+      {
+        sorted.X[i] = s.X[order[i]];
+        sorted.Y[i] = s.Y[order[i]];
+      }
+      c.Curves.push_back(sorted);
+    }
+    write(c, "trade_pass_knobs.png");
+  }
+  {
+    vtkrtPlot::Chart c;
     c.Title = "Precision: pick error of a translated scene";
     c.XLabel = "translation of scene and camera (world units)";
     c.YLabel = "mean pick error vs untranslated / diagonal";
@@ -1452,6 +1580,11 @@ int main(int argc, char* argv[])
   RunBuilder(mesh, scene, opt, trade);
   std::printf("pass builder (vtkRayTracePass BuildQuality, reference HIGH):\n");
   if (!RunPassBuilder(mesh, scene, opt, trade))
+  {
+    return 1;
+  }
+  std::printf("pass knobs (vtkRayTracePass, each against its best setting):\n");
+  if (!RunPassKnobs(mesh, scene, opt, trade))
   {
     return 1;
   }

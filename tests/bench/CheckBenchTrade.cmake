@@ -7,7 +7,7 @@
 #   vtkBVHCellLocator stays exact to ~1e-6 of the object 1e8 units away, the
 #   traced image stays close to the untranslated one, and the pass's id-mode
 #   picks there name the locator's cells (at most 10% differ: edges);
-# - six PNG plots exist, are PNG files, and are neither empty nor huge.
+# - seven PNG plots exist, are PNG files, and are neither empty nor huge.
 # Usage: cmake -DBENCH=<vtkrtBenchTrade> -DOUT=<dir> -P CheckBenchTrade.cmake
 cmake_minimum_required(VERSION 3.16)
 
@@ -129,6 +129,18 @@ endforeach ()
 if (NOT pass_builders EQUAL 3)
   fail("${pass_builders} pass builder rows, expected 3")
 endif ()
+set(pass_knobs 0)
+foreach (r RANGE ${last})
+  if (t_${r}_knob MATCHES "^pass (samples|max traversal|shadows|AO)")
+    math(EXPR pass_knobs "${pass_knobs} + 1")
+    if (t_${r}_setting MATCHES "reference")
+      expect_le("${t_${r}_image_rmse}" 0 "${t_${r}_knob} reference against itself")
+    endif ()
+  endif ()
+endforeach ()
+if (pass_knobs LESS 8)
+  fail("${pass_knobs} pass knob rows, expected at least 8")
+endif ()
 
 #------------------------------------------------------------------------------
 read_csv("${OUT}/precision.csv" p)
@@ -163,7 +175,7 @@ expect_le("${far_traced}" 5 "traced image RMSE at translation ${max_t}")
 expect_le("${far_ids}" 0.1 "traced id-mode picks differing from the locator's at ${max_t}")
 
 #------------------------------------------------------------------------------
-foreach (png trade_lod_frame trade_lod_error trade_builder trade_pass_builder
+foreach (png trade_lod_frame trade_lod_error trade_builder trade_pass_builder trade_pass_knobs
     precision_pick precision_image)
   set(path "${OUT}/${png}.png")
   if (NOT EXISTS "${path}")
