@@ -2,10 +2,10 @@
 // center), so one builder serves triangles, spheres and instances.
 //
 // Determinism: the tree depends only on the input, never on the thread count.
-// Subtrees with at least kTaskPrimitives primitives are always built into
-// their own node array and spliced into the parent's after the parent's
-// inline children; whether such a task runs on another std::thread or on the
-// calling one changes nothing in the output.
+// Subtrees with at least kTaskPrimitives primitives are laid out after the
+// parent's smaller children; when two such siblings run on two threads, each
+// is built into its own node array and spliced, which appends exactly the
+// nodes, in the order, that building both on the calling thread appends.
 #ifndef vtkrt_core_BVHBuild_h
 #define vtkrt_core_BVHBuild_h
 
@@ -590,53 +590,53 @@ private:
         buildNode(nodes, first + c, ranges[c][0], ranges[c][1], depth + 1);
       }
     }
+    // Two task children: the first may run on another thread, into its own
+    // array; the second then goes to its own array too, so that both are
+    // spliced in order. Every other task child is built straight into
+    // `nodes`: its nodes are appended in exactly the order a splice would
+    // put them (same layout, no copy of the subtree).
+    bool spawned = false;
     std::vector<BVHNode> sub[2];
     std::thread worker;
-    for (int c = 0; c < 2; ++c)
+    if (isTask[0] && isTask[1])
     {
-      if (!isTask[c])
+      if (FreeThreads.fetch_sub(1) > 0)
       {
-        continue;
-      }
-      auto task = [this, &sub, &ranges, c, depth]() {
-        sub[c].resize(1);
-        buildNode(sub[c], 0, ranges[c][0], ranges[c][1], depth + 1);
-      };
-      bool spawned = false;
-      if (c == 0 && isTask[1])
-      {
-        if (FreeThreads.fetch_sub(1) > 0)
+        try
         {
-          try
-          {
-            worker = std::thread(task);
-            spawned = true;
-          }
-          catch (const std::system_error&)
-          {
-            // No thread available from the system: build inline (same output).
-          }
+          worker = std::thread([this, &sub, &ranges, depth]() {
+            sub[0].resize(1);
+            buildNode(sub[0], 0, ranges[0][0], ranges[0][1], depth + 1);
+          });
+          spawned = true;
         }
-        if (!spawned)
+        catch (const std::system_error&)
         {
-          FreeThreads.fetch_add(1);
+          // No thread available from the system: build inline (same output).
         }
       }
       if (!spawned)
       {
-        task();
+        FreeThreads.fetch_add(1);
       }
     }
-    if (worker.joinable())
+    if (spawned)
     {
+      sub[1].resize(1);
+      buildNode(sub[1], 0, ranges[1][0], ranges[1][1], depth + 1);
       worker.join();
       FreeThreads.fetch_add(1);
+      splice(nodes, first, sub[0]);
+      splice(nodes, first + 1, sub[1]);
     }
-    for (int c = 0; c < 2; ++c)
+    else
     {
-      if (isTask[c])
+      for (int c = 0; c < 2; ++c)
       {
-        splice(nodes, first + c, sub[c]);
+        if (isTask[c])
+        {
+          buildNode(nodes, first + c, ranges[c][0], ranges[c][1], depth + 1);
+        }
       }
     }
     if (bottomUp)
