@@ -551,7 +551,7 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
         radii.push_back(radius);
         ids.push_back(static_cast<std::uint32_t>(i));
       }
-      entry = buildSpheres(centers, radii, ids, this->Options());
+      entry = buildSpheres(centers, radii, ids, this->SphereOptions());
       entry->Quality = this->BuildQuality;
       entry->SourceTime = time;
       entry->SourceKey = key.str();
@@ -648,7 +648,7 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
       radii.push_back(std::abs(s) * r0);
       ids.push_back(static_cast<std::uint32_t>(i));
     }
-    entry = buildSpheres(centers, radii, ids, this->Options());
+    entry = buildSpheres(centers, radii, ids, this->SphereOptions());
     entry->Quality = this->BuildQuality;
     entry->SourceTime = time;
     entry->Keep = mapper;
@@ -905,6 +905,17 @@ core::BuildOptions Scene::Options() const
   options.quality = this->BuildQuality == 0
     ? core::BuildQuality::Fast
     : (this->BuildQuality == 2 ? core::BuildQuality::High : core::BuildQuality::Medium);
+  return options;
+}
+
+core::BuildOptions Scene::SphereOptions() const
+{
+  core::BuildOptions options = this->Options();
+  // A sphere test (one texel fetch, a few flops) costs the shader far less
+  // than a node visit (four fetches, two box tests): shallower trees with
+  // larger leaves trace faster (about 5% on random sphere clouds, llvmpipe).
+  options.traversalCost = 3.0;
+  options.maxLeafSize = 16;
   return options;
 }
 

@@ -164,6 +164,7 @@ private:
   void FillMaterial(vtkActor* actor, vtkMapper* mapper, Instance& inst) const;
 
   core::BuildOptions Options() const;
+  core::BuildOptions SphereOptions() const; ///< Options() tuned for cheap sphere tests
 
   int BuildQuality = 1;
   std::map<const void*, std::unique_ptr<Geometry>> TriangleCache;
