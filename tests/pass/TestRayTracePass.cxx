@@ -45,25 +45,6 @@ using namespace vtkrtPassTest;
 
 namespace
 {
-int Failures = 0;
-vtkrtTestOutputWindow* Output = nullptr;
-
-void Check(bool ok, const std::string& what)
-{
-  std::cout << (ok ? "ok   " : "FAIL ") << what << "\n";
-  if (!ok)
-  {
-    ++Failures;
-  }
-}
-
-void NoVTKOutput(const std::string& label)
-{
-  Check(Output->GetNumberOfErrors() == 0 && Output->GetNumberOfWarnings() == 0,
-    label + ": no VTK error or warning");
-  Output->Clear();
-}
-
 std::string DataFile(const std::string& name)
 {
   return std::string(VTKRT_DATA_DIR) + "/" + name;

@@ -62,25 +62,7 @@ using namespace vtkrtPassTest;
 
 namespace
 {
-int Failures = 0;
-vtkrtTestOutputWindow* Output = nullptr;
 std::string AppPath;
-
-void Check(bool ok, const std::string& what)
-{
-  std::cout << (ok ? "ok   " : "FAIL ") << what << "\n";
-  if (!ok)
-  {
-    ++Failures;
-  }
-}
-
-void NoVTKOutput(const std::string& label)
-{
-  Check(Output->GetNumberOfErrors() == 0 && Output->GetNumberOfWarnings() == 0,
-    label + ": no VTK error or warning");
-  Output->Clear();
-}
 
 void NoGLError(vtkRenderWindow* win, const std::string& label)
 {

@@ -5,6 +5,7 @@
 
 #include "vtkEGLHeadlessRenderWindow.h"
 #include "vtkRayTracePass.h"
+#include "vtkrtTestOutputWindow.h"
 
 #include "vtkImageData.h"
 #include "vtkImageDifference.h"
@@ -20,6 +21,27 @@
 
 namespace vtkrtPassTest
 {
+/// Failed checks of this test program, and the output window that counts
+/// VTK errors and warnings (each test's main installs it).
+inline int Failures = 0;
+inline vtkrtTestOutputWindow* Output = nullptr;
+
+inline void Check(bool ok, const std::string& what)
+{
+  std::cout << (ok ? "ok   " : "FAIL ") << what << "\n";
+  if (!ok)
+  {
+    ++Failures;
+  }
+}
+
+inline void NoVTKOutput(const std::string& label)
+{
+  Check(Output->GetNumberOfErrors() == 0 && Output->GetNumberOfWarnings() == 0,
+    label + ": no VTK error or warning");
+  Output->Clear();
+}
+
 inline vtkSmartPointer<vtkEGLHeadlessRenderWindow> MakeWindow(int w, int h)
 {
   auto win = vtkSmartPointer<vtkEGLHeadlessRenderWindow>::New();
