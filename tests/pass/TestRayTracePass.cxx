@@ -490,19 +490,5 @@ int main(int argc, char* argv[])
     { "Composite", TestComposite },
     { "PointsAsSpheres", TestPointsAsSpheres },
   };
-  const std::string which = argc > 1 ? argv[1] : "";
-  auto it = cases.find(which);
-  if (it == cases.end())
-  {
-    std::cerr << "usage: " << argv[0] << " <case>; cases:";
-    for (const auto& c : cases)
-    {
-      std::cerr << " " << c.first;
-    }
-    std::cerr << "\n";
-    return EXIT_FAILURE;
-  }
-  it->second();
-  std::cout << (Failures ? "FAILED: " : "passed: ") << Failures << " failure(s)\n";
-  return Failures ? EXIT_FAILURE : EXIT_SUCCESS;
+  return RunCase(argc, argv, cases);
 }

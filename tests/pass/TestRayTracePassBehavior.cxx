@@ -1011,23 +1011,9 @@ int main(int argc, char* argv[])
     { "Lifecycle", TestLifecycle },
     { "App", TestApp },
   };
-  const std::string which = argc > 1 ? argv[1] : "";
   if (argc > 2)
   {
     AppPath = argv[2];
   }
-  auto it = cases.find(which);
-  if (it == cases.end())
-  {
-    std::cerr << "usage: " << argv[0] << " <case> [vtkrt-render]; cases:";
-    for (const auto& c : cases)
-    {
-      std::cerr << " " << c.first;
-    }
-    std::cerr << "\n";
-    return EXIT_FAILURE;
-  }
-  it->second();
-  std::cout << (Failures ? "FAILED: " : "passed: ") << Failures << " failure(s)\n";
-  return Failures ? EXIT_FAILURE : EXIT_SUCCESS;
+  return RunCase(argc, argv, cases, " [vtkrt-render]");
 }

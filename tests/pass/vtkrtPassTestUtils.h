@@ -16,6 +16,8 @@
 #include "vtkWindowToImageFilter.h"
 
 #include <cstdlib>
+#include <functional>
+#include <map>
 #include <iostream>
 #include <string>
 
@@ -33,6 +35,27 @@ inline void Check(bool ok, const std::string& what)
   {
     ++Failures;
   }
+}
+
+/// Runs the case named by argv[1] and reports the failures; an unknown or
+/// missing name prints the usage with the known cases.
+inline int RunCase(int argc, char* argv[],
+  const std::map<std::string, std::function<void()>>& cases, const std::string& extraArgs = "")
+{
+  auto it = cases.find(argc > 1 ? argv[1] : "");
+  if (it == cases.end())
+  {
+    std::cerr << "usage: " << argv[0] << " <case>" << extraArgs << "; cases:";
+    for (const auto& c : cases)
+    {
+      std::cerr << " " << c.first;
+    }
+    std::cerr << "\n";
+    return EXIT_FAILURE;
+  }
+  it->second();
+  std::cout << (Failures ? "FAILED: " : "passed: ") << Failures << " failure(s)\n";
+  return Failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }
 
 inline void NoVTKOutput(const std::string& label)
