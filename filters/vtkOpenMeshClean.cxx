@@ -725,27 +725,8 @@ int vtkOpenMeshClean::RequestData(
       outToIn[newId[i]] = i;
     }
   }
-  vtkSMPTools::For(0, numOutPoints,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      double p[3];
-      for (vtkIdType i = begin; i < end; ++i)
-      {
-        inPts->GetPoint(outToIn[i], p);
-        outPts->SetPoint(i, p);
-      }
-    });
-  output->SetPoints(outPts);
-
   std::vector<std::string> dropped;
-  auto inPD =
-    vtkrt_filters::ArraysWithTuples(input->GetPointData(), numInPoints, "point:", dropped);
-  vtkPointData* outPD = output->GetPointData();
-  outPD->CopyAllocate(inPD.Get(), numOutPoints);
-  for (vtkIdType i = 0; i < numOutPoints; ++i)
-  {
-    outPD->CopyData(inPD.Get(), outToIn[i], i);
-  }
+  vtkrt_filters::GatherPoints(input, outToIn, outPts, output, dropped);
 
   // 9. Output triangles, oriented, with their cells' data.
   vtkNew<vtkIdTypeArray> offsets;

@@ -855,26 +855,8 @@ int vtkOpenMeshDecimation::RequestData(
   vtkNew<vtkPoints> outPts;
   outPts->SetDataType(inPts->GetDataType());
   outPts->SetNumberOfPoints(numOutPoints);
-  vtkSMPTools::For(0, numOutPoints,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      double p[3];
-      for (vtkIdType i = begin; i < end; ++i)
-      {
-        inPts->GetPoint(outToIn[i], p);
-        outPts->SetPoint(i, p);
-      }
-    });
-  output->SetPoints(outPts);
   std::vector<std::string> dropped;
-  auto inPD =
-    vtkrt_filters::ArraysWithTuples(input->GetPointData(), numInPoints, "point:", dropped);
-  vtkPointData* outPD = output->GetPointData();
-  outPD->CopyAllocate(inPD.Get(), numOutPoints);
-  for (vtkIdType i = 0; i < numOutPoints; ++i)
-  {
-    outPD->CopyData(inPD.Get(), outToIn[i], i);
-  }
+  vtkrt_filters::GatherPoints(input, outToIn, outPts, output, dropped);
 
   // Output triangles: the decimated faces, then the passed-through ones.
   const vtkIdType numOutFaces =

@@ -11,6 +11,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolygon.h"
@@ -299,6 +300,36 @@ vtkSmartPointer<Attributes> ArraysWithTuples(
     }
   }
   return out;
+}
+
+// Output point i is input point outToIn[i]: copies the coordinates (into
+// outPts, already sized) and the point data (arrays too short to index are
+// left out and named in `dropped`) onto `output`.
+inline void GatherPoints(vtkPolyData* input, const std::vector<vtkIdType>& outToIn,
+  vtkPoints* outPts, vtkPolyData* output, std::vector<std::string>& dropped)
+{
+  vtkPoints* inPts = input->GetPoints();
+  const vtkIdType numOutPoints = static_cast<vtkIdType>(outToIn.size());
+  vtkSMPTools::For(0, numOutPoints,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      double p[3];
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        inPts->GetPoint(outToIn[i], p);
+        outPts->SetPoint(i, p);
+      }
+    });
+  output->SetPoints(outPts);
+
+  auto inPD = ArraysWithTuples(
+    input->GetPointData(), input->GetNumberOfPoints(), "point:", dropped);
+  vtkPointData* outPD = output->GetPointData();
+  outPD->CopyAllocate(inPD.Get(), numOutPoints);
+  for (vtkIdType i = 0; i < numOutPoints; ++i)
+  {
+    outPD->CopyData(inPD.Get(), outToIn[i], i);
+  }
 }
 
 inline void AddFieldCount(vtkFieldData* fd, const char* name, vtkIdType value)
