@@ -128,12 +128,14 @@ struct vtkRayTracePass::Internals
   std::map<std::string, std::unique_ptr<vtkOpenGLQuadHelper>> Programs;
   std::string LastKey;
   std::string LastSource;
+  std::string LastSourceKey; ///< the feature key LastSource was assembled for
   vtkOpenGLRenderWindow* Window = nullptr;
   bool GeometryOnGpu = false;
   bool ColorsOnGpu = false;
   bool GeometryValid = true;
   bool ColorsValid = true;
   std::size_t CheckedLimit = 0; ///< the texel limit the buffers were checked against
+  std::vector<float> LastRecords; ///< the instance records on the GPU
 
   TextureBuffer Nodes, Triangles, TriangleVertices, Spheres, SphereIds, Normals, Colors, Instances;
 
@@ -247,6 +249,8 @@ void vtkRayTracePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AmbientOcclusionSamples: " << this->AmbientOcclusionSamples << "\n";
   os << indent << "AmbientOcclusionRadius: " << this->AmbientOcclusionRadius << "\n";
   os << indent << "MaximumTraversalSteps: " << this->MaximumTraversalSteps << "\n";
+  os << indent << "LeafSize: " << this->LeafSize << "\n";
+  os << indent << "PrecisionMode: " << this->GetPrecisionModeAsString() << "\n";
   os << indent << "AccumulatedFrames: " << this->Internal->AccumulatedFrames << "\n";
   os << indent << "MaximumTextureBufferTexels: " << this->MaximumTextureBufferTexels << "\n";
   os << indent << "DelegatePass: " << this->DelegatePass << "\n";
@@ -280,6 +284,11 @@ vtkProp* vtkRayTracePass::GetTracedProp(int index) const
 {
   const auto& t = this->Internal->Traced;
   return index >= 0 && index < static_cast<int>(t.size()) ? t[index] : nullptr;
+}
+
+const char* vtkRayTracePass::GetPrecisionModeAsString() const
+{
+  return this->PrecisionMode == WORLD ? "World" : "CameraRelative";
 }
 
 int vtkRayTracePass::GetAccumulatedFrames() const
@@ -379,6 +388,10 @@ std::string assembleShader(const Features& f)
   {
     s << "#define VTKRT_SHADOWS\n";
   }
+  if (f.WorldCoordinates)
+  {
+    s << "#define VTKRT_WORLD_COORDINATES\n";
+  }
   s << "#define VTKRT_AMBIENT_OCCLUSION_SAMPLES " << f.AmbientOcclusionSamples << "\n";
   s << "#define VTKRT_MAXIMUM_TRAVERSAL_STEPS " << f.MaximumTraversalSteps << "\n";
   s << "#define VTKRT_NUMBER_OF_CLIP_PLANES " << f.ClipPlanes << "\n";
@@ -435,6 +448,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
   in.Lights->Render(s);
 
   in.Scene.SetBuildQuality(this->BuildQuality);
+  in.Scene.SetLeafSize(this->LeafSize);
   const int accumulatedBefore = in.AccumulatedFrames;
   in.AccumulatedFrames = 0;
   if (!this->IdMode && (this->Shadows || this->AmbientOcclusionSamples > 0))
@@ -550,6 +564,13 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     cam->GetKeyMatrices(ren, wcvc, normalMatrix, vcdc, wcdc);
     double eye[3];
     cam->GetPosition(eye);
+    // The origin of the shader's coordinates: the eye (camera-relative) or
+    // the world origin (WORLD precision mode: plain float world values).
+    const double eyeWorld[3] = { eye[0], eye[1], eye[2] };
+    if (this->PrecisionMode == WORLD)
+    {
+      eye[0] = eye[1] = eye[2] = 0.0;
+    }
     vtkNew<vtkMatrix4x4> worldToClip; // row-major P * V
     vtkMatrix4x4::Transpose(wcdc, worldToClip);
     vtkNew<vtkMatrix4x4> eyeTranslation;
@@ -712,7 +733,13 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
       }
       records.swap(ordered);
     }
-    in.Counters.FrameBytesUploaded += in.Instances.Upload(win, records);
+    // Unchanged records (a still frame; any camera move in WORLD mode) are
+    // not uploaded again.
+    if (records != in.LastRecords || !in.Instances.Texels)
+    {
+      in.Counters.FrameBytesUploaded += in.Instances.Upload(win, records);
+      in.LastRecords = records;
+    }
 
     // Lights, as vtkOpenGLRenderer hands them to vtkOpenGLPolyDataMapper.
     std::vector<float> lightColor, lightDirection, lightPosition, lightAttenuation, lightCone;
@@ -764,6 +791,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     f.Shadows = shaded && this->Shadows;
     f.AmbientOcclusionSamples = shaded ? this->AmbientOcclusionSamples : 0;
     f.MaximumTraversalSteps = this->MaximumTraversalSteps;
+    f.WorldCoordinates = this->PrecisionMode == WORLD;
     double occlusionRadius = this->AmbientOcclusionRadius;
     if (occlusionRadius <= 0.0)
     {
@@ -797,7 +825,12 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     else
     {
       win->GetShaderCache()->ReadyShaderProgram(helper->Program);
+      if (in.LastSourceKey != in.LastKey)
+      {
+        in.LastSource = assembleShader(f); // the cached program's source
+      }
     }
+    in.LastSourceKey = in.LastKey;
     vtkShaderProgram* program = helper->Program;
     if (program && program->GetCompiled())
     {
@@ -810,6 +843,12 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
         static_cast<float>(-dop[2]) };
       program->SetUniform3f("uViewBack", viewBack);
       program->SetUniformi("uNumberOfInstances", static_cast<int>(instances.size()));
+      if (f.WorldCoordinates)
+      {
+        const float eyeFloat[3] = { static_cast<float>(eyeWorld[0]),
+          static_cast<float>(eyeWorld[1]), static_cast<float>(eyeWorld[2]) };
+        program->SetUniform3f("uEye", eyeFloat);
+      }
       if (f.AmbientOcclusionSamples > 0)
       {
         program->SetUniformf("uAmbientOcclusionRadius", static_cast<float>(occlusionRadius));

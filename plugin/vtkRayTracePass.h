@@ -228,6 +228,48 @@ public:
   vtkGetMacro(MaximumTraversalSteps, int);
   ///@}
 
+  ///@{
+  /**
+   * Maximum triangles per leaf of the triangle BVHs (default 4, 1 to 64).
+   * Small leaves: deeper trees, more node visits; large leaves: more
+   * triangle tests per visit. Images do not depend on it. Changing it
+   * rebuilds the triangle geometry on the next frame (sphere BVHs keep
+   * their own leaf size, 16).
+   */
+  vtkSetClampMacro(LeafSize, int, 1, 64);
+  vtkGetMacro(LeafSize, int);
+  ///@}
+
+  /**
+   * Coordinates the GPU computes in (see SetPrecisionMode).
+   */
+  enum PrecisionModes
+  {
+    CAMERA_RELATIVE = 0, ///< float, relative to the eye (made in double on the CPU)
+    WORLD = 1            ///< plain float world coordinates
+  };
+
+  ///@{
+  /**
+   * CAMERA_RELATIVE (default): the shader works in world coordinates minus
+   * the eye position, computed in double on the CPU every frame (meshes are
+   * stored relative to their own centers), so a scene far from the origin
+   * renders like the same scene at the origin; the per-instance records are
+   * uploaded again whenever the camera moves.
+   * WORLD: the shader works in plain float world coordinates (camera,
+   * instance matrices, lights, clip planes rounded to float as world
+   * values): the naive approach, fine near the origin and visibly wrong far
+   * from it (float has 24 bits: 1e6 units away a float step is 0.06), but a
+   * camera move uploads nothing (the records do not depend on the camera).
+   * Switching modes uploads no geometry; it compiles another shader.
+   */
+  vtkSetClampMacro(PrecisionMode, int, CAMERA_RELATIVE, WORLD);
+  vtkGetMacro(PrecisionMode, int);
+  void SetPrecisionModeToCameraRelative() { this->SetPrecisionMode(CAMERA_RELATIVE); }
+  void SetPrecisionModeToWorld() { this->SetPrecisionMode(WORLD); }
+  const char* GetPrecisionModeAsString() const;
+  ///@}
+
 protected:
   vtkRayTracePass();
   ~vtkRayTracePass() override;
@@ -240,6 +282,8 @@ protected:
   int AmbientOcclusionSamples = 0;
   double AmbientOcclusionRadius = 0.0;
   int MaximumTraversalSteps = 0;
+  int LeafSize = 4;
+  int PrecisionMode = CAMERA_RELATIVE;
   vtkTypeInt64 MaximumTextureBufferTexels = 0;
   vtkRenderPass* DelegatePass = nullptr;
 

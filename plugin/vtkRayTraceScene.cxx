@@ -312,7 +312,8 @@ std::string Features::Key() const
     << this->Colors << "P" << this->ClipPlanes << "L" << this->Lights << "x"
     << this->LightComplexity << "I" << this->IdMode << "D" << this->Fp64 << "X"
     << this->TopLevel << "A" << this->SamplesPerPixel << "H" << this->Shadows << "O"
-    << this->AmbientOcclusionSamples << "M" << this->MaximumTraversalSteps;
+    << this->AmbientOcclusionSamples << "M" << this->MaximumTraversalSteps << "W"
+    << this->WorldCoordinates;
   return s.str();
 }
 
@@ -457,10 +458,12 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     (poly->GetNumberOfPolys() > 0 || poly->GetNumberOfStrips() > 0))
   {
     auto& entry = this->TriangleCache[poly];
-    if (!entry || entry->SourceTime != time || entry->Quality != this->BuildQuality)
+    if (!entry || entry->SourceTime != time || entry->Quality != this->BuildQuality ||
+      entry->LeafSize != this->LeafSize)
     {
       entry = buildTriangles(poly, this->Options());
       entry->Quality = this->BuildQuality;
+      entry->LeafSize = this->LeafSize;
       entry->SourceTime = time;
       entry->Keep = poly;
       ++counters.BVHBuilds;
@@ -905,6 +908,7 @@ core::BuildOptions Scene::Options() const
   options.quality = this->BuildQuality == 0
     ? core::BuildQuality::Fast
     : (this->BuildQuality == 2 ? core::BuildQuality::High : core::BuildQuality::Medium);
+  options.maxLeafSize = this->LeafSize;
   return options;
 }
 

@@ -38,6 +38,7 @@ struct Geometry
   vtkMTimeType SourceTime = 0; ///< cache key part: MTime of what it was built from
   std::string SourceKey;       ///< extra key (e.g. sphere radius settings)
   int Quality = -1;            ///< the build quality it was built with
+  std::uint32_t LeafSize = 0;  ///< the maximum leaf size it was built with (triangles)
   std::array<double, 3> Origin{ { 0, 0, 0 } }; ///< local origin (model coordinates)
   std::array<double, 6> LocalBounds{ { 0, 0, 0, 0, 0, 0 } }; ///< relative to Origin
   std::vector<float> Nodes;      ///< packNodesForGpu, local indices
@@ -105,6 +106,7 @@ struct Features
   bool Shadows = false;
   int AmbientOcclusionSamples = 0;
   int MaximumTraversalSteps = 0; ///< 0: unlimited
+  bool WorldCoordinates = false; ///< vtkRayTracePass::WORLD precision mode
 
   std::string Key() const;
 };
@@ -153,6 +155,11 @@ public:
   /// built with another quality is rebuilt on its next use.
   void SetBuildQuality(int quality) { this->BuildQuality = quality; }
 
+  /// Maximum triangles per leaf of the triangle BVHs (>= 1, default 4).
+  /// Triangle geometry built with another leaf size is rebuilt on its next
+  /// use; sphere BVHs keep their own leaf size.
+  void SetLeafSize(int size) { this->LeafSize = static_cast<std::uint32_t>(size < 1 ? 1 : size); }
+
   /// Whether this prop would be traced (public for documentation/tests).
   static bool IsTraceable(vtkProp* prop);
 
@@ -167,6 +174,7 @@ private:
   core::BuildOptions SphereOptions() const; ///< Options() tuned for cheap sphere tests
 
   int BuildQuality = 1;
+  std::uint32_t LeafSize = 4;
   std::map<const void*, std::unique_ptr<Geometry>> TriangleCache;
   std::map<const void*, std::unique_ptr<Geometry>> SphereCache;
   std::map<std::pair<const void*, const void*>, std::unique_ptr<Colors>> ColorCache;

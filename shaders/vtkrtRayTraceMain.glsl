@@ -17,6 +17,13 @@ uniform mat4 uClipToCamera; // inverse of uCameraToClip
 uniform mat4 uCameraToClip; // VTK's world-to-clip matrix, translated by the eye
 uniform vec3 uViewBack;     // unit +z axis of VTK's view coordinates
 uniform int uNumberOfInstances;
+#ifdef VTKRT_WORLD_COORDINATES
+// WORLD precision mode: coordinates are plain float world coordinates and
+// the eye is here (the comments' "camera-relative" then reads "world").
+uniform vec3 uEye;
+#else
+const vec3 uEye = vec3(0.0);
+#endif
 
 // Per-instance records (VTKRT_INSTANCE_TEXELS texels each), rewritten every
 // frame because their matrices are camera-relative:
@@ -180,7 +187,7 @@ vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ng, vec3 ambientColor, vec3 diffuseColor,
 #else
   vec3 diffuse = vec3(0.0);
   vec3 specular = vec3(0.0);
-  vec3 viewDirection = normalize(-p);
+  vec3 viewDirection = normalize(uEye - p);
   for (int i = 0; i < VTKRT_NUMBER_OF_LIGHTS; ++i)
   {
     vec3 lightDirection = uLightDirection[i];
