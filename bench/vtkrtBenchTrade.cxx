@@ -23,7 +23,13 @@
 // - pass knobs: SamplesPerPixel, MaximumTraversalSteps, Shadows,
 //   AmbientOcclusionSamples, each against its best setting (first frame,
 //   steady frame, image and depth error).
-// The pass has no precision mode (always camera-relative) and no leaf size.
+// - pass LeafSize (triangles per BVH leaf): first and steady frame;
+// - shadows against the number of scene lights (1..8): frame time, on/off;
+// - progressive accumulation, 1 sample a frame (plain and with one AO ray):
+//   image error after 1, 2, 4, .. frames against the most accumulated one,
+//   time per frame;
+// - precision mode: the precision section also renders the pass in WORLD
+//   mode (plain float world coordinates).
 //
 // Output: DIR/trade.csv, DIR/precision.csv and PNG plots in DIR (default
 // ./results). A timing never decides anything here beyond being reported.
@@ -44,6 +50,7 @@
 #include "vtkGenericCell.h"
 #include "vtkImageData.h"
 #include "vtkImageDifference.h"
+#include "vtkLight.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
@@ -268,6 +275,20 @@ struct Stage
     }
   }
 
+  /// The window's current image (RGB, no re-render).
+  vtkSmartPointer<vtkImageData> GrabImage() const
+  {
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(this->Window);
+    grab->SetInputBufferTypeToRGB();
+    grab->ReadFrontBufferOn();
+    grab->ShouldRerenderOff();
+    grab->Update();
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->DeepCopy(grab->GetOutput());
+    return image;
+  }
+
   /// World point under pixel (i, j) from the depth buffer, translation
   /// removed; false where the pixel shows background.
   bool Unproject(int i, int j, Point& x) const
@@ -300,7 +321,40 @@ struct PassSettings
   int MaximumTraversalSteps = 0;
   bool Shadows = false;
   int AmbientOcclusionSamples = 0;
+  bool Progressive = false;
+  int LeafSize = 4;
+  int PrecisionMode = vtkRayTracePass::CAMERA_RELATIVE;
+  int Lights = 0; // > 0: this many scene lights instead of the headlight
 };
+
+/// `count` scene lights of total intensity 1 around the camera's side of the
+/// object: directional and positional (spot) lights alternately, above.
+void AddSceneLights(vtkRenderer* ren, const Scene& s, const Point& offset, int count)
+{
+  for (int i = 0; i < count; ++i)
+  {
+    const double phi = 2.0 * vtkMath::Pi() * (i + 0.25) / count;
+    const double dir[3] = { 0.8 * std::cos(phi) + 0.3 * s.Direction[0], 1.0,
+      0.8 * std::sin(phi) + 0.6 * s.Direction[2] };
+    vtkNew<vtkLight> light;
+    light->SetLightTypeToSceneLight();
+    double focal[3], position[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      focal[k] = s.Center[k] + offset[k];
+      position[k] = focal[k] + 2.0 * s.Radius * dir[k];
+    }
+    light->SetFocalPoint(focal);
+    light->SetPosition(position);
+    light->SetIntensity(1.0 / count);
+    if (i % 2 == 1)
+    {
+      light->SetPositional(true);
+      light->SetConeAngle(60.0);
+    }
+    ren->AddLight(light);
+  }
+}
 
 std::unique_ptr<Stage> RenderStage(vtkPolyData* mesh, const Scene& scene, const Point& offset,
   bool traced, const Options& opt, const PassSettings& knobs = PassSettings())
@@ -335,7 +389,14 @@ std::unique_ptr<Stage> RenderStage(vtkPolyData* mesh, const Scene& scene, const 
     st->Pass->SetMaximumTraversalSteps(knobs.MaximumTraversalSteps);
     st->Pass->SetShadows(knobs.Shadows);
     st->Pass->SetAmbientOcclusionSamples(knobs.AmbientOcclusionSamples);
+    st->Pass->SetProgressiveAccumulation(knobs.Progressive);
+    st->Pass->SetLeafSize(knobs.LeafSize);
+    st->Pass->SetPrecisionMode(knobs.PrecisionMode);
     st->Renderer->SetPass(st->Pass);
+  }
+  if (knobs.Lights > 0)
+  {
+    AddSceneLights(st->Renderer, scene, offset, knobs.Lights);
   }
 
   st->Window->Initialize();
@@ -355,17 +416,12 @@ std::unique_ptr<Stage> RenderStage(vtkPolyData* mesh, const Scene& scene, const 
     st->Window->WaitForCompletion();
     times.push_back(Seconds(t0, Clock::now()));
   }
-  st->SteadySeconds = Median(times);
-  st->SteadyMinSeconds = *std::min_element(times.begin(), times.end());
-
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(st->Window);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOn();
-  grab->ShouldRerenderOff();
-  grab->Update();
-  st->Image = vtkSmartPointer<vtkImageData>::New();
-  st->Image->DeepCopy(grab->GetOutput());
+  if (!times.empty())
+  {
+    st->SteadySeconds = Median(times);
+    st->SteadyMinSeconds = *std::min_element(times.begin(), times.end());
+  }
+  st->Image = st->GrabImage();
 
   const int* size = st->Window->GetSize();
   st->Width = size[0];
@@ -906,6 +962,10 @@ bool RunPassKnobs(vtkPolyData* mesh, const Scene& scene, const Options& opt, std
     { "pass shadows", { 1, 0 }, [](PassSettings& k, int v) { k.Shadows = v != 0; } },
     { "pass AO samples", opt.Quick ? std::vector<int>{ 4, 0 } : std::vector<int>{ 16, 0, 1, 4 },
       [](PassSettings& k, int v) { k.AmbientOcclusionSamples = v; } },
+    // Reference: the default (images do not depend on the leaf size).
+    { "pass leaf size",
+      opt.Quick ? std::vector<int>{ 4, 1, 16 } : std::vector<int>{ 4, 1, 2, 8, 16, 32 },
+      [](PassSettings& k, int v) { k.LeafSize = v; } },
   };
   Options fewer = opt;
   fewer.Frames = std::min(opt.Frames, 3); // many-sample frames are slow on llvmpipe
@@ -953,6 +1013,127 @@ bool RunPassKnobs(vtkPolyData* mesh, const Scene& scene, const Options& opt, std
       {
         reference = std::move(st);
       }
+    }
+  }
+  return true;
+}
+
+/// Shadows against the number of scene lights (directional and spot lights
+/// alternately): frame time with shadows off and on, and what shadows change.
+bool RunShadowLights(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::vector<TradeRow>& rows)
+{
+  Options fewer = opt;
+  fewer.Frames = std::min(opt.Frames, 3);
+  const Point zero{ { 0, 0, 0 } };
+  const std::vector<int> counts = opt.Quick ? std::vector<int>{ 1, 4 } : std::vector<int>{ 1, 2, 4, 8 };
+  for (int n : counts)
+  {
+    std::unique_ptr<Stage> stages[2];
+    for (int on = 0; on < 2; ++on)
+    {
+      PassSettings settings;
+      settings.Lights = n;
+      settings.Shadows = on != 0;
+      stages[on] = RenderStage(mesh, scene, zero, true, fewer, settings);
+      if (!stages[on])
+      {
+        std::cerr << "vtkrtBenchTrade: no EGL context\n";
+        return false;
+      }
+    }
+    for (int on = 0; on < 2; ++on)
+    {
+      const Stage& st = *stages[on];
+      TradeRow row;
+      row.Knob = "pass shadow lights";
+      row.Setting = std::to_string(n) + (n == 1 ? " light shadows " : " lights shadows ") +
+        (on ? "on (reference)" : "off");
+      row.Method = on ? "shadows on" : "shadows off";
+      row.Value = n;
+      row.Triangles = mesh->GetNumberOfCells();
+      row.FirstFrameS = st.FirstSeconds;
+      row.SteadyFrameS = st.SteadySeconds;
+      row.SteadyMinS = st.SteadyMinSeconds;
+      row.ImageRMSE = ImageRMSE(stages[1]->Image, st.Image);
+      row.ImageDiff = ImageDifference(stages[1]->Image, st.Image);
+      rows.push_back(row);
+    }
+    std::printf("  %d scene light(s): frame %7.1f ms without shadows, %7.1f ms with (min %6.1f / "
+                "%6.1f): %+.1f ms per light; shadows change RMSE %.2f\n",
+      n, 1e3 * stages[0]->SteadySeconds, 1e3 * stages[1]->SteadySeconds,
+      1e3 * stages[0]->SteadyMinSeconds, 1e3 * stages[1]->SteadyMinSeconds,
+      1e3 * (stages[1]->SteadyMinSeconds - stages[0]->SteadyMinSeconds) / n,
+      rows[rows.size() - 2].ImageRMSE);
+  }
+  return true;
+}
+
+/// Progressive accumulation: one window, 1 sample per frame, the image after
+/// k accumulated frames against the last (most accumulated) one; plain
+/// shading (anti-aliasing only) and with one ambient occlusion ray per frame.
+bool RunAccumulation(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::vector<TradeRow>& rows)
+{
+  const int maxFrames = opt.Quick ? 8 : 64;
+  const Point zero{ { 0, 0, 0 } };
+  for (int ao = 0; ao < 2; ++ao)
+  {
+    PassSettings settings;
+    settings.Progressive = true;
+    settings.AmbientOcclusionSamples = ao;
+    Options none = opt;
+    none.Frames = 0;
+    std::unique_ptr<Stage> st = RenderStage(mesh, scene, zero, true, none, settings);
+    if (!st)
+    {
+      std::cerr << "vtkrtBenchTrade: no EGL context\n";
+      return false;
+    }
+    std::vector<std::pair<int, vtkSmartPointer<vtkImageData>>> images;
+    std::vector<double> times;
+    double total = st->FirstSeconds;
+    std::vector<double> totals;
+    images.emplace_back(1, st->Image);
+    totals.push_back(total);
+    for (int k = 2; k <= maxFrames; ++k)
+    {
+      const auto t0 = Clock::now();
+      st->Window->Render();
+      st->Window->WaitForCompletion();
+      times.push_back(Seconds(t0, Clock::now()));
+      total += times.back();
+      if ((k & (k - 1)) == 0)
+      {
+        if (st->Pass->GetAccumulatedFrames() != k)
+        {
+          std::cerr << "vtkrtBenchTrade: progressive accumulation restarted (" <<
+            st->Pass->GetAccumulatedFrames() << " frames, " << k << " expected)\n";
+          return false;
+        }
+        images.emplace_back(k, st->GrabImage());
+        totals.push_back(total);
+      }
+    }
+    const double perFrame = Median(times);
+    const double perFrameMin = times.empty() ? kNaN : *std::min_element(times.begin(), times.end());
+    vtkImageData* reference = images.back().second;
+    for (size_t i = 0; i < images.size(); ++i)
+    {
+      TradeRow row;
+      row.Knob = ao ? "pass accumulation (AO 1)" : "pass accumulation";
+      row.Setting = std::to_string(images[i].first) + " frames" +
+        (i + 1 == images.size() ? " (reference)" : "");
+      row.Method = "vtkRayTracePass";
+      row.Value = images[i].first;
+      row.Triangles = mesh->GetNumberOfCells();
+      row.FirstFrameS = totals[i]; // wall time until this image
+      row.SteadyFrameS = perFrame;
+      row.SteadyMinS = perFrameMin;
+      row.ImageRMSE = ImageRMSE(reference, images[i].second);
+      row.ImageDiff = ImageDifference(reference, images[i].second);
+      rows.push_back(row);
+      std::printf("  %-26s %3d frames: %7.0f ms in all (%.1f ms a frame)  rmse %6.2f  diff %7.1f\n",
+        row.Knob.c_str(), images[i].first, 1e3 * totals[i], 1e3 * perFrame, row.ImageRMSE,
+        row.ImageDiff);
     }
   }
   return true;
@@ -1120,14 +1301,18 @@ bool RunPrecision(vtkPolyData* mesh, const Scene& scene, const Options& opt, std
   {
     Traced,
     Raster,
+    World,
     Locator,
     NoLocator,
-    Methods
+    Methods,
+    Stages = 3 // Traced, Raster, World render images
   };
   const char* names[Methods] = { "traced depth (vtkRayTracePass)",
-    "raster depth (vtkPolyDataMapper)", "vtkCellPicker + vtkBVHCellLocator",
-    "vtkCellPicker (no locator)" };
-  std::unique_ptr<Stage> refStage[2];
+    "raster depth (vtkPolyDataMapper)", "traced depth WORLD precision mode (vtkRayTracePass)",
+    "vtkCellPicker + vtkBVHCellLocator", "vtkCellPicker (no locator)" };
+  PassSettings world;
+  world.PrecisionMode = vtkRayTracePass::WORLD;
+  std::unique_ptr<Stage> refStage[Stages];
   Picks refPicks[Methods];
   std::vector<std::array<double, 2>> pixels;
 
@@ -1136,9 +1321,10 @@ bool RunPrecision(vtkPolyData* mesh, const Scene& scene, const Options& opt, std
     const double c = translation / std::sqrt(3.0);
     const Point offset{ { c, c, c } };
     vtkSmartPointer<vtkPolyData> moved = Translated(mesh, offset);
-    std::unique_ptr<Stage> stage[2] = { RenderStage(moved, scene, offset, true, opt),
-      RenderStage(moved, scene, offset, false, opt) };
-    if (!stage[0] || !stage[1])
+    std::unique_ptr<Stage> stage[Stages] = { RenderStage(moved, scene, offset, true, opt),
+      RenderStage(moved, scene, offset, false, opt),
+      RenderStage(moved, scene, offset, true, opt, world) };
+    if (!stage[0] || !stage[1] || !stage[2])
     {
       std::cerr << "vtkrtBenchTrade: no EGL context\n";
       return false;
@@ -1152,7 +1338,8 @@ bool RunPrecision(vtkPolyData* mesh, const Scene& scene, const Options& opt, std
     locator->SetDataSet(moved);
     locator->BuildLocator();
     Picks picks[Methods] = { PickFromDepth(*stage[0], pixels), PickFromDepth(*stage[1], pixels),
-      PickWithPicker(*stage[0], pixels, locator), PickWithPicker(*stage[0], pixels, nullptr) };
+      PickFromDepth(*stage[2], pixels), PickWithPicker(*stage[0], pixels, locator),
+      PickWithPicker(*stage[0], pixels, nullptr) };
     if (first)
     {
       for (int m = 0; m < Methods; ++m)
@@ -1165,7 +1352,7 @@ bool RunPrecision(vtkPolyData* mesh, const Scene& scene, const Options& opt, std
       PrecisionRow row;
       row.Method = names[m];
       row.Translation = translation;
-      if (m < 2)
+      if (m < Stages)
       {
         const Stage& ref = refStage[m] ? *refStage[m] : *stage[m];
         row.ImageRMSE = ImageRMSE(ref.Image, stage[m]->Image);
@@ -1184,23 +1371,29 @@ bool RunPrecision(vtkPolyData* mesh, const Scene& scene, const Options& opt, std
       row.PickMiss = pe.Miss;
       row.PickExact = ComparePicks(refPicks[Locator], picks[m]).Mean;
       rows.push_back(row);
-      std::printf("  translate %-8.0e %-34s rmse %7.2f  depth %.3g  pick %.3g (max %.3g, miss %.3g, "
+      std::printf("  translate %-8.0e %-52s rmse %7.2f  depth %.3g  pick %.3g (max %.3g, miss %.3g, "
                   "vs exact %.3g)\n",
         translation, names[m], row.ImageRMSE, row.DepthErr, pe.Mean, pe.Max, pe.Miss, row.PickExact);
     }
     // The pass's own picking: id mode, one ray per pixel on the GPU.
-    PrecisionRow idRow;
-    idRow.Method = "traced id (vtkRayTracePass IdMode)";
-    idRow.Translation = translation;
-    idRow.IdMismatch = IdMismatch(*stage[0], pixels, picks[Locator]);
-    rows.push_back(idRow);
-    std::printf("  translate %-8.0e %-34s cell ids differing from the locator's: %.3g\n",
-      translation, idRow.Method.c_str(), idRow.IdMismatch);
+    for (int m : { Traced, World })
+    {
+      PrecisionRow idRow;
+      idRow.Method = m == Traced ? "traced id (vtkRayTracePass IdMode)"
+                                 : "traced id WORLD precision mode (IdMode)";
+      idRow.Translation = translation;
+      idRow.IdMismatch = IdMismatch(*stage[m], pixels, picks[Locator]);
+      rows.push_back(idRow);
+      std::printf("  translate %-8.0e %-52s cell ids differing from the locator's: %.3g\n",
+        translation, idRow.Method.c_str(), idRow.IdMismatch);
+    }
 
     if (first)
     {
-      refStage[0] = std::move(stage[0]);
-      refStage[1] = std::move(stage[1]);
+      for (int m = 0; m < Stages; ++m)
+      {
+        refStage[m] = std::move(stage[m]);
+      }
     }
   }
   return true;
@@ -1377,6 +1570,68 @@ bool WritePlots(const std::string& dir, const std::vector<TradeRow>& trade,
   }
   {
     vtkrtPlot::Chart c;
+    c.Title = "Progressive accumulation (1 sample per frame): error vs frames";
+    c.XLabel = "accumulated frames";
+    c.YLabel = "image RMSE vs the most accumulated image (0-255)";
+    c.LogX = true;
+    c.LogY = true;
+    c.LogFloor = 0.01;
+    c.Legend = vtkrtPlot::LegendCorner::TopRight;
+    for (const char* knob : { "pass accumulation", "pass accumulation (AO 1)" })
+    {
+      std::vector<TradeRow> shown;
+      double perFrame = kNaN;
+      for (const TradeRow& r : trade)
+      {
+        if (r.Knob == knob && r.Setting.find("reference") == std::string::npos)
+        {
+          shown.push_back(r);
+          perFrame = r.SteadyMinS;
+        }
+      }
+      char name[128];
+      std::snprintf(name, sizeof(name), "%s, %.0f ms a frame",
+        std::string(knob).find("AO") != std::string::npos ? "with 1 AO ray per frame"
+                                                          : "anti-aliasing only",
+        1e3 * perFrame);
+      c.Curves.push_back(Curve(name, shown, knob, "", &TradeRow::Value, &TradeRow::ImageRMSE));
+    }
+    write(c, "trade_accumulation.png");
+  }
+  {
+    vtkrtPlot::Chart c;
+    c.Title = "vtkRayTracePass LeafSize (triangles per BVH leaf): frame times";
+    c.XLabel = "leaf size (images identical for every size)";
+    c.YLabel = "time (ms)";
+    c.LogX = true;
+    c.YFromZero = true;
+    std::vector<TradeRow> leaves;
+    std::copy_if(trade.begin(), trade.end(), std::back_inserter(leaves),
+      [](const TradeRow& r) { return r.Knob == "pass leaf size"; });
+    std::sort(leaves.begin(), leaves.end(),
+      [](const TradeRow& a, const TradeRow& b) { return a.Value < b.Value; });
+    c.Curves.push_back(Curve("steady frame (fastest)", leaves, "pass leaf size", "",
+      &TradeRow::Value, &TradeRow::SteadyMinS, 1.0, 1e3));
+    c.Curves.push_back(Curve("first frame (build, upload, compile, trace)", leaves,
+      "pass leaf size", "", &TradeRow::Value, &TradeRow::FirstFrameS, 1.0, 1e3));
+    write(c, "trade_pass_leaf.png");
+  }
+  {
+    vtkrtPlot::Chart c;
+    c.Title = "Shadows vs number of scene lights (directional and spot, alternately)";
+    c.XLabel = "scene lights";
+    c.YLabel = "steady frame (ms, fastest of the timed frames)";
+    c.LogX = true;
+    c.YFromZero = true;
+    c.Legend = vtkrtPlot::LegendCorner::TopLeft;
+    c.Curves.push_back(Curve("shadows off", trade, "pass shadow lights", "shadows off",
+      &TradeRow::Value, &TradeRow::SteadyMinS, 1.0, 1e3));
+    c.Curves.push_back(Curve("shadows on", trade, "pass shadow lights", "shadows on",
+      &TradeRow::Value, &TradeRow::SteadyMinS, 1.0, 1e3));
+    write(c, "trade_shadow_lights.png");
+  }
+  {
+    vtkrtPlot::Chart c;
     c.Title = "Precision: pick error of a translated scene";
     c.XLabel = "translation of scene and camera (world units)";
     c.YLabel = "mean pick error vs untranslated / diagonal";
@@ -1415,13 +1670,18 @@ bool WritePlots(const std::string& dir, const std::vector<TradeRow>& trade,
     im.LogX = true;
     im.LogY = true;
     im.LogFloor = 0.01;
-    for (size_t k = 0; k < 2 && k < methods.size(); ++k)
+    const char* imageMethods[][2] = {
+      { "traced depth (vtkRayTracePass)", "traced, camera-relative (default)" },
+      { "raster depth (vtkPolyDataMapper)", "raster (vtkPolyDataMapper)" },
+      { "traced depth WORLD precision mode (vtkRayTracePass)", "traced, WORLD (float world coordinates)" }
+    };
+    for (const auto& method : imageMethods)
     {
       vtkrtPlot::Series s;
-      s.Name = k == 0 ? "traced (vtkRayTracePass)" : "raster (vtkPolyDataMapper)";
+      s.Name = method[1];
       for (const PrecisionRow& r : precision)
       {
-        if (r.Method == methods[k] && r.Translation > 0.0)
+        if (r.Method == method[0] && r.Translation > 0.0)
         {
           s.X.push_back(r.Translation);
           s.Y.push_back(r.ImageRMSE);
@@ -1585,6 +1845,16 @@ int main(int argc, char* argv[])
   }
   std::printf("pass knobs (vtkRayTracePass, each against its best setting):\n");
   if (!RunPassKnobs(mesh, scene, opt, trade))
+  {
+    return 1;
+  }
+  std::printf("shadows per scene light count (vtkRayTracePass):\n");
+  if (!RunShadowLights(mesh, scene, opt, trade))
+  {
+    return 1;
+  }
+  std::printf("progressive accumulation (vtkRayTracePass, 1 sample a frame):\n");
+  if (!RunAccumulation(mesh, scene, opt, trade))
   {
     return 1;
   }

@@ -6,8 +6,13 @@
 # - precision.csv: the untranslated scene has zero pick error; picking with
 #   vtkBVHCellLocator stays exact to ~1e-6 of the object 1e8 units away, the
 #   traced image stays close to the untranslated one, and the pass's id-mode
-#   picks there name the locator's cells (at most 10% differ: edges);
-# - seven PNG plots exist, are PNG files, and are neither empty nor huge.
+#   picks there name the locator's cells (at most 10% differ: edges); the
+#   pass in WORLD precision mode degrades there (image RMSE above 1 against
+#   its own untranslated image);
+# - pass leaf sizes all draw the reference image; progressive accumulation
+#   error never grows with the number of frames and is 0 for the reference;
+#   shadow rows for at least two light counts, shadows on and off;
+# - ten PNG plots exist, are PNG files, and are neither empty nor huge.
 # Usage: cmake -DBENCH=<vtkrtBenchTrade> -DOUT=<dir> -P CheckBenchTrade.cmake
 cmake_minimum_required(VERSION 3.16)
 
@@ -141,6 +146,44 @@ endforeach ()
 if (pass_knobs LESS 8)
   fail("${pass_knobs} pass knob rows, expected at least 8")
 endif ()
+set(leaf_rows 0)
+set(shadow_rows 0)
+foreach (knob "pass accumulation" "pass accumulation (AO 1)")
+  set(accumulation_rows 0)
+  set(prev_rmse "")
+  foreach (r RANGE ${last})
+    if (t_${r}_knob STREQUAL knob)
+      math(EXPR accumulation_rows "${accumulation_rows} + 1")
+      if (NOT prev_rmse STREQUAL "" AND t_${r}_image_rmse GREATER prev_rmse)
+        fail("${knob}: error grows from ${prev_rmse} to ${t_${r}_image_rmse} at ${t_${r}_value} frames")
+      endif ()
+      set(prev_rmse "${t_${r}_image_rmse}")
+      if (t_${r}_setting MATCHES "reference")
+        expect_le("${t_${r}_image_rmse}" 0 "${knob} reference against itself")
+      endif ()
+    endif ()
+  endforeach ()
+  if (accumulation_rows LESS 3)
+    fail("${accumulation_rows} '${knob}' rows, expected at least 3")
+  endif ()
+endforeach ()
+foreach (r RANGE ${last})
+  if (t_${r}_knob STREQUAL "pass leaf size")
+    math(EXPR leaf_rows "${leaf_rows} + 1")
+    expect_le("${t_${r}_image_rmse}" 0 "pass leaf size ${t_${r}_setting}: image differs from leaf 4")
+  elseif (t_${r}_knob STREQUAL "pass shadow lights")
+    math(EXPR shadow_rows "${shadow_rows} + 1")
+    if (NOT t_${r}_steady_frame_s GREATER 0)
+      fail("pass shadow lights ${t_${r}_setting}: no frame time")
+    endif ()
+  endif ()
+endforeach ()
+if (leaf_rows LESS 3)
+  fail("${leaf_rows} pass leaf size rows, expected at least 3")
+endif ()
+if (shadow_rows LESS 4)
+  fail("${shadow_rows} pass shadow lights rows, expected at least 4")
+endif ()
 
 #------------------------------------------------------------------------------
 read_csv("${OUT}/precision.csv" p)
@@ -148,6 +191,7 @@ math(EXPR last "${p_rows} - 1")
 set(far_locator "")
 set(far_traced "")
 set(far_ids "")
+set(far_world "")
 set(max_t 0)
 foreach (r RANGE ${last})
   if (p_${r}_translation GREATER max_t)
@@ -163,9 +207,11 @@ foreach (r RANGE ${last})
   elseif (p_${r}_translation EQUAL max_t)
     if (p_${r}_method MATCHES "BVHCellLocator")
       set(far_locator "${p_${r}_pick_err_mean}")
-    elseif (p_${r}_method MATCHES "^traced depth")
+    elseif (p_${r}_method STREQUAL "traced depth (vtkRayTracePass)")
       set(far_traced "${p_${r}_image_rmse}")
-    elseif (p_${r}_method MATCHES "IdMode")
+    elseif (p_${r}_method STREQUAL "traced depth WORLD precision mode (vtkRayTracePass)")
+      set(far_world "${p_${r}_image_rmse}")
+    elseif (p_${r}_method STREQUAL "traced id (vtkRayTracePass IdMode)")
       set(far_ids "${p_${r}_id_mismatch}")
     endif ()
   endif ()
@@ -173,10 +219,13 @@ endforeach ()
 expect_le("${far_locator}" "${diag}e-6" "vtkBVHCellLocator pick error at translation ${max_t}")
 expect_le("${far_traced}" 5 "traced image RMSE at translation ${max_t}")
 expect_le("${far_ids}" 0.1 "traced id-mode picks differing from the locator's at ${max_t}")
+if ("${far_world}" STREQUAL "" OR NOT far_world GREATER 1)
+  fail("WORLD precision mode image RMSE at ${max_t} is '${far_world}', expected > 1 (float world coordinates)")
+endif ()
 
 #------------------------------------------------------------------------------
 foreach (png trade_lod_frame trade_lod_error trade_builder trade_pass_builder trade_pass_knobs
-    precision_pick precision_image)
+    trade_accumulation trade_pass_leaf trade_shadow_lights precision_pick precision_image)
   set(path "${OUT}/${png}.png")
   if (NOT EXISTS "${path}")
     fail("missing ${png}.png")
