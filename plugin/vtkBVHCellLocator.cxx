@@ -540,7 +540,12 @@ bool vtkBVHCellLocator::InsideCellBounds(double x[3], vtkIdType cellId)
   double b[6];
   if (this->CellBounds && this->Internals->HasTree && !this->NeedsBuild())
   {
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 0)
+    // VTK 9.2 stores the cached bounds flat (6 per cell).
+    std::copy_n(this->CellBounds + 6 * cellId, 6, b);
+#else
     std::copy(this->CellBounds[cellId], this->CellBounds[cellId] + 6, b);
+#endif
   }
   else
   {

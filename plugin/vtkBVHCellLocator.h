@@ -54,6 +54,7 @@
 #define vtkBVHCellLocator_h
 
 #include "vtkAbstractCellLocator.h"
+#include "vtkVersionMacros.h"  // For VTK_VERSION_NUMBER
 #include "vtkrtPluginModule.h" // For export macro
 
 #include <memory> // For std::unique_ptr
@@ -204,6 +205,26 @@ protected:
   void BuildTree();
 
   int BuildQuality;
+
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 0)
+  // VTK 9.2 (ParaView 5.11) dropped vtkAbstractCellLocator's LazyEvaluation
+  // (its setters are no-ops there): this locator keeps its own.
+public:
+  void SetLazyEvaluation(vtkTypeBool lazy) override
+  {
+    if (this->LazyEvaluation != lazy)
+    {
+      this->LazyEvaluation = lazy;
+      this->Modified();
+    }
+  }
+  vtkTypeBool GetLazyEvaluation() override { return this->LazyEvaluation; }
+  void LazyEvaluationOn() override { this->SetLazyEvaluation(1); }
+  void LazyEvaluationOff() override { this->SetLazyEvaluation(0); }
+
+protected:
+  vtkTypeBool LazyEvaluation = 0;
+#endif
 
 private:
   vtkBVHCellLocator(const vtkBVHCellLocator&) = delete;
