@@ -8,6 +8,7 @@ PKGS=(
   libglm-dev libopenmesh-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev
   libembree-dev
+  xvfb xauth
 )
 missing=()
 for p in "${PKGS[@]}"; do
