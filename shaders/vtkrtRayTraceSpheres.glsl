@@ -56,17 +56,44 @@ bool intersectRaySphere(vec3 org, vec3 dir, vec3 center, float radius, float tmi
   return false;
 }
 
-// Closest hit in the sphere BVH whose root node is `root`; see
-// traverseTriangles.
+// The slab test of core::intersectRayAABB without its per-axis branches
+// (llvmpipe runs both sides of every branch, masked): the same arithmetic on
+// every axis the ray is not parallel to, so the same result there; a
+// parallel axis (invDir 0, so t0 = t1 = 0) is made to accept every box by
+// parallelBias (3e38 on such axes, 0 elsewhere) instead of testing the
+// origin against the slab. Accepting more boxes than the core never changes
+// the hit, only how much is tested. Needs tmin >= 0 (a parallel axis
+// contributes tnear 0).
+bool intersectRayBoxConservative(vec3 org, vec3 invDir, vec3 parallelBias, vec3 bmin, vec3 bmax,
+  float tmin, float tmax, out float tnear)
+{
+  vec3 t0 = (bmin - org) * invDir;
+  vec3 t1 = (bmax - org) * invDir;
+  vec3 tn = min(t0, t1);
+  vec3 tf = max(t0, t1) * kFarScale + parallelBias;
+  tnear = max(max(tn.x, tn.y), max(tn.z, tmin));
+  float tfar = min(min(tf.x, tf.y), min(tf.z, tmax));
+  return tnear <= tfar;
+}
+
+// Closest hit in the sphere BVH whose root node is `root`, nearer child
+// first, the hit's t pruning what is left on the stack. Organised as
+// "while-while" (Aila & Laine 2009): an inner loop descends interior nodes
+// until it reaches a leaf (popping past dead ends), and only then are the
+// leaf's spheres tested. Pixels are shaded in SIMD groups (llvmpipe: 8 at
+// once), so a single loop that does either a node or a leaf per iteration
+// pays the masked leaf loop whenever any pixel of the group sits in a leaf;
+// here the group descends together and tests leaves together.
 bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax, out int sphere,
   bool stopAtFirstHit)
 {
   sphere = -1;
   vec3 invDir = safeInverse(dir);
+  vec3 parallelBias = vec3(equal(invDir, vec3(0.0))) * 3.0e38;
   float tnear;
-  uvec4 rootLo = texelFetch(uNodes, 2 * root);
-  uvec4 rootHi = texelFetch(uNodes, 2 * root + 1);
-  if (!intersectRayAABB(org, invDir, boxCorner(rootLo), boxCorner(rootHi), tmin, tmax, tnear))
+  uvec4 lo = texelFetch(uNodes, 2 * root);
+  uvec4 hi = texelFetch(uNodes, 2 * root + 1);
+  if (!intersectRayAABB(org, invDir, boxCorner(lo), boxCorner(hi), tmin, tmax, tnear))
   {
     return false;
   }
@@ -74,46 +101,30 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
   float stackNear[VTKRT_STACK_SIZE];
   int sp = 0;
   int steps = 0;
-  int node = root;
-  uvec4 lo = rootLo;
-  uvec4 hi = rootHi;
-  for (;;)
+  bool done = false;
+  while (!done)
   {
+    // Interior nodes: descend to the nearer child hit, push the farther;
+    // at a dead end, pop the nearest entry the best hit does not prune.
+    while (hi.w == 0u)
+    {
 #if VTKRT_MAXIMUM_TRAVERSAL_STEPS > 0
-    if (++steps > VTKRT_MAXIMUM_TRAVERSAL_STEPS)
-    {
-      break;
-    }
-#endif
-    int index = int(lo.w);
-    int count = int(hi.w);
-    bool descended = false;
-    if (count > 0)
-    {
-      for (int i = index; i < index + count; ++i)
+      if (++steps > VTKRT_MAXIMUM_TRAVERSAL_STEPS)
       {
-        vec4 s = uintBitsToFloat(texelFetch(uSpheres, i));
-        float t;
-        if (intersectRaySphere(org, dir, s.xyz, s.w, tmin, tmax, t))
-        {
-          tmax = t;
-          sphere = i;
-          if (stopAtFirstHit)
-          {
-            return true;
-          }
-        }
+        done = true;
+        break;
       }
-    }
-    else
-    {
+#endif
+      int index = int(lo.w);
       uvec4 lo0 = texelFetch(uNodes, 2 * index);
       uvec4 hi0 = texelFetch(uNodes, 2 * index + 1);
       uvec4 lo1 = texelFetch(uNodes, 2 * index + 2);
       uvec4 hi1 = texelFetch(uNodes, 2 * index + 3);
       float t0, t1;
-      bool h0 = intersectRayAABB(org, invDir, boxCorner(lo0), boxCorner(hi0), tmin, tmax, t0);
-      bool h1 = intersectRayAABB(org, invDir, boxCorner(lo1), boxCorner(hi1), tmin, tmax, t1);
+      bool h0 = intersectRayBoxConservative(
+        org, invDir, parallelBias, boxCorner(lo0), boxCorner(hi0), tmin, tmax, t0);
+      bool h1 = intersectRayBoxConservative(
+        org, invDir, parallelBias, boxCorner(lo1), boxCorner(hi1), tmin, tmax, t1);
       if (h0 && h1)
       {
         bool firstNear = t0 <= t1;
@@ -123,39 +134,78 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
           stackNear[sp] = firstNear ? t1 : t0;
           ++sp;
         }
-        node = firstNear ? index : index + 1;
         lo = firstNear ? lo0 : lo1;
         hi = firstNear ? hi0 : hi1;
-        descended = true;
       }
       else if (h0 || h1)
       {
-        node = h0 ? index : index + 1;
         lo = h0 ? lo0 : lo1;
         hi = h0 ? hi0 : hi1;
-        descended = true;
       }
-    }
-    if (!descended)
-    {
-      bool found = false;
-      while (sp > 0)
+      else
       {
-        --sp;
-        if (stackNear[sp] <= tmax)
+        int next = -1;
+        while (sp > 0)
         {
-          node = stackNode[sp];
-          found = true;
+          --sp;
+          if (stackNear[sp] <= tmax)
+          {
+            next = stackNode[sp];
+            break;
+          }
+        }
+        if (next < 0)
+        {
+          done = true;
           break;
         }
+        lo = texelFetch(uNodes, 2 * next);
+        hi = texelFetch(uNodes, 2 * next + 1);
       }
-      if (!found)
+    }
+    if (done)
+    {
+      break;
+    }
+#if VTKRT_MAXIMUM_TRAVERSAL_STEPS > 0
+    if (++steps > VTKRT_MAXIMUM_TRAVERSAL_STEPS)
+    {
+      break;
+    }
+#endif
+    // A leaf: its spheres [index, index + count).
+    int index = int(lo.w);
+    int end = index + int(hi.w);
+    for (int i = index; i < end; ++i)
+    {
+      vec4 s = uintBitsToFloat(texelFetch(uSpheres, i));
+      float t;
+      if (intersectRaySphere(org, dir, s.xyz, s.w, tmin, tmax, t))
       {
+        tmax = t;
+        sphere = i;
+      }
+    }
+    if (stopAtFirstHit && sphere >= 0)
+    {
+      return true;
+    }
+    int next = -1;
+    while (sp > 0)
+    {
+      --sp;
+      if (stackNear[sp] <= tmax)
+      {
+        next = stackNode[sp];
         break;
       }
-      lo = texelFetch(uNodes, 2 * node);
-      hi = texelFetch(uNodes, 2 * node + 1);
     }
+    if (next < 0)
+    {
+      break;
+    }
+    lo = texelFetch(uNodes, 2 * next);
+    hi = texelFetch(uNodes, 2 * next + 1);
   }
   return sphere >= 0;
 }
