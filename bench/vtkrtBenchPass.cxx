@@ -44,14 +44,17 @@
 #include <string>
 #include <vector>
 
-namespace {
+namespace
+{
 using Clock = std::chrono::steady_clock;
 
-double Ms(Clock::time_point a, Clock::time_point b) {
+double Ms(Clock::time_point a, Clock::time_point b)
+{
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
-struct Timing {
+struct Timing
+{
   double First = 0;
   double Steady = 0;
   double SteadyCpu = 0; ///< process CPU time per steady frame (all threads)
@@ -59,15 +62,16 @@ struct Timing {
 
 /// Process CPU time in ms: on a shared machine, less sensitive to other
 /// processes than wall time (llvmpipe's threads are all counted).
-double CpuMs() {
+double CpuMs()
+{
   timespec ts;
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return 1e3 * static_cast<double>(ts.tv_sec) +
-         1e-6 * static_cast<double>(ts.tv_nsec);
+  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
 }
 
 /// A UV sphere with about `triangles` triangles.
-vtkSmartPointer<vtkPolyData> MeshOf(long triangles) {
+vtkSmartPointer<vtkPolyData> MeshOf(long triangles)
+{
   const int res = static_cast<int>(std::sqrt(triangles / 2.0)) + 2;
   vtkNew<vtkSphereSource> source;
   source->SetThetaResolution(res);
@@ -78,7 +82,8 @@ vtkSmartPointer<vtkPolyData> MeshOf(long triangles) {
 
 /// `count` random sphere centers in a unit cube with radii and scalars, as
 /// vertices (RenderPointsAsSpheres draws vertices).
-vtkSmartPointer<vtkPolyData> SpheresOf(long count) {
+vtkSmartPointer<vtkPolyData> SpheresOf(long count)
+{
   vtkNew<vtkMinimalStandardRandomSequence> random;
   random->SetSeed(7);
   vtkNew<vtkPoints> points;
@@ -88,14 +93,15 @@ vtkSmartPointer<vtkPolyData> SpheresOf(long count) {
   radius->SetNumberOfTuples(count);
   vtkNew<vtkCellArray> verts;
   const double r = 0.5 / std::cbrt(static_cast<double>(count));
-  for (vtkIdType i = 0; i < count; ++i) {
+  for (vtkIdType i = 0; i < count; ++i)
+  {
     double p[3];
-    for (double &c : p) {
+    for (double& c : p)
+    {
       c = random->GetNextRangeValue(-0.5, 0.5);
     }
     points->SetPoint(i, p);
-    radius->SetValue(
-        i, static_cast<float>(r * random->GetNextRangeValue(0.5, 1.0)));
+    radius->SetValue(i, static_cast<float>(r * random->GetNextRangeValue(0.5, 1.0)));
     verts->InsertNextCell(1, &i);
   }
   auto poly = vtkSmartPointer<vtkPolyData>::New();
@@ -106,9 +112,9 @@ vtkSmartPointer<vtkPolyData> SpheresOf(long count) {
 }
 
 /// Renders `frames` orbit steps after a first frame; fresh renderer each time.
-Timing Measure(vtkRenderWindow *win,
-               const std::function<void(vtkRenderer *)> &setup, bool trace,
-               int frames) {
+Timing Measure(
+  vtkRenderWindow* win, const std::function<void(vtkRenderer*)>& setup, bool trace, int frames)
+{
   vtkNew<vtkRenderer> ren;
   ren->SetBackground(0.2, 0.2, 0.25);
   setup(ren);
@@ -116,7 +122,8 @@ Timing Measure(vtkRenderWindow *win,
   ren->GetActiveCamera()->Elevation(20);
   ren->ResetCameraClippingRange();
   vtkNew<vtkRayTracePass> pass;
-  if (trace) {
+  if (trace)
+  {
     ren->SetPass(pass);
   }
   win->AddRenderer(ren);
@@ -127,7 +134,8 @@ Timing Measure(vtkRenderWindow *win,
   t.First = Ms(t0, Clock::now());
   t0 = Clock::now();
   const double cpu0 = CpuMs();
-  for (int i = 0; i < frames; ++i) {
+  for (int i = 0; i < frames; ++i)
+  {
     ren->GetActiveCamera()->Azimuth(360.0 / frames);
     ren->ResetCameraClippingRange();
     win->Render();
@@ -140,62 +148,80 @@ Timing Measure(vtkRenderWindow *win,
   return t;
 }
 
-void Row(const std::string &scene, int size, const std::string &peer,
-         const Timing &p, const Timing &r) {
-  std::cout << std::left << std::setw(20) << scene << std::setw(6) << size
-            << std::setw(28) << peer << std::right << std::fixed
-            << std::setprecision(1) << std::setw(10) << r.Steady
+void Row(
+  const std::string& scene, int size, const std::string& peer, const Timing& p, const Timing& r)
+{
+  std::cout << std::left << std::setw(20) << scene << std::setw(6) << size << std::setw(28) << peer
+            << std::right << std::fixed << std::setprecision(1) << std::setw(10) << r.Steady
             << std::setw(10) << p.Steady << std::setw(8) << std::setprecision(2)
-            << r.Steady / p.Steady << std::setprecision(1) << std::setw(11)
-            << r.First << std::setw(11) << p.First << std::setw(10)
-            << r.SteadyCpu << std::setw(10) << p.SteadyCpu
-            << std::setprecision(2) << std::setw(8) << r.SteadyCpu / p.SteadyCpu
+            << r.Steady / p.Steady << std::setprecision(1) << std::setw(11) << r.First
+            << std::setw(11) << p.First << std::setw(10) << r.SteadyCpu << std::setw(10)
+            << p.SteadyCpu << std::setprecision(2) << std::setw(8) << r.SteadyCpu / p.SteadyCpu
             << "\n";
 }
 } // namespace
 
-int main(int argc, char *argv[]) {
+int main(int argc, char* argv[])
+{
   bool large = false;
   int frames = 6;
-  std::vector<int> sizes = {512, 1024};
-  std::vector<long> meshes = {100000, 1000000};
-  std::vector<long> sphereCounts = {10000, 100000};
+  std::vector<int> sizes = { 512, 1024 };
+  std::vector<long> meshes = { 100000, 1000000 };
+  std::vector<long> sphereCounts = { 10000, 100000 };
   std::vector<long> meshesArg, spheresArg;
   std::string peers = "glyphs,points,impostors";
-  auto parseList = [](const char *text) {
+  auto parseList = [](const char* text)
+  {
     std::vector<long> out;
     std::stringstream list(text);
     std::string item;
-    while (std::getline(list, item, ',')) {
-      if (std::atol(item.c_str()) > 0) {
+    while (std::getline(list, item, ','))
+    {
+      if (std::atol(item.c_str()) > 0)
+      {
         out.push_back(std::atol(item.c_str()));
       }
     }
     return out;
   };
   bool meshesGiven = false, spheresGiven = false;
-  for (int i = 1; i < argc; ++i) {
+  for (int i = 1; i < argc; ++i)
+  {
     const std::string a = argv[i];
-    if (a == "--large") {
+    if (a == "--large")
+    {
       large = true;
-    } else if (a == "--frames" && i + 1 < argc) {
+    }
+    else if (a == "--frames" && i + 1 < argc)
+    {
       frames = std::max(1, std::atoi(argv[++i]));
-    } else if (a == "--meshes" && i + 1 < argc) {
+    }
+    else if (a == "--meshes" && i + 1 < argc)
+    {
       meshesArg = parseList(argv[++i]);
       meshesGiven = true;
-    } else if (a == "--spheres" && i + 1 < argc) {
+    }
+    else if (a == "--spheres" && i + 1 < argc)
+    {
       spheresArg = parseList(argv[++i]);
       spheresGiven = true;
-    } else if (a == "--peers" && i + 1 < argc) {
+    }
+    else if (a == "--peers" && i + 1 < argc)
+    {
       peers = argv[++i];
-    } else if (a == "--sizes" && i + 1 < argc) {
+    }
+    else if (a == "--sizes" && i + 1 < argc)
+    {
       sizes.clear();
       std::stringstream list(argv[++i]);
       std::string item;
-      while (std::getline(list, item, ',')) {
+      while (std::getline(list, item, ','))
+      {
         sizes.push_back(std::atoi(item.c_str()));
       }
-    } else {
+    }
+    else
+    {
       std::cerr << "usage: " << argv[0]
                 << " [--large] [--frames N] [--sizes 512,1024] [--meshes N,..] "
                    "[--spheres N,..]"
@@ -211,32 +237,35 @@ int main(int argc, char *argv[]) {
   std::cout << "vtkrtBenchPass: " << win->GetGLRenderer() << ", " << frames
             << " orbit frames after a first frame; times in ms; ratio = peer / "
                "pass\n\n";
-  std::cout << std::left << std::setw(20) << "scene" << std::setw(6) << "size"
-            << std::setw(28) << "peer" << std::right << std::setw(10) << "peer"
-            << std::setw(10) << "pass" << std::setw(8) << "ratio"
-            << std::setw(11) << "peer 1st" << std::setw(11) << "pass 1st"
-            << std::setw(10) << "peer cpu" << std::setw(10) << "pass cpu"
-            << std::setw(8) << "cpu rat"
+  std::cout << std::left << std::setw(20) << "scene" << std::setw(6) << "size" << std::setw(28)
+            << "peer" << std::right << std::setw(10) << "peer" << std::setw(10) << "pass"
+            << std::setw(8) << "ratio" << std::setw(11) << "peer 1st" << std::setw(11) << "pass 1st"
+            << std::setw(10) << "peer cpu" << std::setw(10) << "pass cpu" << std::setw(8)
+            << "cpu rat"
             << "\n";
 
-  if (large) {
+  if (large)
+  {
     meshes.push_back(4000000);
     sphereCounts.push_back(1000000);
   }
-  if (meshesGiven) {
+  if (meshesGiven)
+  {
     meshes = meshesArg;
   }
-  if (spheresGiven) {
+  if (spheresGiven)
+  {
     sphereCounts = spheresArg;
   }
-  auto wants = [&](const std::string &peer) {
-    return peers.find(peer) != std::string::npos;
-  };
-  for (int size : sizes) {
+  auto wants = [&](const std::string& peer) { return peers.find(peer) != std::string::npos; };
+  for (int size : sizes)
+  {
     win->SetSize(size, size);
-    for (long n : meshes) {
+    for (long n : meshes)
+    {
       auto mesh = MeshOf(n);
-      auto setup = [&](vtkRenderer *ren) {
+      auto setup = [&](vtkRenderer* ren)
+      {
         vtkNew<vtkPolyDataMapper> mapper;
         mapper->SetInputData(mesh);
         vtkNew<vtkActor> actor;
@@ -246,12 +275,15 @@ int main(int argc, char *argv[]) {
       const Timing pass = Measure(win, setup, true, frames);
       const Timing raster = Measure(win, setup, false, frames);
       Row(std::to_string(mesh->GetNumberOfCells() / 1000) + "k triangles", size,
-          "vtkPolyDataMapper", pass, raster);
+        "vtkPolyDataMapper", pass, raster);
     }
-    for (long n : sphereCounts) {
+    for (long n : sphereCounts)
+    {
       auto spheres = SpheresOf(n);
-      auto glyphs = [&](int resolution) {
-        return [&, resolution](vtkRenderer *ren) {
+      auto glyphs = [&](int resolution)
+      {
+        return [&, resolution](vtkRenderer* ren)
+        {
           vtkNew<vtkSphereSource> source;
           source->SetThetaResolution(resolution);
           source->SetPhiResolution(resolution);
@@ -268,43 +300,47 @@ int main(int argc, char *argv[]) {
       };
       const std::string scene = std::to_string(n / 1000) + "k spheres";
       const Timing pass = Measure(win, glyphs(16), true, frames);
-      if (peers == "none") {
+      if (peers == "none")
+      {
         Row(scene, size, "(pass alone)", pass, pass);
       }
-      if (wants("glyphs")) {
+      if (wants("glyphs"))
+      {
         // Triangulated glyphs are slow at 100k+: fewer frames there.
-        const Timing glyph =
-            Measure(win, glyphs(16), false, n > 20000 ? 2 : frames);
+        const Timing glyph = Measure(win, glyphs(16), false, n > 20000 ? 2 : frames);
         Row(scene, size, "vtkGlyph3DMapper 16x16", pass, glyph);
       }
-      if (wants("points")) {
+      if (wants("points"))
+      {
         const Timing points = Measure(
-            win,
-            [&](vtkRenderer *ren) {
-              vtkNew<vtkPolyDataMapper> mapper;
-              mapper->SetInputData(spheres);
-              vtkNew<vtkActor> actor;
-              actor->SetMapper(mapper);
-              actor->GetProperty()->SetRenderPointsAsSpheres(true);
-              actor->GetProperty()->SetPointSize(static_cast<float>(size) /
-                                                 100.0f);
-              ren->AddActor(actor);
-            },
-            false, frames);
+          win,
+          [&](vtkRenderer* ren)
+          {
+            vtkNew<vtkPolyDataMapper> mapper;
+            mapper->SetInputData(spheres);
+            vtkNew<vtkActor> actor;
+            actor->SetMapper(mapper);
+            actor->GetProperty()->SetRenderPointsAsSpheres(true);
+            actor->GetProperty()->SetPointSize(static_cast<float>(size) / 100.0f);
+            ren->AddActor(actor);
+          },
+          false, frames);
         Row(scene, size, "RenderPointsAsSpheres", pass, points);
       }
-      if (wants("impostors")) {
+      if (wants("impostors"))
+      {
         const Timing impostors = Measure(
-            win,
-            [&](vtkRenderer *ren) {
-              vtkNew<vtkOpenGLSphereMapper> mapper;
-              mapper->SetInputData(spheres);
-              mapper->SetScaleArray("radius");
-              vtkNew<vtkActor> actor;
-              actor->SetMapper(mapper);
-              ren->AddActor(actor);
-            },
-            false, frames);
+          win,
+          [&](vtkRenderer* ren)
+          {
+            vtkNew<vtkOpenGLSphereMapper> mapper;
+            mapper->SetInputData(spheres);
+            mapper->SetScaleArray("radius");
+            vtkNew<vtkActor> actor;
+            actor->SetMapper(mapper);
+            ren->AddActor(actor);
+          },
+          false, frames);
         Row(scene, size, "vtkOpenGLSphereMapper", pass, impostors);
       }
     }
