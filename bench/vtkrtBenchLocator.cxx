@@ -7,7 +7,10 @@
 // hits with vtkBVHCellLocator. Ratios are "peer / vtkBVHCellLocator" for
 // rates (below 1: slower than ours) and for times (above 1: slower).
 //
-// Usage: vtkrtBenchLocator [--4m] [--rays N] [--quick]
+// Usage: vtkrtBenchLocator [--4m] [--rays N] [--quick] [--only SUBSTR]... [--mesh SUBSTR]
+//   --only: keep only the peers whose name contains SUBSTR (repeatable; the
+//   first kept peer is the reference of the ratios); --mesh: only the meshes
+//   whose name contains SUBSTR.
 #include "vtkBVHCellLocator.h"
 
 #include "vtkCellLocator.h"
@@ -415,6 +418,25 @@ std::string Human(long long bytes)
   return buf;
 }
 
+std::vector<std::string> g_Only;
+std::string g_Mesh;
+
+bool Wanted(const std::string& name)
+{
+  if (g_Only.empty())
+  {
+    return true;
+  }
+  for (const auto& o : g_Only)
+  {
+    if (name.find(o) != std::string::npos)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 void RunMesh(const std::string& name, vtkPolyData* pd, int rays, bool quick)
 {
   const vtkIdType tris = pd->GetNumberOfCells();
@@ -434,6 +456,12 @@ void RunMesh(const std::string& name, vtkPolyData* pd, int rays, bool quick)
 #ifdef VTKRT_HAVE_EMBREE
   peers.push_back(EmbreePeer(rays));
 #endif
+  peers.erase(std::remove_if(peers.begin(), peers.end(), [](const Peer& p) { return !Wanted(p.Name); }),
+    peers.end());
+  if (peers.empty())
+  {
+    return;
+  }
   std::vector<double> refT;
   std::vector<Result> results;
   for (const auto& p : peers)
@@ -492,6 +520,14 @@ int main(int argc, char* argv[])
       quick = true;
       rays = 5000;
     }
+    else if (!std::strcmp(argv[i], "--only") && i + 1 < argc)
+    {
+      g_Only.emplace_back(argv[++i]);
+    }
+    else if (!std::strcmp(argv[i], "--mesh") && i + 1 < argc)
+    {
+      g_Mesh = argv[++i];
+    }
     else if (!std::strcmp(argv[i], "--rays") && i + 1 < argc)
     {
       rays = std::max(10, std::atoi(argv[++i]));
@@ -503,16 +539,23 @@ int main(int argc, char* argv[])
               "vtkBVHCellLocator (default, fast build). Same hits: t within 1e-6.\n"
               "VTK SMP backend %s (builds may use it); Embree built with 1 thread.\n",
     vtkSMPTools::GetBackend());
-  if (auto bunny = Bunny())
+  auto wantMesh = [](const char* name) { return g_Mesh.empty() || std::strstr(name, g_Mesh.c_str()); };
+  if (wantMesh("bunny"))
   {
-    RunMesh("bunny", bunny, rays, quick);
+    if (auto bunny = Bunny())
+    {
+      RunMesh("bunny", bunny, rays, quick);
+    }
   }
-  RunMesh("generated 100k", BumpySphere(quick ? 100 : 224), rays, quick);
-  if (!quick)
+  if (wantMesh("generated 100k"))
+  {
+    RunMesh("generated 100k", BumpySphere(quick ? 100 : 224), rays, quick);
+  }
+  if (!quick && wantMesh("generated 1M"))
   {
     RunMesh("generated 1M", BumpySphere(708), rays, quick);
   }
-  if (big)
+  if (big && wantMesh("generated 4M"))
   {
     RunMesh("generated 4M", BumpySphere(1415), rays, quick);
   }

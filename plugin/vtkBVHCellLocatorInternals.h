@@ -27,11 +27,13 @@
 #include "vtkrt/core/BVH.h"
 #include "vtkrt/core/BVHBuild.h"
 #include "vtkrt/core/BVHTraversal.h"
+#include "vtkrt/core/ConservativeFloat.h"
 #include "vtkrt/core/Ray.h"
 #include "vtkrt/core/Triangle.h"
 
-#include <emmintrin.h> // SSE2: both children of a node in one slab test
+#if VTKRT_CORE_SSE
 #include <xmmintrin.h> // _mm_prefetch
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -91,8 +93,11 @@ public:
   Vec3d Origin = Vec3d(0.0);
   std::vector<Vec3d> Points;             ///< local copy (point - Origin), fast path only
   std::vector<std::uint32_t> TriVerts;   ///< 3 point ids per triangle (extraction only)
-  std::vector<Vec3d> TriV;               ///< 3 local vertices per triangle, leaf order
-  std::vector<std::uint32_t> TriIds;     ///< their point ids, leaf order
+  std::vector<std::uint32_t> TriIds;     ///< 3 point ids per triangle, leaf order
+  /// The triangles in leaf order as float, four per pack: the float
+  /// pre-test that spares the double test nearly every miss.
+  std::vector<core::TrianglePack4> TriPacks;
+  double Extent = 0.0; ///< bound on |local vertex| (inf norm), for the float error bound
   std::vector<vtkIdType> TriCell;        ///< original cell id per triangle
   std::vector<std::int32_t> TriSub;      ///< subId per triangle (strips: triangle index)
   std::vector<std::uint8_t> TriFlags;    ///< TriangleFlags
@@ -102,14 +107,14 @@ public:
   /// The same tree seen four children at a time (a re-layout of the core's
   /// binary nodes, no new split decisions): half the levels, so about half
   /// the cache misses on the picking path. Boxes are the packed float ones.
+  /// Two cache lines; an unused slot has an empty box (never hit).
   struct alignas(64) WideNode
   {
-    float Lo[3][4];
-    float Hi[3][4];
+    core::BoxPack4 Box;
     std::uint32_t Child[4]; ///< wide node index (Count 0) or first primIndex slot
     std::uint32_t Count[4]; ///< primitives of a leaf child; 0 for an interior child
-    std::uint32_t Valid;    ///< bit i: slot i is used
   };
+  static_assert(sizeof(WideNode) == 128, "a wide node is two cache lines");
   std::vector<WideNode> Wide;
   TreeStats Stats;
   vtkIdType SkippedCells = 0;   ///< cells in no leaf (non-finite or empty bounds)
@@ -131,7 +136,8 @@ public:
   size_t MemorySize() const
   {
     return this->Points.capacity() * sizeof(Vec3d) +
-      this->TriVerts.capacity() * sizeof(std::uint32_t) + this->TriV.capacity() * sizeof(Vec3d) +
+      this->TriVerts.capacity() * sizeof(std::uint32_t) +
+      this->TriPacks.capacity() * sizeof(core::TrianglePack4) +
       this->TriIds.capacity() * sizeof(std::uint32_t) +
       this->TriCell.capacity() * sizeof(vtkIdType) +
       this->TriSub.capacity() * sizeof(std::int32_t) + this->TriFlags.capacity() +
@@ -196,11 +202,42 @@ public:
     // The four-wide view reads its boxes from the float copy: local
     // coordinates already, so origin 0 keeps the outward rounding exact.
     this->Wide.clear();
-    if (!this->Tree.empty() && !this->Tree.nodes[0].isLeaf())
+    if (!this->Tree.empty())
     {
       const std::vector<float> packed = core::packNodesForGpu(this->Tree, Vec3d(0.0));
       this->Wide.reserve(this->Tree.nodes.size() / 2 + 1);
-      this->Collapse(0, packed.data());
+      if (this->Tree.nodes[0].isLeaf())
+      {
+        // One wide root holding the leaf.
+        WideNode node;
+        for (int i = 0; i < 4; ++i)
+        {
+          node.Box.clear(i);
+          node.Child[i] = 0;
+          node.Count[i] = 0;
+        }
+        for (int k = 0; k < 3; ++k)
+        {
+          node.Box.lo[k][0] = packed[k];
+          node.Box.hi[k][0] = packed[4 + k];
+        }
+        node.Child[0] = this->Tree.nodes[0].index;
+        node.Count[0] = this->Tree.nodes[0].count;
+        this->Wide.push_back(node);
+      }
+      else
+      {
+        this->Collapse(0, packed.data());
+      }
+    }
+    this->Extent = 0.0;
+    if (!this->Tree.empty())
+    {
+      const Box root = this->Tree.nodes[0].bounds();
+      for (int k = 0; k < 3; ++k)
+      {
+        this->Extent = std::max(this->Extent, std::max(std::abs(root.min[k]), std::abs(root.max[k])));
+      }
     }
     this->Stats.Nodes = static_cast<vtkIdType>(this->Tree.stats.nodeCount);
     this->Stats.Leaves = static_cast<vtkIdType>(this->Tree.stats.leafCount);
@@ -242,14 +279,9 @@ public:
     const std::uint32_t w = static_cast<std::uint32_t>(this->Wide.size());
     this->Wide.emplace_back();
     WideNode node;
-    node.Valid = 0;
     for (int i = 0; i < 4; ++i)
     {
-      for (int k = 0; k < 3; ++k)
-      {
-        node.Lo[k][i] = 0.0f;
-        node.Hi[k][i] = 0.0f;
-      }
+      node.Box.clear(i);
       node.Child[i] = 0;
       node.Count[i] = 0;
     }
@@ -258,10 +290,9 @@ public:
       const float* f = packed + 8 * static_cast<std::size_t>(kids[i]);
       for (int k = 0; k < 3; ++k)
       {
-        node.Lo[k][i] = f[k];
-        node.Hi[k][i] = f[4 + k];
+        node.Box.lo[k][i] = f[k];
+        node.Box.hi[k][i] = f[4 + k];
       }
-      node.Valid |= 1u << i;
       const core::BVHNode& c = nodes[kids[i]];
       if (c.isLeaf())
       {
@@ -289,7 +320,7 @@ public:
     {
       builtTri += p < nTri ? 1 : 0;
     }
-    std::vector<Vec3d> triV(3 * builtTri);
+    std::vector<core::TrianglePack4> packs((builtTri + 3) / 4);
     std::vector<vtkIdType> triCell(builtTri), genCell(order.size() - builtTri);
     std::vector<std::int32_t> triSub(builtTri);
     std::vector<std::uint8_t> triFlags(builtTri);
@@ -298,9 +329,10 @@ public:
     auto placeTriangle = [&](std::uint32_t p, std::uint32_t t) {
       for (int k = 0; k < 3; ++k)
       {
-        triV[3 * t + k] = this->Points[this->TriVerts[3 * p + k]];
         triIds[3 * t + k] = this->TriVerts[3 * p + k];
       }
+      packs[t / 4].set(static_cast<int>(t % 4), this->Points[triIds[3 * t]],
+        this->Points[triIds[3 * t + 1]], this->Points[triIds[3 * t + 2]]);
       triCell[t] = this->TriCell[p];
       triSub[t] = this->TriSub[p];
       triFlags[t] = this->TriFlags[p];
@@ -335,7 +367,11 @@ public:
         }
       }
     }
-    this->TriV.swap(triV);
+    for (size_t k = builtTri; k < 4 * packs.size(); ++k)
+    {
+      packs[k / 4].clear(static_cast<int>(k % 4));
+    }
+    this->TriPacks.swap(packs);
     this->TriCell.swap(triCell);
     this->TriSub.swap(triSub);
     this->TriFlags.swap(triFlags);
@@ -343,7 +379,7 @@ public:
     this->GenCell.swap(genCell);
     this->GenBox.swap(genBox);
     std::vector<std::uint32_t>().swap(this->TriVerts);
-    std::vector<Vec3d>().swap(this->Points);
+    // Points stay: the exact tests read the double vertices through TriIds.
   }
 
   //----------------------------------------------------------------------------
@@ -469,9 +505,9 @@ public:
         {
           h.X[k] = p1[k] + t * r.dir[k];
         }
-        const Vec3d& v0 = this->TriV[3 * prim];
-        const Vec3d& v1 = this->TriV[3 * prim + 1];
-        const Vec3d& v2 = this->TriV[3 * prim + 2];
+        const Vec3d& v0 = this->Vertex(prim, 0);
+        const Vec3d& v1 = this->Vertex(prim, 1);
+        const Vec3d& v2 = this->Vertex(prim, 2);
         double side = glm::dot(core::triangleNormal(v0, v1, v2), r.dir);
         if (this->TriFlags[prim] & FlipOrientation)
         {
@@ -566,9 +602,9 @@ public:
     auto fn = [&](std::uint32_t prim, const Vec3d& p, core::PointHit<double>& cand) {
       if (static_cast<vtkIdType>(prim) < nTri)
       {
-        const Vec3d& v0 = this->TriV[3 * prim];
-        const Vec3d& v1 = this->TriV[3 * prim + 1];
-        const Vec3d& v2 = this->TriV[3 * prim + 2];
+        const Vec3d& v0 = this->Vertex(prim, 0);
+        const Vec3d& v1 = this->Vertex(prim, 1);
+        const Vec3d& v2 = this->Vertex(prim, 2);
         cand.point = core::closestPointOnTriangle(p, v0, v1, v2);
         const Vec3d d = p - cand.point;
         cand.dist2 = glm::dot(d, d);
@@ -686,6 +722,12 @@ public:
   }
 
 private:
+  /// Local double vertex k of (leaf-ordered) triangle prim.
+  const Vec3d& Vertex(std::uint32_t prim, int k) const
+  {
+    return this->Points[this->TriIds[3 * static_cast<std::size_t>(prim) + k]];
+  }
+
   Vec3d ToLocal(const double p[3]) const
   {
     return Vec3d(p[0] - this->Origin.x, p[1] - this->Origin.y, p[2] - this->Origin.z);
@@ -700,7 +742,7 @@ private:
       Box b;
       for (int k = 0; k < 3; ++k)
       {
-        b.extend(this->TriV[3 * prim + k]);
+        b.extend(this->Vertex(prim, k));
       }
       return b;
     }
@@ -747,11 +789,13 @@ private:
     const GrownNodeSource nodes{ this->Tree.nodes.data(), this->Tree.nodes.size(), tol };
     if (Mode == 0)
     {
-      if (ray.dir.x != 0.0 && ray.dir.y != 0.0 && ray.dir.z != 0.0)
+      core::ConservativeRay4 fray;
+      if (!this->Wide.empty() &&
+        fray.init(ray, core::RayTrianglePrecomputed<double>(ray), tol, this->Extent))
       {
-        return this->ClosestHitWide(nodes, ray, isect, hit);
+        return this->ClosestHitWide(fray, ray, tol, isect, hit);
       }
-      // Axis-parallel segments: the core's traversal handles the 0 * inf slabs.
+      // Axis-parallel or extreme segments: the core's double traversal.
       return core::closestHit(nodes, primIndex, ray, isect, hit);
     }
     core::allHits(nodes, primIndex, ray, isect);
@@ -760,120 +804,142 @@ private:
 
   /// The picking hot path: the core's closest-hit contract (ordered,
   /// nearest first, the intersector shrinks ray.tmax) over the four-wide
-  /// view of the same tree. Four boxes per step with the core's robust slab
-  /// arithmetic in double (SSE2, two lanes) on the outward-rounded float
-  /// boxes; only for segments with no zero direction component (no 0 * inf),
-  /// which WalkSegment checks.
+  /// view of the same tree, culling in float with the conservative
+  /// pre-tests of core/ConservativeFloat.h: four boxes per step, four
+  /// triangles per step (tol 0), so that only triangles the exact double
+  /// test might accept reach it.
   template <class Isect>
-  bool ClosestHitWide(const GrownNodeSource& nodes, core::Ray<double> ray, Isect& isect,
-    core::Hit<double>& hit) const
+  bool ClosestHitWide(const core::ConservativeRay4& fray, core::Ray<double> ray, double tol,
+    Isect& isect, core::Hit<double>& hit) const
   {
     hit = core::Hit<double>();
-    if (nodes.size == 0 || !ray.isValid())
-    {
-      return false;
-    }
     const std::uint32_t* primIndex = this->Tree.primIndex.data();
-    const core::RayBoxPrecomputed<double> pre(ray);
-    double tnear;
-    if (!core::intersectRayAABB(pre, nodes.lo(0), nodes.hi(0), ray.tmin, ray.tmax, tnear))
-    {
-      return false;
-    }
-    constexpr double farScale = 1.0 + 2.0 * core::gammaBound<double>(3);
-    const __m128d grow = _mm_set1_pd(nodes.grow);
-    const __m128d org[3] = { _mm_set1_pd(ray.org.x), _mm_set1_pd(ray.org.y), _mm_set1_pd(ray.org.z) };
-    const __m128d inv[3] = { _mm_set1_pd(1.0 / ray.dir.x), _mm_set1_pd(1.0 / ray.dir.y),
-      _mm_set1_pd(1.0 / ray.dir.z) };
-    const __m128d scale = _mm_set1_pd(farScale);
-    const __m128d tmin0 = _mm_set1_pd(ray.tmin);
+    const std::uint32_t nTri = static_cast<std::uint32_t>(this->TriCell.size());
+    const bool allTriangles = this->GenCell.empty();
+    const bool preTest = tol == 0.0; // the float triangle test knows no tolerance
     struct Entry
     {
       std::uint32_t Ref;
       std::uint32_t Count; ///< > 0: a leaf (Ref = first primIndex slot)
-      double Dist;
+      float Dist;
     };
     // Each wide level pushes at most 3 entries; depth <= kMaxDepth.
     Entry stack[3 * core::kMaxStackSize + 4];
     std::uint32_t sp = 0;
-    const core::BVHNode& root = this->Tree.nodes[0];
-    stack[sp++] = root.isLeaf() ? Entry{ root.index, root.count, tnear } : Entry{ 0, 0, tnear };
+    float tmaxF = core::ConservativeRay4::scaledTmax(ray.tmax);
+    stack[sp++] = Entry{ 0, 0, 0.0f };
     bool found = false;
+    auto test = [&](std::uint32_t prim) {
+      core::Hit<double> candidate = hit;
+      if (isect(prim, ray, candidate))
+      {
+        candidate.prim = prim;
+        found = true;
+        hit = candidate;
+        ray.tmax = hit.t;
+        tmaxF = core::ConservativeRay4::scaledTmax(ray.tmax);
+      }
+    };
+    // Triangles [first, end) in leaf order: four lanes of a pack at a time.
+    auto testTriangles = [&](std::uint32_t first, std::uint32_t end) {
+      if (!preTest)
+      {
+        for (std::uint32_t prim = first; prim < end; ++prim)
+        {
+          test(prim);
+        }
+        return;
+      }
+      for (std::uint32_t block = first / 4; 4 * block < end; ++block)
+      {
+        const std::uint32_t lo = std::max(first, 4 * block) - 4 * block;
+        const std::uint32_t hi = std::min(end, 4 * block + 4) - 4 * block;
+        int mask = core::triangleCandidates4(fray, this->TriPacks[block]) &
+          (((1 << hi) - 1) & ~((1 << lo) - 1));
+#if VTKRT_CORE_SSE
+        // The exact test reads the double vertices through the point ids:
+        // start every survivor's loads before the first test waits on one.
+        for (int m = mask; m; m &= m - 1)
+        {
+          const std::uint32_t* ids =
+            this->TriIds.data() + 3 * (4 * static_cast<std::size_t>(block) + CountTrailingZeros(static_cast<unsigned>(m)));
+          for (int k = 0; k < 3; ++k)
+          {
+            _mm_prefetch(reinterpret_cast<const char*>(&this->Points[ids[k]]), _MM_HINT_T0);
+          }
+        }
+#endif
+        while (mask)
+        {
+          const int lane = CountTrailingZeros(static_cast<unsigned>(mask));
+          mask &= mask - 1;
+          test(4 * block + static_cast<std::uint32_t>(lane));
+        }
+      }
+    };
     while (sp > 0)
     {
       const Entry e = stack[--sp];
-      if (e.Dist > ray.tmax)
+      if (e.Dist > tmaxF)
       {
         continue;
       }
       if (e.Count > 0)
       {
+        if (allTriangles)
+        {
+          testTriangles(e.Ref, e.Ref + e.Count); // primIndex is the identity
+          continue;
+        }
         for (std::uint32_t k = 0; k < e.Count; ++k)
         {
           const std::uint32_t prim = primIndex[e.Ref + k];
-          core::Hit<double> candidate = hit;
-          if (isect(prim, ray, candidate))
+          if (prim < nTri)
           {
-            candidate.prim = prim;
-            found = true;
-            hit = candidate;
-            ray.tmax = hit.t;
+            testTriangles(prim, prim + 1);
+          }
+          else
+          {
+            test(prim);
           }
         }
         continue;
       }
       const WideNode& w = this->Wide[e.Ref];
-      __m128d t0lo = tmin0, t0hi = tmin0;
-      __m128d t1lo = _mm_set1_pd(ray.tmax), t1hi = t1lo;
-      for (int axis = 0; axis < 3; ++axis)
-      {
-        const __m128 lo4 = _mm_load_ps(w.Lo[axis]);
-        const __m128 hi4 = _mm_load_ps(w.Hi[axis]);
-        const __m128d loA = _mm_sub_pd(_mm_cvtps_pd(lo4), grow);
-        const __m128d loB = _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(lo4, lo4)), grow);
-        const __m128d hiA = _mm_add_pd(_mm_cvtps_pd(hi4), grow);
-        const __m128d hiB = _mm_add_pd(_mm_cvtps_pd(_mm_movehl_ps(hi4, hi4)), grow);
-        const __m128d aA = _mm_mul_pd(_mm_sub_pd(loA, org[axis]), inv[axis]);
-        const __m128d bA = _mm_mul_pd(_mm_sub_pd(hiA, org[axis]), inv[axis]);
-        const __m128d aB = _mm_mul_pd(_mm_sub_pd(loB, org[axis]), inv[axis]);
-        const __m128d bB = _mm_mul_pd(_mm_sub_pd(hiB, org[axis]), inv[axis]);
-        t0lo = _mm_max_pd(t0lo, _mm_min_pd(aA, bA));
-        t0hi = _mm_max_pd(t0hi, _mm_min_pd(aB, bB));
-        t1lo = _mm_min_pd(t1lo, _mm_mul_pd(_mm_max_pd(aA, bA), scale));
-        t1hi = _mm_min_pd(t1hi, _mm_mul_pd(_mm_max_pd(aB, bB), scale));
-      }
-      const int mask = (_mm_movemask_pd(_mm_cmple_pd(t0lo, t1lo)) |
-                         (_mm_movemask_pd(_mm_cmple_pd(t0hi, t1hi)) << 2)) &
-        static_cast<int>(w.Valid);
-      if (!mask)
-      {
-        continue;
-      }
-      alignas(16) double t0[4];
-      _mm_store_pd(t0, t0lo);
-      _mm_store_pd(t0 + 2, t0hi);
+      alignas(16) float tnear[4];
+      int mask = core::intersectBoxes4(fray, w.Box, tmaxF, tnear);
       // Push the hit children farthest first, so the nearest is popped next.
       Entry hits[4];
       int nh = 0;
-      for (int i = 0; i < 4; ++i)
+      while (mask)
       {
-        if (mask & (1 << i))
+        const int i = CountTrailingZeros(static_cast<unsigned>(mask));
+        mask &= mask - 1;
+        const Entry c{ w.Child[i], w.Count[i], tnear[i] };
+        int j = nh++;
+        while (j > 0 && hits[j - 1].Dist < c.Dist)
         {
-          Entry c{ w.Child[i], w.Count[i], t0[i] };
-          int j = nh++;
-          while (j > 0 && hits[j - 1].Dist < c.Dist)
-          {
-            hits[j] = hits[j - 1];
-            --j;
-          }
-          hits[j] = c;
-          const void* next = c.Count > 0
-            ? static_cast<const void*>(this->TriV.data() +
-                3 * static_cast<std::size_t>(std::min<std::uint32_t>(primIndex[c.Ref],
-                      static_cast<std::uint32_t>(this->TriCell.empty() ? 0 : this->TriCell.size() - 1))))
-            : static_cast<const void*>(&this->Wide[c.Ref]);
-          _mm_prefetch(static_cast<const char*>(next), _MM_HINT_T0);
+          hits[j] = hits[j - 1];
+          --j;
         }
+        hits[j] = c;
+#if VTKRT_CORE_SSE
+        if (c.Count == 0)
+        {
+          const char* next = reinterpret_cast<const char*>(&this->Wide[c.Ref]);
+          _mm_prefetch(next, _MM_HINT_T0);
+          _mm_prefetch(next + 64, _MM_HINT_T0);
+        }
+        else if (allTriangles)
+        {
+          const char* next = reinterpret_cast<const char*>(&this->TriPacks[c.Ref / 4]);
+          _mm_prefetch(next, _MM_HINT_T0);
+          _mm_prefetch(next + 64, _MM_HINT_T0);
+          _mm_prefetch(next + 128, _MM_HINT_T0);
+          // The leaf's point ids: a hit needs them right after the float test.
+          _mm_prefetch(reinterpret_cast<const char*>(this->TriIds.data() + 3 * static_cast<std::size_t>(c.Ref)), _MM_HINT_T0);
+        }
+#endif
       }
       for (int i = 0; i < nh; ++i)
       {
@@ -883,14 +949,29 @@ private:
     return found;
   }
 
+  static int CountTrailingZeros(unsigned x)
+  {
+#if defined(__GNUC__) || defined(__clang__)
+    return __builtin_ctz(x);
+#else
+    int n = 0;
+    while (!(x & 1u))
+    {
+      x >>= 1;
+      ++n;
+    }
+    return n;
+#endif
+  }
+
   /// Watertight hit, or (tol > 0) VTK's rule: the crossing of the plane lies
   /// within tol of the triangle. u, v: VTK triangle pcoords of the hit.
   bool IntersectTriangle(std::uint32_t prim, const core::RayTrianglePrecomputed<double>& pre,
     const core::Ray<double>& ray, double tol, double& t, double& u, double& v) const
   {
-    const Vec3d& v0 = this->TriV[3 * prim];
-    const Vec3d& v1 = this->TriV[3 * prim + 1];
-    const Vec3d& v2 = this->TriV[3 * prim + 2];
+    const Vec3d& v0 = this->Vertex(prim, 0);
+    const Vec3d& v1 = this->Vertex(prim, 1);
+    const Vec3d& v2 = this->Vertex(prim, 2);
     core::TriangleHit<double> hit;
     if (core::intersectRayTriangle(pre, v0, v1, v2, ray.tmin, ray.tmax, hit))
     {
@@ -946,9 +1027,9 @@ private:
   /// Whether x projects into the triangle (vtkTriangle::EvaluatePosition == 1).
   bool ProjectsInside(std::uint32_t prim, const Vec3d& x) const
   {
-    const Vec3d& v0 = this->TriV[3 * prim];
-    const Vec3d& v1 = this->TriV[3 * prim + 1];
-    const Vec3d& v2 = this->TriV[3 * prim + 2];
+    const Vec3d& v0 = this->Vertex(prim, 0);
+    const Vec3d& v1 = this->Vertex(prim, 1);
+    const Vec3d& v2 = this->Vertex(prim, 2);
     double u, v;
     Barycentric(x, v0, v1 - v0, v2 - v0, u, v);
     return u >= 0.0 && v >= 0.0 && u + v <= 1.0;

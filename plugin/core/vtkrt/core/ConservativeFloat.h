@@ -1,0 +1,282 @@
+// Four-wide float pre-tests for a double-precision ray: four boxes, or four
+// triangles, at once (SSE when the compiler targets it, plain loops
+// otherwise). They are CONSERVATIVE: they never reject a box that the
+// double slab test (Ray.h) accepts, nor a triangle that the double
+// watertight test (Triangle.h) accepts, so a traversal can cull in float
+// and decide every surviving candidate exactly in double.
+//
+// Why they are conservative (u = 2^-24, float unit roundoff):
+// - Boxes are rounded outward to float (BVH.h). The ray origin o is
+//   rounded to a float o_f; the residual |o - o_f| (plus an optional
+//   tolerance) is added to each box side by using for the lower planes the
+//   float roundUp(o_f + m) and for the upper planes roundDown(o_f - m) as
+//   origin, so the grown box holds the exact ray. The slab distances then
+//   carry only relative errors (subtraction, rounded 1/d, product: gamma(3)),
+//   covered as in Ize 2013 by scaling the far distances (and tmax) by
+//   1 + 4 gamma(3); a tiny absolute term covers gradual underflow.
+// - Triangles: vertices rounded to nearest float, Q = R + |o|inf with R a
+//   bound on |vertex|inf. Each sheared coordinate (Woop et al.'s Ax, Ay, ...)
+//   is then within E = 16 u Q of the exact one the double test approximates
+//   (the derivation gives 10 u Q), and each edge function (U, V, W) within
+//   2 E S + 6 E^2 + 3 u S^2 of it, where S bounds |X| + |Y| of the computed
+//   sheared vertices. The double test's own error is below 2^-29 of that.
+//   A lane is rejected only when one edge function is below -m and another
+//   above +m, with m = 4 E S + 8 E^2 + 8 u S^2 (twice the bound): the double
+//   test then sees mixed signs too. The t range is left to the double test.
+// Preconditions, checked by ConservativeRay4::init (false: use double only):
+// finite float origin and inverse direction, Q <= 1e17 (no float overflow in
+// the products), and on x86 no flush-to-zero / denormals-are-zero mode.
+#ifndef vtkrt_core_ConservativeFloat_h
+#define vtkrt_core_ConservativeFloat_h
+
+#include "vtkrt/core/Ray.h"
+#include "vtkrt/core/Triangle.h"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#if defined(__SSE2__) || defined(_M_X64)
+#define VTKRT_CORE_SSE 1
+#include <emmintrin.h>
+#include <xmmintrin.h>
+#else
+#define VTKRT_CORE_SSE 0
+#endif
+
+namespace vtkrt::core
+{
+
+/// Four triangles, structure of arrays: v[3 * vertex + axis][lane], in the
+/// local frame of the double vertices (rounded to nearest float).
+struct alignas(16) TrianglePack4
+{
+  float v[9][4];
+
+  void set(int lane, const Vec3<double>& v0, const Vec3<double>& v1, const Vec3<double>& v2)
+  {
+    const Vec3<double>* vs[3] = { &v0, &v1, &v2 };
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        v[3 * k + a][lane] = static_cast<float>((*vs[k])[a]);
+      }
+    }
+  }
+  void clear(int lane)
+  {
+    for (auto& row : v)
+    {
+      row[lane] = 0.0f;
+    }
+  }
+};
+
+/// Four boxes, structure of arrays: lo[axis][lane], hi[axis][lane], float,
+/// rounded outward. An unused lane holds lo = +inf, hi = -inf (never hit).
+struct alignas(16) BoxPack4
+{
+  float lo[3][4];
+  float hi[3][4];
+
+  void clear(int lane)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a][lane] = std::numeric_limits<float>::infinity();
+      hi[a][lane] = -std::numeric_limits<float>::infinity();
+    }
+  }
+};
+
+/// Per-ray float constants of both pre-tests.
+struct ConservativeRay4
+{
+  // Boxes: per axis, the float origin for the near and the far plane, the
+  // near plane's row (0: lo, 1: hi) and the float inverse direction.
+  float oNear[3], oFar[3], inv[3];
+  int nearHi[3];
+  float tmin;
+  // Triangles: the float origin, the shear of the double test, the
+  // coordinate error bound E.
+  float org[3];
+  int kx, ky, kz;
+  float sx, sy;
+  float E;
+
+  static constexpr float kUnit = 0x1p-24f;
+  static constexpr float kTiny = 1e-36f; // above any sum of a few underflowed terms
+  /// 1 + 4 gamma(3) in float, rounded up.
+  static constexpr float kFarScale = 1.0f + 4.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f) + 0x1p-23f;
+
+  /// Fills the constants for `ray` (double), boxes grown by `grow` >= 0,
+  /// triangles whose vertices are within `extent` (inf norm) of 0. False when
+  /// a precondition fails: use the double tests for this ray.
+  bool init(const Ray<double>& ray, const RayTrianglePrecomputed<double>& tri, double grow, double extent)
+  {
+#if VTKRT_CORE_SSE
+    if (_mm_getcsr() & 0x8040u) // FTZ or DAZ: underflow is not gradual
+    {
+      return false;
+    }
+#endif
+    const double oMax = std::max(std::abs(ray.org.x), std::max(std::abs(ray.org.y), std::abs(ray.org.z)));
+    const double Q = extent + oMax;
+    if (!(Q <= 1e17) || !(grow >= 0.0) || !(grow <= 1e17) || !(ray.tmin >= 0.0))
+    {
+      return false;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      const double d = ray.dir[a];
+      const double invD = 1.0 / d;
+      const float invF = static_cast<float>(invD);
+      if (d == 0.0 || !std::isfinite(invF) || !(std::abs(invF) >= 0x1p-100f))
+      {
+        return false;
+      }
+      inv[a] = invF;
+      const float of = static_cast<float>(ray.org[a]);
+      org[a] = of;
+      // Residual of the rounding plus the growth, rounded up; the origin for
+      // the lower planes moves up by it, for the upper planes down.
+      const double mExact = std::abs(ray.org[a] - static_cast<double>(of)) + grow;
+      const double m = mExact + mExact * std::numeric_limits<double>::epsilon();
+      const double up = static_cast<double>(of) + m, down = static_cast<double>(of) - m;
+      const float oLo = roundUpToFloat(up + std::abs(up) * std::numeric_limits<double>::epsilon());
+      const float oHi = roundDownToFloat(down - std::abs(down) * std::numeric_limits<double>::epsilon());
+      nearHi[a] = d < 0.0 ? 1 : 0;
+      oNear[a] = d < 0.0 ? oHi : oLo;
+      oFar[a] = d < 0.0 ? oLo : oHi;
+    }
+    tmin = roundDownToFloat(ray.tmin);
+    kx = tri.kx;
+    ky = tri.ky;
+    kz = tri.kz;
+    sx = static_cast<float>(tri.sx);
+    sy = static_cast<float>(tri.sy);
+    E = roundUpToFloat(16.0 * 0x1p-24 * Q * (1.0 + 1e-6));
+    return true;
+  }
+
+  /// The float bound to compare box entry distances with, for a double tmax.
+  static float scaledTmax(double tmax)
+  {
+    if (!(tmax < 1e38))
+    {
+      return std::numeric_limits<float>::infinity();
+    }
+    // float(tmax) is within half an ulp (relative 2^-24, or an absolute
+    // 2^-150 below FLT_MIN): the extra 2^-22 and kTiny cover it.
+    return static_cast<float>(tmax) * (kFarScale * (1.0f + 0x1p-22f)) + kTiny;
+  }
+};
+
+#if VTKRT_CORE_SSE
+namespace detail
+{
+inline __m128 abs4(__m128 x)
+{
+  return _mm_andnot_ps(_mm_set1_ps(-0.0f), x);
+}
+} // namespace detail
+
+/// Bit i set: box i may be hit with entry distance <= tmaxScaled
+/// (ConservativeRay4::scaledTmax); tnear[i] gets a lower bound of its entry
+/// distance (valid for set bits).
+inline int intersectBoxes4(const ConservativeRay4& r, const BoxPack4& b, float tmaxScaled, float tnear[4])
+{
+  const float* rows[2] = { &b.lo[0][0], &b.hi[0][0] };
+  __m128 tn = _mm_set1_ps(r.tmin);
+  __m128 tf = _mm_set1_ps(std::numeric_limits<float>::infinity());
+  for (int a = 0; a < 3; ++a)
+  {
+    const __m128 nearPlane = _mm_load_ps(rows[r.nearHi[a]] + 4 * a);
+    const __m128 farPlane = _mm_load_ps(rows[1 - r.nearHi[a]] + 4 * a);
+    const __m128 inv = _mm_set1_ps(r.inv[a]);
+    tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(nearPlane, _mm_set1_ps(r.oNear[a])), inv));
+    tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(farPlane, _mm_set1_ps(r.oFar[a])), inv));
+  }
+  tf = _mm_add_ps(_mm_mul_ps(tf, _mm_set1_ps(ConservativeRay4::kFarScale)),
+    _mm_set1_ps(ConservativeRay4::kTiny));
+  tf = _mm_min_ps(tf, _mm_set1_ps(tmaxScaled));
+  _mm_storeu_ps(tnear, tn);
+  return _mm_movemask_ps(_mm_cmple_ps(tn, tf));
+}
+
+/// Bit i set: the double watertight test may hit triangle i (see the top of
+/// this file); clear bits are certain misses.
+inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p)
+{
+  const __m128 ox = _mm_set1_ps(r.org[r.kx]), oy = _mm_set1_ps(r.org[r.ky]), oz = _mm_set1_ps(r.org[r.kz]);
+  const __m128 sx = _mm_set1_ps(r.sx), sy = _mm_set1_ps(r.sy);
+  __m128 X[3], Y[3], S = _mm_setzero_ps();
+  for (int k = 0; k < 3; ++k)
+  {
+    const __m128 z = _mm_sub_ps(_mm_load_ps(p.v[3 * k + r.kz]), oz);
+    X[k] = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(p.v[3 * k + r.kx]), ox), _mm_mul_ps(sx, z));
+    Y[k] = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(p.v[3 * k + r.ky]), oy), _mm_mul_ps(sy, z));
+    S = _mm_max_ps(S, _mm_add_ps(detail::abs4(X[k]), detail::abs4(Y[k])));
+  }
+  // (A, B, C) = vertices 0, 1, 2.
+  const __m128 U = _mm_sub_ps(_mm_mul_ps(X[2], Y[1]), _mm_mul_ps(Y[2], X[1]));
+  const __m128 V = _mm_sub_ps(_mm_mul_ps(X[0], Y[2]), _mm_mul_ps(Y[0], X[2]));
+  const __m128 W = _mm_sub_ps(_mm_mul_ps(X[1], Y[0]), _mm_mul_ps(Y[1], X[0]));
+  const __m128 E = _mm_set1_ps(r.E);
+  const __m128 m = _mm_add_ps(
+    _mm_mul_ps(S, _mm_add_ps(_mm_mul_ps(_mm_set1_ps(4.0f), E), _mm_mul_ps(_mm_set1_ps(8.0f * ConservativeRay4::kUnit), S))),
+    _mm_add_ps(_mm_mul_ps(_mm_set1_ps(8.0f), _mm_mul_ps(E, E)), _mm_set1_ps(ConservativeRay4::kTiny)));
+  const __m128 negM = _mm_sub_ps(_mm_setzero_ps(), m);
+  const __m128 neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(U, negM), _mm_cmplt_ps(V, negM)), _mm_cmplt_ps(W, negM));
+  const __m128 pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(U, m), _mm_cmpgt_ps(V, m)), _mm_cmpgt_ps(W, m));
+  return ~_mm_movemask_ps(_mm_and_ps(neg, pos)) & 0xf;
+}
+#else
+inline int intersectBoxes4(const ConservativeRay4& r, const BoxPack4& b, float tmaxScaled, float tnear[4])
+{
+  const float(*rows[2])[4] = { b.lo, b.hi };
+  int mask = 0;
+  for (int i = 0; i < 4; ++i)
+  {
+    float tn = r.tmin, tf = std::numeric_limits<float>::infinity();
+    for (int a = 0; a < 3; ++a)
+    {
+      tn = std::max(tn, (rows[r.nearHi[a]][a][i] - r.oNear[a]) * r.inv[a]);
+      tf = std::min(tf, (rows[1 - r.nearHi[a]][a][i] - r.oFar[a]) * r.inv[a]);
+    }
+    tf = std::min(tf * ConservativeRay4::kFarScale + ConservativeRay4::kTiny, tmaxScaled);
+    tnear[i] = tn;
+    mask |= (tn <= tf) ? (1 << i) : 0;
+  }
+  return mask;
+}
+
+inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p)
+{
+  int mask = 0;
+  for (int i = 0; i < 4; ++i)
+  {
+    float X[3], Y[3], S = 0.0f;
+    for (int k = 0; k < 3; ++k)
+    {
+      const float z = p.v[3 * k + r.kz][i] - r.org[r.kz];
+      X[k] = (p.v[3 * k + r.kx][i] - r.org[r.kx]) - r.sx * z;
+      Y[k] = (p.v[3 * k + r.ky][i] - r.org[r.ky]) - r.sy * z;
+      S = std::max(S, std::abs(X[k]) + std::abs(Y[k]));
+    }
+    const float U = X[2] * Y[1] - Y[2] * X[1];
+    const float V = X[0] * Y[2] - Y[0] * X[2];
+    const float W = X[1] * Y[0] - Y[1] * X[0];
+    const float m = S * (4.0f * r.E + 8.0f * ConservativeRay4::kUnit * S) + (8.0f * r.E * r.E + ConservativeRay4::kTiny);
+    const bool neg = U < -m || V < -m || W < -m;
+    const bool pos = U > m || V > m || W > m;
+    mask |= (neg && pos) ? 0 : (1 << i);
+  }
+  return mask;
+}
+#endif
+
+} // namespace vtkrt::core
+
+#endif

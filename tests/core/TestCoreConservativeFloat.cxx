@@ -1,0 +1,226 @@
+// The four-wide float pre-tests of ConservativeFloat.h never reject what the
+// double tests accept: every triangle the double watertight test hits (any
+// t) keeps its candidate bit, every box the double robust slab test hits
+// keeps its bit with an entry distance <= the scaled tmax of any t inside it.
+// Rays: random, aimed exactly at vertices, at points of edges, a relative
+// 1e-12 outside edges, from near and far origins, at mesh scales 1e-6..1e6
+// and local extents up to 1e6 x the triangle size (culling checked up to
+// 100x); boxes hit at corners,
+// edges and faces, with segments ending exactly on them, with and without a
+// tolerance. The pre-tests must also cull: most clear misses are rejected.
+#include "CoreTestUtils.h"
+
+#include "vtkrt/core/ConservativeFloat.h"
+
+using namespace vtkrt::core;
+using namespace vtkrt::test;
+
+namespace
+{
+
+struct Counts
+{
+  long long doubleHits = 0, missedByFloat = 0, clearMisses = 0, clearRejected = 0;
+};
+
+/// One triangle, one ray, all four lanes (the same triangle in a rotated
+/// lane, the other lanes noise): checks the lane of interest.
+void checkTriangle(const Vec3<double>& v0, const Vec3<double>& v1, const Vec3<double>& v2,
+  const Ray<double>& ray, double extent, int lane, bool clearMiss, Counts& c)
+{
+  const RayTrianglePrecomputed<double> pre(ray);
+  ConservativeRay4 fray;
+  if (!fray.init(ray, pre, 0.0, extent))
+  {
+    return; // the caller falls back to double: nothing to check
+  }
+  TrianglePack4 pack;
+  for (int i = 0; i < 4; ++i)
+  {
+    pack.set(i, v0 + Vec3<double>(i), v1 - Vec3<double>(i), v2 + Vec3<double>(2 * i));
+  }
+  pack.set(lane, v0, v1, v2);
+  const bool candidate = (triangleCandidates4(fray, pack) >> lane) & 1;
+  TriangleHit<double> hit;
+  const double inf = std::numeric_limits<double>::infinity();
+  const bool hits = intersectRayTriangle(pre, v0, v1, v2, -inf, inf, hit);
+  if (hits)
+  {
+    ++c.doubleHits;
+    if (!candidate)
+    {
+      ++c.missedByFloat;
+      if (c.missedByFloat <= 5)
+      {
+        std::fprintf(stderr, "float pre-test rejects a double hit: org (%.17g %.17g %.17g) dir (%.17g %.17g %.17g)\n",
+          ray.org.x, ray.org.y, ray.org.z, ray.dir.x, ray.dir.y, ray.dir.z);
+      }
+    }
+  }
+  if (clearMiss)
+  {
+    VTKRT_CHECK(!hits);
+    ++c.clearMisses;
+    c.clearRejected += candidate ? 0 : 1;
+  }
+}
+
+void triangles(Counts& c)
+{
+  Rng rng(20261124);
+  const double scales[] = { 1e-6, 1e-2, 1.0, 1e3, 1e6 };
+  const double extents[] = { 1.0, 100.0, 1e6 }; // local extent / triangle size
+  for (const double s : scales)
+  {
+    for (const double ext : extents)
+    {
+      const double R = ext * s;
+      for (int n = 0; n < 6000; ++n)
+      {
+        // A triangle somewhere in [-R, R]^3 (local frame), size ~s.
+        const Vec3<double> base = rng.inBox(Vec3<double>(-R + s), Vec3<double>(R - s));
+        const Vec3<double> v0 = base + s * 0.5 * rng.unitVector();
+        const Vec3<double> v1 = base + s * 0.5 * rng.unitVector();
+        const Vec3<double> v2 = base + s * 0.5 * rng.unitVector();
+        // Origin near (a few sizes) or far (up to the extent, and beyond).
+        const double dist = s * (n % 3 == 0 ? 3.0 : (n % 3 == 1 ? 50.0 : 2.0 * ext));
+        const Vec3<double> org = base + dist * rng.unitVector();
+        const double w0 = rng.uniform(), w1 = rng.uniform() * (1.0 - w0);
+        const Vec3<double> targets[] = {
+          v0, v1, v2,                                  // vertices
+          v0 + rng.uniform() * (v1 - v0),              // edges
+          v1 + rng.uniform() * (v2 - v1),
+          v2 + rng.uniform() * (v0 - v2),
+          v0 + w0 * (v1 - v0) + w1 * (v2 - v0),        // inside
+        };
+        const int lane = n % 4;
+        double maxExtent = R + 2.0 * s;
+        for (const Vec3<double>& t : targets)
+        {
+          // Exactly at the target, and a relative 1e-12 / 1e-9 off it.
+          for (const double off : { 0.0, 1e-12, -1e-12, 1e-9 })
+          {
+            const Vec3<double> aim = t + off * s * rng.unitVector();
+            checkTriangle(v0, v1, v2, Ray<double>(org, aim - org, 0.0, 1.0), maxExtent, lane, false, c);
+          }
+        }
+        // A clear miss: aimed at a point beyond an edge by a tenth of the size.
+        const Vec3<double> mid = 0.5 * (v0 + v1);
+        const Vec3<double> away = mid + 0.1 * glm::length(v1 - v0) * glm::normalize(mid - v2);
+        const Vec3<double> n0 = triangleNormal(v0, v1, v2);
+        const Vec3<double> dir = away - org;
+        if (glm::length(n0) > 1e-3 * s * s && std::abs(glm::dot(glm::normalize(n0), glm::normalize(dir))) > 0.3)
+        {
+          // Culling is asked for where float resolves the triangle: a
+          // local extent up to 100 sizes (at 1e6 sizes float's ulp is
+          // about a triangle: everything stays a candidate, correctly).
+          checkTriangle(v0, v1, v2, Ray<double>(org, dir, 0.0, 1.0), maxExtent, lane, ext <= 100.0, c);
+        }
+      }
+    }
+  }
+}
+
+void boxes(Counts& c)
+{
+  Rng rng(77);
+  for (int n = 0; n < 200000; ++n)
+  {
+    const double s = std::pow(10.0, rng.uniform(-5.0, 5.0));
+    const Vec3<double> center = rng.inBox(Vec3<double>(-1e3 * s), Vec3<double>(1e3 * s));
+    const Vec3<double> half(s * rng.uniform(0.0, 1.0), s * rng.uniform(0.0, 1.0), s * (n % 7 == 0 ? 0.0 : rng.uniform()));
+    const AABB<double> box(center - half, center + half);
+    const double grow = (n % 5 == 0) ? s * rng.uniform(0.0, 0.1) : 0.0;
+    // Target: a corner, a point of an edge, a point of a face, or inside.
+    Vec3<double> target;
+    for (int k = 0; k < 3; ++k)
+    {
+      const int kind = (n / 3 + k) % 3;
+      target[k] = kind == 0 ? box.min[k] : (kind == 1 ? box.max[k] : rng.uniform(box.min[k], box.max[k]));
+    }
+    const Vec3<double> org = target + s * std::pow(10.0, rng.uniform(-1.0, 3.0)) * rng.unitVector();
+    // Segment ends at the target (exactly on the box) or beyond it.
+    const double tmax = (n % 2 == 0) ? 1.0 : 2.0;
+    const Ray<double> ray(org, target - org, 0.0, tmax);
+    ConservativeRay4 fray;
+    const RayTrianglePrecomputed<double> pre(ray);
+    const double extent = 0.0;
+    if (!fray.init(ray, pre, grow, extent))
+    {
+      continue;
+    }
+    BoxPack4 pack;
+    const int lane = n % 4;
+    for (int i = 0; i < 4; ++i)
+    {
+      pack.clear(i);
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      pack.lo[k][lane] = roundDownToFloat(box.min[k]);
+      pack.hi[k][lane] = roundUpToFloat(box.max[k]);
+    }
+    alignas(16) float tnear[4];
+    const float tmaxF = ConservativeRay4::scaledTmax(ray.tmax);
+    const int mask = intersectBoxes4(fray, pack, tmaxF, tnear);
+    VTKRT_CHECK((mask & ~(1 << lane)) == 0); // empty lanes never hit
+    double tn;
+    const bool hits = intersectRayAABB(
+      RayBoxPrecomputed<double>(ray), box.min - Vec3<double>(grow), box.max + Vec3<double>(grow), ray.tmin, ray.tmax, tn);
+    if (hits)
+    {
+      ++c.doubleHits;
+      const bool ok = ((mask >> lane) & 1) && tnear[lane] <= ConservativeRay4::scaledTmax(tn);
+      if (!ok)
+      {
+        ++c.missedByFloat;
+        if (c.missedByFloat <= 5)
+        {
+          std::fprintf(stderr, "float box test rejects a double hit (n %d, tnear %.9g vs %.17g)\n", n,
+            double(tnear[lane]), tn);
+        }
+      }
+    }
+    // A clear miss: the same box, aimed a full size beside it.
+    const Vec3<double> beside = center + Vec3<double>(3.0 * (glm::length(half) + grow + s));
+    const Ray<double> miss(org, beside - org, 0.0, 1.0);
+    ConservativeRay4 fmiss;
+    if (fmiss.init(miss, RayTrianglePrecomputed<double>(miss), grow, extent) &&
+      !intersectRayAABB(miss, AABB<double>(box.min - Vec3<double>(grow), box.max + Vec3<double>(grow)), tn))
+    {
+      ++c.clearMisses;
+      c.clearRejected += ((intersectBoxes4(fmiss, pack, ConservativeRay4::scaledTmax(1.0), tnear) >> lane) & 1) ? 0 : 1;
+    }
+  }
+}
+
+} // namespace
+
+int main()
+{
+  Counts tri;
+  triangles(tri);
+  std::printf("triangles: %lld double hits, %lld rejected in float; %lld clear misses, %lld culled\n",
+    tri.doubleHits, tri.missedByFloat, tri.clearMisses, tri.clearRejected);
+  VTKRT_CHECK(tri.doubleHits > 100000);
+  VTKRT_CHECK(tri.missedByFloat == 0);
+  VTKRT_CHECK(tri.clearMisses > 10000);
+  VTKRT_CHECK(tri.clearRejected >= tri.clearMisses * 99 / 100);
+
+  Counts box;
+  boxes(box);
+  std::printf("boxes: %lld double hits, %lld rejected in float; %lld clear misses, %lld culled\n",
+    box.doubleHits, box.missedByFloat, box.clearMisses, box.clearRejected);
+  VTKRT_CHECK(box.doubleHits > 100000);
+  VTKRT_CHECK(box.missedByFloat == 0);
+  VTKRT_CHECK(box.clearMisses > 10000);
+  VTKRT_CHECK(box.clearRejected >= box.clearMisses * 99 / 100);
+
+  // Preconditions: no float path for axis-parallel or overflowing rays.
+  ConservativeRay4 fray;
+  const Ray<double> parallel(Vec3<double>(0.0), Vec3<double>(1.0, 0.0, 1.0), 0.0, 1.0);
+  VTKRT_CHECK(!fray.init(parallel, RayTrianglePrecomputed<double>(parallel), 0.0, 1.0));
+  const Ray<double> far(Vec3<double>(1e20), Vec3<double>(1.0), 0.0, 1.0);
+  VTKRT_CHECK(!fray.init(far, RayTrianglePrecomputed<double>(far), 0.0, 1.0));
+  return testResult("TestCoreConservativeFloat");
+}
