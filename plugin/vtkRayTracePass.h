@@ -32,7 +32,9 @@
  * changes (a mesh shared by several actors is stored once; more than 8
  * instances are walked through a top-level BVH); camera, light or property
  * changes upload only the per-instance records, whose matrices are made
- * camera-relative in double. Shaders are assembled from the scene's
+ * camera-relative in double (see SetPrecisionMode). Works in any
+ * vtkOpenGLRenderWindow (tested: vtkEGLHeadlessRenderWindow, and VTK's
+ * default X11 window, vtkXOpenGLRenderWindow). Shaders are assembled from the scene's
  * features and cached by feature key. The per-frame counters say what the
  * last frame did. One pass serves one renderer.
  */
