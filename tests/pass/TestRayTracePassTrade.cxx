@@ -213,8 +213,6 @@ void TestLightShadows()
   Check(spotLit - spotShadow > 40 && sunLit - sunShadow > 40,
     "two shadows: " + Str(spotShadow) + " vs " + Str(spotLit) + " and " + Str(sunShadow) + " vs " +
       Str(sunLit));
-  // Where both shadows would overlap nothing is lit but the ambient: the
-  // darkest floor pixel is at least as dark as either shadow.
   Check(CountDifferingPixels(shadowed, both, 2) > 200, "shadows change the image");
   Check(vtkrtCompareWithBaseline(shadowed, "pass_LightShadows") == 1,
     "light shadows: matches its baseline");
