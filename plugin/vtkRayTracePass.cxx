@@ -53,7 +53,7 @@ using vtkrt::pass::Instance;
 
 namespace
 {
-constexpr int kInstanceTexels = 10;
+constexpr int kInstanceTexels = 11;
 // Scenes with more instances than this walk a top-level BVH over them
 // instead of testing every instance's box.
 constexpr std::size_t kTopLevelMinInstances = 8;
@@ -392,6 +392,10 @@ std::string assembleShader(const Features& f)
   {
     s << "#define VTKRT_WORLD_COORDINATES\n";
   }
+  if (f.ScreenSpheres)
+  {
+    s << "#define VTKRT_SCREEN_SPHERES\n";
+  }
   s << "#define VTKRT_AMBIENT_OCCLUSION_SAMPLES " << f.AmbientOcclusionSamples << "\n";
   s << "#define VTKRT_MAXIMUM_TRAVERSAL_STEPS " << f.MaximumTraversalSteps << "\n";
   s << "#define VTKRT_NUMBER_OF_CLIP_PLANES " << f.ClipPlanes << "\n";
@@ -606,6 +610,11 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
       }
       vtkNew<vtkMatrix4x4> cameraToLocal;
       vtkMatrix4x4::Invert(localToCamera, cameraToLocal);
+      // Points drawn as spheres: radii from this frame's camera.
+      const double eyeInShader[3] = { eyeWorld[0] - eye[0], eyeWorld[1] - eye[1],
+        eyeWorld[2] - eye[2] };
+      const vtkrt::pass::ScreenSphereRadii screen =
+        vtkrt::pass::ComputeScreenSphereRadii(inst, ren, localToCamera->GetData(), eyeInShader);
       // The world box (independent of the camera) for the top level.
       for (int corner = 0; corner < 8; ++corner)
       {
@@ -619,6 +628,14 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
             inst.Matrix[4 * r + 2] * p[2] + inst.Matrix[4 * r + 3];
         }
         worldBoxes[i].extend(vtkrt::core::Vec3<double>(w[0] / w[3], w[1] / w[3], w[2] / w[3]));
+      }
+      if (screen.MaxWorld > 0.0)
+      {
+        // Grown by the radius bound rounded up to a power of two, so the top
+        // level is rebuilt only when a zoom crosses one.
+        const double grow = std::exp2(std::ceil(std::log2(screen.MaxWorld)));
+        worldBoxes[i].min -= vtkrt::core::Vec3<double>(grow);
+        worldBoxes[i].max += vtkrt::core::Vec3<double>(grow);
       }
       float* rec = records.data() + i * kInstanceTexels * 4;
       for (int r = 0; r < 3; ++r)
@@ -648,7 +665,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
       {
         pad = std::max({ pad, std::abs(lo[k]), std::abs(hi[k]) });
       }
-      pad *= 1e-6;
+      pad = pad * 1e-6 + screen.MaxWorld;
       std::uint32_t flags = g.Spheres ? kSpheres : 0u;
       flags |= inst.Lit ? kLit : 0u;
       flags |= inst.UseVertexNormals ? kVertexNormals : 0u;
@@ -679,6 +696,11 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
       rec[35] = 0.0f;
       rec[36] = inst.AmbientIntensity;
       rec[37] = inst.DiffuseIntensity;
+      rec[38] = static_cast<float>(screen.MaxLocal);
+      for (int k = 0; k < 4; ++k)
+      {
+        rec[40 + k] = static_cast<float>(screen.Plane[k]);
+      }
       for (const auto& pl : inst.ClipPlanes)
       {
         const double d = pl[3] + pl[0] * eye[0] + pl[1] * eye[1] + pl[2] * eye[2];
@@ -792,6 +814,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     f.AmbientOcclusionSamples = shaded ? this->AmbientOcclusionSamples : 0;
     f.MaximumTraversalSteps = this->MaximumTraversalSteps;
     f.WorldCoordinates = this->PrecisionMode == WORLD;
+    f.ScreenSpheres = in.Scene.HasScreenSpheres();
     double occlusionRadius = this->AmbientOcclusionRadius;
     if (occlusionRadius <= 0.0)
     {

@@ -35,6 +35,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace vtkrt
@@ -313,7 +314,7 @@ std::string Features::Key() const
     << this->LightComplexity << "I" << this->IdMode << "D" << this->Fp64 << "X"
     << this->TopLevel << "A" << this->SamplesPerPixel << "H" << this->Shadows << "O"
     << this->AmbientOcclusionSamples << "M" << this->MaximumTraversalSteps << "W"
-    << this->WorldCoordinates;
+    << this->WorldCoordinates << "Q" << this->ScreenSpheres;
   return s.str();
 }
 
@@ -485,11 +486,12 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
 
   if (pointsAsSpheres)
   {
-    // VTK draws these as screen-space spheres PointSize pixels wide; the
-    // pass fixes their world radii when the set is built (from the camera
-    // of that frame), so they keep their world size when the camera moves.
+    // VTK draws these PointSize pixels wide at any distance: the BVH is
+    // over the bare centers, the radii come with each frame's camera
+    // (ScreenSphereRadii), so neither a camera move nor a new point size
+    // rebuilds anything.
     std::ostringstream key;
-    key << "points:" << property->GetPointSize() << ":" << property->GetRepresentation();
+    key << "points:" << property->GetRepresentation();
     auto& entry = this->SphereCache[poly];
     if (!entry || entry->SourceTime != time || entry->SourceKey != key.str() ||
       entry->Quality != this->BuildQuality)
@@ -520,41 +522,26 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
         mark(poly->GetStrips());
         mark(poly->GetLines());
       }
-      // Radius: PointSize / 2 pixels at each point's depth under this
-      // frame's camera.
-      vtkCamera* cam = ren->GetActiveCamera();
-      int size[2];
-      int origin[2];
-      ren->GetTiledSizeAndOrigin(size, size + 1, origin, origin + 1);
-      double eye[3], dop[3];
-      cam->GetPosition(eye);
-      cam->GetDirectionOfProjection(dop);
-      const double halfSize = 0.5 * property->GetPointSize() / std::max(1, size[1]);
-      const double tanHalfAngle = std::tan(vtkMath::RadiansFromDegrees(cam->GetViewAngle()) / 2.0);
-      vtkMatrix4x4* matrix = actor->GetMatrix();
       std::vector<Vec3<double>> centers;
       std::vector<double> radii;
       std::vector<std::uint32_t> ids;
       for (std::size_t i = 0; i < all.size(); ++i)
       {
-        if (!used[i])
+        if (used[i])
         {
-          continue;
+          centers.push_back(all[i]);
+          ids.push_back(static_cast<std::uint32_t>(i));
         }
-        double radius = 2.0 * halfSize * cam->GetParallelScale();
-        if (!cam->GetParallelProjection())
-        {
-          double p[4] = { all[i].x, all[i].y, all[i].z, 1.0 };
-          matrix->MultiplyPoint(p, p);
-          const double depth =
-            (p[0] - eye[0]) * dop[0] + (p[1] - eye[1]) * dop[1] + (p[2] - eye[2]) * dop[2];
-          radius = 2.0 * halfSize * std::max(depth, 0.0) * tanHalfAngle;
-        }
-        centers.push_back(all[i]);
-        radii.push_back(radius);
-        ids.push_back(static_cast<std::uint32_t>(i));
       }
+      // Bare centers: the smallest radius the builder accepts (boxes of
+      // points); the shader adds each frame's radius.
+      radii.assign(centers.size(), std::numeric_limits<double>::min());
       entry = buildSpheres(centers, radii, ids, this->SphereOptions());
+      entry->ScreenSized = true;
+      for (std::size_t k = 3; k < entry->Primitives.size(); k += 4)
+      {
+        entry->Primitives[k] = 0.0f;
+      }
       entry->Quality = this->BuildQuality;
       entry->SourceTime = time;
       entry->SourceKey = key.str();
@@ -567,6 +554,7 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     {
       Instance sph = inst;
       sph.Geom = entry.get();
+      sph.PointSize = std::max(0.0, static_cast<double>(property->GetPointSize()));
       Colors* colors = this->GetColors(mapper, poly, time);
       sph.Color = colors && !colors->CellColors ? colors : nullptr;
       this->Instances.push_back(sph);
@@ -882,6 +870,11 @@ bool Scene::HasSpheres() const
   return std::any_of(this->Instances.begin(), this->Instances.end(),
     [](const Instance& i) { return i.Geom->Spheres; });
 }
+bool Scene::HasScreenSpheres() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.Geom->ScreenSized; });
+}
 bool Scene::HasVertexNormals() const
 {
   return std::any_of(this->Instances.begin(), this->Instances.end(),
@@ -900,6 +893,69 @@ int Scene::MaxClipPlanes() const
     total += i.ClipPlanes.size();
   }
   return static_cast<int>(total);
+}
+
+ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* ren,
+  const double localToShader[16], const double eyeInShader[3])
+{
+  ScreenSphereRadii out;
+  const Geometry& g = *inst.Geom;
+  if (!g.ScreenSized || !ren || !ren->GetActiveCamera())
+  {
+    return out;
+  }
+  vtkCamera* cam = ren->GetActiveCamera();
+  int size[2];
+  int origin[2];
+  ren->GetTiledSizeAndOrigin(size, size + 1, origin, origin + 1);
+  const double pixels = static_cast<double>(std::max(1, size[1]));
+  // World radius per unit of view depth (perspective) or constant (parallel).
+  const double perDepth =
+    inst.PointSize * std::tan(vtkMath::RadiansFromDegrees(cam->GetViewAngle()) / 2.0) / pixels;
+  const double constant = inst.PointSize * cam->GetParallelScale() / pixels;
+  // Local units -> world units: the actor's (uniform) scale.
+  double m3[3][3];
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      m3[r][c] = localToShader[4 * r + c];
+    }
+  }
+  const double scale = std::cbrt(std::abs(vtkMath::Determinant3x3(m3)));
+  if (!(scale > 0.0) || !std::isfinite(scale))
+  {
+    return out;
+  }
+  if (cam->GetParallelProjection())
+  {
+    out.Plane[3] = constant / scale;
+  }
+  else
+  {
+    // depth(c) = dop . (M c + t - eye), affine in the local center c.
+    double dop[3];
+    cam->GetDirectionOfProjection(dop);
+    double w = 0.0;
+    for (int r = 0; r < 3; ++r)
+    {
+      w += dop[r] * (localToShader[4 * r + 3] - eyeInShader[r]);
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      out.Plane[c] = perDepth / scale * (dop[0] * m3[0][c] + dop[1] * m3[1][c] + dop[2] * m3[2][c]);
+    }
+    out.Plane[3] = perDepth / scale * w;
+  }
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const double p[3] = { g.LocalBounds[(corner & 1) ? 1 : 0], g.LocalBounds[(corner & 2) ? 3 : 2],
+      g.LocalBounds[(corner & 4) ? 5 : 4] };
+    out.MaxLocal = std::max(out.MaxLocal,
+      out.Plane[0] * p[0] + out.Plane[1] * p[1] + out.Plane[2] * p[2] + out.Plane[3]);
+  }
+  out.MaxWorld = out.MaxLocal * scale;
+  return out;
 }
 
 core::BuildOptions Scene::Options() const

@@ -50,6 +50,9 @@ struct Geometry
   std::size_t VertexCount = 0;
   std::size_t SkippedPrimitives = 0; ///< NaN or degenerate, never traced
   bool Used = false;
+  /// Points drawn as spheres: the BVH is over the bare centers and the
+  /// uploaded radii are 0; each frame gives the radii (ScreenSphereRadii).
+  bool ScreenSized = false;
   vtkSmartPointer<vtkObject> Keep; ///< keeps the keyed object alive
 
   // Placement in the packed arrays (global offsets).
@@ -86,6 +89,7 @@ struct Instance
   float DiffuseIntensity = 1.0f; ///< the ambient and diffuse colors (VTK 9.1)
   bool Lit = true;
   bool UseVertexNormals = false;
+  double PointSize = 0.0; ///< > 0: screen-sized spheres this many pixels wide
   std::vector<std::array<double, 4>> ClipPlanes; ///< world: n.x + d >= 0 kept
 };
 
@@ -107,6 +111,7 @@ struct Features
   int AmbientOcclusionSamples = 0;
   int MaximumTraversalSteps = 0; ///< 0: unlimited
   bool WorldCoordinates = false; ///< vtkRayTracePass::WORLD precision mode
+  bool ScreenSpheres = false;    ///< points drawn as spheres (per-frame radii)
 
   std::string Key() const;
 };
@@ -122,6 +127,26 @@ struct FrameCounters
   std::size_t TracedPrimitives = 0;
   int TracedInstances = 0;
 };
+
+/// Radii of screen-sized spheres (points drawn as spheres) for one frame.
+/// VTK draws such a point PointSize pixels wide whatever its distance, so
+/// the pass gives it the world radius PointSize * tan(viewAngle / 2) * z / H
+/// at view depth z (perspective; H: the viewport's height in pixels) or
+/// PointSize * parallelScale / H (parallel). That radius is affine in the
+/// center, so the shader evaluates it per sphere from one plane, and the
+/// BVH over the bare centers stays valid for every camera: its boxes grow by
+/// the largest radius over the geometry's box. A camera move builds nothing.
+struct ScreenSphereRadii
+{
+  std::array<double, 4> Plane{ { 0, 0, 0, 0 } }; ///< local radius: max(0, Plane . (c, 1))
+  double MaxLocal = 0.0; ///< bound of that radius over the geometry's local box
+  double MaxWorld = 0.0; ///< the same bound in world units
+};
+
+/// `localToShader`: row-major local (Geometry::Origin-relative) to shader
+/// coordinates, `eyeInShader`: the camera position in shader coordinates.
+ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* ren,
+  const double localToShader[16], const double eyeInShader[3]);
 
 /// Renderer props -> instances, with geometry cached by (data object, MTime).
 class Scene
@@ -145,6 +170,7 @@ public:
   const std::vector<Instance>& GetInstances() const { return this->Instances; }
   bool HasTriangles() const;
   bool HasSpheres() const;
+  bool HasScreenSpheres() const;
   bool HasVertexNormals() const;
   bool HasColors() const;
   int MaxClipPlanes() const;

@@ -34,8 +34,11 @@ const vec3 uEye = vec3(0.0);
 // 6: (diffuse color, bits(color base))
 // 7: (specular color, bits(normal base))
 // 8: bits(first clip plane, clip plane count, prop index, 0)
-// 9: (ambient intensity, diffuse intensity, 0, 0): scalar colors replace
-//    the ambient and diffuse colors, weighted by these (as VTK 9.1 does)
+// 9: (ambient intensity, diffuse intensity, grow, 0): scalar colors replace
+//    the ambient and diffuse colors, weighted by these (as VTK 9.1 does);
+//    grow: BVH boxes of screen-sized spheres grow by it (local units)
+// 10: screen-sized spheres (points drawn as spheres): local radius =
+//    max(0, dot(texel.xyz, center) + texel.w), from this frame's camera
 uniform usamplerBuffer uInstances;
 
 const uint kInstanceSpheres = 1u;
@@ -285,14 +288,22 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
   int root = int(instanceBits(instance, 3).w);
   int primitive = -1;
   vec2 uv = vec2(0.0);
+#ifdef VTKRT_SCREEN_SPHERES
+  vec4 radiusPlane = instanceTexel(instance, 10);
+  float grow = instanceTexel(instance, 9).z;
+#else
+  vec4 radiusPlane = vec4(0.0);
+  float grow = 0.0;
+#endif
 #if defined(VTKRT_HAS_TRIANGLES) && defined(VTKRT_HAS_SPHERES)
   bool hit = (flags & kInstanceSpheres) != 0u
-    ? traverseSpheres(root, localOrg, localDir, t0, t1, primitive, stopAtFirstHit)
+    ? traverseSpheres(root, localOrg, localDir, t0, t1, primitive, stopAtFirstHit, radiusPlane, grow)
     : traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv, stopAtFirstHit);
 #elif defined(VTKRT_HAS_TRIANGLES)
   bool hit = traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv, stopAtFirstHit);
 #elif defined(VTKRT_HAS_SPHERES)
-  bool hit = traverseSpheres(root, localOrg, localDir, t0, t1, primitive, stopAtFirstHit);
+  bool hit =
+    traverseSpheres(root, localOrg, localDir, t0, t1, primitive, stopAtFirstHit, radiusPlane, grow);
 #else
   bool hit = false;
 #endif

@@ -84,8 +84,13 @@ bool intersectRayBoxConservative(vec3 org, vec3 invDir, vec3 parallelBias, vec3 
 // once), so a single loop that does either a node or a leaf per iteration
 // pays the masked leaf loop whenever any pixel of the group sits in a leaf;
 // here the group descends together and tests leaves together.
+//
+// Screen-sized spheres (VTKRT_SCREEN_SPHERES, points drawn as spheres) have
+// radius 0 in uSpheres: each gets max(0, dot(radiusPlane.xyz, center) +
+// radiusPlane.w), this frame's radius, and every box grows by `grow`, a bound
+// of that radius over the instance (zero for other sphere sets).
 bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax, out int sphere,
-  bool stopAtFirstHit)
+  bool stopAtFirstHit, vec4 radiusPlane, float grow)
 {
   sphere = -1;
   vec3 invDir = safeInverse(dir);
@@ -93,7 +98,8 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
   float tnear;
   uvec4 lo = texelFetch(uNodes, 2 * root);
   uvec4 hi = texelFetch(uNodes, 2 * root + 1);
-  if (!intersectRayAABB(org, invDir, boxCorner(lo), boxCorner(hi), tmin, tmax, tnear))
+  if (!intersectRayAABB(
+        org, invDir, boxCorner(lo) - vec3(grow), boxCorner(hi) + vec3(grow), tmin, tmax, tnear))
   {
     return false;
   }
@@ -121,10 +127,17 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
       uvec4 lo1 = texelFetch(uNodes, 2 * index + 2);
       uvec4 hi1 = texelFetch(uNodes, 2 * index + 3);
       float t0, t1;
+#ifdef VTKRT_SCREEN_SPHERES
+      bool h0 = intersectRayBoxConservative(org, invDir, parallelBias, boxCorner(lo0) - vec3(grow),
+        boxCorner(hi0) + vec3(grow), tmin, tmax, t0);
+      bool h1 = intersectRayBoxConservative(org, invDir, parallelBias, boxCorner(lo1) - vec3(grow),
+        boxCorner(hi1) + vec3(grow), tmin, tmax, t1);
+#else
       bool h0 = intersectRayBoxConservative(
         org, invDir, parallelBias, boxCorner(lo0), boxCorner(hi0), tmin, tmax, t0);
       bool h1 = intersectRayBoxConservative(
         org, invDir, parallelBias, boxCorner(lo1), boxCorner(hi1), tmin, tmax, t1);
+#endif
       if (h0 && h1)
       {
         bool firstNear = t0 <= t1;
@@ -179,6 +192,9 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
     for (int i = index; i < end; ++i)
     {
       vec4 s = uintBitsToFloat(texelFetch(uSpheres, i));
+#ifdef VTKRT_SCREEN_SPHERES
+      s.w += max(0.0, dot(radiusPlane.xyz, s.xyz) + radiusPlane.w);
+#endif
       float t;
       if (intersectRaySphere(org, dir, s.xyz, s.w, tmin, tmax, t))
       {

@@ -1,0 +1,355 @@
+// Analytic spheres of vtkRayTracePass beyond the basic image tests:
+//   ScreenSizedPoints   points drawn as spheres keep VTK's pixel size
+//                       (PointSize) through zooms, orbits, an actor scale and
+//                       parallel projection, like raster, with no BVH build
+//                       or geometry upload after the first frame
+//   AxisAlignedSilhouettes  sphere silhouettes against an analytic mask when
+//                       rays are exactly parallel to coordinate axes
+//                       (parallel projection down -z; perspective center
+//                       row and column), 0 mismatches
+//   OrientedGlyphs      uniformly scaled sphere glyphs ignore orientation (a
+//                       sphere is rotation invariant, traced as is);
+//                       per-component scaling (ellipsoids) falls back to
+//                       raster
+#include "vtkrtPassTestUtils.h"
+#include "vtkrtTestOutputWindow.h"
+
+#include "vtkrt/core/Ray.h"
+#include "vtkrt/core/Sphere.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkGlyph3DMapper.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkSphereSource.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+using namespace vtkrtPassTest;
+
+namespace
+{
+const double kBlack[3] = { 0, 0, 0 };
+
+/// Isolated points (vertices) at different depths, far enough apart on
+/// screen that their spheres never overlap.
+vtkSmartPointer<vtkPolyData> IsolatedPoints()
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> verts;
+  for (vtkIdType i = 0; i < 5; ++i)
+  {
+    const double d = static_cast<double>(i);
+    points->InsertNextPoint(0.3 * d - 0.6, 0.12 * d - 0.24, -0.6 * d);
+    verts->InsertNextCell(1, &i);
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(points);
+  poly->SetVerts(verts);
+  return poly;
+}
+
+void TestScreenSizedPoints()
+{
+  const int w = 320, h = 240;
+  auto win = MakeWindow(w, h);
+  vtkNew<vtkRenderer> ren;
+  ren->SetBackground(0, 0, 0);
+  win->AddRenderer(ren);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(IsolatedPoints());
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->SetScale(2.0); // VTK's sprites ignore it: pixel sizes stay
+  actor->GetProperty()->RenderPointsAsSpheresOn();
+  actor->GetProperty()->SetPointSize(14);
+  actor->GetProperty()->LightingOff();
+  actor->GetProperty()->SetColor(1, 1, 1);
+  ren->AddActor(actor);
+  vtkCamera* cam = ren->GetActiveCamera();
+  cam->SetPosition(0.5, 1.0, 9.0);
+  cam->SetFocalPoint(0, 0, -2);
+  cam->SetViewUp(0, 1, 0);
+  cam->SetViewAngle(30);
+  cam->SetClippingRange(1, 40);
+  vtkNew<vtkRayTracePass> pass;
+
+  // Each step changes the view (or the point size); pass and raster must
+  // cover about the same pixels, so every sphere stays PointSize wide.
+  struct Step
+  {
+    const char* Name;
+    std::function<void()> Apply;
+    bool Rebuilds; // expected BVH builds on that frame
+  };
+  const Step steps[] = {
+    { "first frame", [] {}, true },
+    { "dolly in 1.5x", [&] { cam->Dolly(1.5); }, false },
+    { "zoom (view angle) 1.6x", [&] { cam->Zoom(1.6); }, false },
+    { "orbit 15 degrees", [&] { cam->Azimuth(15); }, false },
+    { "dolly out 3x", [&] { cam->Dolly(1.0 / 3.0); }, false },
+    { "point size 22", [&] { actor->GetProperty()->SetPointSize(22); }, false },
+    { "parallel projection",
+      [&] {
+        cam->ParallelProjectionOn();
+        cam->SetParallelScale(3.0);
+      },
+      false },
+    { "parallel zoom 1.5x", [&] { cam->SetParallelScale(2.0); }, false },
+  };
+  for (const Step& step : steps)
+  {
+    step.Apply();
+    cam->SetClippingRange(1, 40);
+    ren->SetPass(nullptr);
+    win->Render();
+    const long raster = CountForegroundPixels(Grab(win), kBlack);
+    ren->SetPass(pass);
+    win->Render();
+    const long traced = CountForegroundPixels(Grab(win), kBlack);
+    const double size = actor->GetProperty()->GetPointSize();
+    // Five disks PointSize wide (VTK's are a little smaller): all in view.
+    const double disk = 5 * vtkMath::Pi() * size * size / 4.0;
+    std::ostringstream s;
+    s << step.Name << ": traced " << traced << " px, raster " << raster << " px, five " << size
+      << "-px disks " << static_cast<long>(disk) << " px (want within 12% of raster)";
+    Check(pass->GetLastTracedInstances() == 1 &&
+        std::abs(traced - raster) <= 0.12 * static_cast<double>(raster) &&
+        std::abs(traced - disk) <= 0.3 * disk,
+      s.str());
+    if (!step.Rebuilds)
+    {
+      std::ostringstream c;
+      c << step.Name << ": " << pass->GetLastBVHBuilds() << " BVH builds, "
+        << pass->GetLastGeometryBytesUploaded() << " geometry bytes uploaded (want 0, 0)";
+      Check(pass->GetLastBVHBuilds() == 0 && pass->GetLastGeometryBytesUploaded() == 0, c.str());
+    }
+  }
+  NoVTKOutput("screen-sized points");
+}
+
+/// Camera ray through pixel (i, j), from the inverse of VTK's projection.
+vtkrt::core::Ray<double> PixelRay(vtkMatrix4x4* clipToWorld, int i, int j, int w, int h)
+{
+  const double x = 2.0 * (i + 0.5) / w - 1.0;
+  const double y = 2.0 * (j + 0.5) / h - 1.0;
+  double n[4] = { x, y, -1.0, 1.0 };
+  double f[4] = { x, y, 1.0, 1.0 };
+  clipToWorld->MultiplyPoint(n, n);
+  clipToWorld->MultiplyPoint(f, f);
+  const vtkrt::core::Vec3<double> o(n[0] / n[3], n[1] / n[3], n[2] / n[3]);
+  const vtkrt::core::Vec3<double> e(f[0] / f[3], f[1] / f[3], f[2] / f[3]);
+  return vtkrt::core::Ray<double>(o, e - o, 0.0, 1.0);
+}
+
+void TestAxisAlignedSilhouettes()
+{
+  // Odd sizes: the middle row and column have rays with exactly zero x / y.
+  const int w = 241, h = 201;
+  auto win = MakeWindow(w, h);
+  vtkNew<vtkRenderer> ren;
+  ren->SetBackground(0, 0, 0);
+  win->AddRenderer(ren);
+  // Spheres touching the axes' planes, so axis-parallel rays graze boxes.
+  const double spheres[6][4] = { { 0, 0, 0, 1.0 }, { 1.5, 0, -0.5, 0.5 }, { -1.25, 0.75, 0.5, 0.5 },
+    { 0, 1.6, 0.3, 0.25 }, { 0.8, -1.3, -2.0, 0.7 }, { -1.0, -1.0, 1.0, 0.125 } };
+  vtkNew<vtkPolyData> centers;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkDoubleArray> radius;
+  radius->SetName("radius");
+  for (const auto& s : spheres)
+  {
+    points->InsertNextPoint(s[0], s[1], s[2]);
+    radius->InsertNextValue(s[3]);
+  }
+  centers->SetPoints(points);
+  centers->GetPointData()->AddArray(radius);
+  vtkNew<vtkSphereSource> source;
+  source->SetRadius(1.0);
+  vtkNew<vtkGlyph3DMapper> mapper;
+  mapper->SetInputData(centers);
+  mapper->SetSourceConnection(source->GetOutputPort());
+  mapper->SetScaleArray("radius");
+  mapper->SetScaleModeToScaleByMagnitude();
+  mapper->ScalarVisibilityOff();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->LightingOff();
+  actor->GetProperty()->SetColor(1, 1, 1);
+  ren->AddActor(actor);
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+  for (int parallel = 0; parallel < 2; ++parallel)
+  {
+    vtkCamera* cam = ren->GetActiveCamera();
+    cam->SetParallelProjection(parallel);
+    cam->SetPosition(0, 0, 8);
+    cam->SetFocalPoint(0, 0, 0);
+    cam->SetViewUp(0, 1, 0);
+    cam->SetViewAngle(35);
+    cam->SetParallelScale(2.5);
+    cam->SetClippingRange(2, 15);
+    win->Render();
+    auto image = Grab(win);
+    const auto* px = static_cast<const unsigned char*>(image->GetScalarPointer());
+    vtkNew<vtkMatrix4x4> clipToWorld;
+    vtkMatrix4x4::Invert(
+      cam->GetCompositeProjectionTransformMatrix(static_cast<double>(w) / h, -1, 1), clipToWorld);
+    const double pixelAngle = 2.0 * std::tan(vtkMath::RadiansFromDegrees(17.5)) / h;
+    long mismatches = 0, tolerated = 0, covered = 0, axisRays = 0;
+    for (int j = 0; j < h; ++j)
+    {
+      for (int i = 0; i < w; ++i)
+      {
+        const auto ray = PixelRay(clipToWorld, i, j, w, h);
+        axisRays += (ray.dir.x == 0.0 || ray.dir.y == 0.0) ? 1 : 0;
+        bool inside = false;
+        double margin = std::numeric_limits<double>::infinity();
+        for (const auto& s : spheres)
+        {
+          const vtkrt::core::Vec3<double> c(s[0], s[1], s[2]);
+          double t;
+          inside = inside || vtkrt::core::intersectRaySphere(ray, c, s[3], t);
+          const vtkrt::core::Vec3<double> d = glm::normalize(ray.dir);
+          const vtkrt::core::Vec3<double> f = c - ray.org;
+          const double distance = glm::length(f - glm::dot(f, d) * d);
+          const double pixel = parallel ? 2.0 * 2.5 / h : pixelAngle * glm::length(f);
+          margin = std::min(margin, std::abs(distance - s[3]) / pixel);
+        }
+        const bool lit = px[3 * (j * w + i)] > 127;
+        covered += lit ? 1 : 0;
+        if (lit != inside)
+        {
+          // Only rays within 1/100 pixel of a silhouette may disagree.
+          (margin < 0.01 ? tolerated : mismatches) += 1;
+        }
+      }
+    }
+    std::ostringstream s;
+    s << (parallel ? "parallel" : "perspective") << " axis-aligned view: " << covered
+      << " covered px, " << axisRays << " rays parallel to an axis, " << mismatches
+      << " mismatches with the analytic mask (want 0), " << tolerated << " within 0.01 px";
+    Check(covered > 1000 && axisRays >= w + h - 1 && mismatches == 0, s.str());
+  }
+  NoVTKOutput("axis-aligned silhouettes");
+}
+
+/// Sphere glyphs scaled by `scale` (1 or 3 components) with an orientation
+/// array, orientation on or off.
+vtkSmartPointer<vtkActor> OrientedGlyphActor(bool orient, bool perComponent)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkDoubleArray> scale;
+  scale->SetName("scale");
+  scale->SetNumberOfComponents(perComponent ? 3 : 1);
+  vtkNew<vtkDoubleArray> direction;
+  direction->SetName("direction");
+  direction->SetNumberOfComponents(3);
+  for (int i = 0; i < 12; ++i)
+  {
+    const double a = 0.9 * i;
+    points->InsertNextPoint(std::cos(a) * (1.0 + 0.1 * i), std::sin(a) * (1.0 + 0.1 * i), 0.2 * i - 1.0);
+    const double r = 0.2 + 0.02 * i;
+    if (perComponent)
+    {
+      scale->InsertNextTuple3(r, 0.5 * r, 1.5 * r);
+    }
+    else
+    {
+      scale->InsertNextValue(r);
+    }
+    direction->InsertNextTuple3(std::cos(2.0 * a), 0.3 * i - 1.5, std::sin(a));
+  }
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(points);
+  poly->GetPointData()->AddArray(scale);
+  poly->GetPointData()->AddArray(direction);
+  vtkNew<vtkSphereSource> source;
+  source->SetThetaResolution(24);
+  source->SetPhiResolution(24);
+  source->SetRadius(1.0);
+  vtkNew<vtkGlyph3DMapper> mapper;
+  mapper->SetInputData(poly);
+  mapper->SetSourceConnection(source->GetOutputPort());
+  mapper->SetScaleArray("scale");
+  if (perComponent)
+  {
+    mapper->SetScaleModeToScaleByVectorComponents();
+  }
+  else
+  {
+    mapper->SetScaleModeToScaleByMagnitude();
+  }
+  mapper->SetOrientationArray("direction");
+  mapper->SetOrient(orient);
+  mapper->ScalarVisibilityOff();
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(0.9, 0.6, 0.3);
+  return actor;
+}
+
+void TestOrientedGlyphs()
+{
+  const int w = 240, h = 240;
+  auto win = MakeWindow(w, h);
+  auto render = [&](vtkActor* actor, vtkRayTracePass* pass) {
+    vtkNew<vtkRenderer> ren;
+    ren->SetBackground(0, 0, 0);
+    ren->AddActor(actor);
+    ren->GetActiveCamera()->SetPosition(0.5, -1.0, 8.0);
+    ren->GetActiveCamera()->SetFocalPoint(0, 0, 0);
+    // Fixed: oriented glyphs have other bounds, hence another automatic range.
+    ren->GetActiveCamera()->SetClippingRange(3, 14);
+    if (pass)
+    {
+      ren->SetPass(pass);
+    }
+    win->AddRenderer(ren);
+    win->Render();
+    auto image = Grab(win);
+    win->RemoveRenderer(ren);
+    return image;
+  };
+  vtkNew<vtkRayTracePass> pass;
+  auto oriented = render(OrientedGlyphActor(true, false), pass);
+  Check(pass->GetLastTracedInstances() == 1, "oriented uniform glyphs: traced as spheres");
+  vtkNew<vtkRayTracePass> pass2;
+  auto plain = render(OrientedGlyphActor(false, false), pass2);
+  const long differ = CountDifferingPixels(oriented, plain, 0);
+  Check(CountForegroundPixels(plain, kBlack) > 1000 && differ == 0,
+    "oriented uniform glyphs: identical to unoriented ones (" + std::to_string(differ) +
+      " pixels differ, want 0)");
+
+  // Per-component scales make ellipsoids: VTK's raster draws them.
+  vtkNew<vtkRayTracePass> pass3;
+  auto ellipsoids = render(OrientedGlyphActor(true, true), pass3);
+  auto raster = render(OrientedGlyphActor(true, true), nullptr);
+  const long ellipsoidDiffer = CountDifferingPixels(ellipsoids, raster, 2);
+  Check(pass3->GetLastTracedInstances() == 0 && CountForegroundPixels(raster, kBlack) > 1000 &&
+      ellipsoidDiffer == 0,
+    "ellipsoid glyphs: left to raster, image as raster's (" + std::to_string(ellipsoidDiffer) +
+      " pixels differ, want 0)");
+  NoVTKOutput("oriented glyphs");
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Output = vtkrtTestOutputWindow::Install();
+  return RunCase(argc, argv,
+    { { "ScreenSizedPoints", TestScreenSizedPoints },
+      { "AxisAlignedSilhouettes", TestAxisAlignedSilhouettes },
+      { "OrientedGlyphs", TestOrientedGlyphs } });
+}
