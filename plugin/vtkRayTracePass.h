@@ -18,11 +18,19 @@
  *   An actor whose data also has lines, vertices without
  *   RenderPointsAsSpheres, or a translucent block falls back whole.
  * - Points of such an actor with RenderPointsAsSpheres (vertices, or every
- *   point with the points representation) as analytic spheres whose radius
- *   is PointSize/2 pixels at the set's center when the set is built.
+ *   point with the points representation) as analytic spheres PointSize
+ *   pixels wide, as VTK draws them, under every camera: each frame gives a
+ *   point at view depth z the world radius PointSize * tan(viewAngle/2) * z /
+ *   viewport height (parallel: PointSize * parallelScale / height), which the
+ *   shader evaluates per sphere; the BVH is over the bare points, its boxes
+ *   grown by the largest radius, so camera moves and PointSize changes
+ *   rebuild and upload no geometry. The actor's scale does not change
+ *   their pixel size (as VTK's sprites).
  * - vtkGlyph3DMapper whose single source is a vtkSphereSource, as analytic
- *   spheres (scale array by magnitude, scale factor, clamping, masking,
- *   colors through the mapper's LUT). Orientation is ignored (spheres).
+ *   spheres (scale array by magnitude or one component, scale factor,
+ *   clamping, masking, colors through the mapper's LUT). Orientation is
+ *   ignored (a sphere is rotation invariant); per-component scaling
+ *   (ellipsoids) falls back to raster.
  * Shading: vtkProperty ambient/diffuse/specular, flat or interpolated point
  * normals, point or cell scalars mapped by the mapper's LUT, the renderer's
  * lights (VTK's lighting complexities 0-3), mapper clipping planes.
