@@ -108,7 +108,9 @@ public:
   /**
    * What the last frame did: bottom-level BVH builds, bytes of geometry
    * (nodes, primitives, normals, colors) uploaded, bytes of per-frame
-   * records uploaded (camera-relative instances), shader programs compiled,
+   * records uploaded (camera-relative instances; 0 when they did not change:
+   * a still frame, or a camera move in WORLD precision mode), shader
+   * programs compiled,
    * primitives in the traced instances, traced instances.
    */
   int GetLastBVHBuilds() const;
