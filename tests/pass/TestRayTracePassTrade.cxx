@@ -434,7 +434,9 @@ void TestLeafSize()
     win->Render();
     const int again = pass->GetLastBVHBuilds();
     auto image = Grab(win);
-    const long diff = CountDifferingPixels(image, reference, 0);
+    // Same triangles, same hits: at most a rounding step where two
+    // triangles tie on an edge (none here on llvmpipe).
+    const long diff = CountDifferingPixels(image, reference, 1);
     Check(builds == 1 && bytes > 0 && again == 0,
       "leaf " + std::to_string(leaf) + ": one rebuild (" + std::to_string(builds) +
         "), geometry uploaded, none on the next frame (" + std::to_string(again) + ")");
