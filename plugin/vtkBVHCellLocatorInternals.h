@@ -36,6 +36,7 @@
 #endif
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -98,6 +99,9 @@ public:
   /// pre-test that spares the double test nearly every miss.
   std::vector<core::TrianglePack4> TriPacks;
   double Extent = 0.0; ///< bound on |local vertex| (inf norm), for the float error bound
+  /// >= 0: every triangle t is the VTK_TRIANGLE cell UniformCellBase + t
+  /// (extraction order), subId 0 (set by the all-triangle polys path).
+  vtkIdType UniformCellBase = -1;
   std::vector<vtkIdType> TriCell;        ///< original cell id per triangle
   std::vector<std::int32_t> TriSub;      ///< subId per triangle (strips: triangle index)
   std::vector<std::uint8_t> TriFlags;    ///< TriangleFlags
@@ -183,7 +187,8 @@ public:
     options.maxLeafSize = static_cast<std::uint32_t>(std::max(leafSize, 1));
     // Boxes straight into the builder's references: no intermediate array
     // of n boxes (fresh pages cost more than the arithmetic here).
-    this->Tree = core::buildBVH(
+    // The box callable only reads: the builder may call it from several threads.
+    this->Tree = core::buildBVHConcurrentBounds(
       n,
       [this, nTri](size_t i) {
         if (i >= nTri)
@@ -199,37 +204,7 @@ public:
       },
       options);
     this->Reorder(nTri);
-    // The four-wide view reads its boxes from the float copy: local
-    // coordinates already, so origin 0 keeps the outward rounding exact.
-    this->Wide.clear();
-    if (!this->Tree.empty())
-    {
-      const std::vector<float> packed = core::packNodesForGpu(this->Tree, Vec3d(0.0));
-      this->Wide.reserve(this->Tree.nodes.size() / 2 + 1);
-      if (this->Tree.nodes[0].isLeaf())
-      {
-        // One wide root holding the leaf.
-        WideNode node;
-        for (int i = 0; i < 4; ++i)
-        {
-          node.Box.clear(i);
-          node.Child[i] = 0;
-          node.Count[i] = 0;
-        }
-        for (int k = 0; k < 3; ++k)
-        {
-          node.Box.lo[k][0] = packed[k];
-          node.Box.hi[k][0] = packed[4 + k];
-        }
-        node.Child[0] = this->Tree.nodes[0].index;
-        node.Count[0] = this->Tree.nodes[0].count;
-        this->Wide.push_back(node);
-      }
-      else
-      {
-        this->Collapse(0, packed.data());
-      }
-    }
+    this->BuildWide();
     this->Extent = 0.0;
     if (!this->Tree.empty())
     {
@@ -247,13 +222,26 @@ public:
       this->NonFiniteCells + static_cast<vtkIdType>(this->Tree.stats.skippedPrimitives);
   }
 
-  /// Wide node for binary interior node `b`: its children, then repeatedly
-  /// the interior child of largest area replaced by its two children, up to
-  /// four. Returns the wide node's index.
-  std::uint32_t Collapse(std::uint32_t b, const float* packed)
+  /// Slot i of a wide node gets binary node c's box, rounded outward to float
+  /// (local coordinates: exact directed rounding, as packNodesForGpu with
+  /// origin 0, without its libm calls).
+  static void SetWideBox(WideNode& node, int i, const core::BVHNode& c)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      node.Box.lo[k][i] = core::detail::floorFloat(c.min[k]);
+      node.Box.hi[k][i] = core::detail::ceilFloat(c.max[k]);
+    }
+  }
+
+  /// The up to four binary nodes a wide node over binary interior node `b`
+  /// holds: its children, then repeatedly the interior one of largest area
+  /// replaced by its two children.
+  int WideChildren(std::uint32_t b, std::uint32_t kids[4]) const
   {
     const auto& nodes = this->Tree.nodes;
-    std::uint32_t kids[4] = { nodes[b].index, nodes[b].index + 1, 0, 0 };
+    kids[0] = nodes[b].index;
+    kids[1] = nodes[b].index + 1;
     int n = 2;
     while (n < 4)
     {
@@ -262,10 +250,14 @@ public:
       for (int i = 0; i < n; ++i)
       {
         const core::BVHNode& c = nodes[kids[i]];
-        if (!c.isLeaf() && c.bounds().halfArea() > bestArea)
+        if (!c.isLeaf())
         {
-          bestArea = c.bounds().halfArea();
-          best = i;
+          const double area = c.bounds().halfArea();
+          if (area > bestArea)
+          {
+            bestArea = area;
+            best = i;
+          }
         }
       }
       if (best < 0)
@@ -276,8 +268,17 @@ public:
       kids[best] = first;
       kids[n++] = first + 1;
     }
-    const std::uint32_t w = static_cast<std::uint32_t>(this->Wide.size());
-    this->Wide.emplace_back();
+    return n;
+  }
+
+  /// Appends the wide subtree over binary interior node `b` to `out`
+  /// (depth first, indices local to `out`); returns its root's index.
+  std::uint32_t Collapse(std::uint32_t b, std::vector<WideNode>& out) const
+  {
+    std::uint32_t kids[4];
+    const int n = this->WideChildren(b, kids);
+    const std::uint32_t w = static_cast<std::uint32_t>(out.size());
+    out.emplace_back();
     WideNode node;
     for (int i = 0; i < 4; ++i)
     {
@@ -287,13 +288,8 @@ public:
     }
     for (int i = 0; i < n; ++i)
     {
-      const float* f = packed + 8 * static_cast<std::size_t>(kids[i]);
-      for (int k = 0; k < 3; ++k)
-      {
-        node.Box.lo[k][i] = f[k];
-        node.Box.hi[k][i] = f[4 + k];
-      }
-      const core::BVHNode& c = nodes[kids[i]];
+      const core::BVHNode& c = this->Tree.nodes[kids[i]];
+      SetWideBox(node, i, c);
       if (c.isLeaf())
       {
         node.Child[i] = c.index;
@@ -301,11 +297,80 @@ public:
       }
       else
       {
-        node.Child[i] = this->Collapse(kids[i], packed);
+        node.Child[i] = this->Collapse(kids[i], out);
       }
     }
-    this->Wide[w] = node;
+    out[w] = node;
     return w;
+  }
+
+  /// The four-wide view: the root's wide node here, the subtrees below its
+  /// interior slots in parallel, then appended in slot order.
+  void BuildWide()
+  {
+    this->Wide.clear();
+    if (this->Tree.empty())
+    {
+      return;
+    }
+    WideNode root;
+    for (int i = 0; i < 4; ++i)
+    {
+      root.Box.clear(i);
+      root.Child[i] = 0;
+      root.Count[i] = 0;
+    }
+    std::uint32_t kids[4];
+    int n = 1;
+    if (this->Tree.nodes[0].isLeaf())
+    {
+      kids[0] = 0; // one slot holding the root leaf
+    }
+    else
+    {
+      n = this->WideChildren(0, kids);
+    }
+    std::vector<WideNode> sub[4];
+    vtkSMPTools::For(0, n, 1, [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        const core::BVHNode& c = this->Tree.nodes[kids[i]];
+        if (!c.isLeaf())
+        {
+          sub[i].reserve(this->Tree.nodes.size() / (2 * n) + 16);
+          this->Collapse(kids[i], sub[i]);
+        }
+      }
+    });
+    size_t total = 1;
+    for (const auto& v : sub)
+    {
+      total += v.size();
+    }
+    this->Wide.reserve(total);
+    this->Wide.push_back(root);
+    for (int i = 0; i < n; ++i)
+    {
+      const core::BVHNode& c = this->Tree.nodes[kids[i]];
+      SetWideBox(this->Wide[0], i, c);
+      if (c.isLeaf())
+      {
+        this->Wide[0].Child[i] = c.index;
+        this->Wide[0].Count[i] = c.count;
+        continue;
+      }
+      const std::uint32_t offset = static_cast<std::uint32_t>(this->Wide.size());
+      this->Wide[0].Child[i] = offset; // the subtree's root comes first
+      for (WideNode w : sub[i])
+      {
+        for (int k = 0; k < 4; ++k)
+        {
+          w.Child[k] += w.Count[k] == 0 ? offset : 0;
+        }
+        this->Wide.push_back(w);
+      }
+      std::vector<WideNode>().swap(sub[i]);
+    }
   }
 
   /// Renumbers the primitives in leaf order (triangles first, then general
@@ -326,6 +391,7 @@ public:
     std::vector<std::uint8_t> triFlags(builtTri);
     std::vector<std::uint32_t> triIds(3 * builtTri);
     std::vector<Box> genBox(order.size() - builtTri);
+    const bool uniform = this->UniformCellBase >= 0;
     auto placeTriangle = [&](std::uint32_t p, std::uint32_t t) {
       for (int k = 0; k < 3; ++k)
       {
@@ -333,6 +399,13 @@ public:
       }
       packs[t / 4].set(static_cast<int>(t % 4), this->Points[triIds[3 * t]],
         this->Points[triIds[3 * t + 1]], this->Points[triIds[3 * t + 2]]);
+      if (uniform)
+      {
+        triCell[t] = this->UniformCellBase + p; // no random reads of the per-triangle arrays
+        triSub[t] = 0;
+        triFlags[t] = WholeTriangle;
+        return;
+      }
       triCell[t] = this->TriCell[p];
       triSub[t] = this->TriSub[p];
       triFlags[t] = this->TriFlags[p];
@@ -827,7 +900,6 @@ private:
     Entry stack[3 * core::kMaxStackSize + 4];
     std::uint32_t sp = 0;
     float tmaxF = core::ConservativeRay4::scaledTmax(ray.tmax);
-    stack[sp++] = Entry{ 0, 0, 0.0f };
     bool found = false;
     auto test = [&](std::uint32_t prim) {
       core::Hit<double> candidate = hit;
@@ -877,23 +949,67 @@ private:
         }
       }
     };
-    while (sp > 0)
+    // The nearest hit child is walked next without a trip through the
+    // stack; the others are pushed farthest first.
+    Entry cur{ 0, 0, 0.0f };
+    for (;;)
     {
-      const Entry e = stack[--sp];
-      if (e.Dist > tmaxF)
+      if (cur.Count == 0)
       {
-        continue;
-      }
-      if (e.Count > 0)
-      {
-        if (allTriangles)
+        const WideNode& w = this->Wide[cur.Ref];
+        alignas(16) float tnear[4];
+        int mask = core::intersectBoxes4(fray, w.Box, tmaxF, tnear);
+        if (mask)
         {
-          testTriangles(e.Ref, e.Ref + e.Count); // primIndex is the identity
+          Entry hits[4];
+          int nh = 0;
+          while (mask)
+          {
+            const int i = CountTrailingZeros(static_cast<unsigned>(mask));
+            mask &= mask - 1;
+            const Entry c{ w.Child[i], w.Count[i], tnear[i] };
+            int j = nh++;
+            while (j > 0 && hits[j - 1].Dist < c.Dist)
+            {
+              hits[j] = hits[j - 1];
+              --j;
+            }
+            hits[j] = c;
+#if VTKRT_CORE_SSE
+            if (c.Count == 0)
+            {
+              const char* next = reinterpret_cast<const char*>(&this->Wide[c.Ref]);
+              _mm_prefetch(next, _MM_HINT_T0);
+              _mm_prefetch(next + 64, _MM_HINT_T0);
+            }
+            else if (allTriangles)
+            {
+              const char* next = reinterpret_cast<const char*>(&this->TriPacks[c.Ref / 4]);
+              _mm_prefetch(next, _MM_HINT_T0);
+              _mm_prefetch(next + 64, _MM_HINT_T0);
+              _mm_prefetch(next + 128, _MM_HINT_T0);
+              // The leaf's point ids: a hit needs them right after the float test.
+              _mm_prefetch(reinterpret_cast<const char*>(this->TriIds.data() + 3 * static_cast<std::size_t>(c.Ref)), _MM_HINT_T0);
+            }
+#endif
+          }
+          for (int i = 0; i + 1 < nh; ++i)
+          {
+            stack[sp++] = hits[i];
+          }
+          cur = hits[nh - 1];
           continue;
         }
-        for (std::uint32_t k = 0; k < e.Count; ++k)
+      }
+      else if (allTriangles)
+      {
+        testTriangles(cur.Ref, cur.Ref + cur.Count); // primIndex is the identity
+      }
+      else
+      {
+        for (std::uint32_t k = 0; k < cur.Count; ++k)
         {
-          const std::uint32_t prim = primIndex[e.Ref + k];
+          const std::uint32_t prim = primIndex[cur.Ref + k];
           if (prim < nTri)
           {
             testTriangles(prim, prim + 1);
@@ -903,50 +1019,16 @@ private:
             test(prim);
           }
         }
-        continue;
       }
-      const WideNode& w = this->Wide[e.Ref];
-      alignas(16) float tnear[4];
-      int mask = core::intersectBoxes4(fray, w.Box, tmaxF, tnear);
-      // Push the hit children farthest first, so the nearest is popped next.
-      Entry hits[4];
-      int nh = 0;
-      while (mask)
+      do
       {
-        const int i = CountTrailingZeros(static_cast<unsigned>(mask));
-        mask &= mask - 1;
-        const Entry c{ w.Child[i], w.Count[i], tnear[i] };
-        int j = nh++;
-        while (j > 0 && hits[j - 1].Dist < c.Dist)
+        if (sp == 0)
         {
-          hits[j] = hits[j - 1];
-          --j;
+          return found;
         }
-        hits[j] = c;
-#if VTKRT_CORE_SSE
-        if (c.Count == 0)
-        {
-          const char* next = reinterpret_cast<const char*>(&this->Wide[c.Ref]);
-          _mm_prefetch(next, _MM_HINT_T0);
-          _mm_prefetch(next + 64, _MM_HINT_T0);
-        }
-        else if (allTriangles)
-        {
-          const char* next = reinterpret_cast<const char*>(&this->TriPacks[c.Ref / 4]);
-          _mm_prefetch(next, _MM_HINT_T0);
-          _mm_prefetch(next + 64, _MM_HINT_T0);
-          _mm_prefetch(next + 128, _MM_HINT_T0);
-          // The leaf's point ids: a hit needs them right after the float test.
-          _mm_prefetch(reinterpret_cast<const char*>(this->TriIds.data() + 3 * static_cast<std::size_t>(c.Ref)), _MM_HINT_T0);
-        }
-#endif
-      }
-      for (int i = 0; i < nh; ++i)
-      {
-        stack[sp++] = hits[i];
-      }
+        cur = stack[--sp];
+      } while (cur.Dist > tmaxF);
     }
-    return found;
   }
 
   static int CountTrailingZeros(unsigned x)
@@ -1063,11 +1145,8 @@ private:
     {
       return;
     }
-    if (auto* d = vtkDoubleArray::FastDownCast(pts->GetData()))
-    {
-      std::copy_n(reinterpret_cast<const Vec3d*>(d->GetPointer(0)), n, this->Points.data());
-    }
-    else
+    auto* d = vtkDoubleArray::FastDownCast(pts->GetData());
+    if (!d)
     {
       vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
         double p[3];
@@ -1078,20 +1157,104 @@ private:
         }
       });
     }
-    Box b;
-    for (const Vec3d& p : this->Points)
-    {
-      if (core::isFinite(p))
+    const Vec3d* src = d ? reinterpret_cast<const Vec3d*>(d->GetPointer(0)) : this->Points.data();
+    // Bounds of the finite points, in fixed chunks (same result for any
+    // thread count), then the shifted copy.
+    constexpr vtkIdType kChunks = 64;
+    std::vector<Box> chunkBox(kChunks);
+    vtkSMPTools::For(0, kChunks, [&](vtkIdType cb, vtkIdType ce) {
+      for (vtkIdType c = cb; c < ce; ++c)
       {
-        b.extend(p);
+        Box box;
+        for (vtkIdType i = c * n / kChunks, e = (c + 1) * n / kChunks; i < e; ++i)
+        {
+          if (core::isFinite(src[i]))
+          {
+            box.extend(src[i]);
+          }
+        }
+        chunkBox[c] = box;
       }
+    });
+    Box b;
+    for (const Box& box : chunkBox)
+    {
+      b.extend(box);
     }
     this->Origin = b.isEmpty() ? Vec3d(0.0) : b.center();
     const Vec3d o = this->Origin;
-    for (Vec3d& p : this->Points)
+    Vec3d* dst = this->Points.data();
+    vtkSMPTools::For(0, n, [&](vtkIdType bi, vtkIdType ei) {
+      for (vtkIdType i = bi; i < ei; ++i)
+      {
+        dst[i] = src[i] - o;
+      }
+    });
+  }
+
+  /// Polys that are all triangles, read straight from the connectivity in
+  /// parallel (no per-cell iterator, no push_back). False, with nothing
+  /// added, when a cell is not a triangle or has an out-of-range or
+  /// non-finite point: the cell-by-cell path then handles the polys.
+  bool ExtractTrianglePolys(vtkCellArray* polys, vtkIdType cellBase)
+  {
+    const vtkIdType n = polys ? polys->GetNumberOfCells() : 0;
+    if (n < 1 || polys->GetNumberOfConnectivityIds() != 3 * n ||
+      this->Points.size() >= std::numeric_limits<std::uint32_t>::max())
     {
-      p -= o;
+      return false;
     }
+    if (polys->IsStorage64Bit())
+    {
+      return this->ExtractTriangles(polys->GetOffsetsArray64()->GetPointer(0),
+        polys->GetConnectivityArray64()->GetPointer(0), n, cellBase);
+    }
+    return this->ExtractTriangles(polys->GetOffsetsArray32()->GetPointer(0),
+      polys->GetConnectivityArray32()->GetPointer(0), n, cellBase);
+  }
+
+  template <class IdT>
+  bool ExtractTriangles(const IdT* offsets, const IdT* conn, vtkIdType n, vtkIdType cellBase)
+  {
+    const size_t first = this->TriCell.size();
+    this->TriVerts.resize(3 * (first + n));
+    this->TriCell.resize(first + n);
+    this->TriSub.resize(first + n);
+    this->TriFlags.resize(first + n);
+    const IdT nPoints = static_cast<IdT>(this->Points.size());
+    std::atomic<bool> ok{ true };
+    vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
+      bool good = true;
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        good = good && offsets[i] == static_cast<IdT>(3 * i);
+        for (int k = 0; k < 3; ++k)
+        {
+          const IdT id = conn[3 * i + k];
+          good = good && id >= 0 && id < nPoints && core::isFinite(this->Points[id]);
+          this->TriVerts[3 * (first + i) + k] = static_cast<std::uint32_t>(good ? id : 0);
+        }
+        this->TriCell[first + i] = cellBase + i;
+        this->TriSub[first + i] = 0;
+        this->TriFlags[first + i] = WholeTriangle;
+      }
+      if (!good)
+      {
+        ok = false;
+      }
+    });
+    if (!ok)
+    {
+      this->TriVerts.resize(3 * first);
+      this->TriCell.resize(first);
+      this->TriSub.resize(first);
+      this->TriFlags.resize(first);
+    }
+    else if (first == 0)
+    {
+      this->UniformCellBase = cellBase; // until another triangle is added
+    }
+    return ok;
   }
 
   void AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cellId, int sub, std::uint8_t flags)
@@ -1100,6 +1263,7 @@ private:
     this->TriVerts.push_back(static_cast<std::uint32_t>(b));
     this->TriVerts.push_back(static_cast<std::uint32_t>(c));
     this->TriCell.push_back(cellId);
+    this->UniformCellBase = -1;
     this->TriSub.push_back(sub);
     this->TriFlags.push_back(flags);
   }
@@ -1237,6 +1401,11 @@ private:
       vtkCellArray* ca = arrays[a];
       if (!ca || ca->GetNumberOfCells() == 0)
       {
+        continue;
+      }
+      if (a == 2 && this->ExtractTrianglePolys(ca, cellId))
+      {
+        cellId += ca->GetNumberOfCells();
         continue;
       }
       auto it = vtk::TakeSmartPointer(ca->NewIterator());

@@ -31,6 +31,45 @@ struct BuildRef
   Vec3<double> centroid() const { return box.center(); }
 };
 
+/// Runs fn(begin, end) over [0, n) split into contiguous chunks, on up to
+/// `threads` threads (the calling one included); small ranges stay on the
+/// calling thread. fn must be safe to run concurrently on disjoint ranges.
+template <class Fn>
+void parallelChunks(std::size_t n, unsigned threads, Fn&& fn)
+{
+  constexpr std::size_t kMinChunk = 32768;
+  std::size_t t = std::max<std::size_t>(1, std::min<std::size_t>(threads ? threads : std::thread::hardware_concurrency(), n / kMinChunk));
+  if (t <= 1)
+  {
+    fn(std::size_t(0), n);
+    return;
+  }
+  std::vector<std::thread> workers;
+  workers.reserve(t - 1);
+  std::size_t inlineFrom = t;
+  for (std::size_t i = 1; i < t; ++i)
+  {
+    try
+    {
+      workers.emplace_back([&fn, i, t, n]() { fn(i * n / t, (i + 1) * n / t); });
+    }
+    catch (const std::system_error&)
+    {
+      inlineFrom = i; // no thread from the system: the rest runs here
+      break;
+    }
+  }
+  fn(std::size_t(0), n / t);
+  for (std::size_t i = inlineFrom; i < t; ++i)
+  {
+    fn(i * n / t, (i + 1) * n / t);
+  }
+  for (std::thread& w : workers)
+  {
+    w.join();
+  }
+}
+
 /// Ceil(log2(x)) for x >= 1.
 inline std::uint32_t ceilLog2(std::uint64_t x)
 {
@@ -126,10 +165,24 @@ private:
   void sortByMortonCode()
   {
     const std::size_t n = Refs.size();
+    // Centroid bounds in fixed chunks (min/max: exact in any order).
+    constexpr std::size_t kChunks = 64;
+    std::vector<AABB<double>> chunkBounds(kChunks);
+    parallelChunks(kChunks, Options.numThreads, [&](std::size_t cb0, std::size_t ce0) {
+      for (std::size_t c = cb0; c < ce0; ++c)
+      {
+        AABB<double> box;
+        for (std::size_t i = c * n / kChunks, e = (c + 1) * n / kChunks; i < e; ++i)
+        {
+          box.extend(Refs[i].centroid());
+        }
+        chunkBounds[c] = box;
+      }
+    });
     AABB<double> cb;
-    for (const BuildRef& r : Refs)
+    for (const AABB<double>& box : chunkBounds)
     {
-      cb.extend(r.centroid());
+      cb.extend(box);
     }
     const Vec3<double> ext = cb.diagonal();
     const double cells = double((1u << 21) - 1);
@@ -140,20 +193,27 @@ private:
     }
     Codes.resize(n);
     Perm.resize(n);
-    bool idsAscending = true;
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const Vec3<double> q = (Refs[i].centroid() - cb.min) * scale;
-      std::uint64_t code = 0;
-      for (int k = 0; k < 3; ++k)
+    std::atomic<bool> idsAscending{ true };
+    parallelChunks(n, Options.numThreads, [&](std::size_t b, std::size_t e) {
+      bool ascending = true;
+      for (std::size_t i = b; i < e; ++i)
       {
-        const double c = std::min(std::max(q[k], 0.0), cells);
-        code |= expandBits21(static_cast<std::uint64_t>(c)) << (2 - k);
+        const Vec3<double> q = (Refs[i].centroid() - cb.min) * scale;
+        std::uint64_t code = 0;
+        for (int k = 0; k < 3; ++k)
+        {
+          const double c = std::min(std::max(q[k], 0.0), cells);
+          code |= expandBits21(static_cast<std::uint64_t>(c)) << (2 - k);
+        }
+        Codes[i] = code;
+        Perm[i] = static_cast<std::uint32_t>(i);
+        ascending = ascending && (i == 0 || Refs[i - 1].id < Refs[i].id);
       }
-      Codes[i] = code;
-      Perm[i] = static_cast<std::uint32_t>(i);
-      idsAscending = idsAscending && (i == 0 || Refs[i - 1].id < Refs[i].id);
-    }
+      if (!ascending)
+      {
+        idsAscending = false;
+      }
+    });
     if (idsAscending)
     {
       // Stable radix sort on the code: ties keep index order = id order.
@@ -173,31 +233,50 @@ private:
     }
   }
 
-  /// LSD radix sort of (Codes, Perm) by Codes, 8 bits a pass, stable; passes
-  /// in which every code has the same digit are skipped.
+  /// LSD radix sort of (Codes, Perm) by Codes, 8 bits a pass (wider digits
+  /// scatter to too many streams at once), stable; passes in which every
+  /// code has the same digit are skipped. Histograms in parallel.
   void radixSortByCode()
   {
     const std::size_t n = Codes.size();
-    constexpr int kPasses = 8;
-    std::vector<std::uint32_t> hist(kPasses * 256, 0);
-    for (const std::uint64_t c : Codes)
-    {
-      for (int p = 0; p < kPasses; ++p)
+    constexpr int kBits = 8;
+    constexpr std::uint32_t kRadix = 1u << kBits;
+    constexpr int kPasses = (64 + kBits - 1) / kBits;
+    constexpr std::size_t kChunks = 16;
+    std::vector<std::uint32_t> chunkHist(kChunks * kPasses * kRadix, 0);
+    parallelChunks(kChunks, Options.numThreads, [&](std::size_t cb, std::size_t ce) {
+      for (std::size_t c = cb; c < ce; ++c)
       {
-        hist[p * 256 + ((c >> (8 * p)) & 0xffu)]++;
+        std::uint32_t* h = chunkHist.data() + c * kPasses * kRadix;
+        for (std::size_t i = c * n / kChunks, e = (c + 1) * n / kChunks; i < e; ++i)
+        {
+          const std::uint64_t code = Codes[i];
+          for (int p = 0; p < kPasses; ++p)
+          {
+            h[p * kRadix + ((code >> (kBits * p)) & (kRadix - 1))]++;
+          }
+        }
+      }
+    });
+    std::vector<std::uint32_t> hist(kPasses * kRadix, 0);
+    for (std::size_t c = 0; c < kChunks; ++c)
+    {
+      for (std::size_t k = 0; k < hist.size(); ++k)
+      {
+        hist[k] += chunkHist[c * kPasses * kRadix + k];
       }
     }
     std::vector<std::uint64_t> codes2(n);
     std::vector<std::uint32_t> perm2(n);
     for (int p = 0; p < kPasses; ++p)
     {
-      std::uint32_t* h = hist.data() + p * 256;
-      if (h[(Codes[0] >> (8 * p)) & 0xffu] == n)
+      std::uint32_t* h = hist.data() + p * kRadix;
+      if (h[(Codes[0] >> (kBits * p)) & (kRadix - 1)] == n)
       {
         continue;
       }
       std::uint32_t sum = 0;
-      for (int b = 0; b < 256; ++b)
+      for (std::uint32_t b = 0; b < kRadix; ++b)
       {
         const std::uint32_t c = h[b];
         h[b] = sum;
@@ -205,7 +284,7 @@ private:
       }
       for (std::size_t i = 0; i < n; ++i)
       {
-        const std::uint32_t dst = h[(Codes[i] >> (8 * p)) & 0xffu]++;
+        const std::uint32_t dst = h[(Codes[i] >> (kBits * p)) & (kRadix - 1)]++;
         codes2[dst] = Codes[i];
         perm2[dst] = Perm[i];
       }
@@ -712,6 +791,34 @@ inline void computeTreeStats(BVH& bvh, const BuildOptions& options = BuildOption
   }
 }
 
+namespace detail
+{
+/// The build from filled references (valid boxes only, ascending ids).
+inline BVH buildFromRefs(std::vector<BuildRef>& refs, std::size_t count, const BuildOptions& options,
+  std::chrono::steady_clock::time_point start)
+{
+  BVH bvh;
+  bvh.stats.inputPrimitives = count;
+  bvh.stats.builtPrimitives = refs.size();
+  bvh.stats.skippedPrimitives = count - refs.size();
+  {
+    Builder builder(refs, options);
+    bvh.nodes = builder.build();
+    bvh.primIndex.resize(refs.size());
+    parallelChunks(refs.size(), options.numThreads, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i)
+      {
+        bvh.primIndex[i] = builder.idAt(static_cast<std::uint32_t>(i));
+      }
+    });
+  }
+  computeTreeStats(bvh, options);
+  bvh.stats.buildSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return bvh;
+}
+} // namespace detail
+
 /// Builds a BVH over primitives given by a callable: boundsOf(i) for i in
 /// [0, count) returns primitive i's box. Primitives with empty, NaN or
 /// infinite bounds are skipped and counted in stats.skippedPrimitives. (No
@@ -721,7 +828,6 @@ template <class BoundsFn>
 BVH buildBVH(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options = BuildOptions())
 {
   const auto start = std::chrono::steady_clock::now();
-  BVH bvh;
   std::vector<detail::BuildRef> refs;
   refs.reserve(count);
   for (std::size_t i = 0; i < count; ++i)
@@ -733,22 +839,39 @@ BVH buildBVH(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options
     }
     refs.push_back({ b, static_cast<std::uint32_t>(i) });
   }
-  bvh.stats.inputPrimitives = count;
-  bvh.stats.builtPrimitives = refs.size();
-  bvh.stats.skippedPrimitives = count - refs.size();
-  {
-    detail::Builder builder(refs, options);
-    bvh.nodes = builder.build();
-    bvh.primIndex.resize(refs.size());
-    for (std::size_t i = 0; i < refs.size(); ++i)
+  return detail::buildFromRefs(refs, count, options, start);
+}
+
+/// The same tree as buildBVH(count, boundsOf, options), with boundsOf called
+/// from several threads at once (options.numThreads) on disjoint indices: it
+/// must be safe to call concurrently (no shared state written).
+template <class BoundsFn>
+BVH buildBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options = BuildOptions())
+{
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<detail::BuildRef> refs(count);
+  std::atomic<bool> allValid{ true };
+  detail::parallelChunks(count, options.numThreads, [&](std::size_t b, std::size_t e) {
+    bool valid = true;
+    for (std::size_t i = b; i < e; ++i)
     {
-      bvh.primIndex[i] = builder.idAt(static_cast<std::uint32_t>(i));
+      const AABB<double> box = boundsOf(i);
+      const bool ok = !box.isEmpty() && box.isFinite();
+      refs[i] = { ok ? box : AABB<double>(), static_cast<std::uint32_t>(i) };
+      valid = valid && ok;
     }
+    if (!valid)
+    {
+      allValid = false;
+    }
+  });
+  if (!allValid)
+  {
+    // Drop the skipped ones, keeping the order (what buildBVH's loop does).
+    refs.erase(std::remove_if(refs.begin(), refs.end(), [](const detail::BuildRef& r) { return r.box.isEmpty(); }),
+      refs.end());
   }
-  computeTreeStats(bvh, options);
-  bvh.stats.buildSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return bvh;
+  return detail::buildFromRefs(refs, count, options, start);
 }
 
 /// Builds a BVH over primitives given by their bounds (primitive id = index

@@ -34,6 +34,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 
 #if defined(__SSE2__) || defined(_M_X64)
@@ -90,6 +91,38 @@ struct alignas(16) BoxPack4
   }
 };
 
+namespace detail
+{
+/// Next float toward +inf / -inf of a finite float (no libm call).
+inline float nextUp(float f)
+{
+  if (f == 0.0f)
+  {
+    return std::numeric_limits<float>::denorm_min();
+  }
+  std::uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  u = f > 0.0f ? u + 1 : u - 1;
+  std::memcpy(&f, &u, sizeof f);
+  return f;
+}
+inline float nextDown(float f)
+{
+  return -nextUp(-f);
+}
+/// Smallest float >= x / largest float <= x, for |x| < FLT_MAX.
+inline float ceilFloat(double x)
+{
+  const float f = static_cast<float>(x);
+  return static_cast<double>(f) < x ? nextUp(f) : f;
+}
+inline float floorFloat(double x)
+{
+  const float f = static_cast<float>(x);
+  return static_cast<double>(f) > x ? nextDown(f) : f;
+}
+} // namespace detail
+
 /// Per-ray float constants of both pre-tests.
 struct ConservativeRay4
 {
@@ -97,6 +130,7 @@ struct ConservativeRay4
   // near plane's row (0: lo, 1: hi) and the float inverse direction.
   float oNear[3], oFar[3], inv[3];
   int nearHi[3];
+  int nearRow[3], farRow[3]; ///< float offsets of the near / far plane rows in a BoxPack4
   float tmin;
   // Triangles: the float origin, the shear of the double test, the
   // coordinate error bound E.
@@ -123,7 +157,7 @@ struct ConservativeRay4
 #endif
     const double oMax = std::max(std::abs(ray.org.x), std::max(std::abs(ray.org.y), std::abs(ray.org.z)));
     const double Q = extent + oMax;
-    if (!(Q <= 1e17) || !(grow >= 0.0) || !(grow <= 1e17) || !(ray.tmin >= 0.0))
+    if (!(Q <= 1e17) || !(grow >= 0.0) || !(grow <= 1e17) || !(ray.tmin >= 0.0) || !(ray.tmin <= 1e30))
     {
       return false;
     }
@@ -144,19 +178,21 @@ struct ConservativeRay4
       const double mExact = std::abs(ray.org[a] - static_cast<double>(of)) + grow;
       const double m = mExact + mExact * std::numeric_limits<double>::epsilon();
       const double up = static_cast<double>(of) + m, down = static_cast<double>(of) - m;
-      const float oLo = roundUpToFloat(up + std::abs(up) * std::numeric_limits<double>::epsilon());
-      const float oHi = roundDownToFloat(down - std::abs(down) * std::numeric_limits<double>::epsilon());
+      const float oLo = detail::ceilFloat(up + std::abs(up) * std::numeric_limits<double>::epsilon());
+      const float oHi = detail::floorFloat(down - std::abs(down) * std::numeric_limits<double>::epsilon());
       nearHi[a] = d < 0.0 ? 1 : 0;
+      nearRow[a] = 12 * nearHi[a] + 4 * a;
+      farRow[a] = 12 * (1 - nearHi[a]) + 4 * a;
       oNear[a] = d < 0.0 ? oHi : oLo;
       oFar[a] = d < 0.0 ? oLo : oHi;
     }
-    tmin = roundDownToFloat(ray.tmin);
+    tmin = detail::floorFloat(ray.tmin);
     kx = tri.kx;
     ky = tri.ky;
     kz = tri.kz;
     sx = static_cast<float>(tri.sx);
     sy = static_cast<float>(tri.sy);
-    E = roundUpToFloat(16.0 * 0x1p-24 * Q * (1.0 + 1e-6));
+    E = detail::ceilFloat(16.0 * 0x1p-24 * Q * (1.0 + 1e-6));
     return true;
   }
 
@@ -187,13 +223,14 @@ inline __m128 abs4(__m128 x)
 /// distance (valid for set bits).
 inline int intersectBoxes4(const ConservativeRay4& r, const BoxPack4& b, float tmaxScaled, float tnear[4])
 {
-  const float* rows[2] = { &b.lo[0][0], &b.hi[0][0] };
+  static_assert(sizeof(BoxPack4) == 24 * sizeof(float), "lo rows, then hi rows");
+  const float* base = &b.lo[0][0];
   __m128 tn = _mm_set1_ps(r.tmin);
   __m128 tf = _mm_set1_ps(std::numeric_limits<float>::infinity());
   for (int a = 0; a < 3; ++a)
   {
-    const __m128 nearPlane = _mm_load_ps(rows[r.nearHi[a]] + 4 * a);
-    const __m128 farPlane = _mm_load_ps(rows[1 - r.nearHi[a]] + 4 * a);
+    const __m128 nearPlane = _mm_load_ps(base + r.nearRow[a]);
+    const __m128 farPlane = _mm_load_ps(base + r.farRow[a]);
     const __m128 inv = _mm_set1_ps(r.inv[a]);
     tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(nearPlane, _mm_set1_ps(r.oNear[a])), inv));
     tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(farPlane, _mm_set1_ps(r.oFar[a])), inv));
