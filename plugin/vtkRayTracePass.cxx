@@ -65,6 +65,7 @@ enum InstanceFlags : std::uint32_t
   kPointColors = 8u,
   kCellColors = 16u,
   kMirrored = 32u,
+  kEllipsoids = 64u,
 };
 
 float bits(std::uint32_t u)
@@ -396,6 +397,10 @@ std::string assembleShader(const Features& f)
   {
     s << "#define VTKRT_SCREEN_SPHERES\n";
   }
+  if (f.Ellipsoids)
+  {
+    s << "#define VTKRT_HAS_ELLIPSOIDS\n";
+  }
   s << "#define VTKRT_AMBIENT_OCCLUSION_SAMPLES " << f.AmbientOcclusionSamples << "\n";
   s << "#define VTKRT_MAXIMUM_TRAVERSAL_STEPS " << f.MaximumTraversalSteps << "\n";
   s << "#define VTKRT_NUMBER_OF_CLIP_PLANES " << f.ClipPlanes << "\n";
@@ -667,6 +672,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
       }
       pad = pad * 1e-6 + screen.MaxWorld;
       std::uint32_t flags = g.Spheres ? kSpheres : 0u;
+      flags |= g.Ellipsoids ? kEllipsoids : 0u;
       flags |= inst.Lit ? kLit : 0u;
       flags |= inst.UseVertexNormals ? kVertexNormals : 0u;
       if (inst.Color)
@@ -815,6 +821,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     f.MaximumTraversalSteps = this->MaximumTraversalSteps;
     f.WorldCoordinates = this->PrecisionMode == WORLD;
     f.ScreenSpheres = in.Scene.HasScreenSpheres();
+    f.Ellipsoids = in.Scene.HasEllipsoids();
     double occlusionRadius = this->AmbientOcclusionRadius;
     if (occlusionRadius <= 0.0)
     {

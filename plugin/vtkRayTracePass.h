@@ -28,9 +28,11 @@
  *   their pixel size (as VTK's sprites).
  * - vtkGlyph3DMapper whose single source is a vtkSphereSource, as analytic
  *   spheres (scale array by magnitude or one component, scale factor,
- *   clamping, masking, colors through the mapper's LUT). Orientation is
- *   ignored (a sphere is rotation invariant); per-component scaling
- *   (ellipsoids) falls back to raster.
+ *   clamping, masking, colors through the mapper's LUT; orientation turns
+ *   only an off-center source's center, a sphere being rotation invariant),
+ *   or, scaled by vector components, as analytic ellipsoids (each ray is
+ *   mapped onto the glyph's unit sphere; orientation by direction, rotation
+ *   or quaternion, as vtkOpenGLGlyph3DMapper).
  * Shading: vtkProperty ambient/diffuse/specular, flat or interpolated point
  * normals, point or cell scalars mapped by the mapper's LUT, the renderer's
  * lights (VTK's lighting complexities 0-3), mapper clipping planes.

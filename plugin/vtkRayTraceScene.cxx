@@ -25,6 +25,7 @@
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
+#include "vtkQuaternion.h"
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
 #include "vtkSphereSource.h"
@@ -218,6 +219,97 @@ std::unique_ptr<Geometry> buildSpheres(const std::vector<Vec3<double>>& centers,
   return g;
 }
 
+/// Ellipsoids, each given by the affine map of world space onto its unit
+/// sphere (rows of [A | b]) and its box, with their VTK point ids. Each takes
+/// three texels (the map's rows, relative to the local origin), so leaf
+/// indices count texels: primitive k of a leaf starts at index + 3 k; ids
+/// are repeated per texel (the shader indexes them by texel).
+std::unique_ptr<Geometry> buildEllipsoids(const std::vector<std::array<double, 12>>& maps,
+  const std::vector<core::AABB<double>>& boxes, const std::vector<std::uint32_t>& ids,
+  const core::BuildOptions& options)
+{
+  auto g = std::make_unique<Geometry>();
+  g->Spheres = true;
+  g->Ellipsoids = true;
+  core::BVH bvh = core::buildBVH(boxes, options);
+  g->SkippedPrimitives = bvh.stats.skippedPrimitives;
+  if (bvh.empty())
+  {
+    return g;
+  }
+  const Vec3<double> origin = bvh.bounds().center();
+  g->Origin = { { origin.x, origin.y, origin.z } };
+  setBounds(*g, bvh);
+  g->Nodes = core::packNodesForGpu(bvh, origin);
+  for (std::size_t i = 0; i < g->Nodes.size(); i += 8)
+  {
+    if (core::floatBitsToUint(g->Nodes[i + 7]) > 0)
+    {
+      g->Nodes[i + 3] = bitsOf(3 * core::floatBitsToUint(g->Nodes[i + 3]));
+    }
+  }
+  const std::size_t n = bvh.primIndex.size();
+  g->PrimitiveCount = n;
+  g->Primitives.resize(12 * n);
+  g->SphereIds.resize(3 * n);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const std::array<double, 12>& m = maps[bvh.primIndex[k]];
+    float* o = g->Primitives.data() + 12 * k;
+    for (int r = 0; r < 3; ++r)
+    {
+      o[4 * r + 0] = static_cast<float>(m[4 * r + 0]);
+      o[4 * r + 1] = static_cast<float>(m[4 * r + 1]);
+      o[4 * r + 2] = static_cast<float>(m[4 * r + 2]);
+      o[4 * r + 3] = static_cast<float>(m[4 * r + 3] + m[4 * r + 0] * origin.x +
+        m[4 * r + 1] * origin.y + m[4 * r + 2] * origin.z);
+      g->SphereIds[3 * k + r] = ids[bvh.primIndex[k]];
+    }
+  }
+  return g;
+}
+
+/// The rotation vtkOpenGLGlyph3DMapper gives a glyph for its orientation
+/// tuple: ROTATION (degrees about z, then x, then y), DIRECTION (x axis
+/// turned onto the vector by a half turn about the bisector), QUATERNION.
+void glyphRotation(int mode, const double orientation[4], double rotation[3][3])
+{
+  vtkQuaterniond q(1.0, 0.0, 0.0, 0.0);
+  if (mode == vtkGlyph3DMapper::ROTATION)
+  {
+    double angle = vtkMath::RadiansFromDegrees(orientation[2]);
+    const vtkQuaterniond qz(std::cos(0.5 * angle), 0.0, 0.0, std::sin(0.5 * angle));
+    angle = vtkMath::RadiansFromDegrees(orientation[0]);
+    const vtkQuaterniond qx(std::cos(0.5 * angle), std::sin(0.5 * angle), 0.0, 0.0);
+    angle = vtkMath::RadiansFromDegrees(orientation[1]);
+    const vtkQuaterniond qy(std::cos(0.5 * angle), 0.0, std::sin(0.5 * angle), 0.0);
+    q = qz * qx * qy;
+  }
+  else if (mode == vtkGlyph3DMapper::DIRECTION)
+  {
+    if (orientation[1] == 0.0 && orientation[2] == 0.0)
+    {
+      if (orientation[0] < 0.0)
+      {
+        q.Set(0.0, 0.0, 1.0, 0.0);
+      }
+    }
+    else
+    {
+      const double magnitude = vtkMath::Norm(orientation);
+      double axis[3] = { (orientation[0] + magnitude) / 2.0, orientation[1] / 2.0,
+        orientation[2] / 2.0 };
+      vtkMath::Normalize(axis);
+      q.Set(0.0, axis[0], axis[1], axis[2]);
+    }
+  }
+  else
+  {
+    q.Set(orientation[0], orientation[1], orientation[2], orientation[3]);
+  }
+  q.ToMatrix3x3(rotation);
+}
+
 /// The array a glyph mapper reads for `idx` (SCALE, MASK, ...), as VTK's
 /// GetInputArrayToProcess would find it among the point data.
 vtkDataArray* glyphArray(vtkGlyph3DMapper* mapper, int idx, vtkDataSet* input)
@@ -314,7 +406,7 @@ std::string Features::Key() const
     << this->LightComplexity << "I" << this->IdMode << "D" << this->Fp64 << "X"
     << this->TopLevel << "A" << this->SamplesPerPixel << "H" << this->Shadows << "O"
     << this->AmbientOcclusionSamples << "M" << this->MaximumTraversalSteps << "W"
-    << this->WorldCoordinates << "Q" << this->ScreenSpheres;
+    << this->WorldCoordinates << "Q" << this->ScreenSpheres << "E" << this->Ellipsoids;
   return s.str();
 }
 
@@ -582,11 +674,23 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
   {
     return false;
   }
+  // As vtkOpenGLGlyph3DMapper: glyph = translate(point) * rotate(orientation)
+  // * scale (only with Scaling on), applied to the source sphere.
   vtkDataArray* scale = mapper->GetScaling() ? glyphArray(mapper, vtkGlyph3DMapper::SCALE, input) : nullptr;
   const int scaleMode = mapper->GetScaleMode();
-  if (scale && scaleMode == vtkGlyph3DMapper::SCALE_BY_COMPONENTS && scale->GetNumberOfComponents() != 1)
+  const bool perComponent = scale && scaleMode == vtkGlyph3DMapper::SCALE_BY_COMPONENTS &&
+    scale->GetNumberOfComponents() != 1;
+  if (perComponent && scale->GetNumberOfComponents() != 3)
   {
-    return false; // ellipsoids: left to raster
+    return false; // VTK reports an error and draws unscaled glyphs: left to it
+  }
+  vtkDataArray* orientation =
+    mapper->GetOrient() ? glyphArray(mapper, vtkGlyph3DMapper::ORIENTATION, input) : nullptr;
+  const int orientationMode = mapper->GetOrientationMode();
+  if (orientation &&
+    orientation->GetNumberOfComponents() != (orientationMode == vtkGlyph3DMapper::QUATERNION ? 4 : 3))
+  {
+    return false; // VTK reports an error: left to it
   }
   // The mapper's own MTime (its GetMTime() adds the lookup table's, which
   // colors depend on, not the spheres).
@@ -609,37 +713,115 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
     std::vector<Vec3<double>> centers;
     std::vector<double> radii;
     std::vector<std::uint32_t> ids;
-    centers.reserve(static_cast<std::size_t>(n));
-    radii.reserve(static_cast<std::size_t>(n));
+    std::vector<std::array<double, 12>> unitMaps; // ellipsoids
+    std::vector<core::AABB<double>> boxes;        // ellipsoids
+    if (perComponent)
+    {
+      unitMaps.reserve(static_cast<std::size_t>(n));
+      boxes.reserve(static_cast<std::size_t>(n));
+    }
+    else
+    {
+      centers.reserve(static_cast<std::size_t>(n));
+      radii.reserve(static_cast<std::size_t>(n));
+    }
     ids.reserve(static_cast<std::size_t>(n));
     std::vector<double> tuple(scale ? scale->GetNumberOfComponents() : 1);
+    double orient[4] = { 0, 0, 0, 0 };
     for (vtkIdType i = 0; i < n; ++i)
     {
       if (mask && mask->GetComponent(i, 0) == 0.0)
       {
         continue;
       }
-      double s = 1.0;
+      double sc[3] = { 1.0, 1.0, 1.0 };
       if (scale && scaleMode != vtkGlyph3DMapper::NO_DATA_SCALING)
       {
         scale->GetTuple(i, tuple.data());
-        s = scaleMode == vtkGlyph3DMapper::SCALE_BY_MAGNITUDE
-          ? vtkMath::Norm(tuple.data(), static_cast<int>(tuple.size()))
-          : tuple[0];
-        if (mapper->GetClamping())
+        for (int k = 0; k < 3; ++k)
         {
-          s = std::min(std::max(s, range[0]), range[1]);
-          s = (s - range[0]) / den;
+          sc[k] = scaleMode == vtkGlyph3DMapper::SCALE_BY_MAGNITUDE
+            ? vtkMath::Norm(tuple.data(), static_cast<int>(tuple.size()))
+            : tuple[perComponent ? k : 0];
+          if (mapper->GetClamping())
+          {
+            sc[k] = (std::min(std::max(sc[k], range[0]), range[1]) - range[0]) / den;
+          }
         }
       }
-      s *= mapper->GetScaleFactor();
+      // Scaling off: VTK ignores the scale factor too. VTK makes a zero
+      // scale 1e-10: an ellipsoid with such an axis is a visible flat disk, a
+      // sphere with it invisible (skipped here as degenerate).
+      const double factor = mapper->GetScaling() ? mapper->GetScaleFactor() : 1.0;
+      double sk[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        sk[k] = factor * sc[k];
+        sk[k] = perComponent && sk[k] == 0.0 ? 1.0e-10 : sk[k];
+      }
+      double rotation[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+      if (orientation)
+      {
+        orientation->GetTuple(i, orient);
+        glyphRotation(orientationMode, orient, rotation);
+      }
+      double m[3][3]; // rotation * scale
+      for (int r = 0; r < 3; ++r)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          m[r][c] = rotation[r][c] * sk[c];
+        }
+      }
       double p[3];
       input->GetPoint(i, p);
-      centers.emplace_back(p[0] + s * sourceCenter[0], p[1] + s * sourceCenter[1], p[2] + s * sourceCenter[2]);
-      radii.push_back(std::abs(s) * r0);
+      double offset[3];
+      vtkMath::Multiply3x3(m, sourceCenter, offset);
+      const Vec3<double> center(p[0] + offset[0], p[1] + offset[1], p[2] + offset[2]);
+      if (!perComponent)
+      {
+        // A sphere whatever the rotation (only its center turns with it).
+        centers.push_back(center);
+        radii.push_back(std::abs(sk[0]) * r0);
+        ids.push_back(static_cast<std::uint32_t>(i));
+        continue;
+      }
+      // Ellipsoid: the image of the unit sphere under l = m * r0.
+      double l[3][3];
+      for (int r = 0; r < 3; ++r)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          l[r][c] = m[r][c] * r0;
+        }
+      }
+      double a[3][3];
+      vtkMath::Invert3x3(l, a);
+      std::array<double, 12> map;
+      core::AABB<double> box;
+      bool finite = std::isfinite(center.x) && std::isfinite(center.y) && std::isfinite(center.z);
+      for (int r = 0; r < 3; ++r)
+      {
+        const double half = std::sqrt(l[r][0] * l[r][0] + l[r][1] * l[r][1] + l[r][2] * l[r][2]);
+        box.min[r] = center[r] - half;
+        box.max[r] = center[r] + half;
+        map[4 * r + 0] = a[r][0];
+        map[4 * r + 1] = a[r][1];
+        map[4 * r + 2] = a[r][2];
+        map[4 * r + 3] = -(a[r][0] * center.x + a[r][1] * center.y + a[r][2] * center.z);
+        finite = finite && std::isfinite(half) && half > 0.0 && std::isfinite(map[4 * r]) &&
+          std::isfinite(map[4 * r + 1]) && std::isfinite(map[4 * r + 2]);
+      }
+      if (!finite || !(r0 > 0.0))
+      {
+        continue;
+      }
+      unitMaps.push_back(map);
+      boxes.push_back(box);
       ids.push_back(static_cast<std::uint32_t>(i));
     }
-    entry = buildSpheres(centers, radii, ids, this->SphereOptions());
+    entry = perComponent ? buildEllipsoids(unitMaps, boxes, ids, this->SphereOptions())
+                         : buildSpheres(centers, radii, ids, this->SphereOptions());
     entry->Quality = this->BuildQuality;
     entry->SourceTime = time;
     entry->Keep = mapper;
@@ -874,6 +1056,11 @@ bool Scene::HasScreenSpheres() const
 {
   return std::any_of(this->Instances.begin(), this->Instances.end(),
     [](const Instance& i) { return i.Geom->ScreenSized; });
+}
+bool Scene::HasEllipsoids() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.Geom->Ellipsoids; });
 }
 bool Scene::HasVertexNormals() const
 {

@@ -53,6 +53,9 @@ struct Geometry
   /// Points drawn as spheres: the BVH is over the bare centers and the
   /// uploaded radii are 0; each frame gives the radii (ScreenSphereRadii).
   bool ScreenSized = false;
+  /// Sphere glyphs scaled per component: ellipsoids, three texels each (the
+  /// rows of the map onto their unit sphere); Spheres is set too.
+  bool Ellipsoids = false;
   vtkSmartPointer<vtkObject> Keep; ///< keeps the keyed object alive
 
   // Placement in the packed arrays (global offsets).
@@ -112,6 +115,7 @@ struct Features
   int MaximumTraversalSteps = 0; ///< 0: unlimited
   bool WorldCoordinates = false; ///< vtkRayTracePass::WORLD precision mode
   bool ScreenSpheres = false;    ///< points drawn as spheres (per-frame radii)
+  bool Ellipsoids = false;       ///< sphere glyphs scaled per component
 
   std::string Key() const;
 };
@@ -171,6 +175,7 @@ public:
   bool HasTriangles() const;
   bool HasSpheres() const;
   bool HasScreenSpheres() const;
+  bool HasEllipsoids() const;
   bool HasVertexNormals() const;
   bool HasColors() const;
   int MaxClipPlanes() const;

@@ -47,6 +47,7 @@ const uint kInstanceVertexNormals = 4u;
 const uint kInstancePointColors = 8u;
 const uint kInstanceCellColors = 16u;
 const uint kInstanceMirrored = 32u;
+const uint kInstanceEllipsoids = 64u;
 
 #ifdef VTKRT_HAS_COLORS
 uniform usamplerBuffer uColors; // packed RGBA8, four per texel
@@ -297,13 +298,14 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
 #endif
 #if defined(VTKRT_HAS_TRIANGLES) && defined(VTKRT_HAS_SPHERES)
   bool hit = (flags & kInstanceSpheres) != 0u
-    ? traverseSpheres(root, localOrg, localDir, t0, t1, primitive, stopAtFirstHit, radiusPlane, grow)
+    ? traverseSpheres(root, localOrg, localDir, t0, t1, primitive, stopAtFirstHit, radiusPlane, grow,
+        (flags & kInstanceEllipsoids) != 0u)
     : traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv, stopAtFirstHit);
 #elif defined(VTKRT_HAS_TRIANGLES)
   bool hit = traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv, stopAtFirstHit);
 #elif defined(VTKRT_HAS_SPHERES)
-  bool hit =
-    traverseSpheres(root, localOrg, localDir, t0, t1, primitive, stopAtFirstHit, radiusPlane, grow);
+  bool hit = traverseSpheres(root, localOrg, localDir, t0, t1, primitive, stopAtFirstHit,
+    radiusPlane, grow, (flags & kInstanceEllipsoids) != 0u);
 #else
   bool hit = false;
 #endif
@@ -482,6 +484,18 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
     vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
     vec4 s = uintBitsToFloat(texelFetch(uSpheres, hitPrimitive));
     localNormal = localOrg + tBest * localDir - s.xyz;
+#ifdef VTKRT_HAS_ELLIPSOIDS
+    if ((flags & kInstanceEllipsoids) != 0u)
+    {
+      // The gradient of |A p + b|^2: A^T (A p + b), rows of [A | b] in texels.
+      vec4 e1 = uintBitsToFloat(texelFetch(uSpheres, hitPrimitive + 1));
+      vec4 e2 = uintBitsToFloat(texelFetch(uSpheres, hitPrimitive + 2));
+      vec3 hitLocal = localOrg + tBest * localDir;
+      vec3 u = vec3(dot(s.xyz, hitLocal) + s.w, dot(e1.xyz, hitLocal) + e1.w,
+        dot(e2.xyz, hitLocal) + e2.w);
+      localNormal = u.x * s.xyz + u.y * e1.xyz + u.z * e2.xyz;
+    }
+#endif
     geometricNormal = localNormal;
     mirror = 1.0;
     vtkId = fetchPacked(uSphereIds, hitPrimitive);

@@ -89,8 +89,13 @@ bool intersectRayBoxConservative(vec3 org, vec3 invDir, vec3 parallelBias, vec3 
 // radius 0 in uSpheres: each gets max(0, dot(radiusPlane.xyz, center) +
 // radiusPlane.w), this frame's radius, and every box grows by `grow`, a bound
 // of that radius over the instance (zero for other sphere sets).
+// Ellipsoids (VTKRT_HAS_ELLIPSOIDS, `ellipsoids` set: sphere glyphs scaled
+// per component) take three texels each, the rows of the affine map of local
+// space onto their unit sphere: the ray is mapped there (t is unchanged by
+// an affine map) and meets the unit sphere by the same stable test; `sphere`
+// is then the hit's first texel.
 bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax, out int sphere,
-  bool stopAtFirstHit, vec4 radiusPlane, float grow)
+  bool stopAtFirstHit, vec4 radiusPlane, float grow, bool ellipsoids)
 {
   sphere = -1;
   vec3 invDir = safeInverse(dir);
@@ -188,7 +193,30 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
 #endif
     // A leaf: its spheres [index, index + count).
     int index = int(lo.w);
+#ifdef VTKRT_HAS_ELLIPSOIDS
+    if (ellipsoids)
+    {
+      int last = index + 3 * int(hi.w);
+      for (int i = index; i < last; i += 3)
+      {
+        vec4 r0 = uintBitsToFloat(texelFetch(uSpheres, i));
+        vec4 r1 = uintBitsToFloat(texelFetch(uSpheres, i + 1));
+        vec4 r2 = uintBitsToFloat(texelFetch(uSpheres, i + 2));
+        vec3 unitOrg =
+          vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
+        vec3 unitDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
+        float t;
+        if (intersectRaySphere(unitOrg, unitDir, vec3(0.0), 1.0, tmin, tmax, t))
+        {
+          tmax = t;
+          sphere = i;
+        }
+      }
+    }
+    int end = ellipsoids ? index : index + int(hi.w);
+#else
     int end = index + int(hi.w);
+#endif
     for (int i = index; i < end; ++i)
     {
       vec4 s = uintBitsToFloat(texelFetch(uSpheres, i));
