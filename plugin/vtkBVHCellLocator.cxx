@@ -5,12 +5,14 @@
 #include "vtkCellArrayIterator.h"
 #include "vtkCellType.h"
 #include "vtkDataSet.h"
+#include "vtkDoubleArray.h"
 #include "vtkGenericCell.h"
 #include "vtkIdList.h"
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPointSet.h"
 #include "vtkPolygon.h"
 #include "vtkSMPTools.h"
 #include "vtkUnstructuredGrid.h"
@@ -307,11 +309,28 @@ int vtkBVHCellLocator::IntersectWithLine(const double p1[3], const double p2[3],
     cell->SetCellTypeToTriangle();
     cell->PointIds->SetNumberOfIds(3);
     cell->Points->SetNumberOfPoints(3);
+    // Double coordinates of polydata / unstructured grids read in place
+    // (no virtual GetPoint per point).
+    const double* coords = nullptr;
+    const int type = this->DataSet->GetDataObjectType();
+    if (type == VTK_POLY_DATA || type == VTK_UNSTRUCTURED_GRID)
+    {
+      vtkPoints* pts = static_cast<vtkPointSet*>(this->DataSet)->GetPoints();
+      vtkDoubleArray* d = pts ? vtkDoubleArray::FastDownCast(pts->GetData()) : nullptr;
+      coords = d ? d->GetPointer(0) : nullptr;
+    }
     for (int k = 0; k < 3; ++k)
     {
       const vtkIdType id = hit.TrianglePointIds[k];
       double p[3];
-      this->DataSet->GetPoint(id, p);
+      if (coords)
+      {
+        std::copy_n(coords + 3 * id, 3, p);
+      }
+      else
+      {
+        this->DataSet->GetPoint(id, p);
+      }
       cell->PointIds->SetId(k, id);
       cell->Points->SetPoint(k, p);
     }

@@ -102,6 +102,9 @@ public:
   /// >= 0: every triangle t is the VTK_TRIANGLE cell UniformCellBase + t
   /// (extraction order), subId 0 (set by the all-triangle polys path).
   vtkIdType UniformCellBase = -1;
+  /// The dataset's double coordinates at build time, only ever prefetched
+  /// (a prefetch of a stale address is harmless); null when not double.
+  const double* DataSetCoords = nullptr;
   std::vector<vtkIdType> TriCell;        ///< original cell id per triangle
   std::vector<std::int32_t> TriSub;      ///< subId per triangle (strips: triangle index)
   std::vector<std::uint8_t> TriFlags;    ///< TriangleFlags
@@ -330,14 +333,18 @@ public:
     {
       n = this->WideChildren(0, kids);
     }
+    // Storage from this thread (a worker thread's malloc arena would hand
+    // large blocks back to the system after every build).
     std::vector<WideNode> sub[4];
+    for (int i = 0; i < n; ++i)
+    {
+      sub[i].reserve(this->Tree.nodes.size() / 2 + 16);
+    }
     vtkSMPTools::For(0, n, 1, [&](vtkIdType b, vtkIdType e) {
       for (vtkIdType i = b; i < e; ++i)
       {
-        const core::BVHNode& c = this->Tree.nodes[kids[i]];
-        if (!c.isLeaf())
+        if (!this->Tree.nodes[kids[i]].isLeaf())
         {
-          sub[i].reserve(this->Tree.nodes.size() / (2 * n) + 16);
           this->Collapse(kids[i], sub[i]);
         }
       }
@@ -524,7 +531,7 @@ public:
       return true;
     };
     core::Hit<double> hit;
-    if (!this->WalkSegment<0>(ray, tol, isect, hit))
+    if (!this->WalkSegment<0>(ray, tol, isect, hit, &triPre))
     {
       return false;
     }
@@ -856,7 +863,8 @@ private:
 
   /// Mode 0: closest hit, 2: every primitive (the intersector collects).
   template <int Mode, class Isect>
-  bool WalkSegment(const core::Ray<double>& ray, double tol, Isect& isect, core::Hit<double>& hit) const
+  bool WalkSegment(const core::Ray<double>& ray, double tol, Isect& isect, core::Hit<double>& hit,
+    const core::RayTrianglePrecomputed<double>* triPre = nullptr) const
   {
     const std::uint32_t* primIndex = this->Tree.primIndex.data();
     const GrownNodeSource nodes{ this->Tree.nodes.data(), this->Tree.nodes.size(), tol };
@@ -864,7 +872,7 @@ private:
     {
       core::ConservativeRay4 fray;
       if (!this->Wide.empty() &&
-        fray.init(ray, core::RayTrianglePrecomputed<double>(ray), tol, this->Extent))
+        fray.init(ray, triPre ? *triPre : core::RayTrianglePrecomputed<double>(ray), tol, this->Extent))
       {
         return this->ClosestHitWide(fray, ray, tol, isect, hit);
       }
@@ -931,14 +939,23 @@ private:
 #if VTKRT_CORE_SSE
         // The exact test reads the double vertices through the point ids:
         // start every survivor's loads before the first test waits on one.
+        // A hit then reads its cell id, subId, flags and (to fill the
+        // caller's cell) the dataset's own coordinates of the points.
         for (int m = mask; m; m &= m - 1)
         {
-          const std::uint32_t* ids =
-            this->TriIds.data() + 3 * (4 * static_cast<std::size_t>(block) + CountTrailingZeros(static_cast<unsigned>(m)));
+          const std::size_t prim = 4 * static_cast<std::size_t>(block) + CountTrailingZeros(static_cast<unsigned>(m));
+          const std::uint32_t* ids = this->TriIds.data() + 3 * prim;
           for (int k = 0; k < 3; ++k)
           {
             _mm_prefetch(reinterpret_cast<const char*>(&this->Points[ids[k]]), _MM_HINT_T0);
+            if (this->DataSetCoords)
+            {
+              _mm_prefetch(reinterpret_cast<const char*>(this->DataSetCoords + 3 * static_cast<std::size_t>(ids[k])), _MM_HINT_T0);
+            }
           }
+          _mm_prefetch(reinterpret_cast<const char*>(&this->TriCell[prim]), _MM_HINT_T0);
+          _mm_prefetch(reinterpret_cast<const char*>(&this->TriSub[prim]), _MM_HINT_T0);
+          _mm_prefetch(reinterpret_cast<const char*>(&this->TriFlags[prim]), _MM_HINT_T0);
         }
 #endif
         while (mask)
@@ -1146,6 +1163,7 @@ private:
       return;
     }
     auto* d = vtkDoubleArray::FastDownCast(pts->GetData());
+    this->DataSetCoords = d ? d->GetPointer(0) : nullptr;
     if (!d)
     {
       vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
