@@ -19,11 +19,13 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkPVHardwareSelector.h"
+#include "vtkPVSession.h"
 #include "vtkPVSynchronizedRenderer.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkProp.h"
 #include "vtkPropCollection.h"
+#include "vtkProperty.h"
 #include "vtkRayTracePass.h"
 #include "vtkRenderer.h"
 #include "vtkSelection.h"
@@ -232,6 +234,12 @@ void vtkPVRayTracedRenderView::SelectWithLocator(
     {
       continue;
     }
+    // Rays meet surfaces: props drawn as points or wireframe are not
+    // selectable in this view.
+    if (actor->GetProperty()->GetRepresentation() != VTK_SURFACE)
+    {
+      continue;
+    }
     const int propId = PropIdAccess::Get(this->Selector, prop);
     if (propId < 0)
     {
@@ -301,6 +309,8 @@ void vtkPVRayTracedRenderView::SelectWithLocator(
   viewToWorld->DeepCopy(ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
     ren->GetTiledAspectRatio(), -1.0, 1.0));
   viewToWorld->Invert();
+  double eye[3];
+  ren->GetActiveCamera()->GetPosition(eye);
   std::vector<double> nearest(pixels, std::numeric_limits<double>::infinity());
   struct Hit
   {
@@ -329,6 +339,16 @@ void vtkPVRayTracedRenderView::SelectWithLocator(
         }
         ends[e][3] = 1.0;
       }
+      // Hits are ranked by their distance from the eye along the ray (the
+      // segment's ends depend on the clipping range, which need not be the
+      // same on every rank).
+      const double length = std::sqrt(vtkMath::Distance2BetweenPoints(ends[0], ends[1]));
+      double direction[3] = { ends[1][0] - ends[0][0], ends[1][1] - ends[0][1],
+        ends[1][2] - ends[0][2] };
+      vtkMath::Normalize(direction);
+      double toNear[3];
+      vtkMath::Subtract(ends[0], eye, toNear);
+      const double nearDistance = vtkMath::Dot(toNear, direction);
       const vtkIdType pixel = (y - y0) * width + (x - x0);
       ++this->LastSelectionRays;
       for (std::size_t c = 0; c < candidates.size(); ++c)
@@ -351,14 +371,18 @@ void vtkPVRayTracedRenderView::SelectWithLocator(
           std::copy(ends[1], ends[1] + 3, b);
         }
         // t is the same along the world and the (affinely) transformed
-        // segment, so hits of different blocks compare directly.
+        // segment, so hits of different blocks compare by it.
         double t = 0.0, hitPoint[3], pcoords[3];
         int subId = 0;
         vtkIdType cellId = -1;
-        if (cand.Locator->IntersectWithLine(a, b, 0.0, t, hitPoint, pcoords, subId, cellId, cell) &&
-          t < nearest[pixel])
+        if (!cand.Locator->IntersectWithLine(a, b, 0.0, t, hitPoint, pcoords, subId, cellId, cell))
         {
-          nearest[pixel] = t;
+          continue;
+        }
+        const double distance = nearDistance + t * length;
+        if (distance < nearest[pixel])
+        {
+          nearest[pixel] = distance;
           hits[pixel].Candidate = static_cast<int>(c);
           hits[pixel].CellId = cellId;
           std::copy(hitPoint, hitPoint + 3, hits[pixel].Local);
@@ -423,8 +447,11 @@ void vtkPVRayTracedRenderView::SelectWithLocator(
       id = pointId;
       originalId = static_cast<vtkIdType>(idAt(cand.OriginalPointIds, id, id));
     }
-    const vtkIdType process = cand.ProcessIds && !cells
-      ? static_cast<vtkIdType>(idAt(cand.ProcessIds, id, rank))
+    // Geometry gathered for local rendering carries the rank that owns each
+    // point (ParaView's vtkProcessId point array); a cell is its first point's.
+    const vtkIdType processPoint = cells ? cand.Data->GetCell(h.CellId)->GetPointId(0) : id;
+    const vtkIdType process = cand.ProcessIds
+      ? static_cast<vtkIdType>(idAt(cand.ProcessIds, processPoint, rank))
       : rank;
     const vtkIdType compositeIndex = cand.CompositeIds
       ? static_cast<vtkIdType>(idAt(cand.CompositeIds, h.CellId, cand.CompositeIndex))
@@ -433,14 +460,45 @@ void vtkPVRayTracedRenderView::SelectWithLocator(
     records->InsertNextTypedTuple(record);
   }
   vtkNew<vtkIdTypeArray> all;
+  all->SetNumberOfComponents(4);
   if (distributed)
   {
-    all->SetNumberOfComponents(4);
     controller->GatherV(records, all, 0);
   }
   else
   {
     all->DeepCopy(records);
+  }
+
+  // Client/server with rendering on the server: ParaView fetches the
+  // selection from the client's view, which holds no geometry, so the
+  // server's root sends its records there.
+  vtkPVSession* session = this->GetSession();
+  const bool remoteRendering = this->GetUseDistributedRenderingForRender();
+  vtkMultiProcessController* toClient =
+    session && remoteRendering && rank == 0 ? session->GetController(vtkPVSession::CLIENT) : nullptr;
+  vtkMultiProcessController* toServer = session && remoteRendering
+    ? session->GetController(vtkPVSession::RENDER_SERVER_ROOT)
+    : nullptr;
+  constexpr int recordsTag = 0x7274;
+  if (toClient)
+  {
+    vtkIdType count = all->GetNumberOfValues();
+    toClient->Send(&count, 1, 1, recordsTag);
+    if (count > 0)
+    {
+      toClient->Send(all->GetPointer(0), count, 1, recordsTag + 1);
+    }
+  }
+  else if (toServer)
+  {
+    vtkIdType count = 0;
+    toServer->Receive(&count, 1, 1, recordsTag);
+    all->SetNumberOfValues(count);
+    if (count > 0)
+    {
+      toServer->Receive(all->GetPointer(0), count, 1, recordsTag + 1);
+    }
   }
 
   vtkSmartPointer<vtkSelection> selection;

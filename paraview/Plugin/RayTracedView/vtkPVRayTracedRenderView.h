@@ -22,6 +22,8 @@
  * piece, the nearest hit per pixel wins across ranks (ties: lowest rank), and
  * the driver process makes the selection, as ParaView's hardware selector
  * does. Point selection returns the hit cell's point nearest the hit.
+ * Only props drawn as surfaces are selectable (rays meet surfaces; points,
+ * including points rendered as spheres, and wireframes are not).
  * Hits map to original ids through the representation's id arrays
  * (vtkOriginalCellIds / vtkOriginalPointIds), like the hardware selector.
  */

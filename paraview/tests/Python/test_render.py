@@ -1,0 +1,60 @@
+"""pvbatch test: a ray-traced view against a baseline image.
+
+Usage: pvbatch --force-offscreen-rendering test_render.py CASE [THRESHOLD]
+CASE: Mesh (an isosurface), Glyphs (sphere glyphs), Distributed (mesh and
+glyphs, split over the ranks when run under mpiexec: the image must match
+the serial baseline).
+"""
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from vtkrt_pv_scenes import *  # noqa: F401,F403
+
+case = sys.argv[1]
+threshold = float(sys.argv[2]) if len(sys.argv) > 2 else 10.0
+load_plugin()
+ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
+print("%s on %d rank(s)" % (case, ranks))
+view = ray_traced_view()
+SetActiveView(view)
+
+if case == "Mesh":
+    source, _ = mesh(view)
+    place_camera(view)
+    Render(view)
+    triangles = source.GetDataInformation().GetNumberOfCells()
+    check(triangles > 10000 and traced_primitives(view) == triangles,
+          "the mesh's %d triangles are ray traced (traced: %d)" % (triangles, traced_primitives(view)))
+elif case == "Glyphs":
+    source, _ = glyphs(view)
+    place_camera(view, azimuth=20.0, elevation=25.0)
+    Render(view)
+    points = source.GetDataInformation().GetNumberOfPoints()
+    check(traced_primitives(view) == points,
+          "the %d glyphs are traced as analytic spheres (traced: %d)" % (points, traced_primitives(view)))
+elif case == "Distributed":
+    distributed = ranks > 1
+    source, _ = mesh(view)
+    spheres, _ = glyphs(view, center=(0.0, 0.0, 0.0), radius=25.0)
+    place_camera(view, azimuth=-25.0, elevation=10.0)
+    Render(view)
+    # The mesh is really split: process ids 0..ranks-1 are present.
+    process_ids = source.PointData["ProcessId"].GetRange()
+    check(process_ids == (0.0, float(ranks - 1)),
+          "the mesh spans ranks 0..%d (ProcessId range %s)" % (ranks - 1, process_ids))
+    total = source.GetDataInformation().GetNumberOfCells() + spheres.GetDataInformation().GetNumberOfPoints()
+    traced = traced_primitives(view)
+    if distributed:
+        # Rank 0 traced its own piece only; IceT composited the rest.
+        check(0 < traced < total, "rank 0 traced only its piece (%d of %d primitives)" % (traced, total))
+    else:
+        check(traced == total, "all %d primitives traced (traced: %d)" % (total, traced))
+else:
+    raise SystemExit("unknown case " + case)
+
+png = os.path.join(TEMP_DIR, "paraview_%s_np%d.png" % (case, ranks))
+os.makedirs(TEMP_DIR, exist_ok=True)
+SaveScreenshot(png, view, ImageResolution=VIEW_SIZE)
+compare_with_baseline(png, "paraview_" + case, threshold)
+finish()
