@@ -3,7 +3,8 @@ a test: timings never decide a test). Prints the median of still renders
 after a warm-up, for a camera orbit (every frame re-traces; geometry and
 BVHs are built once).
 
-Usage: [mpiexec -np N] pvbatch --force-offscreen-rendering bench_scaling.py [EXTENT] [WIDTH HEIGHT]
+Usage: [mpiexec -np N] pvbatch --force-offscreen-rendering bench_scaling.py [EXTENT [WIDTH HEIGHT [raster]]]
+("raster": ParaView's own rendering in the same view, for comparison.)
 """
 import os
 import statistics
@@ -15,10 +16,12 @@ from vtkrt_pv_scenes import *  # noqa: F401,F403
 
 extent = int(sys.argv[1]) if len(sys.argv) > 1 else 60
 size = [int(sys.argv[2]), int(sys.argv[3])] if len(sys.argv) > 3 else [1024, 768]
+raster = len(sys.argv) > 4 and sys.argv[4] == "raster"
 load_plugin()
 ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
 view = ray_traced_view()
 view.ViewSize = size
+view.EnableRayTracing = 0 if raster else 1
 SetActiveView(view)
 wavelet = Wavelet(WholeExtent=[-extent, extent] * 3)
 contour = Contour(Input=wavelet, ContourBy=["POINTS", "RTData"], Isosurfaces=[160.0])
@@ -36,6 +39,6 @@ for i in range(12):
     start = time.perf_counter()
     Render(view)
     times.append(time.perf_counter() - start)
-print("ranks %d, %d triangles, %dx%d: first frame %.2f s (data, BVH, upload), "
+print("%s, ranks %d, %d triangles, %dx%d: first frame %.2f s (data, BVH, upload), "
       "median frame %.3f s (min %.3f, max %.3f)"
-      % (ranks, triangles, size[0], size[1], first, statistics.median(times), min(times), max(times)))
+      % ("raster" if raster else "ray traced", ranks, triangles, size[0], size[1], first, statistics.median(times), min(times), max(times)))
