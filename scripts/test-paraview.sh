@@ -31,9 +31,10 @@ echo "== ParaView stage: building the plugin in $PV_BUILD_DIR"
 cmake -S . -B "$PV_BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release -DVTKRT_BUILD_PARAVIEW_PLUGIN=ON
 cmake --build "$PV_BUILD_DIR" -j "$JOBS"
 echo "== ParaView stage: tests"
-# One X server for all tests (-noreset: no reset between clients). A test
-# that fails is run once more (MPI and X start-up on a loaded 2-core
-# machine); a real failure fails twice.
+# One X server for all tests (-noreset: no reset between clients), on a
+# display number away from the usual :99 of other Xvfb users. A test that
+# fails is run once more (MPI and X start-up on a loaded 2-core machine); a
+# real failure fails twice.
 cd "$PV_BUILD_DIR"
-xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
+xvfb-run -a -n $((200 + RANDOM % 600)) -s "-screen 0 1280x1024x24 -noreset" \
   ctest --output-on-failure -j "$JOBS" -L paraview --repeat until-pass:2
