@@ -6,6 +6,7 @@
 # the system VTK back (README's demo and the main build need it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+ROOT=$PWD
 PV_BUILD_DIR=${VTKRT_PARAVIEW_BUILD_DIR:-build-paraview}
 JOBS=${VTKRT_JOBS:-$(nproc)}
 start=$(date +%s)
@@ -13,14 +14,14 @@ start=$(date +%s)
 restore() {
   local status=$?
   echo "== ParaView stage: restoring the system VTK (libvtk9-dev python3-vtk9)"
-  bash scripts/install-paraview-deps.sh --restore || status=1
+  bash "$ROOT/scripts/install-paraview-deps.sh" --restore || status=1
   echo "== ParaView stage: $(( $(date +%s) - start )) s, exit status $status"
   exit $status
 }
 trap restore EXIT
 
 echo "== ParaView stage: installing ParaView"
-if ! bash scripts/install-paraview-deps.sh; then
+if ! bash "$ROOT/scripts/install-paraview-deps.sh"; then
   # apt could not deliver (mirror or network): nothing of vtkrt was tested,
   # so say so loudly; VTKRT_REQUIRE_PARAVIEW=1 makes it a failure.
   echo "== ParaView stage SKIPPED: the ParaView packages could not be installed"
