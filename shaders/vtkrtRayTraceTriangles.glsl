@@ -97,16 +97,41 @@ bool intersectRayTriangle(RayTrianglePrecomputed r, vec3 v0, vec3 v1, vec3 v2, f
   return true;
 }
 
+// The slab test of core::intersectRayAABB without its per-axis branches
+// (llvmpipe runs both sides of every branch, masked): the same arithmetic on
+// every axis the ray is not parallel to, so the same result there; a
+// parallel axis (invDir 0, so t0 = t1 = 0) accepts every box through
+// parallelBias (3e38 on such axes, 0 elsewhere) instead of testing the
+// origin against the slab. Accepting more boxes than the core never changes
+// the hit, only how much is tested. Needs tmin >= 0.
+bool intersectRayNodeBox(vec3 org, vec3 invDir, vec3 parallelBias, vec3 bmin, vec3 bmax,
+  float tmin, float tmax, out float tnear)
+{
+  vec3 t0 = (bmin - org) * invDir;
+  vec3 t1 = (bmax - org) * invDir;
+  vec3 tn = min(t0, t1);
+  vec3 tf = max(t0, t1) * kFarScale + parallelBias;
+  tnear = max(max(tn.x, tn.y), max(tn.z, tmin));
+  float tfar = min(min(tf.x, tf.y), min(tf.z, tmax));
+  return tnear <= tfar;
+}
+
 // Closest hit in the triangle BVH whose root node is `root`: on a hit, tmax
 // becomes the hit distance, tri the triangle's leaf-order index (global) and
 // uv its barycentrics. stopAtFirstHit: any hit (core::anyHit) instead, for
-// occlusion rays.
+// occlusion rays. Nearer child first, the hit's t pruning what is left on
+// the stack, organised as "while-while" (Aila & Laine 2009): an inner loop
+// descends interior nodes until every ray of the SIMD group (llvmpipe shades
+// 8 pixels at once and runs a loop while any of them is in it) sits in a
+// leaf or is done, and only then are leaf triangles tested, so the group
+// pays the masked leaf loop once for all its rays.
 bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tmax, out int tri,
   out vec2 uv, bool stopAtFirstHit)
 {
   tri = -1;
   uv = vec2(0.0);
   vec3 invDir = safeInverse(dir);
+  vec3 parallelBias = vec3(equal(invDir, vec3(0.0))) * 3.0e38;
   float tnear;
   uvec4 rootLo = texelFetch(uNodes, 2 * root);
   uvec4 rootHi = texelFetch(uNodes, 2 * root + 1);
@@ -115,98 +140,114 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
     return false;
   }
   RayTrianglePrecomputed pre = precomputeRayTriangle(org, dir);
-  int stackNode[VTKRT_STACK_SIZE];
+  // The node at hand is its (index, count) pair alone: a pushed node keeps
+  // its pair on the stack, so popping fetches nothing. A popped node that
+  // the best hit already prunes is "culled": the next step treats it as a
+  // dead end (no nested pop loop, which llvmpipe would run every step).
+  uint stackIndex[VTKRT_STACK_SIZE];
+  uint stackCount[VTKRT_STACK_SIZE];
   float stackNear[VTKRT_STACK_SIZE];
   int sp = 0;
   int steps = 0;
-  int node = root;
-  uvec4 lo = rootLo;
-  uvec4 hi = rootHi;
-  for (;;)
+  uint index = rootLo.w;
+  uint count = rootHi.w;
+  bool culled = false;
+  bool done = false;
+  while (!done)
   {
+    // Interior nodes: descend to the nearer child hit, push the farther;
+    // at a dead end, pop.
+    while (count == 0u)
+    {
 #if VTKRT_MAXIMUM_TRAVERSAL_STEPS > 0
-    // The traversal step cap (a speed/accuracy knob): what is not reached
-    // within the cap is missed.
-    if (++steps > VTKRT_MAXIMUM_TRAVERSAL_STEPS)
-    {
-      break;
-    }
-#endif
-    int index = int(lo.w);
-    int count = int(hi.w);
-    bool descended = false;
-    if (count > 0)
-    {
-      for (int i = index; i < index + count; ++i)
+      // The traversal step cap (a speed/accuracy knob): what is not reached
+      // within the cap is missed.
+      if (++steps > VTKRT_MAXIMUM_TRAVERSAL_STEPS)
       {
-        vec3 v0 = uintBitsToFloat(texelFetch(uTriangles, 3 * i).xyz);
-        vec3 v1 = uintBitsToFloat(texelFetch(uTriangles, 3 * i + 1).xyz);
-        vec3 v2 = uintBitsToFloat(texelFetch(uTriangles, 3 * i + 2).xyz);
-        vec3 h;
-        if (intersectRayTriangle(pre, v0, v1, v2, tmin, tmax, h))
-        {
-          tmax = h.x;
-          tri = i;
-          uv = h.yz;
-          if (stopAtFirstHit)
-          {
-            return true;
-          }
-        }
+        done = true;
+        break;
       }
-    }
-    else
-    {
-      uvec4 lo0 = texelFetch(uNodes, 2 * index);
-      uvec4 hi0 = texelFetch(uNodes, 2 * index + 1);
-      uvec4 lo1 = texelFetch(uNodes, 2 * index + 2);
-      uvec4 hi1 = texelFetch(uNodes, 2 * index + 3);
+#endif
+      int child = 2 * int(index);
+      uvec4 lo0 = texelFetch(uNodes, child);
+      uvec4 hi0 = texelFetch(uNodes, child + 1);
+      uvec4 lo1 = texelFetch(uNodes, child + 2);
+      uvec4 hi1 = texelFetch(uNodes, child + 3);
       float t0, t1;
-      bool h0 = intersectRayAABB(org, invDir, boxCorner(lo0), boxCorner(hi0), tmin, tmax, t0);
-      bool h1 = intersectRayAABB(org, invDir, boxCorner(lo1), boxCorner(hi1), tmin, tmax, t1);
+      bool h0 = intersectRayNodeBox(
+        org, invDir, parallelBias, boxCorner(lo0), boxCorner(hi0), tmin, tmax, t0) && !culled;
+      bool h1 = intersectRayNodeBox(
+        org, invDir, parallelBias, boxCorner(lo1), boxCorner(hi1), tmin, tmax, t1) && !culled;
+      culled = false;
       if (h0 && h1)
       {
         bool firstNear = t0 <= t1;
         if (sp < VTKRT_STACK_SIZE)
         {
-          stackNode[sp] = firstNear ? index + 1 : index;
+          stackIndex[sp] = firstNear ? lo1.w : lo0.w;
+          stackCount[sp] = firstNear ? hi1.w : hi0.w;
           stackNear[sp] = firstNear ? t1 : t0;
           ++sp;
         }
-        node = firstNear ? index : index + 1;
-        lo = firstNear ? lo0 : lo1;
-        hi = firstNear ? hi0 : hi1;
-        descended = true;
+        index = firstNear ? lo0.w : lo1.w;
+        count = firstNear ? hi0.w : hi1.w;
       }
       else if (h0 || h1)
       {
-        node = h0 ? index : index + 1;
-        lo = h0 ? lo0 : lo1;
-        hi = h0 ? hi0 : hi1;
-        descended = true;
+        index = h0 ? lo0.w : lo1.w;
+        count = h0 ? hi0.w : hi1.w;
       }
-    }
-    if (!descended)
-    {
-      // Pop the nearest pending subtree that can still hold a closer hit.
-      bool found = false;
-      while (sp > 0)
+      else if (sp > 0)
       {
         --sp;
-        if (stackNear[sp] <= tmax)
-        {
-          node = stackNode[sp];
-          found = true;
-          break;
-        }
+        culled = stackNear[sp] > tmax;
+        index = culled ? 0u : stackIndex[sp];
+        count = culled ? 0u : stackCount[sp];
       }
-      if (!found)
+      else
       {
+        done = true;
         break;
       }
-      lo = texelFetch(uNodes, 2 * node);
-      hi = texelFetch(uNodes, 2 * node + 1);
     }
+    if (done)
+    {
+      break;
+    }
+#if VTKRT_MAXIMUM_TRAVERSAL_STEPS > 0
+    if (++steps > VTKRT_MAXIMUM_TRAVERSAL_STEPS)
+    {
+      break;
+    }
+#endif
+    // A leaf: its triangles [index, index + count).
+    int first = int(index);
+    int end = first + int(count);
+    for (int i = first; i < end; ++i)
+    {
+      vec3 v0 = uintBitsToFloat(texelFetch(uTriangles, 3 * i).xyz);
+      vec3 v1 = uintBitsToFloat(texelFetch(uTriangles, 3 * i + 1).xyz);
+      vec3 v2 = uintBitsToFloat(texelFetch(uTriangles, 3 * i + 2).xyz);
+      vec3 h;
+      if (intersectRayTriangle(pre, v0, v1, v2, tmin, tmax, h))
+      {
+        tmax = h.x;
+        tri = i;
+        uv = h.yz;
+      }
+    }
+    if (stopAtFirstHit && tri >= 0)
+    {
+      return true;
+    }
+    if (sp == 0)
+    {
+      break;
+    }
+    --sp;
+    culled = stackNear[sp] > tmax;
+    index = culled ? 0u : stackIndex[sp];
+    count = culled ? 0u : stackCount[sp];
   }
   return tri >= 0;
 }
