@@ -206,6 +206,22 @@ void vtkPVRayTracedRenderView::SelectPoints(int region[4], const char* array)
   this->SelectWithLocator(vtkDataObject::FIELD_ASSOCIATION_POINTS, region, array);
 }
 
+void vtkPVRayTracedRenderView::SelectPolygonPoints(int* polygon2DArray, vtkIdType arrayLen)
+{
+  this->SynchronizedRenderers->SetRenderPass(nullptr);
+  this->Superclass::SelectPolygonPoints(polygon2DArray, arrayLen);
+  this->SynchronizedRenderers->SetRenderPass(
+    this->EnableRayTracing ? this->Internal->Pass.GetPointer() : nullptr);
+}
+
+void vtkPVRayTracedRenderView::SelectPolygonCells(int* polygon2DArray, vtkIdType arrayLen)
+{
+  this->SynchronizedRenderers->SetRenderPass(nullptr);
+  this->Superclass::SelectPolygonCells(polygon2DArray, arrayLen);
+  this->SynchronizedRenderers->SetRenderPass(
+    this->EnableRayTracing ? this->Internal->Pass.GetPointer() : nullptr);
+}
+
 void vtkPVRayTracedRenderView::SelectWithLocator(
   int fieldAssociation, int region[4], const char* array)
 {

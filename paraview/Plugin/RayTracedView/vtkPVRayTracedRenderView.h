@@ -111,6 +111,16 @@ public:
   }
   ///@}
 
+  ///@{
+  /**
+   * Polygon selections go through ParaView's hardware selector, with the
+   * ray tracing pass taken out for the selection renders (the selector
+   * reads ids that raster passes write).
+   */
+  void SelectPolygonPoints(int* polygon2DArray, vtkIdType arrayLen);
+  void SelectPolygonCells(int* polygon2DArray, vtkIdType arrayLen);
+  ///@}
+
   /**
    * Rays cast by the last locator selection on this process, and the number
    * of locator trees built for it (for tests and diagnostics).

@@ -201,6 +201,23 @@ for x0, y0, x1, y1 in rectangles[:2] if quick else rectangles:
           "rectangle (%d, %d)-(%d, %d): all %d cells hit are selected (missing %d, extra %d, grazing pixels %d)"
           % (x0, y0, x1, y1, len(must), len(missing), len(extra), grazing))
 
+# A polygon selection (ParaView's hardware selector, with the tracer taken
+# out for its renders) selects about the cells the locator's rubber band
+# over the same square does.
+x0, y0, x1, y1 = rectangles[0]
+band = extracted("cells", x0, y0, x1, y1)
+ClearSelection(group)
+SelectSurfaceCells(Polygon=[x0, y0, x1, y0, x1, y1, x0, y1], View=view)
+polygon = group.GetSelectionInput(0)
+count = 0
+if polygon is not None:
+    extract = ExtractSelection(Input=group, Selection=polygon)
+    extract.UpdatePipeline()
+    count = extract.GetDataInformation().GetNumberOfCells()
+    Delete(extract)
+check(len(band) > 5 and abs(count - len(band)) <= 0.25 * len(band),
+      "polygon selection: %d cells, rubber band over the same square: %d" % (count, len(band)))
+
 # Points: the hit cell's vertex nearest the hit.
 for x, y in pixels[:: 8 if quick else 4]:
     expected = brute_force(x, y)
