@@ -179,36 +179,29 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
       bool h1 = intersectRayNodeBox(
         org, invDir, parallelBias, boxCorner(lo1), boxCorner(hi1), tmin, tmax, t1) && !culled;
       culled = false;
-      if (h0 && h1)
-      {
-        bool firstNear = t0 <= t1;
-        if (sp < VTKRT_STACK_SIZE)
-        {
-          stackIndex[sp] = firstNear ? lo1.w : lo0.w;
-          stackCount[sp] = firstNear ? hi1.w : hi0.w;
-          stackNear[sp] = firstNear ? t1 : t0;
-          ++sp;
-        }
-        index = firstNear ? lo0.w : lo1.w;
-        count = firstNear ? hi0.w : hi1.w;
-      }
-      else if (h0 || h1)
-      {
-        index = h0 ? lo0.w : lo1.w;
-        count = h0 ? hi0.w : hi1.w;
-      }
-      else if (sp > 0)
-      {
-        --sp;
-        culled = stackNear[sp] > tmax;
-        index = culled ? 0u : stackIndex[sp];
-        count = culled ? 0u : stackCount[sp];
-      }
-      else
+      // Branch free (llvmpipe would run every branch, masked): the farther
+      // child is written above the stack top every step and kept only when
+      // both children are hit; the top entry is read every step and used
+      // only at a dead end. sp never exceeds the depth of the node at hand,
+      // below kMaxDepth <= VTKRT_STACK_SIZE (core/BVH.h): no bound check.
+      bool nearIs1 = h1 && (!h0 || t1 < t0);
+      stackIndex[sp] = nearIs1 ? lo0.w : lo1.w;
+      stackCount[sp] = nearIs1 ? hi0.w : hi1.w;
+      stackNear[sp] = nearIs1 ? t0 : t1;
+      bool anyHit = h0 || h1;
+      if (!anyHit && sp == 0)
       {
         done = true;
         break;
       }
+      sp += h0 && h1 ? 1 : 0;
+      int top = anyHit ? sp : max(sp - 1, 0);
+      culled = !anyHit && stackNear[top] > tmax;
+      uint popIndex = stackIndex[top];
+      uint popCount = stackCount[top];
+      sp = top;
+      index = anyHit ? (nearIs1 ? lo1.w : lo0.w) : (culled ? 0u : popIndex);
+      count = anyHit ? (nearIs1 ? hi1.w : hi0.w) : (culled ? 0u : popCount);
     }
     if (done)
     {
