@@ -14,7 +14,8 @@
 //                       (DIRECTION, ROTATION, QUATERNION) are traced as
 //                       analytic ellipsoids: silhouettes against an analytic
 //                       mask built with vtkTransform as vtkGlyph3D does (0
-//                       mismatches), shading close to VTK's raster
+//                       mismatches), id mode naming the analytic nearest
+//                       ellipsoid, shading close to VTK's raster, shadows
 #include "vtkrtPassTestUtils.h"
 #include "vtkrtTestOutputWindow.h"
 
@@ -26,6 +27,7 @@
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkGlyph3DMapper.h"
+#include "vtkLight.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPointData.h"
@@ -517,6 +519,9 @@ void TestEllipsoids()
       toUnit.push_back(m);
     }
     long mismatches = 0, tolerated = 0, covered = 0;
+    // Per pixel: the nearest ellipsoid's index (-1: none, -2: ambiguous,
+    // a silhouette or two surfaces at almost the same depth).
+    std::vector<int> nearest(static_cast<std::size_t>(w) * h, -1);
     for (int j = 0; j < h; ++j)
     {
       for (int i = 0; i < w; ++i)
@@ -524,8 +529,12 @@ void TestEllipsoids()
         const auto ray = PixelRay(clipToWorld, i, j, w, h);
         bool inside = false;
         double margin = std::numeric_limits<double>::infinity();
-        for (const auto& m : toUnit)
+        double tNearest = std::numeric_limits<double>::infinity();
+        double tSecond = std::numeric_limits<double>::infinity();
+        int& best = nearest[static_cast<std::size_t>(j) * w + i];
+        for (std::size_t g = 0; g < toUnit.size(); ++g)
         {
+          const auto& m = toUnit[g];
           double o[4] = { ray.org.x, ray.org.y, ray.org.z, 1.0 };
           double e[4] = { ray.org.x + ray.dir.x, ray.org.y + ray.dir.y, ray.org.z + ray.dir.z,
             1.0 };
@@ -535,12 +544,28 @@ void TestEllipsoids()
           const vtkrt::core::Vec3<double> ue(e[0], e[1], e[2]);
           const vtkrt::core::Ray<double> unit(uo, ue - uo, 0.0, 1.0);
           double t;
-          inside = inside ||
-            vtkrt::core::intersectRaySphere(unit, vtkrt::core::Vec3<double>(0.0), 1.0, t);
+          if (vtkrt::core::intersectRaySphere(unit, vtkrt::core::Vec3<double>(0.0), 1.0, t))
+          {
+            inside = true;
+            if (t < tNearest)
+            {
+              tSecond = tNearest;
+              tNearest = t;
+              best = static_cast<int>(g);
+            }
+            else
+            {
+              tSecond = std::min(tSecond, t);
+            }
+          }
           // Distance of the mapped line from the unit sphere's center.
           const vtkrt::core::Vec3<double> d = glm::normalize(unit.dir);
           const double distance = glm::length(uo - glm::dot(uo, d) * d);
           margin = std::min(margin, std::abs(distance - 1.0));
+        }
+        if (margin < 1e-3 || tSecond - tNearest < 1e-4)
+        {
+          best = -2;
         }
         const bool lit = px[3 * (j * w + i)] > 127;
         covered += lit ? 1 : 0;
@@ -556,6 +581,47 @@ void TestEllipsoids()
     s << name << ": " << covered << " covered px, " << mismatches
       << " mismatches with the analytic mask (want 0), " << tolerated << " at a silhouette";
     Check(covered > 2000 && mismatches == 0, s.str());
+
+    // Id mode: each pixel names the nearest ellipsoid's point id.
+    pass->IdModeOn();
+    win->Render();
+    auto ids = Grab(win, true);
+    pass->IdModeOff();
+    const auto* ip = static_cast<const unsigned char*>(ids->GetScalarPointer());
+    long idChecked = 0, idWrong = 0;
+    for (std::size_t k = 0; k < nearest.size(); ++k)
+    {
+      if (nearest[k] == -2)
+      {
+        continue;
+      }
+      const unsigned char* c = ip + 4 * k;
+      const long id = c[3] == 0 ? -1 : long(c[0]) | (long(c[1]) << 8) | (long(c[2]) << 16);
+      idChecked += 1;
+      idWrong += id != nearest[k] ? 1 : 0;
+    }
+    std::ostringstream idText;
+    idText << name << ": id mode, " << idChecked << " pixels away from silhouettes and "
+           << "intersections, " << idWrong << " name another ellipsoid than the analytic "
+           << "nearest (want 0)";
+    Check(idChecked > 0.9 * w * h && idWrong == 0, idText.str());
+
+    // Shadows: ellipsoids shadow each other under the headlight's any-hit rays.
+    actor->GetProperty()->SetColor(0.9, 0.7, 0.4);
+    vtkNew<vtkLight> light;
+    light->SetLightTypeToSceneLight();
+    light->SetPosition(4, 5, 6);
+    light->SetFocalPoint(0, 0, 0);
+    light->PositionalOff();
+    ren->AddLight(light);
+    win->Render();
+    auto unshadowed = Grab(win);
+    pass->ShadowsOn();
+    win->Render();
+    auto shadowed = Grab(win);
+    pass->ShadowsOff();
+    const long darker = CountDifferingPixels(unshadowed, shadowed, 20);
+    Check(darker > 50, name + ": shadows darken " + std::to_string(darker) + " pixels (want > 50)");
     win->RemoveRenderer(ren);
   }
   NoVTKOutput("ellipsoids");
