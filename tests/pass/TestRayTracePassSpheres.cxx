@@ -2,7 +2,8 @@
 //   ScreenSizedPoints   points drawn as spheres keep VTK's pixel size
 //                       (PointSize) through zooms, orbits, an actor scale and
 //                       parallel projection, like raster, with no BVH build
-//                       or geometry upload after the first frame
+//                       or geometry upload after the first frame; through
+//                       the top-level BVH (10 actors), no rebuild on orbit
 //   AxisAlignedSilhouettes  sphere silhouettes against an analytic mask when
 //                       rays are exactly parallel to coordinate axes
 //                       (parallel projection down -z; perspective center
@@ -142,6 +143,61 @@ void TestScreenSizedPoints()
         << pass->GetLastGeometryBytesUploaded() << " geometry bytes uploaded (want 0, 0)";
       Check(pass->GetLastBVHBuilds() == 0 && pass->GetLastGeometryBytesUploaded() == 0, c.str());
     }
+  }
+
+  // More than 8 instances: the top-level BVH, whose boxes grow with the
+  // radius bound (rounded to a power of two: rebuilt only when a zoom crosses
+  // one, never on an orbit).
+  vtkNew<vtkRenderer> many;
+  many->SetBackground(0, 0, 0);
+  win->RemoveRenderer(ren);
+  win->AddRenderer(many);
+  auto points = IsolatedPoints();
+  for (int k = 0; k < 10; ++k)
+  {
+    vtkNew<vtkPolyDataMapper> m;
+    m->SetInputData(points);
+    vtkNew<vtkActor> a;
+    a->SetMapper(m);
+    a->SetPosition(0.9 * (k % 5) - 1.8, k < 5 ? 0.9 : -0.9, 0.0);
+    a->SetScale(0.5);
+    a->GetProperty()->RenderPointsAsSpheresOn();
+    a->GetProperty()->SetPointSize(9);
+    a->GetProperty()->LightingOff();
+    many->AddActor(a);
+  }
+  vtkCamera* c2 = many->GetActiveCamera();
+  c2->SetPosition(0.2, 0.3, 9.0);
+  c2->SetFocalPoint(0, 0, -1);
+  c2->SetViewUp(0, 1, 0);
+  c2->SetViewAngle(30);
+  const char* manySteps[] = { "first frame", "orbit 10 degrees", "dolly in 1.3x" };
+  for (int k = 0; k < 3; ++k)
+  {
+    if (k == 1)
+    {
+      c2->Azimuth(10);
+    }
+    if (k == 2)
+    {
+      c2->Dolly(1.3);
+    }
+    c2->SetClippingRange(1, 40);
+    many->SetPass(nullptr);
+    win->Render();
+    const long raster = CountForegroundPixels(Grab(win), kBlack);
+    many->SetPass(pass);
+    win->Render();
+    const long traced = CountForegroundPixels(Grab(win), kBlack);
+    std::ostringstream s;
+    s << "10 actors, " << manySteps[k] << ": traced " << traced << " px, raster " << raster
+      << " px (want within 12%), " << pass->GetLastBVHBuilds() << " BVH builds, "
+      << pass->GetLastTopLevelBuilds() << " top-level builds";
+    const bool builds = k == 0 || (pass->GetLastBVHBuilds() == 0 &&
+      (k == 2 || pass->GetLastTopLevelBuilds() == 0));
+    Check(pass->GetLastTracedInstances() == 10 && raster > 2000 &&
+        std::abs(traced - raster) <= 0.12 * static_cast<double>(raster) && builds,
+      s.str());
   }
   NoVTKOutput("screen-sized points");
 }
