@@ -157,7 +157,7 @@ void Row(
             << r.Steady / p.Steady << std::setprecision(1) << std::setw(11) << r.First
             << std::setw(11) << p.First << std::setw(10) << r.SteadyCpu << std::setw(10)
             << p.SteadyCpu << std::setprecision(2) << std::setw(8) << r.SteadyCpu / p.SteadyCpu
-            << "\n";
+            << std::endl; // rows appear as they are measured (long runs)
 }
 } // namespace
 
