@@ -66,6 +66,7 @@ enum InstanceFlags : std::uint32_t
   kCellColors = 16u,
   kMirrored = 32u,
   kEllipsoids = 64u,
+  kColorTexture = 128u,
 };
 
 float bits(std::uint32_t u)
@@ -368,6 +369,10 @@ std::string assembleShader(const Features& f)
   if (f.Colors)
   {
     s << "#define VTKRT_HAS_COLORS\n";
+  }
+  if (f.ColorTexture)
+  {
+    s << "#define VTKRT_HAS_COLOR_TEXTURE\n";
   }
   if (f.Triangles && (f.VertexNormals || f.Colors))
   {
@@ -678,6 +683,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
       if (inst.Color)
       {
         flags |= inst.Color->CellColors ? kCellColors : kPointColors;
+        flags |= inst.Color->Texture ? kColorTexture : 0u;
       }
       if (localToCamera->Determinant() < 0.0)
       {
@@ -804,6 +810,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     f.Spheres = in.Scene.HasSpheres();
     f.VertexNormals = in.Scene.HasVertexNormals();
     f.Colors = in.Scene.HasColors();
+    f.ColorTexture = in.Scene.HasColorTexture();
     f.ClipPlanes = static_cast<int>(planes.size() / 4);
     f.Lights = static_cast<int>(lightCone.size() / 3);
     f.LightComplexity = f.Lights > 0 ? ren->GetLightingComplexity() : 0;

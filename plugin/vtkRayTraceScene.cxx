@@ -1,6 +1,7 @@
 #include "vtkRayTraceScene.h"
 
 #include "vtkActor.h"
+#include "vtkAlgorithm.h"
 #include "vtkAlgorithmOutput.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
@@ -14,7 +15,9 @@
 #include "vtkDataObject.h"
 #include "vtkDataObjectTree.h"
 #include "vtkDataObjectTreeIterator.h"
+#include "vtkFloatArray.h"
 #include "vtkGlyph3DMapper.h"
+#include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
@@ -36,6 +39,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -184,6 +188,65 @@ std::unique_ptr<Geometry> buildTriangles(vtkPolyData* poly, const core::BuildOpt
 }
 
 /// Spheres (centers, radii, VTK point ids) and the BVH over them.
+/// Whether a glyph source is a closed sphere: every point within a small
+/// relative tolerance of one distance from its bounds' center, and every
+/// polygon edge shared by exactly two polygons (a cap, a wedge or an
+/// ellipsoid is not one).
+bool sphereOfPolyData(vtkPolyData* poly, double center[3], double& radius)
+{
+  const vtkIdType n = poly->GetNumberOfPoints();
+  if (n < 4 || poly->GetNumberOfPolys() == 0 || poly->GetNumberOfStrips() > 0 ||
+    poly->GetNumberOfLines() > 0 || poly->GetNumberOfVerts() > 0)
+  {
+    return false;
+  }
+  double b[6];
+  poly->GetBounds(b);
+  for (int k = 0; k < 3; ++k)
+  {
+    center[k] = 0.5 * (b[2 * k] + b[2 * k + 1]);
+  }
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = 0.0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    poly->GetPoint(i, p);
+    const double d = std::sqrt(vtkMath::Distance2BetweenPoints(p, center));
+    if (!std::isfinite(d))
+    {
+      return false;
+    }
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+  }
+  radius = 0.5 * (lo + hi);
+  constexpr double relativeTolerance = 1e-4; // float coordinates of a double sphere
+  if (!(radius > 0.0) || hi - lo > relativeTolerance * radius)
+  {
+    return false;
+  }
+  std::map<std::pair<vtkIdType, vtkIdType>, int> edges;
+  vtkCellArray* polys = poly->GetPolys();
+  vtkIdType count = 0;
+  const vtkIdType* ids = nullptr;
+  for (polys->InitTraversal(); polys->GetNextCell(count, ids);)
+  {
+    if (count < 3)
+    {
+      return false;
+    }
+    for (vtkIdType k = 0; k < count; ++k)
+    {
+      const vtkIdType a = ids[k];
+      const vtkIdType c = ids[(k + 1) % count];
+      ++edges[std::make_pair(std::min(a, c), std::max(a, c))];
+    }
+  }
+  return std::all_of(edges.begin(), edges.end(),
+    [](const std::pair<const std::pair<vtkIdType, vtkIdType>, int>& e) { return e.second == 2; });
+}
+
 std::unique_ptr<Geometry> buildSpheres(const std::vector<Vec3<double>>& centers,
   const std::vector<double>& radii, const std::vector<std::uint32_t>& ids,
   const core::BuildOptions& options)
@@ -406,7 +469,8 @@ std::string Features::Key() const
     << this->LightComplexity << "I" << this->IdMode << "D" << this->Fp64 << "X"
     << this->TopLevel << "A" << this->SamplesPerPixel << "H" << this->Shadows << "O"
     << this->AmbientOcclusionSamples << "M" << this->MaximumTraversalSteps << "W"
-    << this->WorldCoordinates << "Q" << this->ScreenSpheres << "E" << this->Ellipsoids;
+    << this->WorldCoordinates << "Q" << this->ScreenSpheres << "E" << this->Ellipsoids << "X"
+    << this->ColorTexture;
   return s.str();
 }
 
@@ -509,7 +573,46 @@ Colors* Scene::GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time
   colors->Used = true;
   int cellFlag = 0;
   vtkUnsignedCharArray* mapped = mapper->MapScalars(data, 1.0, cellFlag);
-  if (mapped && cellFlag != 2 && mapped->GetNumberOfTuples() > 0)
+  vtkFloatArray* coordinates = mapper->GetColorCoordinates();
+  vtkImageData* texture = mapper->GetColorTextureMap();
+  vtkUnsignedCharArray* texels =
+    texture ? vtkArrayDownCast<vtkUnsignedCharArray>(texture->GetPointData()->GetScalars()) : nullptr;
+  if (!mapped && cellFlag == 0 && coordinates && texels &&
+    coordinates->GetNumberOfTuples() == data->GetNumberOfPoints() && data->GetNumberOfPoints() > 0)
+  {
+    // InterpolateScalarsBeforeMapping: VTK's raster interpolates these
+    // coordinates over each triangle and samples the texture with its
+    // defaults (nearest texel, clamped to the edge; the second row is the
+    // NaN color). The shader does the same.
+    int dims[3];
+    texture->GetDimensions(dims);
+    const int comps = coordinates->GetNumberOfComponents();
+    const vtkIdType n = coordinates->GetNumberOfTuples();
+    const std::size_t texelCount = static_cast<std::size_t>(dims[0]) * dims[1];
+    if (comps >= 1 && comps <= 2 && static_cast<std::size_t>(texels->GetNumberOfTuples()) >= texelCount)
+    {
+      colors->Texture = true;
+      const std::size_t texelOffset = 4 + static_cast<std::size_t>(n) * comps;
+      colors->Packed.reserve(texelOffset + texelCount);
+      colors->Packed = { static_cast<std::uint32_t>(texelOffset),
+        static_cast<std::uint32_t>(dims[0]), static_cast<std::uint32_t>(dims[1]),
+        static_cast<std::uint32_t>(comps) };
+      const float* c = coordinates->GetPointer(0);
+      for (std::size_t i = 0; i < static_cast<std::size_t>(n) * comps; ++i)
+      {
+        std::uint32_t u;
+        std::memcpy(&u, c + i, sizeof(u));
+        colors->Packed.push_back(u);
+      }
+      const int texelComps = texels->GetNumberOfComponents();
+      const unsigned char* t = texels->GetPointer(0);
+      for (std::size_t i = 0; i < texelCount; ++i)
+      {
+        colors->Packed.push_back(packRGBA(t + i * texelComps, texelComps));
+      }
+    }
+  }
+  else if (mapped && cellFlag != 2 && mapped->GetNumberOfTuples() > 0)
   {
     const int comps = mapped->GetNumberOfComponents();
     const vtkIdType n = mapped->GetNumberOfTuples();
@@ -663,10 +766,45 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
     return false;
   }
   vtkAlgorithmOutput* conn = mapper->GetInputConnection(1, 0);
-  vtkSphereSource* sphere = conn ? vtkSphereSource::SafeDownCast(conn->GetProducer()) : nullptr;
-  if (!sphere)
+  vtkAlgorithm* producer = conn ? conn->GetProducer() : nullptr;
+  if (!producer)
   {
     return false;
+  }
+  vtkSphereSource* sphere = vtkSphereSource::SafeDownCast(producer);
+  double r0 = 0.0;
+  double sourceCenter[3] = { 0, 0, 0 };
+  vtkMTimeType sourceTime = 0;
+  if (sphere)
+  {
+    r0 = sphere->GetRadius();
+    sphere->GetCenter(sourceCenter);
+    sourceTime = sphere->GetMTime();
+  }
+  else
+  {
+    // Any other source (a filter, SetSourceData): a sphere if its geometry
+    // is one (ParaView's sphere glyphs come through its own filter).
+    producer->Update(conn->GetIndex());
+    vtkPolyData* source = vtkPolyData::SafeDownCast(producer->GetOutputDataObject(conn->GetIndex()));
+    if (!source)
+    {
+      return false;
+    }
+    auto& shape = this->GlyphSourceCache[mapper];
+    if (shape.Data != source || shape.Time != source->GetMTime())
+    {
+      shape.Data = source;
+      shape.Time = source->GetMTime();
+      shape.Sphere = sphereOfPolyData(source, shape.Center.data(), shape.Radius);
+    }
+    if (!shape.Sphere)
+    {
+      return false;
+    }
+    r0 = shape.Radius;
+    std::copy(shape.Center.begin(), shape.Center.end(), sourceCenter);
+    sourceTime = shape.Time;
   }
   mapper->Update();
   vtkDataSet* input = mapper->GetInput();
@@ -695,14 +833,11 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
   // The mapper's own MTime (its GetMTime() adds the lookup table's, which
   // colors depend on, not the spheres).
   vtkMTimeType time =
-    std::max({ mapper->vtkObject::GetMTime(), input->GetMTime(), sphere->GetMTime() });
+    std::max({ mapper->vtkObject::GetMTime(), input->GetMTime(), sourceTime });
   auto& entry = this->SphereCache[mapper];
   if (!entry || entry->SourceTime != time || entry->Quality != this->BuildQuality)
   {
     vtkDataArray* mask = mapper->GetMasking() ? glyphArray(mapper, vtkGlyph3DMapper::MASK, input) : nullptr;
-    const double r0 = sphere->GetRadius();
-    double sourceCenter[3];
-    sphere->GetCenter(sourceCenter);
     const double* range = mapper->GetRange();
     double den = range[1] - range[0];
     if (den == 0.0)
@@ -1072,6 +1207,11 @@ bool Scene::HasColors() const
   return std::any_of(this->Instances.begin(), this->Instances.end(),
     [](const Instance& i) { return i.Color != nullptr; });
 }
+bool Scene::HasColorTexture() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.Color != nullptr && i.Color->Texture; });
+}
 int Scene::MaxClipPlanes() const
 {
   std::size_t total = 0;
@@ -1171,6 +1311,7 @@ void Scene::Clear()
   this->TriangleCache.clear();
   this->SphereCache.clear();
   this->ColorCache.clear();
+  this->GlyphSourceCache.clear();
   this->Instances.clear();
   this->GeometryDirty = true;
   this->ColorsDirty = true;

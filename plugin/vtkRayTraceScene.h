@@ -71,6 +71,11 @@ struct Colors
 {
   vtkMTimeType SourceTime = 0;
   bool CellColors = false;
+  /// InterpolateScalarsBeforeMapping: the mapper's color texture instead of
+  /// colors. Packed then holds a header (texel offset from Base, texture
+  /// width, height, coordinate components), the points' texture coordinates
+  /// (float bits) and the texture's RGBA8 texels, row by row.
+  bool Texture = false;
   std::vector<std::uint32_t> Packed;
   bool Used = false;
   vtkSmartPointer<vtkObject> Keep;
@@ -103,6 +108,7 @@ struct Features
   bool Spheres = false;
   bool VertexNormals = false;
   bool Colors = false;
+  bool ColorTexture = false; ///< some colors come through a color texture
   int ClipPlanes = 0;
   int Lights = 0;
   int LightComplexity = 0;
@@ -178,6 +184,7 @@ public:
   bool HasEllipsoids() const;
   bool HasVertexNormals() const;
   bool HasColors() const;
+  bool HasColorTexture() const;
   int MaxClipPlanes() const;
 
   void Clear();
@@ -209,6 +216,17 @@ private:
   std::map<const void*, std::unique_ptr<Geometry>> TriangleCache;
   std::map<const void*, std::unique_ptr<Geometry>> SphereCache;
   std::map<std::pair<const void*, const void*>, std::unique_ptr<Colors>> ColorCache;
+  /// Whether a glyph source that is not a vtkSphereSource is a sphere, per
+  /// mapper, decided once per (source data, MTime).
+  struct GlyphSourceShape
+  {
+    const void* Data = nullptr;
+    vtkMTimeType Time = 0;
+    bool Sphere = false;
+    std::array<double, 3> Center{ { 0, 0, 0 } };
+    double Radius = 0.0;
+  };
+  std::map<const void*, GlyphSourceShape> GlyphSourceCache;
   std::vector<Instance> Instances;
   bool GeometryDirty = true;
   bool ColorsDirty = true;

@@ -48,6 +48,7 @@ const uint kInstancePointColors = 8u;
 const uint kInstanceCellColors = 16u;
 const uint kInstanceMirrored = 32u;
 const uint kInstanceEllipsoids = 64u;
+const uint kInstanceColorTexture = 128u; // point colors through the mapper's color texture
 
 #ifdef VTKRT_HAS_COLORS
 uniform usamplerBuffer uColors; // packed RGBA8, four per texel
@@ -246,6 +247,30 @@ vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ng, vec3 ambientColor, vec3 diffuseColor,
 vec4 fetchColor(int i)
 {
   return unpackUnorm4x8(fetchPacked(uColors, i));
+}
+#endif
+
+#ifdef VTKRT_HAS_COLOR_TEXTURE
+// InterpolateScalarsBeforeMapping: at `base` a header (texel offset, width,
+// height, coordinate components), the points' texture coordinates, then the
+// mapper's color texture (the second row: the NaN color).
+vec2 fetchColorCoordinate(int base, int point)
+{
+  int comps = int(fetchPacked(uColors, base + 3));
+  int at = base + 4 + comps * point;
+  float t = comps > 1 ? uintBitsToFloat(fetchPacked(uColors, at + 1)) : 0.0;
+  return vec2(uintBitsToFloat(fetchPacked(uColors, at)), t);
+}
+
+// Sampled as VTK's raster samples it: nearest texel, clamped to the edge.
+vec4 lookupColorTexture(int base, vec2 st)
+{
+  int offset = int(fetchPacked(uColors, base));
+  int w = int(fetchPacked(uColors, base + 1));
+  int h = int(fetchPacked(uColors, base + 2));
+  int x = clamp(int(floor(st.x * float(w))), 0, w - 1);
+  int y = clamp(int(floor(st.y * float(h))), 0, h - 1);
+  return fetchColor(base + offset + y * w + x);
 }
 #endif
 
@@ -502,7 +527,17 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 #ifdef VTKRT_HAS_COLORS
     if ((flags & (kInstancePointColors | kInstanceCellColors)) != 0u)
     {
-      scalarColor = fetchColor(int(instanceBits(hitInstance, 6).w) + int(vtkId));
+      int cb = int(instanceBits(hitInstance, 6).w);
+#ifdef VTKRT_HAS_COLOR_TEXTURE
+      if ((flags & kInstanceColorTexture) != 0u)
+      {
+        scalarColor = lookupColorTexture(cb, fetchColorCoordinate(cb, int(vtkId)));
+      }
+      else
+#endif
+      {
+        scalarColor = fetchColor(cb + int(vtkId));
+      }
     }
 #endif
   }
@@ -538,8 +573,19 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
       if ((flags & kInstancePointColors) != 0u)
       {
         int cb = int(instanceBits(hitInstance, 6).w);
-        scalarColor = w0 * fetchColor(cb + i0) + hitUV.x * fetchColor(cb + i1) +
-          hitUV.y * fetchColor(cb + i2);
+#ifdef VTKRT_HAS_COLOR_TEXTURE
+        if ((flags & kInstanceColorTexture) != 0u)
+        {
+          vec2 st = w0 * fetchColorCoordinate(cb, i0) + hitUV.x * fetchColorCoordinate(cb, i1) +
+            hitUV.y * fetchColorCoordinate(cb, i2);
+          scalarColor = lookupColorTexture(cb, st);
+        }
+        else
+#endif
+        {
+          scalarColor = w0 * fetchColor(cb + i0) + hitUV.x * fetchColor(cb + i1) +
+            hitUV.y * fetchColor(cb + i2);
+        }
       }
 #endif
     }

@@ -1,0 +1,346 @@
+// Scalar coloring and glyph sources as VTK users (and ParaView) set them up:
+// InterpolateScalarsBeforeMapping (the mapper's color texture) against VTK's
+// raster, and sphere glyphs whose source is not a vtkSphereSource.
+#include "vtkrtImageRegression.h"
+#include "vtkrtPassTestUtils.h"
+#include "vtkrtTestOutputWindow.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellData.h"
+#include "vtkConeSource.h"
+#include "vtkCubeSource.h"
+#include "vtkElevationFilter.h"
+#include "vtkFloatArray.h"
+#include "vtkGlyph3DMapper.h"
+#include "vtkLookupTable.h"
+#include "vtkMath.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkSphereSource.h"
+#include "vtkTransform.h"
+#include "vtkTransformPolyDataFilter.h"
+#include "vtkTriangleFilter.h"
+
+#include <array>
+#include <sstream>
+#include <string>
+
+using namespace vtkrtPassTest;
+
+namespace
+{
+constexpr int kSize = 300;
+
+/// A 4-color table: interpolating scalars before mapping gives sharp bands
+/// of these colors, mapping before interpolating blends them.
+vtkSmartPointer<vtkLookupTable> FourColorTable()
+{
+  auto lut = vtkSmartPointer<vtkLookupTable>::New();
+  lut->SetNumberOfTableValues(4);
+  lut->SetTableValue(0, 0.9, 0.1, 0.1);
+  lut->SetTableValue(1, 0.1, 0.8, 0.1);
+  lut->SetTableValue(2, 0.1, 0.2, 0.9);
+  lut->SetTableValue(3, 0.9, 0.9, 0.1);
+  lut->SetNanColor(0.9, 0.1, 0.9, 1.0);
+  lut->Build();
+  return lut;
+}
+
+/// A coarse sphere (large triangles) colored by elevation, one point NaN.
+vtkSmartPointer<vtkPolyData> ElevationSphere()
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(10);
+  sphere->SetPhiResolution(7);
+  vtkNew<vtkElevationFilter> elevation;
+  elevation->SetInputConnection(sphere->GetOutputPort());
+  elevation->SetLowPoint(-0.4, -0.5, 0);
+  elevation->SetHighPoint(0.4, 0.5, 0);
+  elevation->Update();
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->DeepCopy(elevation->GetOutput());
+  poly->GetPointData()->GetScalars()->SetComponent(12, 0, vtkMath::Nan());
+  return poly;
+}
+
+struct ScalarScene
+{
+  vtkSmartPointer<vtkEGLHeadlessRenderWindow> Window;
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkPolyDataMapper> Mapper;
+  vtkNew<vtkRayTracePass> Pass;
+
+  ScalarScene(vtkPolyData* poly, vtkLookupTable* lut, bool cellScalars)
+  {
+    this->Window = MakeWindow(kSize, kSize);
+    this->Window->AddRenderer(this->Renderer);
+    this->Mapper->SetInputData(poly);
+    this->Mapper->SetLookupTable(lut);
+    this->Mapper->SetScalarRange(0.0, 1.0);
+    if (cellScalars)
+    {
+      this->Mapper->SetScalarModeToUseCellData();
+    }
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(this->Mapper);
+    actor->GetProperty()->SetSpecular(0.3);
+    actor->GetProperty()->SetSpecularPower(20);
+    this->Renderer->AddActor(actor);
+    this->Renderer->SetBackground(0.1, 0.1, 0.15);
+    this->Renderer->ResetCamera();
+    this->Renderer->GetActiveCamera()->Elevation(15);
+    this->Renderer->ResetCameraClippingRange();
+  }
+
+  /// Raster and traced images of the scene with the option on or off.
+  void Render(bool interpolateBefore, vtkSmartPointer<vtkImageData>& raster,
+    vtkSmartPointer<vtkImageData>& traced)
+  {
+    this->Mapper->SetInterpolateScalarsBeforeMapping(interpolateBefore);
+    this->Renderer->SetPass(nullptr);
+    this->Window->Render();
+    raster = Grab(this->Window);
+    this->Renderer->SetPass(this->Pass);
+    this->Window->Render();
+    traced = Grab(this->Window);
+  }
+};
+
+void CheckClose(const std::string& name, vtkImageData* traced, vtkImageData* raster,
+  double threshold)
+{
+  const double error = Difference(traced, raster);
+  const long differing = CountDifferingPixels(traced, raster, 24);
+  std::ostringstream what;
+  what << name << ": ray traced vs raster error " << error << " <= " << threshold << ", "
+       << differing << " pixels differ by > 24 (<= 1% of " << kSize * kSize << ")";
+  const bool ok = error <= threshold && differing >= 0 && differing <= kSize * kSize / 100;
+  Check(ok, what.str());
+  if (!ok)
+  {
+    WritePNG(raster, std::string(VTKRT_TEMP_DIR) + "/pass_" + name + ".raster.png");
+    WritePNG(traced, std::string(VTKRT_TEMP_DIR) + "/pass_" + name + ".traced.png");
+  }
+}
+
+bool HasColorTexture(vtkRayTracePass* pass)
+{
+  return std::string(pass->GetLastFeatureKey()).find("X1") != std::string::npos;
+}
+
+// InterpolateScalarsBeforeMapping on point scalars: the traced image matches
+// VTK's raster with the option on (bands of the 4 table colors, the NaN
+// color around the NaN point), and differs from the option off, as raster's
+// does. Camera moves upload nothing; a table change re-uploads the colors.
+void TestInterpolateBeforeMapping()
+{
+  auto lut = FourColorTable();
+  ScalarScene scene(ElevationSphere(), lut, false);
+  vtkSmartPointer<vtkImageData> rasterOn, tracedOn, rasterOff, tracedOff;
+  scene.Render(false, rasterOff, tracedOff);
+  Check(!HasColorTexture(scene.Pass), "option off: no color texture code in the shader");
+  scene.Render(true, rasterOn, tracedOn);
+  Check(HasColorTexture(scene.Pass), "option on: the shader samples the color texture");
+  Check(scene.Pass->GetLastTracedInstances() == 1, "option on: the mesh is traced");
+
+  CheckClose("InterpolateBeforeMapping", tracedOn, rasterOn, 3.0);
+  CheckClose("InterpolateAfterMapping", tracedOff, rasterOff, 3.0);
+  // The option matters in this scene (raster), and the pass follows it.
+  const long rasterChange = CountDifferingPixels(rasterOn, rasterOff, 24);
+  const long tracedChange = CountDifferingPixels(tracedOn, tracedOff, 24);
+  const long foreground = CountForegroundPixels(tracedOn, scene.Renderer->GetBackground());
+  std::ostringstream change;
+  change << "option on vs off: raster " << rasterChange << ", traced " << tracedChange
+         << " pixels differ (each >= 5% of the " << foreground << " foreground pixels)";
+  Check(rasterChange >= foreground / 20 && tracedChange >= foreground / 20 && foreground > 0,
+    change.str());
+  Check(vtkrtCompareWithBaseline(tracedOn, "pass_InterpolateBeforeMapping") == 1,
+    "InterpolateBeforeMapping: matches its baseline");
+
+  // A camera move: nothing uploaded or built; a table change: colors again.
+  scene.Renderer->GetActiveCamera()->Azimuth(30);
+  scene.Window->Render();
+  Check(scene.Pass->GetLastGeometryBytesUploaded() == 0 && scene.Pass->GetLastBVHBuilds() == 0 &&
+      scene.Pass->GetLastShaderCompiles() == 0,
+    "camera move: no upload, no build, no compile");
+  lut->SetTableValue(1, 0.9, 0.5, 0.1);
+  scene.Window->Render();
+  Check(scene.Pass->GetLastGeometryBytesUploaded() > 0 && scene.Pass->GetLastBVHBuilds() == 0,
+    "table change: the colors are uploaded again, no BVH build");
+  NoVTKOutput("InterpolateBeforeMapping");
+}
+
+// Cell scalars never go through the color texture: the option changes
+// nothing, in raster or traced.
+void TestCellScalarsUnaffected()
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(10);
+  sphere->SetPhiResolution(7);
+  sphere->Update();
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->ShallowCopy(sphere->GetOutput());
+  vtkNew<vtkFloatArray> values;
+  for (vtkIdType i = 0; i < poly->GetNumberOfCells(); ++i)
+  {
+    values->InsertNextValue(static_cast<float>(i % 5) / 4.0f);
+  }
+  poly->GetCellData()->SetScalars(values);
+  poly->GetPointData()->SetScalars(nullptr);
+  ScalarScene scene(poly, FourColorTable(), true);
+  vtkSmartPointer<vtkImageData> rasterOn, tracedOn, rasterOff, tracedOff;
+  scene.Render(false, rasterOff, tracedOff);
+  scene.Render(true, rasterOn, tracedOn);
+  Check(!HasColorTexture(scene.Pass), "cell scalars: no color texture");
+  CheckClose("CellScalarsInterpolateBefore", tracedOn, rasterOn, 3.0);
+  Check(CountDifferingPixels(tracedOn, tracedOff, 0) == 0, "cell scalars: the option changes nothing");
+  NoVTKOutput("CellScalars");
+}
+
+/// 27 glyph points on a grid.
+vtkSmartPointer<vtkPolyData> GlyphPoints()
+{
+  vtkNew<vtkPoints> points;
+  for (int i = 0; i < 27; ++i)
+  {
+    points->InsertNextPoint(i % 3, (i / 3) % 3, i / 9);
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(points);
+  return poly;
+}
+
+struct GlyphResult
+{
+  vtkSmartPointer<vtkImageData> Traced;
+  vtkSmartPointer<vtkImageData> Raster;
+  int TracedProps = 0;
+  vtkTypeInt64 TracedPrimitives = 0;
+};
+
+/// Raster then traced image of sphere-ish glyphs from `source` (connection
+/// or data).
+GlyphResult RenderGlyphs(vtkAlgorithm* source, vtkPolyData* sourceData)
+{
+  auto win = MakeWindow(kSize, kSize);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  vtkNew<vtkGlyph3DMapper> mapper;
+  mapper->SetInputData(GlyphPoints());
+  if (source)
+  {
+    mapper->SetSourceConnection(source->GetOutputPort());
+  }
+  else
+  {
+    mapper->SetSourceData(sourceData);
+  }
+  mapper->ScalingOff();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(0.8, 0.7, 0.5);
+  ren->AddActor(actor);
+  ren->SetBackground(0.1, 0.1, 0.15);
+  ren->GetActiveCamera()->SetPosition(5, 4, 7);
+  ren->GetActiveCamera()->SetFocalPoint(1, 1, 1);
+  ren->ResetCamera(-0.5, 2.5, -0.5, 2.5, -0.5, 2.5);
+  GlyphResult r;
+  win->Render();
+  r.Raster = Grab(win);
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+  win->Render();
+  r.Traced = Grab(win);
+  r.TracedProps = pass->GetNumberOfTracedProps();
+  r.TracedPrimitives = pass->GetLastTracedPrimitives();
+  return r;
+}
+
+vtkSmartPointer<vtkSphereSource> GlyphSphere()
+{
+  auto sphere = vtkSmartPointer<vtkSphereSource>::New();
+  sphere->SetRadius(0.35);
+  sphere->SetCenter(0.1, 0.0, -0.05); // offset glyph centers are honoured
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(16);
+  return sphere;
+}
+
+// Glyph sources that are spheres without being a vtkSphereSource (a filter
+// output, SetSourceData) are traced as the same analytic spheres; other
+// shapes (cube, cone, half sphere, wedge, ellipsoid) fall back to raster.
+void TestGlyphSources()
+{
+  auto sphere = GlyphSphere();
+  const GlyphResult reference = RenderGlyphs(sphere, nullptr);
+  Check(reference.TracedProps == 1 && reference.TracedPrimitives == 27,
+    "vtkSphereSource glyphs: 27 analytic spheres");
+
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(sphere->GetOutputPort());
+  const GlyphResult filtered = RenderGlyphs(triangles, nullptr);
+  sphere->Update();
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  data->DeepCopy(sphere->GetOutput());
+  const GlyphResult fromData = RenderGlyphs(nullptr, data);
+  for (const auto& c : { std::make_pair("vtkTriangleFilter", &filtered),
+         std::make_pair("SetSourceData", &fromData) })
+  {
+    const GlyphResult& r = *c.second;
+    std::ostringstream what;
+    what << c.first << " sphere glyphs: traced as " << r.TracedPrimitives << " spheres (27)";
+    Check(r.TracedProps == 1 && r.TracedPrimitives == 27, what.str());
+    const long differing = CountDifferingPixels(r.Traced, reference.Traced, 8);
+    std::ostringstream same;
+    same << c.first << " sphere glyphs: " << differing
+         << " pixels differ from the vtkSphereSource image (<= 0.1%)";
+    Check(differing >= 0 && differing <= kSize * kSize / 1000, same.str());
+    CheckClose(std::string("GlyphSource") + c.first, r.Traced, r.Raster, 5.0);
+  }
+
+  // Not spheres: left to raster.
+  vtkNew<vtkCubeSource> cube;
+  vtkNew<vtkConeSource> cone;
+  cone->SetResolution(16);
+  auto half = GlyphSphere();
+  half->SetEndPhi(90);
+  auto wedge = GlyphSphere();
+  wedge->SetEndTheta(270);
+  vtkNew<vtkTransform> stretch;
+  stretch->Scale(1.0, 1.0, 1.3);
+  vtkNew<vtkTransformPolyDataFilter> ellipsoid;
+  ellipsoid->SetTransform(stretch);
+  ellipsoid->SetInputConnection(GlyphSphere()->GetOutputPort());
+  for (const auto& c : { std::make_pair("cube", static_cast<vtkAlgorithm*>(cube)),
+         std::make_pair("cone", static_cast<vtkAlgorithm*>(cone)),
+         std::make_pair("half sphere", static_cast<vtkAlgorithm*>(half)),
+         std::make_pair("wedge", static_cast<vtkAlgorithm*>(wedge)),
+         std::make_pair("ellipsoid", static_cast<vtkAlgorithm*>(ellipsoid)) })
+  {
+    vtkNew<vtkTriangleFilter> tri; // a filter in between, as ParaView has
+    tri->SetInputConnection(c.second->GetOutputPort());
+    const GlyphResult r = RenderGlyphs(tri, nullptr);
+    const long differing = CountDifferingPixels(r.Traced, r.Raster, 8);
+    std::ostringstream what;
+    what << c.first << " glyphs: not traced (" << r.TracedProps << " traced props), the raster image ("
+         << differing << " pixels differ, <= 0.1%)";
+    Check(r.TracedProps == 0 && differing >= 0 && differing <= kSize * kSize / 1000 &&
+        CountForegroundPixels(r.Traced, std::array<double, 3>{ { 0.1, 0.1, 0.15 } }.data()) > 0,
+      what.str());
+  }
+  NoVTKOutput("GlyphSources");
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Output = vtkrtTestOutputWindow::Install();
+  return RunCase(argc, argv,
+    { { "InterpolateBeforeMapping", TestInterpolateBeforeMapping },
+      { "CellScalarsUnaffected", TestCellScalarsUnaffected },
+      { "GlyphSources", TestGlyphSources } });
+}
