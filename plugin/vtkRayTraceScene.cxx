@@ -21,6 +21,7 @@
 #include "vtkInformation.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
+#include "vtkNew.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
@@ -571,10 +572,22 @@ Colors* Scene::GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time
   colors->SourceTime = time;
   colors->Keep = data;
   colors->Used = true;
+  // Mapped by a helper with the mapper's settings and `data` as its input:
+  // vtkMapper caches its colors and color texture coordinates by its own
+  // input's MTime, stale for the blocks of a composite mapper (which does
+  // the same with its own per-block helpers).
+  vtkNew<vtkPolyDataMapper> helper;
+  helper->vtkMapper::ShallowCopy(mapper);
+  helper->SetArrayName(mapper->GetArrayName());
+  helper->SetArrayId(mapper->GetArrayId());
+  helper->SetArrayAccessMode(mapper->GetArrayAccessMode());
+  helper->SetArrayComponent(mapper->GetArrayComponent());
+  helper->SetFieldDataTupleId(mapper->GetFieldDataTupleId());
+  helper->SetInputData(data);
   int cellFlag = 0;
-  vtkUnsignedCharArray* mapped = mapper->MapScalars(data, 1.0, cellFlag);
-  vtkFloatArray* coordinates = mapper->GetColorCoordinates();
-  vtkImageData* texture = mapper->GetColorTextureMap();
+  vtkUnsignedCharArray* mapped = helper->MapScalars(data, 1.0, cellFlag);
+  vtkFloatArray* coordinates = helper->GetColorCoordinates();
+  vtkImageData* texture = helper->GetColorTextureMap();
   vtkUnsignedCharArray* texels =
     texture ? vtkArrayDownCast<vtkUnsignedCharArray>(texture->GetPointData()->GetScalars()) : nullptr;
   if (!mapped && cellFlag == 0 && coordinates && texels &&

@@ -9,12 +9,14 @@
 #include "vtkCamera.h"
 #include "vtkCellData.h"
 #include "vtkConeSource.h"
+#include "vtkCompositePolyDataMapper2.h"
 #include "vtkCubeSource.h"
 #include "vtkElevationFilter.h"
 #include "vtkFloatArray.h"
 #include "vtkGlyph3DMapper.h"
 #include "vtkLookupTable.h"
 #include "vtkMath.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -201,6 +203,53 @@ void TestCellScalarsUnaffected()
   NoVTKOutput("CellScalars");
 }
 
+// vtkCompositePolyDataMapper2 (ParaView's mapper) with the option on over
+// blocks of the same size and different scalars: each block gets its own
+// texture coordinates.
+void TestCompositeInterpolateBeforeMapping()
+{
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(3);
+  for (int i = 0; i < 3; ++i)
+  {
+    vtkNew<vtkSphereSource> sphere;
+    sphere->SetCenter(1.1 * i, 0.3 * i, 0.0);
+    sphere->SetThetaResolution(10);
+    sphere->SetPhiResolution(7);
+    vtkNew<vtkElevationFilter> elevation;
+    elevation->SetInputConnection(sphere->GetOutputPort());
+    elevation->SetLowPoint(-0.5, -0.5, 0);
+    elevation->SetHighPoint(2.7, 1.1, 0);
+    elevation->Update();
+    vtkNew<vtkPolyData> poly;
+    poly->DeepCopy(elevation->GetOutput());
+    blocks->SetBlock(i, poly);
+  }
+  auto win = MakeWindow(kSize, kSize);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  vtkNew<vtkCompositePolyDataMapper2> mapper;
+  mapper->SetInputDataObject(blocks);
+  mapper->SetLookupTable(FourColorTable());
+  mapper->SetScalarRange(0.0, 1.0);
+  mapper->InterpolateScalarsBeforeMappingOn();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  ren->AddActor(actor);
+  ren->SetBackground(0.1, 0.1, 0.15);
+  ren->ResetCamera();
+  win->Render();
+  auto raster = Grab(win);
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+  win->Render();
+  auto traced = Grab(win);
+  Check(pass->GetLastTracedInstances() == 3 && HasColorTexture(pass),
+    "composite: 3 blocks traced with the color texture");
+  CheckClose("CompositeInterpolateBeforeMapping", traced, raster, 3.0);
+  NoVTKOutput("CompositeInterpolateBeforeMapping");
+}
+
 /// 27 glyph points on a grid.
 vtkSmartPointer<vtkPolyData> GlyphPoints()
 {
@@ -342,5 +391,6 @@ int main(int argc, char* argv[])
   return RunCase(argc, argv,
     { { "InterpolateBeforeMapping", TestInterpolateBeforeMapping },
       { "CellScalarsUnaffected", TestCellScalarsUnaffected },
+      { "CompositeInterpolateBeforeMapping", TestCompositeInterpolateBeforeMapping },
       { "GlyphSources", TestGlyphSources } });
 }
