@@ -59,6 +59,26 @@ bool intersectRayAABB(vec3 org, vec3 invDir, vec3 bmin, vec3 bmax, float tmin, f
   return tmin <= tmax;
 }
 
+// The slab test of core::intersectRayAABB without its per-axis branches
+// (llvmpipe runs both sides of every branch, masked): the same arithmetic on
+// every axis the ray is not parallel to, so the same result there; a
+// parallel axis (invDir 0, so t0 = t1 = 0) is made to accept every box by
+// parallelBias (3e38 on such axes, 0 elsewhere) instead of testing the
+// origin against the slab. Accepting more boxes than the core never changes
+// the hit, only how much is tested. Needs tmin >= 0 (a parallel axis
+// contributes tnear 0).
+bool intersectRayBoxConservative(vec3 org, vec3 invDir, vec3 parallelBias, vec3 bmin, vec3 bmax,
+  float tmin, float tmax, out float tnear)
+{
+  vec3 t0 = (bmin - org) * invDir;
+  vec3 t1 = (bmax - org) * invDir;
+  vec3 tn = min(t0, t1);
+  vec3 tf = max(t0, t1) * kFarScale + parallelBias;
+  tnear = max(max(tn.x, tn.y), max(tn.z, tmin));
+  float tfar = min(min(tf.x, tf.y), min(tf.z, tmax));
+  return tnear <= tfar;
+}
+
 // Mirrors core::intersectRayPlane for a plane n.p + d = 0, used to clip the
 // ray's [tmin, tmax] to the half-space n.p + d >= 0 (what VTK keeps).
 // Returns false when nothing of the interval survives.

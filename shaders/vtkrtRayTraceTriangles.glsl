@@ -97,25 +97,6 @@ bool intersectRayTriangle(RayTrianglePrecomputed r, vec3 v0, vec3 v1, vec3 v2, f
   return true;
 }
 
-// The slab test of core::intersectRayAABB without its per-axis branches
-// (llvmpipe runs both sides of every branch, masked): the same arithmetic on
-// every axis the ray is not parallel to, so the same result there; a
-// parallel axis (invDir 0, so t0 = t1 = 0) accepts every box through
-// parallelBias (3e38 on such axes, 0 elsewhere) instead of testing the
-// origin against the slab. Accepting more boxes than the core never changes
-// the hit, only how much is tested. Needs tmin >= 0.
-bool intersectRayNodeBox(vec3 org, vec3 invDir, vec3 parallelBias, vec3 bmin, vec3 bmax,
-  float tmin, float tmax, out float tnear)
-{
-  vec3 t0 = (bmin - org) * invDir;
-  vec3 t1 = (bmax - org) * invDir;
-  vec3 tn = min(t0, t1);
-  vec3 tf = max(t0, t1) * kFarScale + parallelBias;
-  tnear = max(max(tn.x, tn.y), max(tn.z, tmin));
-  float tfar = min(min(tf.x, tf.y), min(tf.z, tmax));
-  return tnear <= tfar;
-}
-
 // Closest hit in the triangle BVH whose root node is `root`: on a hit, tmax
 // becomes the hit distance, tri the triangle's leaf-order index (global) and
 // uv its barycentrics. stopAtFirstHit: any hit (core::anyHit) instead, for
@@ -174,9 +155,9 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
       uvec4 lo1 = texelFetch(uNodes, child + 2);
       uvec4 hi1 = texelFetch(uNodes, child + 3);
       float t0, t1;
-      bool h0 = intersectRayNodeBox(
+      bool h0 = intersectRayBoxConservative(
         org, invDir, parallelBias, boxCorner(lo0), boxCorner(hi0), tmin, tmax, t0) && !culled;
-      bool h1 = intersectRayNodeBox(
+      bool h1 = intersectRayBoxConservative(
         org, invDir, parallelBias, boxCorner(lo1), boxCorner(hi1), tmin, tmax, t1) && !culled;
       culled = false;
       // Branch free (llvmpipe would run every branch, masked): the farther
