@@ -989,7 +989,9 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
     {
       colors = this->GetColors(mapper, asPoly, input->GetMTime());
     }
-    inst.Color = colors && !colors->CellColors ? colors : nullptr;
+    // With InterpolateScalarsBeforeMapping (a color texture) VTK 9.1's
+    // glyph mapper gets no colors and draws the property's color: so do we.
+    inst.Color = colors && !colors->CellColors && !colors->Texture ? colors : nullptr;
     this->Instances.push_back(inst);
   }
   return true;

@@ -7,6 +7,7 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkConeSource.h"
 #include "vtkCompositePolyDataMapper2.h"
@@ -250,6 +251,88 @@ void TestCompositeInterpolateBeforeMapping()
   NoVTKOutput("CompositeInterpolateBeforeMapping");
 }
 
+// Points drawn as spheres with the option on: each sphere takes its point's
+// texel (the same color as with the option off), as raster colors it. Sphere
+// glyphs: VTK 9.1's glyph mapper ignores the scalars with the option on (it
+// gets a color texture, no colors): the pass draws them as raster does.
+void TestPointsInterpolateBeforeMapping()
+{
+  auto lut = FourColorTable();
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> values;
+  vtkNew<vtkCellArray> verts;
+  for (int i = 0; i < 27; ++i)
+  {
+    points->InsertNextPoint(i % 3, (i / 3) % 3, i / 9);
+    values->InsertNextValue(i == 13 ? vtkMath::Nan() : static_cast<float>(i) / 26.0f);
+    verts->InsertNextCell(1);
+    verts->InsertCellPoint(i);
+  }
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(points);
+  poly->GetPointData()->SetScalars(values);
+  poly->SetVerts(verts);
+  for (const bool glyphs : { false, true })
+  {
+    const std::string name = glyphs ? "GlyphsInterpolateBeforeMapping" : "PointsInterpolateBeforeMapping";
+    auto win = MakeWindow(kSize, kSize);
+    vtkNew<vtkRenderer> ren;
+    win->AddRenderer(ren);
+    vtkNew<vtkActor> actor;
+    vtkNew<vtkSphereSource> sphere;
+    sphere->SetRadius(0.3);
+    sphere->SetThetaResolution(32);
+    sphere->SetPhiResolution(24);
+    vtkSmartPointer<vtkMapper> mapper;
+    if (glyphs)
+    {
+      vtkNew<vtkGlyph3DMapper> glyphMapper;
+      glyphMapper->SetInputData(poly);
+      glyphMapper->SetSourceConnection(sphere->GetOutputPort());
+      glyphMapper->ScalingOff();
+      mapper = glyphMapper;
+    }
+    else
+    {
+      vtkNew<vtkPolyDataMapper> pointMapper;
+      pointMapper->SetInputData(poly);
+      mapper = pointMapper;
+      actor->GetProperty()->SetRepresentationToPoints();
+      actor->GetProperty()->RenderPointsAsSpheresOn();
+      actor->GetProperty()->SetPointSize(20);
+    }
+    mapper->SetLookupTable(lut);
+    mapper->SetScalarRange(0.0, 1.0);
+    mapper->InterpolateScalarsBeforeMappingOn();
+    actor->SetMapper(mapper);
+    ren->AddActor(actor);
+    ren->SetBackground(0.1, 0.1, 0.15);
+    ren->GetActiveCamera()->SetPosition(5, 4, 7);
+    ren->GetActiveCamera()->SetFocalPoint(1, 1, 1);
+    ren->ResetCamera(-0.5, 2.5, -0.5, 2.5, -0.5, 2.5);
+    win->Render();
+    auto raster = Grab(win);
+    vtkNew<vtkRayTracePass> pass;
+    ren->SetPass(pass);
+    win->Render();
+    auto traced = Grab(win);
+    Check(pass->GetLastTracedInstances() == 1 && HasColorTexture(pass) == !glyphs,
+      name + (glyphs ? ": traced without scalar colors" : ": traced with the color texture"));
+    // Raster's points are impostors: the threshold of pass.PointsAsSpheres.
+    CheckClose(name, traced, raster, glyphs ? 5.0 : 60.0);
+    mapper->InterpolateScalarsBeforeMappingOff();
+    win->Render();
+    auto tracedOff = Grab(win);
+    const long differing = CountDifferingPixels(traced, tracedOff, 8);
+    std::ostringstream what;
+    what << name << ": " << differing << " pixels differ from the option off ("
+         << (glyphs ? ">= 5%: scalar colors appear" : "<= 0.1%: same colors") << ")";
+    Check(glyphs ? differing >= kSize * kSize / 20 : differing >= 0 && differing <= kSize * kSize / 1000,
+      what.str());
+    NoVTKOutput(name);
+  }
+}
+
 /// 27 glyph points on a grid.
 vtkSmartPointer<vtkPolyData> GlyphPoints()
 {
@@ -391,6 +474,7 @@ int main(int argc, char* argv[])
   return RunCase(argc, argv,
     { { "InterpolateBeforeMapping", TestInterpolateBeforeMapping },
       { "CellScalarsUnaffected", TestCellScalarsUnaffected },
+      { "PointsInterpolateBeforeMapping", TestPointsInterpolateBeforeMapping },
       { "CompositeInterpolateBeforeMapping", TestCompositeInterpolateBeforeMapping },
       { "GlyphSources", TestGlyphSources } });
 }
