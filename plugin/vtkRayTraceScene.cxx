@@ -227,22 +227,72 @@ bool sphereOfPolyData(vtkPolyData* poly, double center[3], double& radius)
   {
     return false;
   }
+  // Closedness by position: points at the same place count as one (seams
+  // of textured spheres), and polygons collapsed to an edge are skipped.
+  // Positions are compared on a grid of radius * 1e-6 (seam points computed
+  // as cos(2 pi) vs cos(0) differ in their last bits).
+  const double cellSize = radius * 1e-6;
+  std::map<std::array<long long, 3>, vtkIdType> byPosition;
+  std::vector<vtkIdType> merged(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    poly->GetPoint(i, p);
+    const std::array<long long, 3> key{ { std::llround((p[0] - center[0]) / cellSize),
+      std::llround((p[1] - center[1]) / cellSize), std::llround((p[2] - center[2]) / cellSize) } };
+    merged[static_cast<std::size_t>(i)] = byPosition.emplace(key, i).first->second;
+  }
   std::map<std::pair<vtkIdType, vtkIdType>, int> edges;
   vtkCellArray* polys = poly->GetPolys();
   vtkIdType count = 0;
   const vtkIdType* ids = nullptr;
+  std::vector<vtkIdType> cell;
+  // A coarse polyhedron whose corners lie on a sphere (a cube, an
+  // octahedron) is not one: its faces must stay near the sphere too.
+  constexpr double minimumCentroidDistance = 0.85; // of the radius
   for (polys->InitTraversal(); polys->GetNextCell(count, ids);)
   {
-    if (count < 3)
+    double centroid[3] = { 0, 0, 0 };
+    for (vtkIdType k = 0; k < count; ++k)
+    {
+      double p[3];
+      poly->GetPoint(ids[k], p);
+      for (int j = 0; j < 3; ++j)
+      {
+        centroid[j] += (p[j] - center[j]) / static_cast<double>(count);
+      }
+    }
+    if (count > 0 && vtkMath::Norm(centroid) < minimumCentroidDistance * radius)
     {
       return false;
     }
+    cell.clear();
     for (vtkIdType k = 0; k < count; ++k)
     {
-      const vtkIdType a = ids[k];
-      const vtkIdType c = ids[(k + 1) % count];
+      const vtkIdType id = merged[static_cast<std::size_t>(ids[k])];
+      if (cell.empty() || cell.back() != id)
+      {
+        cell.push_back(id);
+      }
+    }
+    while (cell.size() > 1 && cell.back() == cell.front())
+    {
+      cell.pop_back();
+    }
+    if (cell.size() < 3)
+    {
+      continue; // degenerate
+    }
+    for (std::size_t k = 0; k < cell.size(); ++k)
+    {
+      const vtkIdType a = cell[k];
+      const vtkIdType c = cell[(k + 1) % cell.size()];
       ++edges[std::make_pair(std::min(a, c), std::max(a, c))];
     }
+  }
+  if (edges.empty())
+  {
+    return false;
   }
   return std::all_of(edges.begin(), edges.end(),
     [](const std::pair<const std::pair<vtkIdType, vtkIdType>, int>& e) { return e.second == 2; });

@@ -18,12 +18,14 @@
 #include "vtkLookupTable.h"
 #include "vtkMath.h"
 #include "vtkMultiBlockDataSet.h"
+#include "vtkPlatonicSolidSource.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkSphereSource.h"
+#include "vtkTexturedSphereSource.h"
 #include "vtkTransform.h"
 #include "vtkTransformPolyDataFilter.h"
 #include "vtkTriangleFilter.h"
@@ -352,6 +354,7 @@ struct GlyphResult
   vtkSmartPointer<vtkImageData> Raster;
   int TracedProps = 0;
   vtkTypeInt64 TracedPrimitives = 0;
+  int SecondFrameBuilds = -1; ///< after a camera move
 };
 
 /// Raster then traced image of sphere-ish glyphs from `source` (connection
@@ -389,6 +392,9 @@ GlyphResult RenderGlyphs(vtkAlgorithm* source, vtkPolyData* sourceData)
   r.Traced = Grab(win);
   r.TracedProps = pass->GetNumberOfTracedProps();
   r.TracedPrimitives = pass->GetLastTracedPrimitives();
+  ren->GetActiveCamera()->Azimuth(10);
+  win->Render();
+  r.SecondFrameBuilds = pass->GetLastBVHBuilds();
   return r;
 }
 
@@ -419,13 +425,26 @@ void TestGlyphSources()
   auto data = vtkSmartPointer<vtkPolyData>::New();
   data->DeepCopy(sphere->GetOutput());
   const GlyphResult fromData = RenderGlyphs(nullptr, data);
+  // A sphere with duplicated seam and pole points (texture coordinates).
+  vtkNew<vtkTexturedSphereSource> textured;
+  textured->SetRadius(0.35);
+  textured->SetThetaResolution(24);
+  textured->SetPhiResolution(16);
+  vtkNew<vtkTransform> shift;
+  shift->Translate(0.1, 0.0, -0.05);
+  vtkNew<vtkTransformPolyDataFilter> shifted;
+  shifted->SetTransform(shift);
+  shifted->SetInputConnection(textured->GetOutputPort());
+  const GlyphResult seams = RenderGlyphs(shifted, nullptr);
   for (const auto& c : { std::make_pair("vtkTriangleFilter", &filtered),
-         std::make_pair("SetSourceData", &fromData) })
+         std::make_pair("SetSourceData", &fromData),
+         std::make_pair("vtkTexturedSphereSource", &seams) })
   {
     const GlyphResult& r = *c.second;
     std::ostringstream what;
     what << c.first << " sphere glyphs: traced as " << r.TracedPrimitives << " spheres (27)";
     Check(r.TracedProps == 1 && r.TracedPrimitives == 27, what.str());
+    Check(r.SecondFrameBuilds == 0, std::string(c.first) + " sphere glyphs: camera move builds nothing");
     const long differing = CountDifferingPixels(r.Traced, reference.Traced, 8);
     std::ostringstream same;
     same << c.first << " sphere glyphs: " << differing
@@ -435,7 +454,7 @@ void TestGlyphSources()
   }
 
   // Not spheres: left to raster.
-  vtkNew<vtkCubeSource> cube;
+  vtkNew<vtkCubeSource> cube; // its corners lie on a sphere, its faces do not
   vtkNew<vtkConeSource> cone;
   cone->SetResolution(16);
   auto half = GlyphSphere();
@@ -447,7 +466,13 @@ void TestGlyphSources()
   vtkNew<vtkTransformPolyDataFilter> ellipsoid;
   ellipsoid->SetTransform(stretch);
   ellipsoid->SetInputConnection(GlyphSphere()->GetOutputPort());
+  vtkNew<vtkPlatonicSolidSource> octahedron; // corners on a sphere
+  octahedron->SetSolidTypeToOctahedron();
+  vtkNew<vtkPlatonicSolidSource> icosahedron;
+  icosahedron->SetSolidTypeToIcosahedron();
   for (const auto& c : { std::make_pair("cube", static_cast<vtkAlgorithm*>(cube)),
+         std::make_pair("octahedron", static_cast<vtkAlgorithm*>(octahedron)),
+         std::make_pair("icosahedron", static_cast<vtkAlgorithm*>(icosahedron)),
          std::make_pair("cone", static_cast<vtkAlgorithm*>(cone)),
          std::make_pair("half sphere", static_cast<vtkAlgorithm*>(half)),
          std::make_pair("wedge", static_cast<vtkAlgorithm*>(wedge)),
