@@ -26,15 +26,19 @@
  *   grown by the largest radius, so camera moves and PointSize changes
  *   rebuild and upload no geometry. The actor's scale does not change
  *   their pixel size (as VTK's sprites).
- * - vtkGlyph3DMapper whose single source is a vtkSphereSource, as analytic
- *   spheres (scale array by magnitude or one component, scale factor,
+ * - vtkGlyph3DMapper whose single source is a vtkSphereSource, or any
+ *   source whose output is a closed sphere (points on one sphere about its
+ *   bounds' center, faces near it: a filtered sphere, SetSourceData), as
+ *   analytic spheres (scale array by magnitude or one component, scale factor,
  *   clamping, masking, colors through the mapper's LUT; orientation turns
  *   only an off-center source's center, a sphere being rotation invariant),
  *   or, scaled by vector components, as analytic ellipsoids (each ray is
  *   mapped onto the glyph's unit sphere; orientation by direction, rotation
  *   or quaternion, as vtkOpenGLGlyph3DMapper).
  * Shading: vtkProperty ambient/diffuse/specular, flat or interpolated point
- * normals, point or cell scalars mapped by the mapper's LUT, the renderer's
+ * normals, point or cell scalars mapped by the mapper's LUT (point scalars
+ * with InterpolateScalarsBeforeMapping through its color texture, sampled
+ * like raster; glyphs then take the property color, as VTK 9.1's), the renderer's
  * lights (VTK's lighting complexities 0-3), mapper clipping planes.
  * Background: VTK's own clear (solid, gradient) shows where rays miss.
  *

@@ -855,6 +855,7 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
       return false;
     }
     auto& shape = this->GlyphSourceCache[mapper];
+    shape.Used = true;
     if (shape.Data != source || shape.Time != source->GetMTime())
     {
       shape.Data = source;
@@ -1065,6 +1066,10 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
   {
     e.second->Used = false;
   }
+  for (auto& e : this->GlyphSourceCache)
+  {
+    e.second.Used = false;
+  }
 
   for (int i = 0; i < count; ++i)
   {
@@ -1159,6 +1164,10 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
     {
       ++it;
     }
+  }
+  for (auto it = this->GlyphSourceCache.begin(); it != this->GlyphSourceCache.end();)
+  {
+    it = it->second.Used ? std::next(it) : this->GlyphSourceCache.erase(it);
   }
   counters.TracedInstances = static_cast<int>(this->Instances.size());
   for (const Instance& inst : this->Instances)

@@ -225,6 +225,7 @@ private:
     bool Sphere = false;
     std::array<double, 3> Center{ { 0, 0, 0 } };
     double Radius = 0.0;
+    bool Used = false;
   };
   std::map<const void*, GlyphSourceShape> GlyphSourceCache;
   std::vector<Instance> Instances;
