@@ -455,31 +455,7 @@ void TestSphereSilhouettes()
   ren->SetBackground(0, 0, 0);
   const double spheres[5][4] = { { 0, 0, 0, 1.0 }, { 1.7, 0.3, -0.5, 0.55 },
     { -1.5, -0.6, 0.8, 0.31 }, { 0.2, 1.4, 0.3, 0.173 }, { -0.9, 1.1, -2.0, 0.7 } };
-  vtkNew<vtkPolyData> centers;
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkDoubleArray> radius;
-  radius->SetName("radius");
-  for (const auto& s : spheres)
-  {
-    points->InsertNextPoint(s[0], s[1], s[2]);
-    radius->InsertNextValue(s[3]);
-  }
-  centers->SetPoints(points);
-  centers->GetPointData()->AddArray(radius);
-  vtkNew<vtkSphereSource> source;
-  source->SetRadius(1.0);
-  vtkNew<vtkGlyph3DMapper> mapper;
-  mapper->SetInputData(centers);
-  mapper->SetSourceConnection(source->GetOutputPort());
-  mapper->SetScaleArray("radius");
-  mapper->SetScaleModeToScaleByMagnitude();
-  mapper->ScalarVisibilityOff();
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
-  actor->GetProperty()->LightingOff();
-  actor->GetProperty()->SetColor(1, 1, 1);
-  ren->AddActor(actor);
+  AddUnlitWhiteSphereGlyphs(ren, spheres);
   for (int parallel = 0; parallel < 2; ++parallel)
   {
     vtkCamera* cam = ren->GetActiveCamera();

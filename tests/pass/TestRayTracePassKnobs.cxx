@@ -258,20 +258,6 @@ double MeanRedAround(vtkRenderer* ren, vtkImageData* image, double x, double y, 
   return count ? sum / count : -1.0;
 }
 
-vtkSmartPointer<vtkActor> FloorActor(double half)
-{
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(-half, 0.0, -half);
-  plane->SetPoint1(half, 0.0, -half);
-  plane->SetPoint2(-half, 0.0, half);
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(plane->GetOutputPort());
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  actor->GetProperty()->SetAmbient(0.1);
-  return actor;
-}
-
 /// Hard shadows: a sphere over a floor, lit by one directional scene light
 /// from above and behind; the shadow falls in front of the sphere.
 void TestShadows()
@@ -281,15 +267,7 @@ void TestShadows()
   win->AddRenderer(ren);
   ren->SetBackground(0.2, 0.3, 0.4);
   ren->AddActor(FloorActor(3.0));
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetCenter(0.0, 1.0, 0.0);
-  sphere->SetRadius(0.5);
-  sphere->SetThetaResolution(32);
-  sphere->SetPhiResolution(32);
-  vtkNew<vtkPolyDataMapper> sphereMapper;
-  sphereMapper->SetInputConnection(sphere->GetOutputPort());
-  vtkNew<vtkActor> ball;
-  ball->SetMapper(sphereMapper);
+  auto ball = SphereActor(0.0, 1.0, 0.0, 0.5);
   ball->GetProperty()->SetColor(1.0, 0.6, 0.3);
   ren->AddActor(ball);
   vtkNew<vtkLight> light;
@@ -348,7 +326,7 @@ void TestShadows()
   for (int k = 0; k < 9; ++k)
   {
     auto extra = vtkSmartPointer<vtkActor>::New();
-    extra->SetMapper(sphereMapper);
+    extra->SetMapper(ball->GetMapper());
     extra->SetPosition(k - 4.0, -20.0, 0.0);
     ren->AddActor(extra);
     extras.push_back(extra);

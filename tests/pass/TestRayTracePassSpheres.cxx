@@ -227,31 +227,7 @@ void TestAxisAlignedSilhouettes()
   // Spheres touching the axes' planes, so axis-parallel rays graze boxes.
   const double spheres[6][4] = { { 0, 0, 0, 1.0 }, { 1.5, 0, -0.5, 0.5 }, { -1.25, 0.75, 0.5, 0.5 },
     { 0, 1.6, 0.3, 0.25 }, { 0.8, -1.3, -2.0, 0.7 }, { -1.0, -1.0, 1.0, 0.125 } };
-  vtkNew<vtkPolyData> centers;
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkDoubleArray> radius;
-  radius->SetName("radius");
-  for (const auto& s : spheres)
-  {
-    points->InsertNextPoint(s[0], s[1], s[2]);
-    radius->InsertNextValue(s[3]);
-  }
-  centers->SetPoints(points);
-  centers->GetPointData()->AddArray(radius);
-  vtkNew<vtkSphereSource> source;
-  source->SetRadius(1.0);
-  vtkNew<vtkGlyph3DMapper> mapper;
-  mapper->SetInputData(centers);
-  mapper->SetSourceConnection(source->GetOutputPort());
-  mapper->SetScaleArray("radius");
-  mapper->SetScaleModeToScaleByMagnitude();
-  mapper->ScalarVisibilityOff();
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
-  actor->GetProperty()->LightingOff();
-  actor->GetProperty()->SetColor(1, 1, 1);
-  ren->AddActor(actor);
+  AddUnlitWhiteSphereGlyphs(ren, spheres);
   vtkNew<vtkRayTracePass> pass;
   ren->SetPass(pass);
   for (int parallel = 0; parallel < 2; ++parallel)

@@ -76,20 +76,6 @@ std::string Str(double v)
   return s.str();
 }
 
-vtkSmartPointer<vtkActor> SphereActor(double x, double y, double z, double r, int res = 32)
-{
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetCenter(x, y, z);
-  sphere->SetRadius(r);
-  sphere->SetThetaResolution(res);
-  sphere->SetPhiResolution(res);
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(sphere->GetOutputPort());
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  return actor;
-}
-
 /// Two scene lights, two shadows: a positional spotlight at L = (-2, 3, 0)
 /// aimed at the origin and a directional light shining along (-1, -2, 1),
 /// over a floor (y = 0) with a sphere (center (0, 1, 0), radius 0.5). The
@@ -103,16 +89,7 @@ void TestLightShadows()
   vtkNew<vtkRenderer> ren;
   win->AddRenderer(ren);
   ren->SetBackground(0.2, 0.3, 0.4);
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(-3.0, 0.0, -3.0);
-  plane->SetPoint1(3.0, 0.0, -3.0);
-  plane->SetPoint2(-3.0, 0.0, 3.0);
-  vtkNew<vtkPolyDataMapper> floorMapper;
-  floorMapper->SetInputConnection(plane->GetOutputPort());
-  vtkNew<vtkActor> floorActor;
-  floorActor->SetMapper(floorMapper);
-  floorActor->GetProperty()->SetAmbient(0.1);
-  ren->AddActor(floorActor);
+  ren->AddActor(FloorActor(3.0));
   auto ball = SphereActor(0.0, 1.0, 0.0, 0.5);
   ball->GetProperty()->SetColor(1.0, 0.6, 0.3);
   ren->AddActor(ball);

@@ -7,14 +7,25 @@
 #include "vtkRayTracePass.h"
 #include "vtkrtTestOutputWindow.h"
 
+#include "vtkActor.h"
+#include "vtkDoubleArray.h"
+#include "vtkGlyph3DMapper.h"
 #include "vtkImageData.h"
 #include "vtkImageDifference.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
 #include "vtkWindowToImageFilter.h"
 
+#include <cstddef>
 #include <cstdlib>
 #include <functional>
 #include <map>
@@ -165,6 +176,69 @@ inline void WritePNG(vtkImageData* image, const std::string& path)
   writer->SetInputData(image);
   writer->SetFileName(path.c_str());
   writer->Write();
+}
+/// Adds unlit white spheres ({x, y, z, radius} each) to `ren` as one
+/// vtkGlyph3DMapper actor scaling a unit sphere by a "radius" point array,
+/// the form the pass turns into analytic spheres.
+template <std::size_t N>
+inline void AddUnlitWhiteSphereGlyphs(vtkRenderer* ren, const double (&spheres)[N][4])
+{
+  vtkNew<vtkPolyData> centers;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkDoubleArray> radius;
+  radius->SetName("radius");
+  for (const auto& s : spheres)
+  {
+    points->InsertNextPoint(s[0], s[1], s[2]);
+    radius->InsertNextValue(s[3]);
+  }
+  centers->SetPoints(points);
+  centers->GetPointData()->AddArray(radius);
+  vtkNew<vtkSphereSource> source;
+  source->SetRadius(1.0);
+  vtkNew<vtkGlyph3DMapper> mapper;
+  mapper->SetInputData(centers);
+  mapper->SetSourceConnection(source->GetOutputPort());
+  mapper->SetScaleArray("radius");
+  mapper->SetScaleModeToScaleByMagnitude();
+  mapper->ScalarVisibilityOff();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->LightingOff();
+  actor->GetProperty()->SetColor(1, 1, 1);
+  ren->AddActor(actor);
+}
+/// A tessellated sphere actor (res x res), default material.
+inline vtkSmartPointer<vtkActor> SphereActor(
+  double x, double y, double z, double r, int res = 32)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(x, y, z);
+  sphere->SetRadius(r);
+  sphere->SetThetaResolution(res);
+  sphere->SetPhiResolution(res);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(sphere->GetOutputPort());
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  return actor;
+}
+
+/// The floor of the shadow scenes: the square [-half, half]^2 in y = 0,
+/// ambient 0.1 so shadowed floor stays visible.
+inline vtkSmartPointer<vtkActor> FloorActor(double half)
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-half, 0.0, -half);
+  plane->SetPoint1(half, 0.0, -half);
+  plane->SetPoint2(-half, 0.0, half);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(plane->GetOutputPort());
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetAmbient(0.1);
+  return actor;
 }
 } // namespace vtkrtPassTest
 
