@@ -90,25 +90,6 @@ vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& name)
   return out;
 }
 
-/// A copy of `poly` with double points shifted by `offset` (computed in
-/// double, so nothing is lost at 1e8).
-vtkSmartPointer<vtkPolyData> Shifted(vtkPolyData* poly, const double offset[3])
-{
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(poly->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i)
-  {
-    double p[3];
-    poly->GetPoint(i, p);
-    points->SetPoint(i, p[0] + offset[0], p[1] + offset[1], p[2] + offset[2]);
-  }
-  auto out = vtkSmartPointer<vtkPolyData>::New();
-  out->ShallowCopy(poly);
-  out->SetPoints(points);
-  return out;
-}
-
 vtkSmartPointer<vtkActor> MeshActor(vtkPolyData* poly)
 {
   vtkNew<vtkPolyDataMapper> mapper;

@@ -55,19 +55,30 @@ vtkSmartPointer<vtkLookupTable> FourColorTable()
   return lut;
 }
 
-/// A coarse sphere (large triangles) colored by elevation, one point NaN.
-vtkSmartPointer<vtkPolyData> ElevationSphere()
+/// A coarse sphere (10 x 7: large triangles) of radius 0.5 at `center`,
+/// with elevation scalars from (lowX, lowY, 0) to (highX, highY, 0).
+vtkSmartPointer<vtkPolyData> CoarseElevationSphere(
+  const double center[3], double lowX, double lowY, double highX, double highY)
 {
   vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(center[0], center[1], center[2]);
   sphere->SetThetaResolution(10);
   sphere->SetPhiResolution(7);
   vtkNew<vtkElevationFilter> elevation;
   elevation->SetInputConnection(sphere->GetOutputPort());
-  elevation->SetLowPoint(-0.4, -0.5, 0);
-  elevation->SetHighPoint(0.4, 0.5, 0);
+  elevation->SetLowPoint(lowX, lowY, 0);
+  elevation->SetHighPoint(highX, highY, 0);
   elevation->Update();
   auto poly = vtkSmartPointer<vtkPolyData>::New();
   poly->DeepCopy(elevation->GetOutput());
+  return poly;
+}
+
+/// A coarse sphere (large triangles) colored by elevation, one point NaN.
+vtkSmartPointer<vtkPolyData> ElevationSphere()
+{
+  const double origin[3] = { 0.0, 0.0, 0.0 };
+  auto poly = CoarseElevationSphere(origin, -0.4, -0.5, 0.4, 0.5);
   poly->GetPointData()->GetScalars()->SetComponent(12, 0, vtkMath::Nan());
   return poly;
 }
@@ -215,18 +226,8 @@ void TestCompositeInterpolateBeforeMapping()
   blocks->SetNumberOfBlocks(3);
   for (int i = 0; i < 3; ++i)
   {
-    vtkNew<vtkSphereSource> sphere;
-    sphere->SetCenter(1.1 * i, 0.3 * i, 0.0);
-    sphere->SetThetaResolution(10);
-    sphere->SetPhiResolution(7);
-    vtkNew<vtkElevationFilter> elevation;
-    elevation->SetInputConnection(sphere->GetOutputPort());
-    elevation->SetLowPoint(-0.5, -0.5, 0);
-    elevation->SetHighPoint(2.7, 1.1, 0);
-    elevation->Update();
-    vtkNew<vtkPolyData> poly;
-    poly->DeepCopy(elevation->GetOutput());
-    blocks->SetBlock(i, poly);
+    const double center[3] = { 1.1 * i, 0.3 * i, 0.0 };
+    blocks->SetBlock(i, CoarseElevationSphere(center, -0.5, -0.5, 2.7, 1.1));
   }
   auto win = MakeWindow(kSize, kSize);
   vtkNew<vtkRenderer> ren;

@@ -209,24 +209,6 @@ void TestLightShadows()
   ren->SetPass(nullptr);
 }
 
-/// A copy of `poly` with double points shifted by `offset`.
-vtkSmartPointer<vtkPolyData> Shifted(vtkPolyData* poly, const double offset[3])
-{
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(poly->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i)
-  {
-    double p[3];
-    poly->GetPoint(i, p);
-    points->SetPoint(i, p[0] + offset[0], p[1] + offset[1], p[2] + offset[2]);
-  }
-  auto out = vtkSmartPointer<vtkPolyData>::New();
-  out->ShallowCopy(poly);
-  out->SetPoints(points);
-  return out;
-}
-
 vtkSmartPointer<vtkPolyData> ReadBunny()
 {
   vtkNew<vtkXMLPolyDataReader> reader;
