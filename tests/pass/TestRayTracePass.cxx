@@ -68,12 +68,7 @@ void CompareWithRaster(const std::string& name, const std::function<void(vtkRend
   vtkNew<vtkRenderer> ren;
   win->AddRenderer(ren);
   setup(ren);
-  win->Render();
-  auto raster = Grab(win);
-  vtkNew<vtkRayTracePass> pass;
-  ren->SetPass(pass);
-  win->Render();
-  auto traced = Grab(win);
+  auto [raster, traced, pass] = RenderRasterThenTraced(win, ren);
   const double error = Difference(traced, raster);
   std::ostringstream what;
   what << name << ": ray traced vs raster error " << error << " <= " << rasterThreshold;

@@ -710,12 +710,7 @@ void TestManyActors()
   ren->GetActiveCamera()->Elevation(35);
   ren->GetActiveCamera()->Azimuth(20);
   ren->ResetCameraClippingRange();
-  win->Render();
-  auto raster = Grab(win);
-  vtkNew<vtkRayTracePass> pass;
-  ren->SetPass(pass);
-  win->Render();
-  auto traced = Grab(win);
+  auto [raster, traced, pass] = RenderRasterThenTraced(win, ren);
   const double error = Difference(traced, raster);
   const long differing = CountDifferingPixels(traced, raster, 24);
   std::ostringstream s;

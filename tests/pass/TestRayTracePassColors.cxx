@@ -242,12 +242,7 @@ void TestCompositeInterpolateBeforeMapping()
   ren->AddActor(actor);
   ren->SetBackground(0.1, 0.1, 0.15);
   ren->ResetCamera();
-  win->Render();
-  auto raster = Grab(win);
-  vtkNew<vtkRayTracePass> pass;
-  ren->SetPass(pass);
-  win->Render();
-  auto traced = Grab(win);
+  auto [raster, traced, pass] = RenderRasterThenTraced(win, ren);
   Check(pass->GetLastTracedInstances() == 3 && HasColorTexture(pass),
     "composite: 3 blocks traced with the color texture");
   CheckClose("CompositeInterpolateBeforeMapping", traced, raster, 3.0);
@@ -313,12 +308,7 @@ void TestPointsInterpolateBeforeMapping()
     ren->GetActiveCamera()->SetPosition(5, 4, 7);
     ren->GetActiveCamera()->SetFocalPoint(1, 1, 1);
     ren->ResetCamera(-0.5, 2.5, -0.5, 2.5, -0.5, 2.5);
-    win->Render();
-    auto raster = Grab(win);
-    vtkNew<vtkRayTracePass> pass;
-    ren->SetPass(pass);
-    win->Render();
-    auto traced = Grab(win);
+    auto [raster, traced, pass] = RenderRasterThenTraced(win, ren);
     Check(pass->GetLastTracedInstances() == 1 && HasColorTexture(pass) == !glyphs,
       name + (glyphs ? ": traced without scalar colors" : ": traced with the color texture"));
     // Raster's points are impostors: the threshold of pass.PointsAsSpheres.

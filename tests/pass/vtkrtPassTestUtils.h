@@ -259,6 +259,26 @@ inline vtkSmartPointer<vtkPolyData> Shifted(vtkPolyData* poly, const double offs
   return out;
 }
 
+/// One frame rendered in raster, then the same frame ray traced by a new
+/// pass installed on `ren` (left installed, so the caller can query it).
+struct RasterAndTraced
+{
+  vtkSmartPointer<vtkImageData> Raster;
+  vtkSmartPointer<vtkImageData> Traced;
+  vtkSmartPointer<vtkRayTracePass> Pass;
+};
+
+inline RasterAndTraced RenderRasterThenTraced(vtkRenderWindow* win, vtkRenderer* ren)
+{
+  RasterAndTraced frames;
+  win->Render();
+  frames.Raster = Grab(win);
+  frames.Pass = vtkSmartPointer<vtkRayTracePass>::New();
+  ren->SetPass(frames.Pass);
+  win->Render();
+  frames.Traced = Grab(win);
+  return frames;
+}
 } // namespace vtkrtPassTest
 
 #endif
