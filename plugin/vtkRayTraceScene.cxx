@@ -42,6 +42,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace vtkrt
@@ -77,14 +78,27 @@ void readPoints(vtkPoints* pts, std::vector<Vec3<double>>& out)
   }
 }
 
-void setBounds(Geometry& g, const core::BVH& bvh)
+/// Takes a freshly built BVH into `g`: its skipped-primitive count and, when
+/// it is not empty, the local origin (the center of what is traced: NaN
+/// primitives are not in the tree), the bounds relative to it and the packed
+/// nodes. Returns the origin, or nothing for an empty tree.
+std::optional<Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh)
 {
+  g.SkippedPrimitives = bvh.stats.skippedPrimitives;
+  if (bvh.empty())
+  {
+    return std::nullopt;
+  }
   const core::AABB<double> b = bvh.bounds();
+  const Vec3<double> origin = b.center();
+  g.Origin = { { origin.x, origin.y, origin.z } };
   for (int k = 0; k < 3; ++k)
   {
     g.LocalBounds[2 * k] = b.min[k] - g.Origin[k];
     g.LocalBounds[2 * k + 1] = b.max[k] - g.Origin[k];
   }
+  g.Nodes = core::packNodesForGpu(bvh, origin);
+  return origin;
 }
 
 /// The polydata's verts/lines cells decide whether the pass can trace it.
@@ -135,17 +149,12 @@ std::unique_ptr<Geometry> buildTriangles(vtkPolyData* poly, const core::BuildOpt
   core::BVH bvh = core::buildTriangleBVH(mesh, options);
   g->Spheres = false;
   g->VertexCount = points.size();
-  g->SkippedPrimitives = bvh.stats.skippedPrimitives;
-  if (bvh.empty())
+  const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh);
+  if (!adopted)
   {
     return g;
   }
-  // The origin of the triangles actually traced (NaN points are ignored).
-  core::AABB<double> box = bvh.bounds();
-  const Vec3<double> origin = box.center();
-  g->Origin = { { origin.x, origin.y, origin.z } };
-  setBounds(*g, bvh);
-  g->Nodes = core::packNodesForGpu(bvh, origin);
+  const Vec3<double> origin = *adopted;
   const std::vector<Vec3<float>> rel = core::relativeFloatPoints(points.data(), points.size(), origin);
   const std::size_t n = bvh.primIndex.size();
   g->PrimitiveCount = n;
@@ -188,7 +197,6 @@ std::unique_ptr<Geometry> buildTriangles(vtkPolyData* poly, const core::BuildOpt
   return g;
 }
 
-/// Spheres (centers, radii, VTK point ids) and the BVH over them.
 /// Whether a glyph source is a closed sphere: every point within a small
 /// relative tolerance of one distance from its bounds' center, and every
 /// polygon edge shared by exactly two polygons (a cap, a wedge or an
@@ -298,6 +306,7 @@ bool sphereOfPolyData(vtkPolyData* poly, double center[3], double& radius)
     [](const std::pair<const std::pair<vtkIdType, vtkIdType>, int>& e) { return e.second == 2; });
 }
 
+/// Spheres (centers, radii, VTK point ids) and the BVH over them.
 std::unique_ptr<Geometry> buildSpheres(const std::vector<Vec3<double>>& centers,
   const std::vector<double>& radii, const std::vector<std::uint32_t>& ids,
   const core::BuildOptions& options)
@@ -306,15 +315,12 @@ std::unique_ptr<Geometry> buildSpheres(const std::vector<Vec3<double>>& centers,
   g->Spheres = true;
   core::SphereSet<double> set(centers, radii);
   core::BVH bvh = core::buildSphereBVH(set, options);
-  g->SkippedPrimitives = bvh.stats.skippedPrimitives;
-  if (bvh.empty())
+  const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh);
+  if (!adopted)
   {
     return g;
   }
-  const Vec3<double> origin = bvh.bounds().center();
-  g->Origin = { { origin.x, origin.y, origin.z } };
-  setBounds(*g, bvh);
-  g->Nodes = core::packNodesForGpu(bvh, origin);
+  const Vec3<double> origin = *adopted;
   const std::size_t n = bvh.primIndex.size();
   g->PrimitiveCount = n;
   g->Primitives.resize(4 * n);
@@ -346,15 +352,12 @@ std::unique_ptr<Geometry> buildEllipsoids(const std::vector<std::array<double, 1
   g->Spheres = true;
   g->Ellipsoids = true;
   core::BVH bvh = core::buildBVH(boxes, options);
-  g->SkippedPrimitives = bvh.stats.skippedPrimitives;
-  if (bvh.empty())
+  const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh);
+  if (!adopted)
   {
     return g;
   }
-  const Vec3<double> origin = bvh.bounds().center();
-  g->Origin = { { origin.x, origin.y, origin.z } };
-  setBounds(*g, bvh);
-  g->Nodes = core::packNodesForGpu(bvh, origin);
+  const Vec3<double> origin = *adopted;
   for (std::size_t i = 0; i < g->Nodes.size(); i += 8)
   {
     if (core::floatBitsToUint(g->Nodes[i + 7]) > 0)
@@ -927,6 +930,8 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
     ids.reserve(static_cast<std::size_t>(n));
     std::vector<double> tuple(scale ? scale->GetNumberOfComponents() : 1);
     double orient[4] = { 0, 0, 0, 0 };
+    // Scaling off: VTK ignores the scale factor too.
+    const double factor = mapper->GetScaling() ? mapper->GetScaleFactor() : 1.0;
     for (vtkIdType i = 0; i < n; ++i)
     {
       if (mask && mask->GetComponent(i, 0) == 0.0)
@@ -948,10 +953,9 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
           }
         }
       }
-      // Scaling off: VTK ignores the scale factor too. VTK makes a zero
-      // scale 1e-10: an ellipsoid with such an axis is a visible flat disk, a
-      // sphere with it invisible (skipped here as degenerate).
-      const double factor = mapper->GetScaling() ? mapper->GetScaleFactor() : 1.0;
+      // VTK makes a zero scale 1e-10: an ellipsoid with such an axis is a
+      // visible flat disk, a sphere with it invisible (skipped here as
+      // degenerate).
       double sk[3];
       for (int k = 0; k < 3; ++k)
       {
