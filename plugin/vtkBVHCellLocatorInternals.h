@@ -188,11 +188,17 @@ public:
     options.quality = quality == 0 ? core::BuildQuality::Fast
                                    : (quality == 2 ? core::BuildQuality::High : core::BuildQuality::Medium);
     options.maxLeafSize = static_cast<std::uint32_t>(std::max(leafSize, 1));
-    // The core builder's own std::threads compete with VTK's SMP (TBB)
-    // workers, which keep spinning after the parallel loops around this
-    // call: measured 1.4-1.8x slower builds with 2 threads than with 1 on
-    // the 2-core machine. The locator parallelizes its own passes instead.
-    options.numThreads = 1;
+    // The builder's parallel work goes to VTK's SMP pool: its own
+    // std::threads would compete with the pool's workers, which keep
+    // spinning after the parallel loops around this call (measured 1.4-1.8x
+    // slower builds with 2 threads than with 1 on a 2-core machine).
+    options.parallelFor = [](std::size_t n, const std::function<void(std::size_t, std::size_t)>& body) {
+      // Few large items (subtrees, chunks) one at a time; many by VTK's grain.
+      const vtkIdType grain = n <= 256 ? 1 : 0;
+      vtkSMPTools::For(0, static_cast<vtkIdType>(n), grain, [&body](vtkIdType b, vtkIdType e) {
+        body(static_cast<std::size_t>(b), static_cast<std::size_t>(e));
+      });
+    };
     // Boxes straight into the builder's references: no intermediate array
     // of n boxes (fresh pages cost more than the arithmetic here).
     // The box callable only reads: the builder may call it from several threads.

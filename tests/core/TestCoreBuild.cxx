@@ -6,6 +6,9 @@
 // vertices (tight boxes, same answers as a rebuild).
 #include "CoreTestUtils.h"
 
+#include <functional>
+#include <thread>
+
 using namespace vtkrt::core;
 using namespace vtkrt::test;
 
@@ -108,6 +111,29 @@ void testDeterminismAndQuality()
       VTKRT_CHECK_MSG(other.nodes == ref.nodes && other.primIndex == ref.primIndex,
         "%s: %u threads give a different tree", names[q], threads);
     }
+    {
+      // A caller's pool (here: uneven ranges on std::threads, as a pool may
+      // split them) gives the same tree too.
+      BuildOptions pooled = opt;
+      pooled.parallelFor = [](std::size_t n, const std::function<void(std::size_t, std::size_t)>& body) {
+        const std::size_t cuts[] = { 0, n / 7, n / 2, n - n / 5, n };
+        std::vector<std::thread> threads;
+        for (int i = 0; i < 4; ++i)
+        {
+          if (cuts[i] < cuts[i + 1])
+          {
+            threads.emplace_back([&body, &cuts, i]() { body(cuts[i], cuts[i + 1]); });
+          }
+        }
+        for (std::thread& t : threads)
+        {
+          t.join();
+        }
+      };
+      const BVH other = buildTriangleBVH(m.view(), pooled);
+      VTKRT_CHECK_MSG(other.nodes == ref.nodes && other.primIndex == ref.primIndex,
+        "%s: a parallelFor pool gives a different tree", names[q]);
+    }
     VTKRT_CHECK(queryMismatches(ref, m, rng, 300) == 0);
     std::printf("%s: %zu nodes, depth %u, SAH %.2f, %.3f s\n", names[q], ref.nodes.size(), ref.stats.maxDepth,
       ref.stats.sahCost, ref.stats.buildSeconds);
@@ -129,6 +155,43 @@ void testDeterminismAndQuality()
       checkStructure(names[q], b, sb, leaf);
     }
   }
+}
+
+/// The LBVH orders primitives by 63-bit Morton codes (sorted on a prefix
+/// first): a cluster that shares one prefix cell is still split spatially,
+/// not in input order.
+void testFastCrowdedCluster()
+{
+  Rng rng(5);
+  std::vector<AABB<double>> boxes;
+  boxes.emplace_back(Vec3<double>(1.0), Vec3<double>(1.0 + 1e-6)); // sets the grid: 1 / 2^10.7 per cell
+  const double size = 1e-5; // well inside one prefix cell
+  for (int i = 0; i < 4000; ++i)
+  {
+    const Vec3<double> c = rng.inBox(Vec3<double>(0.0), Vec3<double>(size));
+    boxes.emplace_back(c, c + Vec3<double>(1e-9));
+  }
+  BuildOptions opt;
+  opt.quality = BuildQuality::Fast;
+  opt.maxLeafSize = 4;
+  const BVH bvh = buildBVH(boxes, opt);
+  checkStructure("fast cluster", bvh, boxes, opt.maxLeafSize);
+  double sumDiag = 0.0;
+  std::size_t leaves = 0;
+  for (const BVHNode& n : bvh.nodes)
+  {
+    if (n.isLeaf() && n.bounds().diagonal().x < 0.5)
+    {
+      sumDiag += glm::length(n.bounds().diagonal());
+      ++leaves;
+    }
+  }
+  // Input-order leaves would span the cluster (diagonal ~ 1.4 size);
+  // spatial ones about size / (4000 / 4)^(1/3) ~ size / 10.
+  const double meanDiag = sumDiag / double(std::max<std::size_t>(leaves, 1));
+  std::printf("fast cluster: %zu leaves, mean leaf diagonal %.3g of the cluster\n", leaves, meanDiag / size);
+  VTKRT_CHECK(leaves >= 1000);
+  VTKRT_CHECK(meanDiag < 0.4 * size);
 }
 
 void testDepthCap()
@@ -254,6 +317,7 @@ void testRefit()
 int main()
 {
   testDeterminismAndQuality();
+  testFastCrowdedCluster();
   testDepthCap();
   testRefit();
   return testResult("TestCoreBuild");

@@ -29,6 +29,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <vector>
 
 namespace vtkrt::core
@@ -74,6 +75,13 @@ struct BuildOptions
   BuildQuality quality = BuildQuality::Medium;
   std::uint32_t maxLeafSize = 4; ///< max primitives per leaf (>= 1)
   unsigned numThreads = 0;       ///< 0: std::thread::hardware_concurrency()
+  /// When set, the builder's parallel work runs through it instead of its
+  /// own std::threads (numThreads is then ignored): parallelFor(n, body)
+  /// must call body(begin, end) over disjoint ranges covering [0, n), in
+  /// any split, on any threads, and return when all are done. An adapter
+  /// passes its toolkit's pool (e.g. vtkSMPTools::For), whose idle workers
+  /// would otherwise spin against the builder's threads.
+  std::function<void(std::size_t, const std::function<void(std::size_t, std::size_t)>&)> parallelFor;
   std::uint32_t numBins = 32;    ///< binned SAH bins per axis (2..64)
   double traversalCost = 1.0;    ///< SAH cost of visiting an interior node
   double intersectionCost = 1.0; ///< SAH cost of one primitive test

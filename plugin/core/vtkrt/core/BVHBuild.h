@@ -17,6 +17,7 @@
 #include <new>
 #include <system_error>
 #include <thread>
+#include <utility>
 
 namespace vtkrt::core
 {
@@ -31,14 +32,19 @@ struct BuildRef
   Vec3<double> centroid() const { return box.center(); }
 };
 
+constexpr std::size_t kMinChunk = 32768;
+
 /// Runs fn(begin, end) over [0, n) split into contiguous chunks, on up to
 /// `threads` threads (the calling one included); small ranges stay on the
 /// calling thread. fn must be safe to run concurrently on disjoint ranges.
+/// `work`: the elements the n chunks cover (n itself when 0), which decides
+/// whether threads pay off.
 template <class Fn>
-void parallelChunks(std::size_t n, unsigned threads, Fn&& fn)
+void parallelChunks(std::size_t n, unsigned threads, Fn&& fn, std::size_t work = 0)
 {
-  constexpr std::size_t kMinChunk = 32768;
-  std::size_t t = std::max<std::size_t>(1, std::min<std::size_t>(threads ? threads : std::thread::hardware_concurrency(), n / kMinChunk));
+  work = work ? work : n;
+  std::size_t t = std::max<std::size_t>(1,
+    std::min<std::size_t>({ threads ? threads : std::thread::hardware_concurrency(), work / kMinChunk, n }));
   if (t <= 1)
   {
     fn(std::size_t(0), n);
@@ -70,6 +76,18 @@ void parallelChunks(std::size_t n, unsigned threads, Fn&& fn)
   }
 }
 
+/// parallelChunks through the options' parallelFor when they have one.
+template <class Fn>
+void parallelChunks(std::size_t n, const BuildOptions& options, Fn&& fn, std::size_t work = 0)
+{
+  if (options.parallelFor && (work ? work : n) >= 2 * kMinChunk && n > 1)
+  {
+    options.parallelFor(n, [&fn](std::size_t b, std::size_t e) { fn(b, e); });
+    return;
+  }
+  parallelChunks(n, options.parallelFor ? 1u : options.numThreads, fn, work);
+}
+
 /// Ceil(log2(x)) for x >= 1.
 inline std::uint32_t ceilLog2(std::uint64_t x)
 {
@@ -85,6 +103,7 @@ class Builder
 {
 public:
   static constexpr std::uint32_t kTaskPrimitives = 16384;
+  static constexpr std::uint32_t kPooledDepth = 4;
   static constexpr std::uint32_t kMaxBins = 64;
 
   Builder(std::vector<BuildRef>& refs, const BuildOptions& options)
@@ -168,7 +187,7 @@ private:
     // Centroid bounds in fixed chunks (min/max: exact in any order).
     constexpr std::size_t kChunks = 64;
     std::vector<AABB<double>> chunkBounds(kChunks);
-    parallelChunks(kChunks, Options.numThreads, [&](std::size_t cb0, std::size_t ce0) {
+    parallelChunks(kChunks, Options, [&](std::size_t cb0, std::size_t ce0) {
       for (std::size_t c = cb0; c < ce0; ++c)
       {
         AABB<double> box;
@@ -178,7 +197,7 @@ private:
         }
         chunkBounds[c] = box;
       }
-    });
+    }, n);
     AABB<double> cb;
     for (const AABB<double>& box : chunkBounds)
     {
@@ -194,7 +213,7 @@ private:
     Codes.resize(n);
     Perm.resize(n);
     std::atomic<bool> idsAscending{ true };
-    parallelChunks(n, Options.numThreads, [&](std::size_t b, std::size_t e) {
+    parallelChunks(n, Options, [&](std::size_t b, std::size_t e) {
       bool ascending = true;
       for (std::size_t i = b; i < e; ++i)
       {
@@ -233,31 +252,35 @@ private:
     }
   }
 
-  /// LSD radix sort of (Codes, Perm) by Codes, 8 bits a pass (wider digits
-  /// scatter to too many streams at once), stable; passes in which every
-  /// code has the same digit are skipped. Histograms in parallel.
+  /// Stable sort of (Codes, Perm) by Codes. An LSD radix sort on the top
+  /// kPrefixBits (10 per axis: one pass per axis' worth of bits, where a
+  /// full 63-bit sort took eight passes), then each run of equal prefixes
+  /// longer than one is sorted on the whole code (comparison sort: such runs
+  /// are short unless primitives crowd one cell of a 1024^3 grid). Same
+  /// order as a full stable sort. Histograms in parallel.
   void radixSortByCode()
   {
     const std::size_t n = Codes.size();
     constexpr int kBits = 8;
     constexpr std::uint32_t kRadix = 1u << kBits;
-    constexpr int kPasses = (64 + kBits - 1) / kBits;
+    constexpr int kPasses = 4;
+    constexpr int kShift = 63 - kBits * kPasses; // the prefix is bits [31, 63)
     constexpr std::size_t kChunks = 16;
     std::vector<std::uint32_t> chunkHist(kChunks * kPasses * kRadix, 0);
-    parallelChunks(kChunks, Options.numThreads, [&](std::size_t cb, std::size_t ce) {
+    parallelChunks(kChunks, Options, [&](std::size_t cb, std::size_t ce) {
       for (std::size_t c = cb; c < ce; ++c)
       {
         std::uint32_t* h = chunkHist.data() + c * kPasses * kRadix;
         for (std::size_t i = c * n / kChunks, e = (c + 1) * n / kChunks; i < e; ++i)
         {
-          const std::uint64_t code = Codes[i];
+          const std::uint64_t code = Codes[i] >> kShift;
           for (int p = 0; p < kPasses; ++p)
           {
             h[p * kRadix + ((code >> (kBits * p)) & (kRadix - 1))]++;
           }
         }
       }
-    });
+    }, n);
     std::vector<std::uint32_t> hist(kPasses * kRadix, 0);
     for (std::size_t c = 0; c < kChunks; ++c)
     {
@@ -270,8 +293,9 @@ private:
     std::vector<std::uint32_t> perm2(n);
     for (int p = 0; p < kPasses; ++p)
     {
+      const int shift = kShift + kBits * p;
       std::uint32_t* h = hist.data() + p * kRadix;
-      if (h[(Codes[0] >> (kBits * p)) & (kRadix - 1)] == n)
+      if (h[(Codes[0] >> shift) & (kRadix - 1)] == n)
       {
         continue;
       }
@@ -284,12 +308,45 @@ private:
       }
       for (std::size_t i = 0; i < n; ++i)
       {
-        const std::uint32_t dst = h[(Codes[i] >> (kBits * p)) & (kRadix - 1)]++;
+        const std::uint32_t dst = h[(Codes[i] >> shift) & (kRadix - 1)]++;
         codes2[dst] = Codes[i];
         perm2[dst] = Perm[i];
       }
       Codes.swap(codes2);
       Perm.swap(perm2);
+    }
+    // Runs of one prefix: order by the whole code, ties by position (the
+    // radix passes kept the input order, which is id order).
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> run;
+    for (std::size_t b = 0; b < n;)
+    {
+      std::size_t e = b + 1;
+      while (e < n && (Codes[e] >> kShift) == (Codes[b] >> kShift))
+      {
+        ++e;
+      }
+      if (e - b > 1)
+      {
+        run.clear();
+        bool sorted = true;
+        for (std::size_t i = b; i < e; ++i)
+        {
+          run.emplace_back(Codes[i], Perm[i]);
+          sorted = sorted && (i == b || Codes[i - 1] <= Codes[i]);
+        }
+        if (!sorted)
+        {
+          std::stable_sort(run.begin(), run.end(),
+            [](const std::pair<std::uint64_t, std::uint32_t>& x,
+              const std::pair<std::uint64_t, std::uint32_t>& y) { return x.first < y.first; });
+          for (std::size_t i = b; i < e; ++i)
+          {
+            Codes[i] = run[i - b].first;
+            Perm[i] = run[i - b].second;
+          }
+        }
+      }
+      b = e;
     }
   }
 
@@ -675,9 +732,25 @@ private:
     // `nodes`: its nodes are appended in exactly the order a splice would
     // put them (same layout, no copy of the subtree).
     bool spawned = false;
+    bool pooled = false;
     std::vector<BVHNode> sub[2];
     std::thread worker;
-    if (isTask[0] && isTask[1])
+    // Through the pool only near the root: each pooled level copies its
+    // subtrees once more in the splices, and a few levels make enough tasks.
+    if (isTask[0] && isTask[1] && Options.parallelFor && depth < kPooledDepth)
+    {
+      pooled = true;
+      Options.parallelFor(2, [this, &sub, &ranges, depth](std::size_t b, std::size_t e) {
+        for (std::size_t c = b; c < e; ++c)
+        {
+          sub[c].resize(1);
+          buildNode(sub[c], 0, ranges[c][0], ranges[c][1], depth + 1);
+        }
+      });
+      splice(nodes, first, sub[0]);
+      splice(nodes, first + 1, sub[1]);
+    }
+    else if (isTask[0] && isTask[1])
     {
       if (FreeThreads.fetch_sub(1) > 0)
       {
@@ -708,7 +781,7 @@ private:
       splice(nodes, first, sub[0]);
       splice(nodes, first + 1, sub[1]);
     }
-    else
+    else if (!pooled)
     {
       for (int c = 0; c < 2; ++c)
       {
@@ -805,7 +878,7 @@ inline BVH buildFromRefs(std::vector<BuildRef>& refs, std::size_t count, const B
     Builder builder(refs, options);
     bvh.nodes = builder.build();
     bvh.primIndex.resize(refs.size());
-    parallelChunks(refs.size(), options.numThreads, [&](std::size_t b, std::size_t e) {
+    parallelChunks(refs.size(), options, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i)
       {
         bvh.primIndex[i] = builder.idAt(static_cast<std::uint32_t>(i));
@@ -851,7 +924,7 @@ BVH buildBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const Build
   const auto start = std::chrono::steady_clock::now();
   std::vector<detail::BuildRef> refs(count);
   std::atomic<bool> allValid{ true };
-  detail::parallelChunks(count, options.numThreads, [&](std::size_t b, std::size_t e) {
+  detail::parallelChunks(count, options, [&](std::size_t b, std::size_t e) {
     bool valid = true;
     for (std::size_t i = b; i < e; ++i)
     {
