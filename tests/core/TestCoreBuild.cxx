@@ -134,6 +134,24 @@ void testDeterminismAndQuality()
       VTKRT_CHECK_MSG(other.nodes == ref.nodes && other.primIndex == ref.primIndex,
         "%s: a parallelFor pool gives a different tree", names[q]);
     }
+    {
+      // Concurrent bounds (Fast: the reference-free LBVH) build the same
+      // tree as the serial callable, skipped primitives included.
+      std::vector<AABB<double>> holes = bounds;
+      for (std::size_t i = 7; i < holes.size(); i += 997)
+      {
+        holes[i] = i % 2 ? AABB<double>() : AABB<double>(Vec3<double>(std::nan("")), Vec3<double>(1.0));
+      }
+      BuildOptions serial = opt;
+      serial.numThreads = 1;
+      const BVH a = buildBVH(holes, serial);
+      opt.numThreads = 2;
+      const BVH b = buildBVHConcurrentBounds(holes.size(), [&holes](std::size_t i) { return holes[i]; }, opt);
+      VTKRT_CHECK_MSG(a.nodes == b.nodes && a.primIndex == b.primIndex &&
+          a.stats.skippedPrimitives == b.stats.skippedPrimitives && b.stats.skippedPrimitives > 0,
+        "%s: concurrent bounds give a different tree", names[q]);
+      checkStructure(names[q], b, holes, opt.maxLeafSize);
+    }
     VTKRT_CHECK(queryMismatches(ref, m, rng, 300) == 0);
     std::printf("%s: %zu nodes, depth %u, SAH %.2f, %.3f s\n", names[q], ref.nodes.size(), ref.stats.maxDepth,
       ref.stats.sahCost, ref.stats.buildSeconds);
@@ -176,6 +194,8 @@ void testFastCrowdedCluster()
   opt.maxLeafSize = 4;
   const BVH bvh = buildBVH(boxes, opt);
   checkStructure("fast cluster", bvh, boxes, opt.maxLeafSize);
+  const BVH linear = buildBVHConcurrentBounds(boxes.size(), [&boxes](std::size_t i) { return boxes[i]; }, opt);
+  VTKRT_CHECK(linear.nodes == bvh.nodes && linear.primIndex == bvh.primIndex);
   double sumDiag = 0.0;
   std::size_t leaves = 0;
   for (const BVHNode& n : bvh.nodes)
