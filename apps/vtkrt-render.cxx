@@ -10,9 +10,7 @@
 #include "vtkDataSet.h"
 #include "vtkGenericDataObjectReader.h"
 #include "vtkGeometryFilter.h"
-#include "vtkGlyph3DMapper.h"
 #include "vtkLogger.h"
-#include "vtkLookupTable.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
@@ -28,12 +26,12 @@
 #include "vtkRenderer.h"
 #include "vtkSTLReader.h"
 #include "vtkSmartPointer.h"
-#include "vtkSphereSource.h"
 #include "vtkWindowToImageFilter.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtksys/SystemTools.hxx"
 
 #include "vtkrt/core/Sphere.h"
+#include "vtkrtDemoGlyphs.h"
 
 #ifdef VTKRT_HAVE_RAYTRACE_PASS
 #include "vtkRayTracePass.h"
@@ -481,9 +479,7 @@ void BuildDemo(Scene& scene, CapturingOutputWindow* output)
   const double bunnyColor[3] = { 0.86, 0.82, 0.74 };
   AddMesh(scene, bunny, bunnyColor);
 
-  // Sphere glyphs: a vtkSphereSource of radius 1 scaled by the "radius"
-  // array, so each glyph is a sphere of that radius (vtkRayTracePass traces
-  // such glyphs as analytic spheres), coloured by "scalar" through a LUT.
+  // Sphere glyphs of the "radius" array, coloured by "scalar" (vtkrtDemoGlyphs.h).
   vtkNew<vtkXMLPolyDataReader> centresReader;
   centresReader->SetFileName((dir + "/demo-spheres.vtp").c_str());
   centresReader->Update();
@@ -494,32 +490,7 @@ void BuildDemo(Scene& scene, CapturingOutputWindow* output)
     throw Failure{ "demo-spheres.vtp in '" + dir + "' lacks points or its radius/scalar arrays",
       ExitRuntimeError };
   }
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetRadius(1.0);
-  sphere->SetThetaResolution(24);
-  sphere->SetPhiResolution(24);
-  vtkNew<vtkLookupTable> lut;
-  lut->SetHueRange(0.66, 0.0); // blue to red
-  lut->SetSaturationRange(0.8, 0.8);
-  lut->SetValueRange(0.95, 0.95);
-  lut->SetTableRange(0.0, 1.0);
-  lut->Build();
-  vtkNew<vtkGlyph3DMapper> glyphs;
-  glyphs->SetInputData(centres);
-  glyphs->SetSourceConnection(sphere->GetOutputPort());
-  glyphs->SetScaleArray("radius");
-  glyphs->SetScaleModeToScaleByMagnitude();
-  glyphs->SetScaleFactor(1.0);
-  glyphs->OrientOff();
-  glyphs->SetLookupTable(lut);
-  glyphs->SetScalarModeToUsePointFieldData();
-  glyphs->SelectColorArray("scalar");
-  glyphs->SetScalarRange(0.0, 1.0);
-  glyphs->ScalarVisibilityOn();
-  vtkNew<vtkActor> glyphActor;
-  glyphActor->SetMapper(glyphs);
-  glyphActor->GetProperty()->SetSpecular(0.5);
-  glyphActor->GetProperty()->SetSpecularPower(40);
+  vtkSmartPointer<vtkActor> glyphActor = vtkrtDemo::NewGlyphActor(centres);
   scene.Renderer->AddActor(glyphActor);
   scene.Spheres = centres->GetNumberOfPoints();
   scene.SphereCentres = centres;

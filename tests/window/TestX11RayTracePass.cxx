@@ -8,14 +8,13 @@
 // without one (no DISPLAY) it exits 77, which CTest reports as skipped.
 #include "vtkEGLHeadlessRenderWindow.h"
 #include "vtkRayTracePass.h"
+#include "vtkrtDemoGlyphs.h"
 #include "vtkrtImageRegression.h"
 #include "vtkrtPassTestUtils.h"
 #include "vtkrtTestOutputWindow.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
-#include "vtkGlyph3DMapper.h"
-#include "vtkLookupTable.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -24,7 +23,6 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
-#include "vtkSphereSource.h"
 #include "vtkXMLPolyDataReader.h"
 
 #include <cstdlib>
@@ -57,32 +55,7 @@ void BuildDemo(vtkRenderer* ren, vtkPolyData* bunny, vtkPolyData* centres, vtkRa
   actor->GetProperty()->SetColor(0.86, 0.82, 0.74);
   ren->AddActor(actor);
 
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetRadius(1.0);
-  sphere->SetThetaResolution(24);
-  sphere->SetPhiResolution(24);
-  vtkNew<vtkLookupTable> lut;
-  lut->SetHueRange(0.66, 0.0);
-  lut->SetSaturationRange(0.8, 0.8);
-  lut->SetValueRange(0.95, 0.95);
-  lut->SetTableRange(0.0, 1.0);
-  lut->Build();
-  vtkNew<vtkGlyph3DMapper> glyphs;
-  glyphs->SetInputData(centres);
-  glyphs->SetSourceConnection(sphere->GetOutputPort());
-  glyphs->SetScaleArray("radius");
-  glyphs->SetScaleModeToScaleByMagnitude();
-  glyphs->SetScaleFactor(1.0);
-  glyphs->OrientOff();
-  glyphs->SetLookupTable(lut);
-  glyphs->SetScalarModeToUsePointFieldData();
-  glyphs->SelectColorArray("scalar");
-  glyphs->SetScalarRange(0.0, 1.0);
-  glyphs->ScalarVisibilityOn();
-  vtkNew<vtkActor> glyphActor;
-  glyphActor->SetMapper(glyphs);
-  glyphActor->GetProperty()->SetSpecular(0.5);
-  glyphActor->GetProperty()->SetSpecularPower(40);
+  vtkSmartPointer<vtkActor> glyphActor = vtkrtDemo::NewGlyphActor(centres);
   ren->AddActor(glyphActor);
   ren->SetBackground(0.32, 0.34, 0.43);
   ren->SetPass(pass);
