@@ -85,6 +85,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -800,8 +801,9 @@ bool WritePrecisionCSV(const std::string& path, const std::vector<PrecisionRow>&
 //------------------------------------------------------------------------------
 // Sections
 
-/// Builder quality x leaf size on vtkBVHCellLocator.
-void RunBuilder(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::vector<TradeRow>& rows)
+/// Builder quality x leaf size on vtkBVHCellLocator (always succeeds: the
+/// bool matches the other sections').
+bool RunBuilder(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::vector<TradeRow>& rows)
 {
   // Segments from a sphere around the object through random points of it.
   std::mt19937_64 rng(7);
@@ -897,6 +899,7 @@ void RunBuilder(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::
       row.Setting.c_str(), 1e3 * build, row.PickUs, row.SAHCost, static_cast<long long>(row.Nodes),
       e.Max, e.Miss);
   }
+  return true;
 }
 
 /// vtkRayTracePass BuildQuality on the full mesh, against HIGH.
@@ -1855,32 +1858,22 @@ int main(int argc, char* argv[])
 
   std::vector<TradeRow> trade;
   std::vector<PrecisionRow> precision;
-  std::printf("builder (vtkBVHCellLocator, reference HIGH/leaf1):\n");
-  RunBuilder(mesh, scene, opt, trade);
-  std::printf("pass builder (vtkRayTracePass BuildQuality, reference HIGH):\n");
-  if (!RunPassBuilder(mesh, scene, opt, trade))
+  using TradeSection = bool (*)(vtkPolyData*, const Scene&, const Options&, std::vector<TradeRow>&);
+  const std::pair<const char*, TradeSection> sections[] = {
+    { "builder (vtkBVHCellLocator, reference HIGH/leaf1)", RunBuilder },
+    { "pass builder (vtkRayTracePass BuildQuality, reference HIGH)", RunPassBuilder },
+    { "pass knobs (vtkRayTracePass, each against its best setting)", RunPassKnobs },
+    { "shadows per scene light count (vtkRayTracePass)", RunShadowLights },
+    { "progressive accumulation (vtkRayTracePass, 1 sample a frame)", RunAccumulation },
+    { "level of detail (vtkOpenMeshDecimation, reference full mesh)", RunLOD },
+  };
+  for (const auto& section : sections)
   {
-    return 1;
-  }
-  std::printf("pass knobs (vtkRayTracePass, each against its best setting):\n");
-  if (!RunPassKnobs(mesh, scene, opt, trade))
-  {
-    return 1;
-  }
-  std::printf("shadows per scene light count (vtkRayTracePass):\n");
-  if (!RunShadowLights(mesh, scene, opt, trade))
-  {
-    return 1;
-  }
-  std::printf("progressive accumulation (vtkRayTracePass, 1 sample a frame):\n");
-  if (!RunAccumulation(mesh, scene, opt, trade))
-  {
-    return 1;
-  }
-  std::printf("level of detail (vtkOpenMeshDecimation, reference full mesh):\n");
-  if (!RunLOD(mesh, scene, opt, trade))
-  {
-    return 1;
+    std::printf("%s:\n", section.first);
+    if (!section.second(mesh, scene, opt, trade))
+    {
+      return 1;
+    }
   }
   std::printf("precision (scene translated, reference untranslated):\n");
   if (!RunPrecision(mesh, scene, opt, precision))
