@@ -194,27 +194,26 @@ void boxes(Counts& c)
   }
 }
 
+/// Every double hit kept by the float test, and at least 99% of the clear
+/// misses culled, over enough of both.
+void checkCounts(const char* what, void (*run)(Counts&))
+{
+  Counts c;
+  run(c);
+  std::printf("%s: %lld double hits, %lld rejected in float; %lld clear misses, %lld culled\n", what,
+    c.doubleHits, c.missedByFloat, c.clearMisses, c.clearRejected);
+  VTKRT_CHECK_MSG(c.doubleHits > 100000, "%s: too few double hits", what);
+  VTKRT_CHECK_MSG(c.missedByFloat == 0, "%s: double hits rejected in float", what);
+  VTKRT_CHECK_MSG(c.clearMisses > 10000, "%s: too few clear misses", what);
+  VTKRT_CHECK_MSG(c.clearRejected >= c.clearMisses * 99 / 100, "%s: clear misses not culled", what);
+}
+
 } // namespace
 
 int main()
 {
-  Counts tri;
-  triangles(tri);
-  std::printf("triangles: %lld double hits, %lld rejected in float; %lld clear misses, %lld culled\n",
-    tri.doubleHits, tri.missedByFloat, tri.clearMisses, tri.clearRejected);
-  VTKRT_CHECK(tri.doubleHits > 100000);
-  VTKRT_CHECK(tri.missedByFloat == 0);
-  VTKRT_CHECK(tri.clearMisses > 10000);
-  VTKRT_CHECK(tri.clearRejected >= tri.clearMisses * 99 / 100);
-
-  Counts box;
-  boxes(box);
-  std::printf("boxes: %lld double hits, %lld rejected in float; %lld clear misses, %lld culled\n",
-    box.doubleHits, box.missedByFloat, box.clearMisses, box.clearRejected);
-  VTKRT_CHECK(box.doubleHits > 100000);
-  VTKRT_CHECK(box.missedByFloat == 0);
-  VTKRT_CHECK(box.clearMisses > 10000);
-  VTKRT_CHECK(box.clearRejected >= box.clearMisses * 99 / 100);
+  checkCounts("triangles", triangles);
+  checkCounts("boxes", boxes);
 
   // Preconditions: no float path for axis-parallel or overflowing rays.
   ConservativeRay4 fray;
