@@ -144,6 +144,10 @@ std::vector<Segment> RandomSegments(vtkPolyData* pd, int count)
   return out;
 }
 
+std::vector<std::string> g_Only;
+std::string g_Mesh;
+int g_LeafSize = 0; ///< > 0: vtkBVHCellLocator's NumberOfCellsPerNode (else its default)
+
 struct Result
 {
   std::string Name;
@@ -275,6 +279,10 @@ Peer BVHPeer(const std::string& name, int quality, int maxRays)
   p.Create = [quality](vtkPolyData* pd) -> void* {
     vtkBVHCellLocator* l = vtkBVHCellLocator::New();
     l->SetBuildQuality(quality);
+    if (g_LeafSize > 0)
+    {
+      l->SetNumberOfCellsPerNode(g_LeafSize);
+    }
     l->SetDataSet(pd);
     return l;
   };
@@ -418,8 +426,6 @@ std::string Human(long long bytes)
   return buf;
 }
 
-std::vector<std::string> g_Only;
-std::string g_Mesh;
 
 bool Wanted(const std::string& name)
 {
@@ -527,6 +533,10 @@ int main(int argc, char* argv[])
     else if (!std::strcmp(argv[i], "--mesh") && i + 1 < argc)
     {
       g_Mesh = argv[++i];
+    }
+    else if (!std::strcmp(argv[i], "--leaf") && i + 1 < argc)
+    {
+      g_LeafSize = std::max(1, std::atoi(argv[++i]));
     }
     else if (!std::strcmp(argv[i], "--rays") && i + 1 < argc)
     {
