@@ -619,7 +619,8 @@ void vtkBVHCellLocator::PrintSelf(ostream& os, vtkIndent indent)
      << " skipped non-finite cells)\n";
   os << indent << "Nodes: " << d.Stats.Nodes << "\n";
   os << indent << "Leaves: " << d.Stats.Leaves << "\n";
-  os << indent << "Four-wide nodes (picking view): " << d.Wide.size() << "\n";
+  os << indent << "Wide nodes (picking view, " << vtkrt::locator::BVHCellLocatorData::kWideArity
+     << " children): " << d.Wide.size() << "\n";
   os << indent << "Depth: " << d.Stats.Depth << "\n";
   os << indent << "SAH cost: " << d.Stats.SAHCost << "\n";
   os << indent << "Build time: " << d.BuildSeconds << " s\n";

@@ -111,17 +111,31 @@ public:
   std::vector<vtkIdType> GenCell;        ///< original cell id per general primitive
   std::vector<Box> GenBox;               ///< its bounds, local, slightly widened
   core::BVH Tree;
-  /// The same tree seen four children at a time (a re-layout of the core's
-  /// binary nodes, no new split decisions): half the levels, so about half
-  /// the cache misses on the picking path. Boxes are the packed float ones.
-  /// Two cache lines; an unused slot has an empty box (never hit).
+  /// The same tree seen eight children at a time (a re-layout of the
+  /// core's binary nodes, no new split decisions): a third of the levels.
+  /// A pick walks one root-to-leaf chain of dependent loads, so the levels,
+  /// not the bytes, set its cache-miss latency: four lines of a node arrive
+  /// together (prefetched), the next level only after. Boxes are the packed
+  /// float ones, four per BoxPack4; an unused slot has an empty box (never
+  /// hit). Four cache lines.
+  static constexpr int kWideArity = 8;
   struct alignas(64) WideNode
   {
-    core::BoxPack4 Box;
-    std::uint32_t Child[4]; ///< wide node index (Count 0) or first primIndex slot
-    std::uint32_t Count[4]; ///< primitives of a leaf child; 0 for an interior child
+    core::BoxPack4 Box[kWideArity / 4];
+    std::uint32_t Child[kWideArity]; ///< wide node index (Count 0) or first primIndex slot
+    std::uint32_t Count[kWideArity]; ///< primitives of a leaf child; 0 for an interior child
+
+    void Clear()
+    {
+      for (int i = 0; i < kWideArity; ++i)
+      {
+        this->Box[i / 4].clear(i % 4);
+        this->Child[i] = 0;
+        this->Count[i] = 0;
+      }
+    }
   };
-  static_assert(sizeof(WideNode) == 128, "a wide node is two cache lines");
+  static_assert(sizeof(WideNode) == 32 * kWideArity, "a wide node is 32 bytes a child");
   std::vector<WideNode> Wide;
   TreeStats Stats;
   vtkIdType SkippedCells = 0;   ///< cells in no leaf (non-finite or empty bounds)
@@ -243,21 +257,21 @@ public:
   {
     for (int k = 0; k < 3; ++k)
     {
-      node.Box.lo[k][i] = core::detail::floorFloat(c.min[k]);
-      node.Box.hi[k][i] = core::detail::ceilFloat(c.max[k]);
+      node.Box[i / 4].lo[k][i % 4] = core::detail::floorFloat(c.min[k]);
+      node.Box[i / 4].hi[k][i % 4] = core::detail::ceilFloat(c.max[k]);
     }
   }
 
-  /// The up to four binary nodes a wide node over binary interior node `b`
-  /// holds: its children, then repeatedly the interior one of largest area
-  /// replaced by its two children.
-  int WideChildren(std::uint32_t b, std::uint32_t kids[4]) const
+  /// The up to kWideArity binary nodes a wide node over binary interior node
+  /// `b` holds: its children, then repeatedly the interior one of largest
+  /// area replaced by its two children.
+  int WideChildren(std::uint32_t b, std::uint32_t kids[kWideArity]) const
   {
     const auto& nodes = this->Tree.nodes;
     kids[0] = nodes[b].index;
     kids[1] = nodes[b].index + 1;
     int n = 2;
-    while (n < 4)
+    while (n < kWideArity)
     {
       int best = -1;
       double bestArea = -1.0;
@@ -289,17 +303,12 @@ public:
   /// (depth first, indices local to `out`); returns its root's index.
   std::uint32_t Collapse(std::uint32_t b, std::vector<WideNode>& out) const
   {
-    std::uint32_t kids[4];
+    std::uint32_t kids[kWideArity];
     const int n = this->WideChildren(b, kids);
     const std::uint32_t w = static_cast<std::uint32_t>(out.size());
     out.emplace_back();
     WideNode node;
-    for (int i = 0; i < 4; ++i)
-    {
-      node.Box.clear(i);
-      node.Child[i] = 0;
-      node.Count[i] = 0;
-    }
+    node.Clear();
     for (int i = 0; i < n; ++i)
     {
       const core::BVHNode& c = this->Tree.nodes[kids[i]];
@@ -318,7 +327,7 @@ public:
     return w;
   }
 
-  /// The four-wide view: the root's wide node here, the subtrees below its
+  /// The wide view: the root's wide node here, the subtrees below its
   /// interior slots in parallel, then appended in slot order.
   void BuildWide()
   {
@@ -328,13 +337,8 @@ public:
       return;
     }
     WideNode root;
-    for (int i = 0; i < 4; ++i)
-    {
-      root.Box.clear(i);
-      root.Child[i] = 0;
-      root.Count[i] = 0;
-    }
-    std::uint32_t kids[4];
+    root.Clear();
+    std::uint32_t kids[kWideArity];
     int n = 1;
     if (this->Tree.nodes[0].isLeaf())
     {
@@ -346,7 +350,7 @@ public:
     }
     // Storage from this thread (a worker thread's malloc arena would hand
     // large blocks back to the system after every build).
-    std::vector<WideNode> sub[4];
+    std::vector<WideNode> sub[kWideArity];
     for (int i = 0; i < n; ++i)
     {
       sub[i].reserve(this->Tree.nodes.size() / 2 + 16);
@@ -381,7 +385,7 @@ public:
       this->Wide[0].Child[i] = offset; // the subtree's root comes first
       for (WideNode w : sub[i])
       {
-        for (int k = 0; k < 4; ++k)
+        for (int k = 0; k < kWideArity; ++k)
         {
           w.Child[k] += w.Count[k] == 0 ? offset : 0;
         }
@@ -895,11 +899,11 @@ private:
   }
 
   /// The picking hot path: the core's closest-hit contract (ordered,
-  /// nearest first, the intersector shrinks ray.tmax) over the four-wide
+  /// nearest first, the intersector shrinks ray.tmax) over the eight-wide
   /// view of the same tree, culling in float with the conservative
-  /// pre-tests of core/ConservativeFloat.h: four boxes per step, four
-  /// triangles per step (tol 0), so that only triangles the exact double
-  /// test might accept reach it.
+  /// pre-tests of core/ConservativeFloat.h: boxes four per SSE step,
+  /// triangles four per step (tol 0), so that only triangles the exact
+  /// double test might accept reach it.
   template <class Isect>
   bool ClosestHitWide(const core::ConservativeRay4& fray, core::Ray<double> ray, double tol,
     Isect& isect, core::Hit<double>& hit) const
@@ -915,8 +919,9 @@ private:
       std::uint32_t Count; ///< > 0: a leaf (Ref = first primIndex slot)
       float Dist;
     };
-    // Each wide level pushes at most 3 entries; depth <= kMaxDepth.
-    Entry stack[3 * core::kMaxStackSize + 4];
+    // Each wide level pushes at most kWideArity - 1 entries; there are at
+    // most kMaxDepth levels.
+    Entry stack[(kWideArity - 1) * core::kMaxStackSize + 4];
     std::uint32_t sp = 0;
     float tmaxF = core::ConservativeRay4::scaledTmax(ray.tmax);
     bool found = false;
@@ -985,11 +990,15 @@ private:
       if (cur.Count == 0)
       {
         const WideNode& w = this->Wide[cur.Ref];
-        alignas(16) float tnear[4];
-        int mask = core::intersectBoxes4(fray, w.Box, tmaxF, tnear);
+        alignas(16) float tnear[kWideArity];
+        int mask = 0;
+        for (int h = 0; h < kWideArity / 4; ++h)
+        {
+          mask |= core::intersectBoxes4(fray, w.Box[h], tmaxF, tnear + 4 * h) << (4 * h);
+        }
         if (mask)
         {
-          Entry hits[4];
+          Entry hits[kWideArity];
           int nh = 0;
           while (mask)
           {
@@ -1007,8 +1016,10 @@ private:
             if (c.Count == 0)
             {
               const char* next = reinterpret_cast<const char*>(&this->Wide[c.Ref]);
-              _mm_prefetch(next, _MM_HINT_T0);
-              _mm_prefetch(next + 64, _MM_HINT_T0);
+              for (std::size_t line = 0; line < sizeof(WideNode); line += 64)
+              {
+                _mm_prefetch(next + line, _MM_HINT_T0);
+              }
             }
             else if (allTriangles)
             {
