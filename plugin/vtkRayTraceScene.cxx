@@ -15,6 +15,7 @@
 #include "vtkDataObject.h"
 #include "vtkDataObjectTree.h"
 #include "vtkDataObjectTreeIterator.h"
+#include "vtkDataSet.h"
 #include "vtkFloatArray.h"
 #include "vtkGlyph3DMapper.h"
 #include "vtkImageData.h"
@@ -449,6 +450,26 @@ vtkDataArray* glyphArray(vtkGlyph3DMapper* mapper, int idx, vtkDataSet* input)
   return nullptr;
 }
 
+/// The scale and orientation arrays the mapper reads from `set.Data`, as
+/// vtkOpenGLGlyph3DMapper: glyph = translate(point) * rotate(orientation) *
+/// scale (only with Scaling on), applied to the source sphere. False when
+/// VTK would report an error for them (left to VTK).
+bool findGlyphArrays(vtkGlyph3DMapper* mapper, GlyphSet& set)
+{
+  vtkDataSet* input = set.Data;
+  set.Scale = mapper->GetScaling() ? glyphArray(mapper, vtkGlyph3DMapper::SCALE, input) : nullptr;
+  set.PerComponent = set.Scale && mapper->GetScaleMode() == vtkGlyph3DMapper::SCALE_BY_COMPONENTS &&
+    set.Scale->GetNumberOfComponents() != 1;
+  if (set.PerComponent && set.Scale->GetNumberOfComponents() != 3)
+  {
+    return false; // VTK reports an error and draws unscaled glyphs
+  }
+  set.Orientation =
+    mapper->GetOrient() ? glyphArray(mapper, vtkGlyph3DMapper::ORIENTATION, input) : nullptr;
+  const int components = mapper->GetOrientationMode() == vtkGlyph3DMapper::QUATERNION ? 4 : 3;
+  return !set.Orientation || set.Orientation->GetNumberOfComponents() == components;
+}
+
 /// A polydata leaf of a composite input with its inherited block color.
 struct Piece
 {
@@ -753,7 +774,7 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     // rebuilds anything.
     std::ostringstream key;
     key << "points:" << property->GetRepresentation();
-    auto& entry = this->SphereCache[poly];
+    auto& entry = this->SphereCache[std::make_pair(static_cast<const void*>(poly), nullptr)];
     if (!entry || entry->SourceTime != time || entry->SourceKey != key.str() ||
       entry->Quality != this->BuildQuality)
     {
@@ -824,7 +845,7 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
   return true;
 }
 
-bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, FrameCounters& counters)
+bool Scene::GetGlyphSphere(vtkGlyph3DMapper* mapper, GlyphSphere& sphere)
 {
   if (mapper->GetNumberOfInputConnections(1) != 1 || mapper->GetSourceIndexing() ||
     mapper->GetUseSourceTableTree())
@@ -837,71 +858,123 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
   {
     return false;
   }
-  vtkSphereSource* sphere = vtkSphereSource::SafeDownCast(producer);
-  double r0 = 0.0;
-  double sourceCenter[3] = { 0, 0, 0 };
-  vtkMTimeType sourceTime = 0;
-  if (sphere)
+  if (auto* source = vtkSphereSource::SafeDownCast(producer))
   {
-    r0 = sphere->GetRadius();
-    sphere->GetCenter(sourceCenter);
-    sourceTime = sphere->GetMTime();
+    sphere.Radius = source->GetRadius();
+    source->GetCenter(sphere.Center.data());
+    sphere.Time = source->GetMTime();
+    return true;
   }
-  else
-  {
-    // Any other source (a filter, SetSourceData): a sphere if its geometry
-    // is one (ParaView's sphere glyphs come through its own filter).
-    producer->Update(conn->GetIndex());
-    vtkPolyData* source = vtkPolyData::SafeDownCast(producer->GetOutputDataObject(conn->GetIndex()));
-    if (!source)
-    {
-      return false;
-    }
-    auto& shape = this->GlyphSourceCache[mapper];
-    shape.Used = true;
-    if (shape.Data != source || shape.Time != source->GetMTime())
-    {
-      shape.Data = source;
-      shape.Time = source->GetMTime();
-      shape.Sphere = sphereOfPolyData(source, shape.Center.data(), shape.Radius);
-    }
-    if (!shape.Sphere)
-    {
-      return false;
-    }
-    r0 = shape.Radius;
-    std::copy(shape.Center.begin(), shape.Center.end(), sourceCenter);
-    sourceTime = shape.Time;
-  }
-  mapper->Update();
-  vtkDataSet* input = mapper->GetInput();
-  if (!input)
+  // Any other source (a filter, SetSourceData): a sphere if its geometry
+  // is one (ParaView's sphere glyphs come through its own filter).
+  producer->Update(conn->GetIndex());
+  vtkPolyData* source = vtkPolyData::SafeDownCast(producer->GetOutputDataObject(conn->GetIndex()));
+  if (!source)
   {
     return false;
   }
-  // As vtkOpenGLGlyph3DMapper: glyph = translate(point) * rotate(orientation)
-  // * scale (only with Scaling on), applied to the source sphere.
-  vtkDataArray* scale = mapper->GetScaling() ? glyphArray(mapper, vtkGlyph3DMapper::SCALE, input) : nullptr;
+  auto& shape = this->GlyphSourceCache[mapper];
+  shape.Used = true;
+  if (shape.Data != source || shape.Time != source->GetMTime())
+  {
+    shape.Data = source;
+    shape.Time = source->GetMTime();
+    shape.Sphere = sphereOfPolyData(source, shape.Center.data(), shape.Radius);
+  }
+  if (!shape.Sphere)
+  {
+    return false;
+  }
+  sphere.Radius = shape.Radius;
+  sphere.Center = shape.Center;
+  sphere.Time = shape.Time;
+  return true;
+}
+
+bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, FrameCounters& counters)
+{
+  GlyphSphere sphere;
+  if (!this->GetGlyphSphere(mapper, sphere))
+  {
+    return false;
+  }
+  mapper->Update();
+  vtkDataObject* input = mapper->GetInputDataObject(0, 0);
+  std::vector<GlyphSet> sets;
+  if (auto* data = vtkDataSet::SafeDownCast(input))
+  {
+    sets.emplace_back();
+    sets.back().Data = data;
+  }
+  else if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
+  {
+    // As vtkOpenGLGlyph3DMapper::Render (VTK 9.1): every leaf that is a
+    // dataset with points, skipped when the mapper's block attributes hide
+    // that leaf (only the leaf's own entry counts: inner blocks' attributes
+    // are not inherited), drawn in its block color when it has one. Block
+    // opacity is ignored, as VTK's glyph mapper does.
+    vtkCompositeDataDisplayAttributes* attributes = mapper->GetBlockAttributes();
+    auto it = vtk::TakeSmartPointer(composite->NewIterator());
+    it->SkipEmptyNodesOn();
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      vtkDataObject* leaf = it->GetCurrentDataObject();
+      auto* data = vtkDataSet::SafeDownCast(leaf);
+      if (!data || data->GetNumberOfPoints() == 0 ||
+        (attributes && attributes->HasBlockVisibility(leaf) && !attributes->GetBlockVisibility(leaf)))
+      {
+        continue;
+      }
+      GlyphSet set;
+      set.Data = data;
+      if (attributes && attributes->HasBlockColor(leaf))
+      {
+        set.HasBlockColor = true;
+        attributes->GetBlockColor(leaf, set.BlockColor.data());
+      }
+      sets.push_back(set);
+    }
+  }
+  else
+  {
+    return false;
+  }
+  // Every set checked before any is built: one untraceable set leaves the
+  // whole actor to raster.
+  for (GlyphSet& set : sets)
+  {
+    if (!findGlyphArrays(mapper, set))
+    {
+      return false;
+    }
+  }
+  for (const GlyphSet& set : sets)
+  {
+    this->AddGlyphSet(actor, mapper, sphere, set, propIndex, counters);
+  }
+  return true;
+}
+
+void Scene::AddGlyphSet(vtkActor* actor, vtkGlyph3DMapper* mapper, const GlyphSphere& sphere,
+  const GlyphSet& set, int propIndex, FrameCounters& counters)
+{
+  vtkDataSet* input = set.Data;
+  vtkDataArray* scale = set.Scale;
   const int scaleMode = mapper->GetScaleMode();
-  const bool perComponent = scale && scaleMode == vtkGlyph3DMapper::SCALE_BY_COMPONENTS &&
-    scale->GetNumberOfComponents() != 1;
-  if (perComponent && scale->GetNumberOfComponents() != 3)
-  {
-    return false; // VTK reports an error and draws unscaled glyphs: left to it
-  }
-  vtkDataArray* orientation =
-    mapper->GetOrient() ? glyphArray(mapper, vtkGlyph3DMapper::ORIENTATION, input) : nullptr;
+  const bool perComponent = set.PerComponent;
+  vtkDataArray* orientation = set.Orientation;
   const int orientationMode = mapper->GetOrientationMode();
-  if (orientation &&
-    orientation->GetNumberOfComponents() != (orientationMode == vtkGlyph3DMapper::QUATERNION ? 4 : 3))
-  {
-    return false; // VTK reports an error: left to it
-  }
+  const double r0 = sphere.Radius;
+  const double* sourceCenter = sphere.Center.data();
+  const vtkMTimeType sourceTime = sphere.Time;
   // The mapper's own MTime (its GetMTime() adds the lookup table's, which
   // colors depend on, not the spheres).
   vtkMTimeType time =
     std::max({ mapper->vtkObject::GetMTime(), input->GetMTime(), sourceTime });
-  auto& entry = this->SphereCache[mapper];
+  // Keyed by (mapper, dataset): each leaf of a composite input has its own
+  // entry, rebuilt only when that leaf, the mapper or the source changes.
+  auto& entry = this->SphereCache[std::make_pair(
+    static_cast<const void*>(mapper), static_cast<const void*>(input))];
   if (!entry || entry->SourceTime != time || entry->Quality != this->BuildQuality)
   {
     vtkDataArray* mask = mapper->GetMasking() ? glyphArray(mapper, vtkGlyph3DMapper::MASK, input) : nullptr;
@@ -1028,13 +1101,29 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
     entry->Quality = this->BuildQuality;
     entry->SourceTime = time;
     entry->Keep = mapper;
+    entry->KeepData = input;
     ++counters.BVHBuilds;
     this->GeometryDirty = true;
   }
   entry->Used = true;
+  // Id mode reports a hit as (prop index, point id within this set's
+  // dataset): vtkHardwareSelector would add the leaf's flat index, which the
+  // pass's id image has no channel for.
   Instance inst;
   inst.PropIndex = propIndex;
   this->FillMaterial(actor, mapper, inst);
+  if (set.HasBlockColor)
+  {
+    // VTK 9.1 draws the leaf with the property's SetColor(block color): the
+    // ambient, diffuse and specular colors all become it.
+    vtkProperty* property = actor->GetProperty();
+    for (int k = 0; k < 3; ++k)
+    {
+      inst.Ambient[k] = static_cast<float>(property->GetAmbient() * set.BlockColor[k]);
+      inst.Diffuse[k] = static_cast<float>(property->GetDiffuse() * set.BlockColor[k]);
+      inst.Specular[k] = static_cast<float>(property->GetSpecular() * set.BlockColor[k]);
+    }
+  }
   if (!entry->Empty())
   {
     inst.Geom = entry.get();
@@ -1049,7 +1138,6 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
     inst.Color = colors && !colors->CellColors && !colors->Texture ? colors : nullptr;
     this->Instances.push_back(inst);
   }
-  return true;
 }
 
 void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vtkProp*>& traced,
@@ -1142,13 +1230,12 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
   }
 
   // Forget what no prop uses any more.
-  for (auto* cache : { &this->TriangleCache, &this->SphereCache })
-  {
-    for (auto it = cache->begin(); it != cache->end();)
+  auto forgetUnused = [this](auto& cache) {
+    for (auto it = cache.begin(); it != cache.end();)
     {
       if (!it->second->Used)
       {
-        it = cache->erase(it);
+        it = cache.erase(it);
         this->GeometryDirty = true;
       }
       else
@@ -1156,7 +1243,9 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
         ++it;
       }
     }
-  }
+  };
+  forgetUnused(this->TriangleCache);
+  forgetUnused(this->SphereCache);
   for (auto it = this->ColorCache.begin(); it != this->ColorCache.end();)
   {
     if (!it->second->Used)

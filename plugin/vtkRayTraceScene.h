@@ -14,10 +14,13 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 class vtkActor;
+class vtkDataArray;
 class vtkDataObject;
+class vtkDataSet;
 class vtkGlyph3DMapper;
 class vtkMapper;
 class vtkObject;
@@ -57,6 +60,7 @@ struct Geometry
   /// rows of the map onto their unit sphere); Spheres is set too.
   bool Ellipsoids = false;
   vtkSmartPointer<vtkObject> Keep; ///< keeps the keyed object alive
+  vtkSmartPointer<vtkObject> KeepData; ///< glyphs: the keyed dataset (key: mapper, dataset)
 
   // Placement in the packed arrays (global offsets).
   std::uint32_t NodeBase = 0;
@@ -138,6 +142,26 @@ struct FrameCounters
   int TracedInstances = 0;
 };
 
+/// The sphere a glyph mapper's source is: every glyph scales it.
+struct GlyphSphere
+{
+  std::array<double, 3> Center{ { 0, 0, 0 } };
+  double Radius = 0.0;
+  vtkMTimeType Time = 0; ///< MTime of the source it was read from
+};
+
+/// One dataset a glyph mapper draws: its plain input, or one visible leaf
+/// of its composite input, with the arrays its glyphs read.
+struct GlyphSet
+{
+  vtkDataSet* Data = nullptr;
+  vtkDataArray* Scale = nullptr; ///< null: unscaled (Scaling off or no array)
+  bool PerComponent = false;     ///< scaled per component: ellipsoids
+  vtkDataArray* Orientation = nullptr;
+  bool HasBlockColor = false; ///< the leaf's block color replaces the property's colors
+  std::array<double, 3> BlockColor{ { 0, 0, 0 } };
+};
+
 /// Radii of screen-sized spheres (points drawn as spheres) for one frame.
 /// VTK draws such a point PointSize pixels wide whatever its distance, so
 /// the pass gives it the world radius PointSize * tan(viewAngle / 2) * z / H
@@ -204,7 +228,16 @@ public:
 private:
   bool AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
     vtkRenderer* ren, FrameCounters& counters, const double* blockColor = nullptr);
+  /// A glyph mapper's plain input or every visible, non-empty leaf of its
+  /// composite input (as vtkOpenGLGlyph3DMapper), each through AddGlyphSet;
+  /// false (left to raster) when the source is not a sphere or some set's
+  /// arrays are not traceable.
   bool AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, FrameCounters& counters);
+  /// The sphere the mapper's single source is; false when it is not one.
+  bool GetGlyphSphere(vtkGlyph3DMapper* mapper, GlyphSphere& sphere);
+  /// One set's spheres or ellipsoids, cached per (mapper, dataset), and its instance.
+  void AddGlyphSet(vtkActor* actor, vtkGlyph3DMapper* mapper, const GlyphSphere& sphere,
+    const GlyphSet& set, int propIndex, FrameCounters& counters);
   Colors* GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time);
   void FillMaterial(vtkActor* actor, vtkMapper* mapper, Instance& inst) const;
 
@@ -214,7 +247,8 @@ private:
   int BuildQuality = 1;
   std::uint32_t LeafSize = 4;
   std::map<const void*, std::unique_ptr<Geometry>> TriangleCache;
-  std::map<const void*, std::unique_ptr<Geometry>> SphereCache;
+  /// Points as spheres: (polydata, null); glyphs: (mapper, dataset).
+  std::map<std::pair<const void*, const void*>, std::unique_ptr<Geometry>> SphereCache;
   std::map<std::pair<const void*, const void*>, std::unique_ptr<Colors>> ColorCache;
   /// Whether a glyph source that is not a vtkSphereSource is a sphere, per
   /// mapper, decided once per (source data, MTime).
