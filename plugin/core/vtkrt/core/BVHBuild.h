@@ -119,6 +119,18 @@ public:
     FreeThreads = static_cast<int>(std::max(1u, threads)) - 1;
   }
 
+  /// Room for the nodes over `count` primitives: LBVH leaves hold about
+  /// half of the leaf size (it splits at Morton bits, not counts), the SAH
+  /// builders' nearly all of it. Too little costs a reallocation of the
+  /// whole array; the build shrinks it to size at the end.
+  std::size_t nodeEstimate(std::size_t count) const
+  {
+    const std::uint32_t leaf = Options.quality == BuildQuality::Fast
+      ? std::max<std::uint32_t>(1, Options.maxLeafSize / 2)
+      : Options.maxLeafSize;
+    return 2 * count / leaf + 1;
+  }
+
   /// The id of the primitive at leaf position pos (after build()).
   std::uint32_t idAt(std::uint32_t pos) const { return refAt(pos).id; }
 
@@ -137,7 +149,7 @@ public:
     {
       presort();
     }
-    nodes.reserve(2 * Refs.size() / std::max<std::uint32_t>(1, Options.maxLeafSize) + 1);
+    nodes.reserve(nodeEstimate(Refs.size()));
     nodes.resize(1);
     buildNode(nodes, 0, 0, static_cast<std::uint32_t>(Refs.size()), 0);
     if (Options.quality == BuildQuality::High)
@@ -740,6 +752,12 @@ private:
     if (isTask[0] && isTask[1] && Options.parallelFor && depth < kPooledDepth)
     {
       pooled = true;
+      // Storage from this thread: a pool worker's malloc arena hands large
+      // blocks back to the system, which faults them in again next build.
+      for (int c = 0; c < 2; ++c)
+      {
+        sub[c].reserve(nodeEstimate(ranges[c][1] - ranges[c][0]));
+      }
       Options.parallelFor(2, [this, &sub, &ranges, depth](std::size_t b, std::size_t e) {
         for (std::size_t c = b; c < e; ++c)
         {
