@@ -1,9 +1,11 @@
 """pvbatch test: a ray-traced view against a baseline image.
 
 Usage: pvbatch --force-offscreen-rendering test_render.py CASE [THRESHOLD]
-CASE: Mesh (an isosurface), Glyphs (sphere glyphs), Distributed (mesh and
-glyphs, split over the ranks when run under mpiexec: the image must match
-the serial baseline).
+CASE: Mesh (an isosurface), Glyphs (sphere glyphs), Glyphs3D (the "3D
+Glyphs" representation with sphere glyphs, whose mapper gets composite
+data: traced, and against ParaView's own raster image of it), Distributed
+(mesh and glyphs, split over the ranks when run under mpiexec: the image
+must match the serial baseline).
 """
 import os
 import sys
@@ -33,6 +35,47 @@ elif case == "Glyphs":
     points = source.GetDataInformation().GetNumberOfPoints()
     check(traced_primitives(view) == points,
           "the %d glyphs are traced as analytic spheres (traced: %d)" % (points, traced_primitives(view)))
+elif case == "Glyphs3D":
+    points = Sphere(Radius=1.0, ThetaResolution=12, PhiResolution=7)
+    display = Show(points, view)
+    display.SetRepresentationType("3D Glyphs")
+    display.GlyphType = "Sphere"
+    display.GlyphType.ThetaResolution = 48
+    display.GlyphType.PhiResolution = 48
+    display.ScaleFactor = 0.25
+    display.DiffuseColor = [0.55, 0.75, 0.85]
+    ColorBy(display, ("POINTS", None))
+    place_camera(view, azimuth=20.0, elevation=25.0)
+    Render(view)
+    count = points.GetDataInformation().GetNumberOfPoints()
+    check(traced_primitives(view) == count,
+          "the %d 3D glyphs are traced as analytic spheres (traced: %d)" % (count, traced_primitives(view)))
+    # ParaView's raster view of the same scene (48x48 tessellated spheres).
+    raster = CreateView("RenderView")
+    raster.ViewSize = VIEW_SIZE
+    raster.OrientationAxesVisibility = 1
+    raster.Background = view.Background
+    raster.UseColorPaletteForBackground = 0
+    raster.MultiSamples = 0
+    raster_display = Show(points, raster)
+    raster_display.SetRepresentationType("3D Glyphs")
+    raster_display.GlyphType = "Sphere"
+    raster_display.GlyphType.ThetaResolution = 48
+    raster_display.GlyphType.PhiResolution = 48
+    raster_display.ScaleFactor = 0.25
+    raster_display.DiffuseColor = [0.55, 0.75, 0.85]
+    ColorBy(raster_display, ("POINTS", None))
+    for name in ("CameraPosition", "CameraFocalPoint", "CameraViewUp", "CameraViewAngle"):
+        raster.SetPropertyWithName(name, view.GetPropertyValue(name))
+    Render(raster)
+    raster_png = os.path.join(TEMP_DIR, "paraview_Glyphs3D_raster.png")
+    os.makedirs(TEMP_DIR, exist_ok=True)
+    SaveScreenshot(raster_png, raster, ImageResolution=VIEW_SIZE)
+    traced_png = os.path.join(TEMP_DIR, "paraview_Glyphs3D_traced.png")
+    SaveScreenshot(traced_png, view, ImageResolution=VIEW_SIZE)
+    error = image_error(traced_png, raster_png)
+    check(error <= threshold, "traced 3D glyphs match ParaView's raster image (error %.2f <= %.2f)"
+          % (error, threshold))
 elif case == "Distributed":
     distributed = ranks > 1
     source, _ = mesh(view)
@@ -53,8 +96,9 @@ elif case == "Distributed":
 else:
     raise SystemExit("unknown case " + case)
 
-png = os.path.join(TEMP_DIR, "paraview_%s_np%d.png" % (case, ranks))
-os.makedirs(TEMP_DIR, exist_ok=True)
-SaveScreenshot(png, view, ImageResolution=VIEW_SIZE)
-compare_with_baseline(png, "paraview_" + case, threshold)
+if case != "Glyphs3D":  # compared with ParaView's raster image above
+    png = os.path.join(TEMP_DIR, "paraview_%s_np%d.png" % (case, ranks))
+    os.makedirs(TEMP_DIR, exist_ok=True)
+    SaveScreenshot(png, view, ImageResolution=VIEW_SIZE)
+    compare_with_baseline(png, "paraview_" + case, threshold)
 finish()
