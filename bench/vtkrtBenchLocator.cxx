@@ -177,6 +177,17 @@ Result Measure(const Peer& peer, vtkPolyData* pd, const std::vector<Segment>& se
 {
   Result r;
   r.Name = peer.Name;
+  // One untimed round first: a process's first builds pay for fresh heap
+  // pages, the SMP pool's start and symbol binding (measured 5-6x slower
+  // for the first two builds at 100k), which would bias whichever peer
+  // runs first.
+  {
+    void* loc = peer.Create(pd);
+    peer.Build(loc);
+    double t;
+    peer.Query(loc, segs[0], t);
+    peer.Destroy(loc);
+  }
   // First pick: a fresh locator, its build, one query (best of 3: wall
   // clock, the machine is shared).
   r.FirstPickSeconds = 1e30;
