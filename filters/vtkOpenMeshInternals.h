@@ -181,6 +181,31 @@ inline bool IdsInRange(const vtkIdType* ids, vtkIdType n, vtkIdType numPoints)
   return true;
 }
 
+// Calls triangulate(ids, n, cellId) on each cell of `cells` that has at least
+// 3 points, all below numPoints; the others are counted as invalid in `soup`.
+// Cells are numbered on from `cellId`, which is left past the last one, so
+// that polygons and strips keep VTK's cell order.
+template <class Triangulate>
+void ForEachValidCell(vtkCellArray* cells, vtkIdType numPoints, vtkIdType& cellId,
+  TriangleSoup& soup, Triangulate&& triangulate)
+{
+  auto iter = vtk::TakeSmartPointer(cells->NewIterator());
+  vtkIdType n;
+  const vtkIdType* ids;
+  for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell(), ++cellId)
+  {
+    iter->GetCurrentCell(n, ids);
+    if (n < 3 || !IdsInRange(ids, n, numPoints))
+    {
+      ++soup.NumberOfInvalidCells;
+    }
+    else
+    {
+      triangulate(ids, n, cellId);
+    }
+  }
+}
+
 // Triangulates every polygon and strip of `input`. Vertices and lines are
 // counted and dropped: a ray tracer hits surfaces only. Cells with fewer
 // than 3 points or with point ids out of range are counted as invalid.
@@ -200,25 +225,17 @@ inline void TriangulatePolyData(vtkPolyData* input, TriangleSoup& soup)
   vtkNew<vtkPolygon> polygon;
   vtkNew<vtkIdList> localTris;
   vtkIdType cellId = nVerts + nLines;
-  {
-    auto iter = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
-    vtkIdType n;
-    const vtkIdType* ids;
-    for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell(), ++cellId)
+  ForEachValidCell(input->GetPolys(), numPoints, cellId, soup,
+    [&](const vtkIdType* ids, vtkIdType n, vtkIdType polyId)
     {
-      iter->GetCurrentCell(n, ids);
-      if (n < 3 || !IdsInRange(ids, n, numPoints))
-      {
-        ++soup.NumberOfInvalidCells;
-      }
-      else if (n == 3)
+      if (n == 3)
       {
         soup.Triangles.push_back({ ids[0], ids[1], ids[2] });
-        soup.SourceCells.push_back(cellId);
+        soup.SourceCells.push_back(polyId);
       }
       else if (n == 4)
       {
-        TriangulateQuad(pts, ids, soup, cellId);
+        TriangulateQuad(pts, ids, soup, polyId);
       }
       else
       {
@@ -238,7 +255,7 @@ inline void TriangulatePolyData(vtkPolyData* input, TriangleSoup& soup)
           {
             soup.Triangles.push_back({ ids[localTris->GetId(3 * t)],
               ids[localTris->GetId(3 * t + 1)], ids[localTris->GetId(3 * t + 2)] });
-            soup.SourceCells.push_back(cellId);
+            soup.SourceCells.push_back(polyId);
           }
         }
         else
@@ -246,24 +263,14 @@ inline void TriangulatePolyData(vtkPolyData* input, TriangleSoup& soup)
           for (vtkIdType t = 1; t + 1 < n; ++t)
           {
             soup.Triangles.push_back({ ids[0], ids[t], ids[t + 1] });
-            soup.SourceCells.push_back(cellId);
+            soup.SourceCells.push_back(polyId);
           }
         }
       }
-    }
-  }
-  {
-    auto iter = vtk::TakeSmartPointer(input->GetStrips()->NewIterator());
-    vtkIdType n;
-    const vtkIdType* ids;
-    for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell(), ++cellId)
+    });
+  ForEachValidCell(input->GetStrips(), numPoints, cellId, soup,
+    [&](const vtkIdType* ids, vtkIdType n, vtkIdType stripId)
     {
-      iter->GetCurrentCell(n, ids);
-      if (n < 3 || !IdsInRange(ids, n, numPoints))
-      {
-        ++soup.NumberOfInvalidCells;
-        continue;
-      }
       // Every other triangle of a strip is wound the other way.
       for (vtkIdType i = 0; i + 2 < n; ++i)
       {
@@ -275,10 +282,9 @@ inline void TriangulatePolyData(vtkPolyData* input, TriangleSoup& soup)
         {
           soup.Triangles.push_back({ ids[i + 1], ids[i], ids[i + 2] });
         }
-        soup.SourceCells.push_back(cellId);
+        soup.SourceCells.push_back(stripId);
       }
-    }
-  }
+    });
 }
 
 // A shallow copy of `in` without the arrays that have fewer than `count`
