@@ -1,5 +1,6 @@
 #include "vtkOpenMeshDecimation.h"
 
+#include "vtkOpenMeshIncludes.h"
 #include "vtkOpenMeshInternals.h"
 
 #include "vtkCellData.h"
@@ -13,23 +14,13 @@
 #include "vtkSMPTools.h"
 #include "vtkStaticCellLocator.h"
 
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wall"
-#pragma GCC diagnostic ignored "-Wextra"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wdeprecated-copy"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#endif
+VTKRT_OPENMESH_INCLUDES_BEGIN
 #include <OpenMesh/Core/Geometry/QuadricT.hh>
 #include <OpenMesh/Tools/Decimater/CollapseInfoT.hh>
 #include <OpenMesh/Tools/Decimater/ModAspectRatioT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalDeviationT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
+VTKRT_OPENMESH_INCLUDES_END
 
 #include <algorithm>
 #include <array>

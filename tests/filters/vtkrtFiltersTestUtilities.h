@@ -20,20 +20,11 @@
 #include "vtkSmartPointer.h"
 #include "vtkStaticCellLocator.h"
 
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wall"
-#pragma GCC diagnostic ignored "-Wextra"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wdeprecated-copy"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#endif
+#include "vtkOpenMeshIncludes.h" // from filters/: quiet OpenMesh includes
+VTKRT_OPENMESH_INCLUDES_BEGIN
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
+VTKRT_OPENMESH_INCLUDES_END
 
 #include <algorithm>
 #include <cmath>
