@@ -98,6 +98,51 @@ struct StackEntry
   T dist; ///< entry t (rays) or squared distance (points)
 };
 
+/// The nearer-child-first walk shared by ray and point queries: its stack,
+/// the step into an interior node's children and the pop.
+template <class T>
+struct OrderedWalk
+{
+  StackEntry<T> stack[kMaxStackSize];
+  std::uint32_t sp = 0;
+
+  /// Children index and index + 1, hit (h0, h1) at distances d0, d1: the
+  /// nearer hit one becomes `cur`, the other waits on the stack. False when
+  /// neither is hit.
+  bool descend(std::uint32_t index, bool h0, T d0, bool h1, T d1, std::uint32_t& cur)
+  {
+    if (h0 && h1)
+    {
+      const bool firstNear = d0 <= d1;
+      stack[sp++] = { firstNear ? index + 1 : index, firstNear ? d1 : d0 };
+      cur = firstNear ? index : index + 1;
+      return true;
+    }
+    if (h0 || h1)
+    {
+      cur = h0 ? index : index + 1;
+      return true;
+    }
+    return false;
+  }
+
+  /// The next waiting node still within `bound` (entries beyond it are
+  /// dropped); false when none is left.
+  bool pop(T bound, std::uint32_t& cur)
+  {
+    while (sp > 0)
+    {
+      const StackEntry<T> e = stack[--sp];
+      if (e.dist <= bound)
+      {
+        cur = e.node;
+        return true;
+      }
+    }
+    return false;
+  }
+};
+
 /// Shared by closestHit/anyHit/allHits. mode: 0 closest, 1 any, 2 all.
 template <int Mode, class Nodes, class T, class Isect, class Sink>
 bool traverseRay(const Nodes& nodes, const std::uint32_t* primIndex, Ray<T> ray, Isect& isect, Hit<T>& hit,
@@ -108,8 +153,7 @@ bool traverseRay(const Nodes& nodes, const std::uint32_t* primIndex, Ray<T> ray,
     return false;
   }
   const RayBoxPrecomputed<T> pre(ray);
-  StackEntry<T> stack[kMaxStackSize];
-  std::uint32_t sp = 0;
+  OrderedWalk<T> walk;
   T tnear = T(0);
   if (!intersectRayAABB(pre, nodes.lo(0), nodes.hi(0), ray.tmin, ray.tmax, tnear))
   {
@@ -121,7 +165,6 @@ bool traverseRay(const Nodes& nodes, const std::uint32_t* primIndex, Ray<T> ray,
   {
     const std::uint32_t count = nodes.count(cur);
     const std::uint32_t index = nodes.index(cur);
-    bool descend = false;
     if (count > 0)
     {
       for (std::uint32_t k = 0; k < count; ++k)
@@ -153,36 +196,13 @@ bool traverseRay(const Nodes& nodes, const std::uint32_t* primIndex, Ray<T> ray,
       T t0 = T(0), t1 = T(0);
       const bool h0 = intersectRayAABB(pre, nodes.lo(index), nodes.hi(index), ray.tmin, ray.tmax, t0);
       const bool h1 = intersectRayAABB(pre, nodes.lo(index + 1), nodes.hi(index + 1), ray.tmin, ray.tmax, t1);
-      if (h0 && h1)
+      if (walk.descend(index, h0, t0, h1, t1, cur))
       {
-        const bool firstNear = t0 <= t1;
-        stack[sp++] = { firstNear ? index + 1 : index, firstNear ? t1 : t0 };
-        cur = firstNear ? index : index + 1;
-        descend = true;
-      }
-      else if (h0 || h1)
-      {
-        cur = h0 ? index : index + 1;
-        descend = true;
+        continue;
       }
     }
-    if (descend)
-    {
-      continue;
-    }
-    // Pop the next node still in front of the closest hit.
-    bool popped = false;
-    while (sp > 0)
-    {
-      const StackEntry<T> e = stack[--sp];
-      if (e.dist <= ray.tmax)
-      {
-        cur = e.node;
-        popped = true;
-        break;
-      }
-    }
-    if (!popped)
+    // The next node still in front of the closest hit.
+    if (!walk.pop(ray.tmax, cur))
     {
       return found;
     }
@@ -266,8 +286,7 @@ bool closestPoint(const BVH& bvh, const Vec3<T>& p, T maxDistance, PointFn&& fn,
   }
   best.dist2 = maxDistance * maxDistance;
   const NodeSource nodes(bvh);
-  detail::StackEntry<T> stack[kMaxStackSize];
-  std::uint32_t sp = 0;
+  detail::OrderedWalk<T> walk;
   const auto boxDist2 = [&](std::uint32_t i) { return AABB<T>(nodes.lo(i), nodes.hi(i)).distance2(p); };
   if (boxDist2(0) > best.dist2)
   {
@@ -278,7 +297,6 @@ bool closestPoint(const BVH& bvh, const Vec3<T>& p, T maxDistance, PointFn&& fn,
   {
     const std::uint32_t count = nodes.count(cur);
     const std::uint32_t index = nodes.index(cur);
-    bool descend = false;
     if (count > 0)
     {
       for (std::uint32_t k = 0; k < count; ++k)
@@ -297,36 +315,12 @@ bool closestPoint(const BVH& bvh, const Vec3<T>& p, T maxDistance, PointFn&& fn,
     {
       const T d0 = boxDist2(index);
       const T d1 = boxDist2(index + 1);
-      const bool h0 = d0 <= best.dist2, h1 = d1 <= best.dist2;
-      if (h0 && h1)
+      if (walk.descend(index, d0 <= best.dist2, d0, d1 <= best.dist2, d1, cur))
       {
-        const bool firstNear = d0 <= d1;
-        stack[sp++] = { firstNear ? index + 1 : index, firstNear ? d1 : d0 };
-        cur = firstNear ? index : index + 1;
-        descend = true;
-      }
-      else if (h0 || h1)
-      {
-        cur = h0 ? index : index + 1;
-        descend = true;
+        continue;
       }
     }
-    if (descend)
-    {
-      continue;
-    }
-    bool popped = false;
-    while (sp > 0)
-    {
-      const detail::StackEntry<T> e = stack[--sp];
-      if (e.dist <= best.dist2)
-      {
-        cur = e.node;
-        popped = true;
-        break;
-      }
-    }
-    if (!popped)
+    if (!walk.pop(best.dist2, cur))
     {
       return best.found();
     }
