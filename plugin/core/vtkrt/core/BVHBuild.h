@@ -513,10 +513,7 @@ private:
     {
       return count <= Options.maxLeafSize ? end : medianSplit(begin, end, centroids);
     }
-    const double parentArea = box.halfArea();
-    const double splitCost = Options.traversalCost +
-      Options.intersectionCost * (parentArea > 0.0 ? bestCost / parentArea : double(count));
-    if (count <= Options.maxLeafSize && splitCost >= Options.intersectionCost * count)
+    if (leafIsCheaper(count, bestCost, box))
     {
       return end;
     }
@@ -531,6 +528,21 @@ private:
       return medianSplit(begin, end, centroids);
     }
     return mid;
+  }
+
+  /// SAH: whether a leaf over `count` primitives in `box` costs no more
+  /// than the best split found (bestCost: the children's half areas times
+  /// their counts). Only a range that fits in a leaf may stay one.
+  bool leafIsCheaper(std::uint32_t count, double bestCost, const AABB<double>& box) const
+  {
+    if (count > Options.maxLeafSize)
+    {
+      return false;
+    }
+    const double parentArea = box.halfArea();
+    const double splitCost = Options.traversalCost +
+      Options.intersectionCost * (parentArea > 0.0 ? bestCost / parentArea : double(count));
+    return splitCost >= Options.intersectionCost * count;
   }
 
   static std::uint32_t binOf(double c, double lo, double scale, std::uint32_t nb)
@@ -580,10 +592,7 @@ private:
     {
       return count <= Options.maxLeafSize ? end : medianSplit(begin, end, centroids);
     }
-    const double parentArea = box.halfArea();
-    const double splitCost = Options.traversalCost +
-      Options.intersectionCost * (parentArea > 0.0 ? bestCost / parentArea : double(count));
-    if (count <= Options.maxLeafSize && splitCost >= Options.intersectionCost * count)
+    if (leafIsCheaper(count, bestCost, box))
     {
       return end;
     }
