@@ -115,6 +115,22 @@ bool vtkBVHCellLocator::NeedsBuild() const
 }
 
 //------------------------------------------------------------------------------
+bool vtkBVHCellLocator::HasCellsToBuild()
+{
+  if (!this->DataSet)
+  {
+    vtkErrorMacro(<< "No dataset to build a locator for");
+    return false;
+  }
+  if (this->DataSet->GetNumberOfCells() < 1)
+  {
+    vtkErrorMacro(<< "No cells to build");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 void vtkBVHCellLocator::BuildLocator()
 {
   if (this->LazyEvaluation)
@@ -122,14 +138,8 @@ void vtkBVHCellLocator::BuildLocator()
     // Built by the first query.
     return;
   }
-  if (!this->DataSet)
+  if (!this->HasCellsToBuild())
   {
-    vtkErrorMacro(<< "No dataset to build a locator for");
-    return;
-  }
-  if (this->DataSet->GetNumberOfCells() < 1)
-  {
-    vtkErrorMacro(<< "No cells to build");
     return;
   }
   std::lock_guard<std::mutex> lock(this->Internals->BuildMutex);
@@ -142,14 +152,8 @@ void vtkBVHCellLocator::BuildLocator()
 //------------------------------------------------------------------------------
 void vtkBVHCellLocator::ForceBuildLocator()
 {
-  if (!this->DataSet)
+  if (!this->HasCellsToBuild())
   {
-    vtkErrorMacro(<< "No dataset to build a locator for");
-    return;
-  }
-  if (this->DataSet->GetNumberOfCells() < 1)
-  {
-    vtkErrorMacro(<< "No cells to build");
     return;
   }
   std::lock_guard<std::mutex> lock(this->Internals->BuildMutex);

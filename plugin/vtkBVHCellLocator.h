@@ -202,6 +202,8 @@ protected:
   // Builds when needed; returns false (after an error where VTK gives one)
   // when there is nothing to query.
   bool PrepareQuery();
+  // A dataset with cells; otherwise the error BuildLocator gives, and false.
+  bool HasCellsToBuild();
   void BuildTree();
 
   int BuildQuality;

@@ -520,11 +520,9 @@ public:
         return true;
       }
       const vtkIdType cellId = this->GenCell[prim - nTri];
-      vtkGenericCell* cell = getCell();
-      ds->GetCell(cellId, cell);
       double t, x[3], pc[3];
       int sub;
-      if (!cell->IntersectWithLine(p1, p2, tol, t, x, pc, sub) || !(t >= r.tmin && t <= r.tmax))
+      if (!IntersectCell(ds, cellId, getCell(), p1, p2, tol, r, t, x, pc, sub))
       {
         return false;
       }
@@ -613,11 +611,9 @@ public:
       else
       {
         const vtkIdType cellId = this->GenCell[prim - nTri];
-        vtkGenericCell* cell = getCell();
-        ds->GetCell(cellId, cell);
         double t, x[3], pc[3];
         int sub;
-        if (!cell->IntersectWithLine(p1, p2, tol, t, x, pc, sub) || !(t >= r.tmin && t <= r.tmax))
+        if (!IntersectCell(ds, cellId, getCell(), p1, p2, tol, r, t, x, pc, sub))
         {
           return false;
         }
@@ -1068,6 +1064,16 @@ private:
         cur = stack[--sp];
       } while (cur.Dist > tmaxF);
     }
+  }
+
+  /// A general cell's own IntersectWithLine on the segment p1 -> p2, kept
+  /// only within the walk's current range [r.tmin, r.tmax].
+  static bool IntersectCell(vtkDataSet* ds, vtkIdType cellId, vtkGenericCell* cell,
+    const double p1[3], const double p2[3], double tol, const core::Ray<double>& r, double& t,
+    double x[3], double pc[3], int& sub)
+  {
+    ds->GetCell(cellId, cell);
+    return cell->IntersectWithLine(p1, p2, tol, t, x, pc, sub) && t >= r.tmin && t <= r.tmax;
   }
 
   static int CountTrailingZeros(unsigned x)
