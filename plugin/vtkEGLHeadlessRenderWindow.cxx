@@ -638,20 +638,10 @@ int vtkEGLHeadlessRenderWindow::GetColorBufferSizes(int* rgba)
     return 0;
   }
   rgba[0] = rgba[1] = rgba[2] = rgba[3] = 0;
-  if (!this->ContextReady)
+  if (!this->BeginFramebufferQuery())
   {
     return 0;
   }
-  this->MakeCurrent();
-  if (!this->RenderFramebuffer || this->RenderFramebuffer->GetNumberOfColorAttachments() == 0)
-  {
-    // Queried before the first frame: create the framebuffer VTK would.
-    this->CreateFramebuffers(
-      this->Size[0] > 0 ? this->Size[0] : 300, this->Size[1] > 0 ? this->Size[1] : 300);
-  }
-  vtkOpenGLState* state = this->GetState();
-  state->PushDrawFramebufferBinding();
-  this->RenderFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
   const GLenum names[4] = { GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE,
     GL_FRAMEBUFFER_ATTACHMENT_GREEN_SIZE, GL_FRAMEBUFFER_ATTACHMENT_BLUE_SIZE,
     GL_FRAMEBUFFER_ATTACHMENT_ALPHA_SIZE };
@@ -661,26 +651,17 @@ int vtkEGLHeadlessRenderWindow::GetColorBufferSizes(int* rgba)
     glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, names[i], &size);
     rgba[i] = glGetError() == GL_NO_ERROR ? static_cast<int>(size) : 0;
   }
-  state->PopDrawFramebufferBinding();
+  this->EndFramebufferQuery();
   return rgba[0] + rgba[1] + rgba[2] + rgba[3];
 }
 
 //------------------------------------------------------------------------------
 int vtkEGLHeadlessRenderWindow::GetDepthBufferSize()
 {
-  if (!this->ContextReady)
+  if (!this->BeginFramebufferQuery())
   {
     return 0;
   }
-  this->MakeCurrent();
-  if (!this->RenderFramebuffer || this->RenderFramebuffer->GetNumberOfColorAttachments() == 0)
-  {
-    this->CreateFramebuffers(
-      this->Size[0] > 0 ? this->Size[0] : 300, this->Size[1] > 0 ? this->Size[1] : 300);
-  }
-  vtkOpenGLState* state = this->GetState();
-  state->PushDrawFramebufferBinding();
-  this->RenderFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
   GLint size = 0;
   glGetFramebufferAttachmentParameteriv(
     GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &size);
@@ -688,8 +669,33 @@ int vtkEGLHeadlessRenderWindow::GetDepthBufferSize()
   {
     size = 0;
   }
-  state->PopDrawFramebufferBinding();
+  this->EndFramebufferQuery();
   return static_cast<int>(size);
+}
+
+//------------------------------------------------------------------------------
+bool vtkEGLHeadlessRenderWindow::BeginFramebufferQuery()
+{
+  if (!this->ContextReady)
+  {
+    return false;
+  }
+  this->MakeCurrent();
+  if (!this->RenderFramebuffer || this->RenderFramebuffer->GetNumberOfColorAttachments() == 0)
+  {
+    // Queried before the first frame: create the framebuffer VTK would.
+    this->CreateFramebuffers(
+      this->Size[0] > 0 ? this->Size[0] : 300, this->Size[1] > 0 ? this->Size[1] : 300);
+  }
+  this->GetState()->PushDrawFramebufferBinding();
+  this->RenderFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkEGLHeadlessRenderWindow::EndFramebufferQuery()
+{
+  this->GetState()->PopDrawFramebufferBinding();
 }
 
 //------------------------------------------------------------------------------

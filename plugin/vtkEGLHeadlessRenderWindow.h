@@ -147,6 +147,11 @@ protected:
   void DestroyContext();
   void ReportFailure(const std::string& why);
   void WarnNotRendered(const char* what);
+  // Saves the draw framebuffer binding and binds the render framebuffer for
+  // an attachment query (creating it as VTK would when queried before the
+  // first frame); false without a context. EndFramebufferQuery restores.
+  bool BeginFramebufferQuery();
+  void EndFramebufferQuery();
 
   bool ContextReady = false;
   bool Failed = false;
