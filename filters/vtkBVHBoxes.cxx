@@ -30,32 +30,18 @@ int vtkBVHBoxes::RequestData(
   this->NumberOfLeaves = 0;
   this->MaximumDepth = 0;
   this->NumberOfSkippedTriangles = 0;
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkPolyData* output = vtkrt_filters::EmptiedOutput(this, outputVector);
   if (!output)
   {
-    vtkErrorMacro("Missing output polydata.");
     return 0;
   }
-  output->Initialize();
-  if (!input)
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  if (!vtkrt_filters::CheckSurfaceInput(
+        this, input, "there is nothing to build a BVH over", "the BVH holds triangles only"))
   {
-    vtkErrorMacro("No input polydata: connect a vtkPolyData to port 0.");
     return 1;
   }
   const vtkIdType numPoints = input->GetNumberOfPoints();
-  if (numPoints == 0 || !input->GetPoints())
-  {
-    vtkErrorMacro("Input polydata has no points: there is nothing to build a BVH over.");
-    return 1;
-  }
-  if (input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
-  {
-    vtkErrorMacro("Input polydata has no polygons or triangle strips ("
-      << input->GetNumberOfLines() << " lines, " << input->GetNumberOfVerts()
-      << " vertex cells): the BVH holds triangles only.");
-    return 1;
-  }
   if (static_cast<std::uint64_t>(numPoints) >= std::numeric_limits<std::uint32_t>::max())
   {
     vtkErrorMacro("Input has " << numPoints << " points: the core's indices are 32-bit.");
@@ -64,10 +50,8 @@ int vtkBVHBoxes::RequestData(
 
   vtkrt_filters::TriangleSoup soup;
   vtkrt_filters::TriangulatePolyData(input, soup);
-  if (soup.Triangles.empty())
+  if (!vtkrt_filters::CheckTriangulation(this, soup))
   {
-    vtkErrorMacro("Input has no valid polygon or strip (" << soup.NumberOfInvalidCells
-                                                          << " with < 3 points or bad point ids).");
     return 1;
   }
   std::vector<core::Vec3<double>> vertices(numPoints);

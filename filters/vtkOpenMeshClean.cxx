@@ -272,19 +272,12 @@ int vtkOpenMeshClean::RequestData(
     vtkErrorMacro("No input polydata: connect a vtkPolyData to port 0.");
     return 0;
   }
+  if (!vtkrt_filters::CheckSurfaceInput(
+        this, input, "nothing to clean", "there is no surface to clean"))
+  {
+    return 1;
+  }
   const vtkIdType numInPoints = input->GetNumberOfPoints();
-  if (numInPoints == 0 || !input->GetPoints())
-  {
-    vtkErrorMacro("Input polydata has no points: nothing to clean.");
-    return 1;
-  }
-  if (input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
-  {
-    vtkErrorMacro("Input polydata has no polygons or triangle strips ("
-      << input->GetNumberOfLines() << " lines, " << input->GetNumberOfVerts()
-      << " vertex cells): there is no surface to clean.");
-    return 1;
-  }
 
   // 1. Triangulate.
   vtkrt_filters::TriangleSoup soup;

@@ -627,33 +627,19 @@ int vtkOpenMeshDecimation::RequestData(
   this->NumberOfOutputTriangles = 0;
   this->NumberOfPassedThroughFaces = 0;
   this->NumberOfLockedVertices = 0;
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkPolyData* output = vtkrt_filters::EmptiedOutput(this, outputVector);
   if (!output)
   {
-    vtkErrorMacro("Missing output polydata.");
     return 0;
   }
-  output->Initialize();
-  if (!input)
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  if (!vtkrt_filters::CheckSurfaceInput(
+        this, input, "nothing to decimate", "there is no surface to decimate"))
   {
-    vtkErrorMacro("No input polydata: connect a vtkPolyData to port 0.");
     return 1;
   }
   vtkPoints* inPts = input->GetPoints();
   const vtkIdType numInPoints = input->GetNumberOfPoints();
-  if (numInPoints == 0 || !inPts)
-  {
-    vtkErrorMacro("Input polydata has no points: nothing to decimate.");
-    return 1;
-  }
-  if (input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
-  {
-    vtkErrorMacro("Input polydata has no polygons or triangle strips ("
-      << input->GetNumberOfLines() << " lines, " << input->GetNumberOfVerts()
-      << " vertex cells): there is no surface to decimate.");
-    return 1;
-  }
   if (this->TargetMode == ERROR_BOUND && !(this->MaximumError < VTK_DOUBLE_MAX))
   {
     vtkErrorMacro("TargetMode ERROR_BOUND needs a finite MaximumError: without one the mesh "
@@ -665,10 +651,8 @@ int vtkOpenMeshDecimation::RequestData(
   vtkrt_filters::TriangulatePolyData(input, soup);
   const vtkIdType numTris = static_cast<vtkIdType>(soup.Triangles.size());
 
-  if (soup.Triangles.empty())
+  if (!vtkrt_filters::CheckTriangulation(this, soup))
   {
-    vtkErrorMacro("Input has no valid polygon or strip (" << soup.NumberOfInvalidCells
-                                                          << " with < 3 points or bad point ids).");
     return 1;
   }
   // Non-finite points poison the quadrics and distances: refuse them.

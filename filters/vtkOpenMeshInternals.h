@@ -1,5 +1,6 @@
-// Private helpers shared by the vtkOpenMesh* filters: turning a vtkPolyData's
-// polygons and strips into a triangle list, and OpenMesh's mesh type.
+// Private helpers shared by the filters of vtkrt::Filters: the checks on a
+// request's input and output, turning a vtkPolyData's polygons and strips into
+// a triangle list, and OpenMesh's mesh type.
 #ifndef vtkOpenMeshInternals_h
 #define vtkOpenMeshInternals_h
 
@@ -9,8 +10,10 @@
 #include "vtkFieldData.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
+#include "vtkInformationVector.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
+#include "vtkObject.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -274,6 +277,63 @@ inline void TriangulatePolyData(vtkPolyData* input, TriangleSoup& soup)
         soup.SourceCells.push_back(stripId);
       }
     });
+}
+
+// The request's output polydata on `port`, emptied for a fresh result; null,
+// reported on `filter`, when the executive gave none.
+inline vtkPolyData* EmptiedOutput(
+  vtkObject* filter, vtkInformationVector* outputVector, int port = 0)
+{
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, port);
+  if (!output)
+  {
+    vtkErrorWithObjectMacro(filter, "Missing output polydata.");
+    return nullptr;
+  }
+  output->Initialize();
+  return output;
+}
+
+// The input checks shared by the filters: a polydata with points and with
+// polygons or strips to triangulate. Reports the first failure on `filter`,
+// the messages ending with the filter's own consequence (`noPoints`,
+// `noSurface`), and returns false.
+inline bool CheckSurfaceInput(
+  vtkObject* filter, vtkPolyData* input, const char* noPoints, const char* noSurface)
+{
+  if (!input)
+  {
+    vtkErrorWithObjectMacro(filter, "No input polydata: connect a vtkPolyData to port 0.");
+    return false;
+  }
+  if (input->GetNumberOfPoints() == 0 || !input->GetPoints())
+  {
+    vtkErrorWithObjectMacro(filter, "Input polydata has no points: " << noPoints << ".");
+    return false;
+  }
+  if (input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
+  {
+    vtkErrorWithObjectMacro(filter,
+      "Input polydata has no polygons or triangle strips ("
+        << input->GetNumberOfLines() << " lines, " << input->GetNumberOfVerts()
+        << " vertex cells): " << noSurface << ".");
+    return false;
+  }
+  return true;
+}
+
+// False, reported on `filter`, when triangulating left no triangle: every
+// polygon and strip was invalid.
+inline bool CheckTriangulation(vtkObject* filter, const TriangleSoup& soup)
+{
+  if (soup.Triangles.empty())
+  {
+    vtkErrorWithObjectMacro(filter,
+      "Input has no valid polygon or strip (" << soup.NumberOfInvalidCells
+                                              << " with < 3 points or bad point ids).");
+    return false;
+  }
+  return true;
 }
 
 // A shallow copy of `in` without the arrays that have fewer than `count`
