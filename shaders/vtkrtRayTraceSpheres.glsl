@@ -56,19 +56,17 @@ bool intersectRaySphere(vec3 org, vec3 dir, vec3 center, float radius, float tmi
   return false;
 }
 
-// Closest hit in the sphere BVH whose root node is `root`, nearer child
-// first, the hit's t pruning what is left on the stack. Organised as
-// "while-while" (Aila & Laine 2009): an inner loop descends interior nodes
-// until it reaches a leaf (popping past dead ends), and only then are the
-// leaf's spheres tested. Pixels are shaded in SIMD groups (llvmpipe: 8 at
-// once), so a single loop that does either a node or a leaf per iteration
-// pays the masked leaf loop whenever any pixel of the group sits in a leaf;
-// here the group descends together and tests leaves together.
+// Closest hit in the sphere BVH whose root node is `root`: the traversal of
+// traverseTriangles (vtkrtRayTraceTriangles.glsl; "while-while", a stack of
+// (index, count) pairs, branch-free interior step, one pop path), step for
+// step, so the same leaves are tested in the same order as before; only the
+// leaf test differs.
 //
 // Screen-sized spheres (VTKRT_SCREEN_SPHERES, points drawn as spheres) have
 // radius 0 in uSpheres: each gets max(0, dot(radiusPlane.xyz, center) +
 // radiusPlane.w), this frame's radius, and every box grows by `grow`, a bound
-// of that radius over the instance (zero for other sphere sets).
+// of that radius over the instance (0.0 for other sphere sets, so one form of
+// the box test serves both; measured no slower).
 // Ellipsoids (VTKRT_HAS_ELLIPSOIDS, `ellipsoids` set: sphere glyphs scaled
 // per component) take three texels each, the rows of the affine map of local
 // space onto their unit sphere: the ray is mapped there (t is unchanged by
@@ -80,24 +78,27 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
   sphere = -1;
   vec3 invDir = safeInverse(dir);
   vec3 parallelBias = vec3(equal(invDir, vec3(0.0))) * 3.0e38;
+  vec3 growBy = vec3(grow);
   float tnear;
-  uvec4 lo = texelFetch(uNodes, 2 * root);
-  uvec4 hi = texelFetch(uNodes, 2 * root + 1);
-  if (!intersectRayAABB(
-        org, invDir, boxCorner(lo) - vec3(grow), boxCorner(hi) + vec3(grow), tmin, tmax, tnear))
+  uvec4 rootLo = texelFetch(uNodes, 2 * root);
+  uvec4 rootHi = texelFetch(uNodes, 2 * root + 1);
+  if (!intersectRayAABB(org, invDir, boxCorner(rootLo) - growBy, boxCorner(rootHi) + growBy, tmin,
+        tmax, tnear))
   {
     return false;
   }
-  int stackNode[VTKRT_STACK_SIZE];
+  uint stackIndex[VTKRT_STACK_SIZE];
+  uint stackCount[VTKRT_STACK_SIZE];
   float stackNear[VTKRT_STACK_SIZE];
   int sp = 0;
   int steps = 0;
+  uint index = rootLo.w;
+  uint count = rootHi.w;
+  bool culled = false;
   bool done = false;
   while (!done)
   {
-    // Interior nodes: descend to the nearer child hit, push the farther;
-    // at a dead end, pop the nearest entry the best hit does not prune.
-    while (hi.w == 0u)
+    while (count == 0u)
     {
 #if VTKRT_MAXIMUM_TRAVERSAL_STEPS > 0
       if (++steps > VTKRT_MAXIMUM_TRAVERSAL_STEPS)
@@ -106,60 +107,35 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
         break;
       }
 #endif
-      int index = int(lo.w);
-      uvec4 lo0 = texelFetch(uNodes, 2 * index);
-      uvec4 hi0 = texelFetch(uNodes, 2 * index + 1);
-      uvec4 lo1 = texelFetch(uNodes, 2 * index + 2);
-      uvec4 hi1 = texelFetch(uNodes, 2 * index + 3);
+      int child = 2 * int(index);
+      uvec4 lo0 = texelFetch(uNodes, child);
+      uvec4 hi0 = texelFetch(uNodes, child + 1);
+      uvec4 lo1 = texelFetch(uNodes, child + 2);
+      uvec4 hi1 = texelFetch(uNodes, child + 3);
       float t0, t1;
-#ifdef VTKRT_SCREEN_SPHERES
-      bool h0 = intersectRayBoxConservative(org, invDir, parallelBias, boxCorner(lo0) - vec3(grow),
-        boxCorner(hi0) + vec3(grow), tmin, tmax, t0);
-      bool h1 = intersectRayBoxConservative(org, invDir, parallelBias, boxCorner(lo1) - vec3(grow),
-        boxCorner(hi1) + vec3(grow), tmin, tmax, t1);
-#else
-      bool h0 = intersectRayBoxConservative(
-        org, invDir, parallelBias, boxCorner(lo0), boxCorner(hi0), tmin, tmax, t0);
-      bool h1 = intersectRayBoxConservative(
-        org, invDir, parallelBias, boxCorner(lo1), boxCorner(hi1), tmin, tmax, t1);
-#endif
-      if (h0 && h1)
+      bool h0 = intersectRayBoxConservative(org, invDir, parallelBias, boxCorner(lo0) - growBy,
+                  boxCorner(hi0) + growBy, tmin, tmax, t0) && !culled;
+      bool h1 = intersectRayBoxConservative(org, invDir, parallelBias, boxCorner(lo1) - growBy,
+                  boxCorner(hi1) + growBy, tmin, tmax, t1) && !culled;
+      culled = false;
+      bool nearIs1 = h1 && (!h0 || t1 < t0);
+      stackIndex[sp] = nearIs1 ? lo0.w : lo1.w;
+      stackCount[sp] = nearIs1 ? hi0.w : hi1.w;
+      stackNear[sp] = nearIs1 ? t0 : t1;
+      bool anyHit = h0 || h1;
+      if (!anyHit && sp == 0)
       {
-        bool firstNear = t0 <= t1;
-        if (sp < VTKRT_STACK_SIZE)
-        {
-          stackNode[sp] = firstNear ? index + 1 : index;
-          stackNear[sp] = firstNear ? t1 : t0;
-          ++sp;
-        }
-        lo = firstNear ? lo0 : lo1;
-        hi = firstNear ? hi0 : hi1;
+        done = true;
+        break;
       }
-      else if (h0 || h1)
-      {
-        lo = h0 ? lo0 : lo1;
-        hi = h0 ? hi0 : hi1;
-      }
-      else
-      {
-        int next = -1;
-        while (sp > 0)
-        {
-          --sp;
-          if (stackNear[sp] <= tmax)
-          {
-            next = stackNode[sp];
-            break;
-          }
-        }
-        if (next < 0)
-        {
-          done = true;
-          break;
-        }
-        lo = texelFetch(uNodes, 2 * next);
-        hi = texelFetch(uNodes, 2 * next + 1);
-      }
+      sp += h0 && h1 ? 1 : 0;
+      int top = anyHit ? sp : max(sp - 1, 0);
+      culled = !anyHit && stackNear[top] > tmax;
+      uint popIndex = stackIndex[top];
+      uint popCount = stackCount[top];
+      sp = top;
+      index = anyHit ? (nearIs1 ? lo1.w : lo0.w) : (culled ? 0u : popIndex);
+      count = anyHit ? (nearIs1 ? hi1.w : hi0.w) : (culled ? 0u : popCount);
     }
     if (done)
     {
@@ -172,12 +148,12 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
     }
 #endif
     // A leaf: its spheres [index, index + count).
-    int index = int(lo.w);
+    int first = int(index);
 #ifdef VTKRT_HAS_ELLIPSOIDS
     if (ellipsoids)
     {
-      int last = index + 3 * int(hi.w);
-      for (int i = index; i < last; i += 3)
+      int last = first + 3 * int(count);
+      for (int i = first; i < last; i += 3)
       {
         vec4 r0 = uintBitsToFloat(texelFetch(uSpheres, i));
         vec4 r1 = uintBitsToFloat(texelFetch(uSpheres, i + 1));
@@ -193,11 +169,11 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
         }
       }
     }
-    int end = ellipsoids ? index : index + int(hi.w);
+    int end = ellipsoids ? first : first + int(count);
 #else
-    int end = index + int(hi.w);
+    int end = first + int(count);
 #endif
-    for (int i = index; i < end; ++i)
+    for (int i = first; i < end; ++i)
     {
       vec4 s = uintBitsToFloat(texelFetch(uSpheres, i));
 #ifdef VTKRT_SCREEN_SPHERES
@@ -214,22 +190,14 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
     {
       return true;
     }
-    int next = -1;
-    while (sp > 0)
-    {
-      --sp;
-      if (stackNear[sp] <= tmax)
-      {
-        next = stackNode[sp];
-        break;
-      }
-    }
-    if (next < 0)
+    if (sp == 0)
     {
       break;
     }
-    lo = texelFetch(uNodes, 2 * next);
-    hi = texelFetch(uNodes, 2 * next + 1);
+    --sp;
+    culled = stackNear[sp] > tmax;
+    index = culled ? 0u : stackIndex[sp];
+    count = culled ? 0u : stackCount[sp];
   }
   return sphere >= 0;
 }
