@@ -234,15 +234,7 @@ void TestBadInput()
   VTKRT_CHECK(boxes->GetOutput()->GetNumberOfPoints() == 0, "empty output");
   catcher->Clear();
 
-  vtkNew<vtkPolyData> linesOnly;
-  vtkNew<vtkPoints> pts;
-  pts->InsertNextPoint(0, 0, 0);
-  pts->InsertNextPoint(1, 0, 0);
-  linesOnly->SetPoints(pts);
-  vtkNew<vtkCellArray> lines;
-  const vtkIdType line[] = { 0, 1 };
-  lines->InsertNextCell(2, line);
-  linesOnly->SetLines(lines);
+  vtkSmartPointer<vtkPolyData> linesOnly = vtkrt_test::LinesOnly();
   boxes->SetInputData(linesOnly);
   boxes->Update();
   VTKRT_CHECK(
@@ -250,7 +242,7 @@ void TestBadInput()
   catcher->Clear();
 
   vtkNew<vtkPolyData> corrupt;
-  corrupt->SetPoints(pts);
+  corrupt->SetPoints(linesOnly->GetPoints());
   vtkNew<vtkCellArray> badPolys;
   const vtkIdType bad[] = { 0, 1, 5 };
   badPolys->InsertNextCell(3, bad);

@@ -579,16 +579,7 @@ void TestBadInput()
   VTKRT_CHECK(clean->GetOutput()->GetNumberOfPoints() == 0, "empty output");
   catcher->Clear();
 
-  vtkNew<vtkPolyData> linesOnly;
-  vtkNew<vtkPoints> pts;
-  pts->InsertNextPoint(0, 0, 0);
-  pts->InsertNextPoint(1, 0, 0);
-  linesOnly->SetPoints(pts);
-  vtkNew<vtkCellArray> lines;
-  const vtkIdType line[] = { 0, 1 };
-  lines->InsertNextCell(2, line);
-  linesOnly->SetLines(lines);
-  clean->SetInputData(linesOnly);
+  clean->SetInputData(vtkrt_test::LinesOnly());
   clean->Update();
   VTKRT_CHECK(catcher->Errors.find("no polygons or triangle strips") != std::string::npos,
     "lines-only error: " << catcher->Errors);

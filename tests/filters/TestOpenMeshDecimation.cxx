@@ -487,16 +487,7 @@ void TestBadInput()
   VTKRT_CHECK(decimate->GetOutput()->GetNumberOfPoints() == 0, "empty output");
   catcher->Clear();
 
-  vtkNew<vtkPolyData> linesOnly;
-  vtkNew<vtkPoints> pts;
-  pts->InsertNextPoint(0, 0, 0);
-  pts->InsertNextPoint(1, 0, 0);
-  pts->InsertNextPoint(0, 1, 0);
-  linesOnly->SetPoints(pts);
-  vtkNew<vtkCellArray> lines;
-  const vtkIdType line[] = { 0, 1 };
-  lines->InsertNextCell(2, line);
-  linesOnly->SetLines(lines);
+  vtkSmartPointer<vtkPolyData> linesOnly = vtkrt_test::LinesOnly();
   decimate->SetInputData(linesOnly);
   decimate->Update();
   VTKRT_CHECK(
@@ -505,7 +496,7 @@ void TestBadInput()
   catcher->Clear();
 
   vtkNew<vtkPolyData> corrupt;
-  corrupt->SetPoints(pts);
+  corrupt->SetPoints(linesOnly->GetPoints());
   vtkNew<vtkCellArray> badPolys;
   const vtkIdType bad[] = { 0, 1, 7 };
   badPolys->InsertNextCell(3, bad);

@@ -1,5 +1,6 @@
-// Helpers shared by the filters tests: checks, an error catcher, OpenMesh's
-// verdict on a mesh, and sampled surface distances.
+// Helpers shared by the filters tests: checks, an error catcher, a
+// surface-less input, OpenMesh's verdict on a mesh, and sampled surface
+// distances.
 #ifndef vtkrtFiltersTestUtilities_h
 #define vtkrtFiltersTestUtilities_h
 
@@ -82,6 +83,21 @@ inline vtkIdType FieldCount(vtkPolyData* pd, const char* name)
 {
   auto* a = vtkIdTypeArray::SafeDownCast(pd->GetFieldData()->GetAbstractArray(name));
   return a && a->GetNumberOfValues() == 1 ? a->GetValue(0) : -1;
+}
+
+// Two points joined by one line: points but no surface, which the filters refuse.
+inline vtkSmartPointer<vtkPolyData> LinesOnly()
+{
+  vtkNew<vtkPoints> pts;
+  pts->InsertNextPoint(0, 0, 0);
+  pts->InsertNextPoint(1, 0, 0);
+  vtkNew<vtkCellArray> lines;
+  const vtkIdType line[] = { 0, 1 };
+  lines->InsertNextCell(2, line);
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->SetPoints(pts);
+  pd->SetLines(lines);
+  return pd;
 }
 
 using CheckMesh = OpenMesh::TriMesh_ArrayKernelT<>;
