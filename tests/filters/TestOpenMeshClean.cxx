@@ -11,15 +11,12 @@
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkMassProperties.h"
-#include "vtkOBJReader.h"
-#include "vtkPLYReader.h"
 #include "vtkPlatonicSolidSource.h"
 #include "vtkPointData.h"
 #include "vtkSphereSource.h"
 #include "vtkTexturedSphereSource.h"
 #include "vtkTriangleFilter.h"
 #include "vtkUnsignedCharArray.h"
-#include "vtksys/SystemTools.hxx"
 
 #include <cstdio>
 #include <limits>
@@ -486,15 +483,13 @@ void TestNonManifoldVertices()
 
 void TestTeapot(const std::string& path)
 {
-  if (!vtksys::SystemTools::FileExists(path))
+  vtkSmartPointer<vtkPolyData> teapot = vtkrt_test::ReadOptionalMesh(path, "teapot");
+  if (!teapot)
   {
-    std::cout << "teapot: " << path << " absent, skipped" << std::endl;
     return;
   }
-  vtkNew<vtkOBJReader> reader;
-  reader->SetFileName(path.c_str());
   vtkNew<vtkOpenMeshClean> clean;
-  clean->SetInputConnection(reader->GetOutputPort());
+  clean->SetInputData(teapot);
   clean->Update();
   std::cout << "teapot: " << clean->GetOutput()->GetNumberOfPolys() << " triangles, "
             << clean->GetNumberOfBoundaryLoops() << " boundary loops, "
@@ -619,20 +614,17 @@ void TestBadInput()
 
 void TestBunny(const std::string& path)
 {
-  if (!vtksys::SystemTools::FileExists(path))
+  vtkSmartPointer<vtkPolyData> in = vtkrt_test::ReadOptionalMesh(path, "bunny");
+  if (!in)
   {
-    std::cout << "bunny: " << path << " absent, skipped" << std::endl;
     return;
   }
-  vtkNew<vtkPLYReader> reader;
-  reader->SetFileName(path.c_str());
   vtkNew<vtkOpenMeshClean> clean;
-  clean->SetInputConnection(reader->GetOutputPort());
+  clean->SetInputData(in);
   clean->Update();
   vtkNew<vtkCleanPolyData> vtkClean;
-  vtkClean->SetInputConnection(reader->GetOutputPort());
+  vtkClean->SetInputData(in);
   vtkClean->Update();
-  vtkPolyData* in = reader->GetOutput();
   vtkPolyData* out = clean->GetOutput();
   std::cout << "bunny: " << in->GetNumberOfPoints() << " points / " << in->GetNumberOfPolys()
             << " faces in; out " << out->GetNumberOfPoints() << " / " << out->GetNumberOfPolys()

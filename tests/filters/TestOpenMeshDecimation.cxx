@@ -9,7 +9,6 @@
 #include "vtkCellData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
-#include "vtkPLYReader.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkPolyDataNormals.h"
@@ -17,7 +16,6 @@
 #include "vtkSphereSource.h"
 #include "vtkStringArray.h"
 #include "vtkTriangleFilter.h"
-#include "vtksys/SystemTools.hxx"
 
 #include <limits>
 #include <map>
@@ -548,21 +546,14 @@ int main(int argc, char* argv[])
   TestAttributes();
   TestShapeLimits();
   TestBadInput();
-  const std::string bunnyPath = argc > 1 ? argv[1] : "";
-  if (vtksys::SystemTools::FileExists(bunnyPath))
+  if (auto bunnyFile = vtkrt_test::ReadOptionalMesh(argc > 1 ? argv[1] : "", "bunny"))
   {
-    vtkNew<vtkPLYReader> reader;
-    reader->SetFileName(bunnyPath.c_str());
     vtkNew<vtkOpenMeshClean> clean;
-    clean->SetInputConnection(reader->GetOutputPort());
+    clean->SetInputData(bunnyFile);
     clean->Update();
     vtkPolyData* bunny = clean->GetOutput();
     TestErrorBound(bunny, "bunny", 0.001);
     TestVersusVTK(bunny, "bunny", 0.9);
-  }
-  else
-  {
-    std::cout << "bunny: '" << bunnyPath << "' absent, skipped" << std::endl;
   }
   std::cout << (vtkrt_test::Failures() ? "FAILED: " : "passed, failures: ")
             << vtkrt_test::Failures() << std::endl;

@@ -1,6 +1,6 @@
-// Helpers shared by the filters tests: checks, an error catcher, a
-// surface-less input, OpenMesh's verdict on a mesh, and sampled surface
-// distances.
+// Helpers shared by the filters tests: checks, an error catcher, test inputs
+// (a surface-less polydata, the optional real meshes), OpenMesh's verdict on a
+// mesh, and sampled surface distances.
 #ifndef vtkrtFiltersTestUtilities_h
 #define vtkrtFiltersTestUtilities_h
 
@@ -16,10 +16,14 @@
 #include "vtkMath.h"
 #include "vtkMinimalStandardRandomSequence.h"
 #include "vtkNew.h"
+#include "vtkOBJReader.h"
+#include "vtkPLYReader.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataAlgorithm.h"
 #include "vtkSmartPointer.h"
 #include "vtkStaticCellLocator.h"
+#include "vtksys/SystemTools.hxx"
 
 #include "vtkOpenMeshIncludes.h" // from filters/: quiet OpenMesh includes
 VTKRT_OPENMESH_INCLUDES_BEGIN
@@ -98,6 +102,39 @@ inline vtkSmartPointer<vtkPolyData> LinesOnly()
   pd->SetPoints(pts);
   pd->SetLines(lines);
   return pd;
+}
+
+// A real mesh (.ply or .obj) from outside the source tree, or null, saying the
+// test on it is skipped, when the file is absent: the suite runs without it.
+inline vtkSmartPointer<vtkPolyData> ReadOptionalMesh(const std::string& path, const char* name)
+{
+  if (!vtksys::SystemTools::FileExists(path))
+  {
+    std::cout << name << ": " << path << " absent, skipped" << std::endl;
+    return nullptr;
+  }
+  const std::string ext =
+    vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path));
+  vtkSmartPointer<vtkPolyDataAlgorithm> reader;
+  if (ext == ".ply")
+  {
+    auto ply = vtkSmartPointer<vtkPLYReader>::New();
+    ply->SetFileName(path.c_str());
+    reader = ply;
+  }
+  else if (ext == ".obj")
+  {
+    auto obj = vtkSmartPointer<vtkOBJReader>::New();
+    obj->SetFileName(path.c_str());
+    reader = obj;
+  }
+  else
+  {
+    VTKRT_CHECK(false, name << ": no reader for " << path);
+    return nullptr;
+  }
+  reader->Update();
+  return reader->GetOutput();
 }
 
 using CheckMesh = OpenMesh::TriMesh_ArrayKernelT<>;
