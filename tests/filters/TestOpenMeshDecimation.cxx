@@ -383,31 +383,45 @@ void TestAttributes()
     "the dropped array is named");
 }
 
-// Angle in degrees between a face's normal and the radial direction at its
-// centroid, over all faces of a unit sphere approximation.
-double WorstRadialDeviation(vtkPolyData* pd)
+// Calls visit(p, normal) for each face of a triangle mesh: its corners and
+// its (not normalised) normal.
+template <class Visit>
+void ForEachTriangle(vtkPolyData* pd, Visit&& visit)
 {
-  double worst = 0.0;
   auto iter = vtk::TakeSmartPointer(pd->GetPolys()->NewIterator());
   vtkIdType n;
   const vtkIdType* ids;
   for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell())
   {
     iter->GetCurrentCell(n, ids);
-    double p[3][3], u[3], v[3], nrm[3], c[3];
+    double p[3][3], u[3], v[3], normal[3];
     for (int k = 0; k < 3; ++k)
     {
       pd->GetPoint(ids[k], p[k]);
     }
     vtkMath::Subtract(p[1], p[0], u);
     vtkMath::Subtract(p[2], p[0], v);
-    vtkMath::Cross(u, v, nrm);
-    for (int k = 0; k < 3; ++k)
-    {
-      c[k] = (p[0][k] + p[1][k] + p[2][k]) / 3.0;
-    }
-    worst = std::max(worst, vtkMath::DegreesFromRadians(vtkMath::AngleBetweenVectors(nrm, c)));
+    vtkMath::Cross(u, v, normal);
+    visit(p, normal);
   }
+}
+
+// Angle in degrees between a face's normal and the radial direction at its
+// centroid, over all faces of a unit sphere approximation.
+double WorstRadialDeviation(vtkPolyData* pd)
+{
+  double worst = 0.0;
+  ForEachTriangle(pd,
+    [&](double p[3][3], double normal[3])
+    {
+      double c[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        c[k] = (p[0][k] + p[1][k] + p[2][k]) / 3.0;
+      }
+      worst =
+        std::max(worst, vtkMath::DegreesFromRadians(vtkMath::AngleBetweenVectors(normal, c)));
+    });
   return worst;
 }
 
@@ -415,24 +429,13 @@ double WorstRadialDeviation(vtkPolyData* pd)
 double WorstAspectRatio(vtkPolyData* pd)
 {
   double worst = 0.0;
-  auto iter = vtk::TakeSmartPointer(pd->GetPolys()->NewIterator());
-  vtkIdType n;
-  const vtkIdType* ids;
-  for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell())
-  {
-    iter->GetCurrentCell(n, ids);
-    double p[3][3], u[3], v[3], w[3];
-    for (int k = 0; k < 3; ++k)
+  ForEachTriangle(pd,
+    [&](double p[3][3], double normal[3])
     {
-      pd->GetPoint(ids[k], p[k]);
-    }
-    vtkMath::Subtract(p[1], p[0], u);
-    vtkMath::Subtract(p[2], p[0], v);
-    vtkMath::Cross(u, v, w);
-    const double longest2 = std::max({ vtkMath::Distance2BetweenPoints(p[0], p[1]),
-      vtkMath::Distance2BetweenPoints(p[1], p[2]), vtkMath::Distance2BetweenPoints(p[2], p[0]) });
-    worst = std::max(worst, longest2 / vtkMath::Norm(w));
-  }
+      const double longest2 = std::max({ vtkMath::Distance2BetweenPoints(p[0], p[1]),
+        vtkMath::Distance2BetweenPoints(p[1], p[2]), vtkMath::Distance2BetweenPoints(p[2], p[0]) });
+      worst = std::max(worst, longest2 / vtkMath::Norm(normal));
+    });
   return worst;
 }
 
