@@ -129,8 +129,7 @@ struct vtkRayTracePass::Internals
   FrameCounters Counters;
   std::map<std::string, std::unique_ptr<vtkOpenGLQuadHelper>> Programs;
   std::string LastKey;
-  std::string LastSource;
-  std::string LastSourceKey; ///< the feature key LastSource was assembled for
+  std::string LastSource; ///< LastKey's shader source (outlives the cached programs)
   vtkOpenGLRenderWindow* Window = nullptr;
   bool GeometryOnGpu = false;
   bool ColorsOnGpu = false;
@@ -845,12 +844,16 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     GLint major = 0;
     glGetIntegerv(GL_MAJOR_VERSION, &major);
     f.Fp64 = major >= 4;
-    in.LastKey = f.Key();
+    const std::string key = f.Key();
+    if (key != in.LastKey)
+    {
+      in.LastSource = assembleShader(f);
+      in.LastKey = key;
+    }
 
     auto& helper = in.Programs[in.LastKey];
     if (!helper)
     {
-      in.LastSource = assembleShader(f);
       helper.reset(new vtkOpenGLQuadHelper(win, nullptr, in.LastSource.c_str(), ""));
       ++in.Counters.ShaderCompiles;
       if (!helper->Program || !helper->Program->GetCompiled())
@@ -862,12 +865,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     else
     {
       win->GetShaderCache()->ReadyShaderProgram(helper->Program);
-      if (in.LastSourceKey != in.LastKey)
-      {
-        in.LastSource = assembleShader(f); // the cached program's source
-      }
     }
-    in.LastSourceKey = in.LastKey;
     vtkShaderProgram* program = helper->Program;
     if (program && program->GetCompiled())
     {
