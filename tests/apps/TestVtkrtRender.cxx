@@ -39,7 +39,9 @@ namespace
 {
 int Failures = 0;
 std::string App;
-const std::string Tmp = std::string(VTKRT_TEMP_DIR) + "/TestVtkrtRender";
+// One directory per case: CTest runs the cases at once, and two of them
+// write a sphere.stl of different radii.
+std::string Tmp = std::string(VTKRT_TEMP_DIR) + "/TestVtkrtRender";
 
 void Check(bool ok, const std::string& what)
 {
@@ -547,6 +549,7 @@ int main(int argc, char* argv[])
     return EXIT_FAILURE;
   }
   App = argv[1];
+  Tmp += std::string("/") + argv[2];
   vtksys::SystemTools::MakeDirectory(Tmp);
   cases.at(argv[2])();
   Check(output->GetNumberOfErrors() == 0 && output->GetNumberOfWarnings() == 0,
