@@ -45,21 +45,6 @@ using namespace vtkrtPassTest;
 
 namespace
 {
-std::string DataFile(const std::string& name)
-{
-  return std::string(VTKRT_DATA_DIR) + "/" + name;
-}
-
-vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& name)
-{
-  vtkNew<vtkXMLPolyDataReader> reader;
-  reader->SetFileName(DataFile(name).c_str());
-  reader->Update();
-  auto out = vtkSmartPointer<vtkPolyData>::New();
-  out->ShallowCopy(reader->GetOutput());
-  return out;
-}
-
 /// Renders `setup`'s scene with raster, then with the pass; checks both.
 void CompareWithRaster(const std::string& name, const std::function<void(vtkRenderer*)>& setup,
   double rasterThreshold, int width = 300, int height = 300)

@@ -75,21 +75,6 @@ void NoGLError(vtkRenderWindow* win, const std::string& label)
   }
 }
 
-std::string DataFile(const std::string& name)
-{
-  return std::string(VTKRT_DATA_DIR) + "/" + name;
-}
-
-vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& name)
-{
-  vtkNew<vtkXMLPolyDataReader> reader;
-  reader->SetFileName(DataFile(name).c_str());
-  reader->Update();
-  auto out = vtkSmartPointer<vtkPolyData>::New();
-  out->ShallowCopy(reader->GetOutput());
-  return out;
-}
-
 vtkSmartPointer<vtkActor> MeshActor(vtkPolyData* poly)
 {
   vtkNew<vtkPolyDataMapper> mapper;

@@ -24,6 +24,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 #include "vtkWindowToImageFilter.h"
+#include "vtkXMLPolyDataReader.h"
 
 #include <cstddef>
 #include <cstdlib>
@@ -74,6 +75,17 @@ inline void NoVTKOutput(const std::string& label)
   Check(Output->GetNumberOfErrors() == 0 && Output->GetNumberOfWarnings() == 0,
     label + ": no VTK error or warning");
   Output->Clear();
+}
+
+/// A polydata of data/ (read and shallow-copied: no reader kept alive).
+inline vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& name)
+{
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName((std::string(VTKRT_DATA_DIR) + "/" + name).c_str());
+  reader->Update();
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->ShallowCopy(reader->GetOutput());
+  return out;
 }
 
 inline vtkSmartPointer<vtkEGLHeadlessRenderWindow> MakeWindow(int w, int h)

@@ -33,16 +33,6 @@ using namespace vtkrtPassTest;
 
 namespace
 {
-vtkSmartPointer<vtkPolyData> Read(const std::string& name)
-{
-  vtkNew<vtkXMLPolyDataReader> reader;
-  reader->SetFileName((std::string(VTKRT_DATA_DIR) + "/" + name).c_str());
-  reader->Update();
-  auto out = vtkSmartPointer<vtkPolyData>::New();
-  out->ShallowCopy(reader->GetOutput());
-  return out;
-}
-
 /// The demo scene of vtkrt-render (bunny, 144 sphere glyphs through a LUT)
 /// in `ren`, traced by `pass`.
 void BuildDemo(vtkRenderer* ren, vtkPolyData* bunny, vtkPolyData* centres, vtkRayTracePass* pass)
@@ -92,8 +82,8 @@ int main()
     std::cout << "SKIP: no X display (DISPLAY unset); run under xvfb-run\n";
     return 77;
   }
-  auto bunny = Read("bunny.vtp");
-  auto centres = Read("demo-spheres.vtp");
+  auto bunny = ReadPolyData("bunny.vtp");
+  auto centres = ReadPolyData("demo-spheres.vtp");
   if (bunny->GetNumberOfCells() == 0 || !centres->GetPointData()->GetArray("radius"))
   {
     std::cout << "FAIL demo data not found under " << VTKRT_DATA_DIR << "\n";
