@@ -126,3 +126,63 @@ uint fetchPacked(usamplerBuffer buffer, int i)
   int c = i & 3;
   return c == 0 ? texel.x : (c == 1 ? texel.y : (c == 2 ? texel.z : texel.w));
 }
+
+// The BVH walk of traverseTriangles and traverseSpheres ("while-while", Aila
+// & Laine 2009): nearer child first, the farther pushed, the best hit
+// pruning what is popped. The node at hand is its (index, count) pair
+// alone: a pushed node keeps its pair on the stack, so popping fetches
+// nothing. A popped node that the best hit already prunes is "culled": the
+// next step treats it as a dead end (no nested pop loop, which llvmpipe
+// would run every step). One walk at a time uses this stack (shading and
+// occlusion rays walk one after another, never one inside another).
+uint bvhStackIndex[VTKRT_STACK_SIZE];
+uint bvhStackCount[VTKRT_STACK_SIZE];
+float bvhStackNear[VTKRT_STACK_SIZE];
+
+// One interior step: the children of the node at hand are (lo0, hi0) and
+// (lo1, hi1), h0/h1 say whether the ray meets their boxes (false for both
+// when the node is culled), t0/t1 where. index/count become the next node.
+// Returns false when the walk is over (a dead end, nothing on the stack).
+// Branch free (llvmpipe would run every branch, masked): the farther child
+// is written above the stack top every step and kept only when both
+// children are hit; the top entry is read every step and used only at a
+// dead end. sp never exceeds the depth of the node at hand, below kMaxDepth
+// <= VTKRT_STACK_SIZE (core/BVH.h): no bound check.
+bool bvhInteriorStep(uvec4 lo0, uvec4 hi0, bool h0, float t0, uvec4 lo1, uvec4 hi1, bool h1,
+  float t1, float tmax, inout int sp, inout uint index, inout uint count, inout bool culled)
+{
+  bool nearIs1 = h1 && (!h0 || t1 < t0);
+  bvhStackIndex[sp] = nearIs1 ? lo0.w : lo1.w;
+  bvhStackCount[sp] = nearIs1 ? hi0.w : hi1.w;
+  bvhStackNear[sp] = nearIs1 ? t0 : t1;
+  bool anyHit = h0 || h1;
+  if (!anyHit && sp == 0)
+  {
+    return false;
+  }
+  sp += h0 && h1 ? 1 : 0;
+  int top = anyHit ? sp : max(sp - 1, 0);
+  culled = !anyHit && bvhStackNear[top] > tmax;
+  uint popIndex = bvhStackIndex[top];
+  uint popCount = bvhStackCount[top];
+  sp = top;
+  index = anyHit ? (nearIs1 ? lo1.w : lo0.w) : (culled ? 0u : popIndex);
+  count = anyHit ? (nearIs1 ? hi1.w : hi0.w) : (culled ? 0u : popCount);
+  return true;
+}
+
+// After a leaf: the next node from the stack (culled when the best hit,
+// tmax, prunes it). Returns false when the stack is empty.
+bool bvhPopAfterLeaf(float tmax, inout int sp, inout uint index, inout uint count,
+  inout bool culled)
+{
+  if (sp == 0)
+  {
+    return false;
+  }
+  --sp;
+  culled = bvhStackNear[sp] > tmax;
+  index = culled ? 0u : bvhStackIndex[sp];
+  count = culled ? 0u : bvhStackCount[sp];
+  return true;
+}

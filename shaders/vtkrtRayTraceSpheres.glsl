@@ -56,11 +56,9 @@ bool intersectRaySphere(vec3 org, vec3 dir, vec3 center, float radius, float tmi
   return false;
 }
 
-// Closest hit in the sphere BVH whose root node is `root`: the traversal of
-// traverseTriangles (vtkrtRayTraceTriangles.glsl; "while-while", a stack of
-// (index, count) pairs, branch-free interior step, one pop path), step for
-// step, so the same leaves are tested in the same order as before; only the
-// leaf test differs.
+// Closest hit in the sphere BVH whose root node is `root`: the walk of
+// traverseTriangles (bvhInteriorStep, bvhPopAfterLeaf), step for step; only
+// the boxes' growth and the leaf test differ.
 //
 // Screen-sized spheres (VTKRT_SCREEN_SPHERES, points drawn as spheres) have
 // radius 0 in uSpheres: each gets max(0, dot(radiusPlane.xyz, center) +
@@ -87,9 +85,6 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
   {
     return false;
   }
-  uint stackIndex[VTKRT_STACK_SIZE];
-  uint stackCount[VTKRT_STACK_SIZE];
-  float stackNear[VTKRT_STACK_SIZE];
   int sp = 0;
   int steps = 0;
   uint index = rootLo.w;
@@ -117,25 +112,11 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
                   boxCorner(hi0) + growBy, tmin, tmax, t0) && !culled;
       bool h1 = intersectRayBoxConservative(org, invDir, parallelBias, boxCorner(lo1) - growBy,
                   boxCorner(hi1) + growBy, tmin, tmax, t1) && !culled;
-      culled = false;
-      bool nearIs1 = h1 && (!h0 || t1 < t0);
-      stackIndex[sp] = nearIs1 ? lo0.w : lo1.w;
-      stackCount[sp] = nearIs1 ? hi0.w : hi1.w;
-      stackNear[sp] = nearIs1 ? t0 : t1;
-      bool anyHit = h0 || h1;
-      if (!anyHit && sp == 0)
+      if (!bvhInteriorStep(lo0, hi0, h0, t0, lo1, hi1, h1, t1, tmax, sp, index, count, culled))
       {
         done = true;
         break;
       }
-      sp += h0 && h1 ? 1 : 0;
-      int top = anyHit ? sp : max(sp - 1, 0);
-      culled = !anyHit && stackNear[top] > tmax;
-      uint popIndex = stackIndex[top];
-      uint popCount = stackCount[top];
-      sp = top;
-      index = anyHit ? (nearIs1 ? lo1.w : lo0.w) : (culled ? 0u : popIndex);
-      count = anyHit ? (nearIs1 ? hi1.w : hi0.w) : (culled ? 0u : popCount);
     }
     if (done)
     {
@@ -190,14 +171,10 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
     {
       return true;
     }
-    if (sp == 0)
+    if (!bvhPopAfterLeaf(tmax, sp, index, count, culled))
     {
       break;
     }
-    --sp;
-    culled = stackNear[sp] > tmax;
-    index = culled ? 0u : stackIndex[sp];
-    count = culled ? 0u : stackCount[sp];
   }
   return sphere >= 0;
 }

@@ -105,7 +105,9 @@ bool intersectRayTriangle(RayTrianglePrecomputed r, vec3 v0, vec3 v1, vec3 v2, f
 // descends interior nodes until every ray of the SIMD group (llvmpipe shades
 // 8 pixels at once and runs a loop while any of them is in it) sits in a
 // leaf or is done, and only then are leaf triangles tested, so the group
-// pays the masked leaf loop once for all its rays.
+// pays the masked leaf loop once for all its rays. The stack walk itself is
+// bvhInteriorStep and bvhPopAfterLeaf (vtkrtRayTraceKernels.glsl), shared
+// with traverseSpheres.
 bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tmax, out int tri,
   out vec2 uv, bool stopAtFirstHit)
 {
@@ -121,13 +123,6 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
     return false;
   }
   RayTrianglePrecomputed pre = precomputeRayTriangle(org, dir);
-  // The node at hand is its (index, count) pair alone: a pushed node keeps
-  // its pair on the stack, so popping fetches nothing. A popped node that
-  // the best hit already prunes is "culled": the next step treats it as a
-  // dead end (no nested pop loop, which llvmpipe would run every step).
-  uint stackIndex[VTKRT_STACK_SIZE];
-  uint stackCount[VTKRT_STACK_SIZE];
-  float stackNear[VTKRT_STACK_SIZE];
   int sp = 0;
   int steps = 0;
   uint index = rootLo.w;
@@ -159,30 +154,11 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
         org, invDir, parallelBias, boxCorner(lo0), boxCorner(hi0), tmin, tmax, t0) && !culled;
       bool h1 = intersectRayBoxConservative(
         org, invDir, parallelBias, boxCorner(lo1), boxCorner(hi1), tmin, tmax, t1) && !culled;
-      culled = false;
-      // Branch free (llvmpipe would run every branch, masked): the farther
-      // child is written above the stack top every step and kept only when
-      // both children are hit; the top entry is read every step and used
-      // only at a dead end. sp never exceeds the depth of the node at hand,
-      // below kMaxDepth <= VTKRT_STACK_SIZE (core/BVH.h): no bound check.
-      bool nearIs1 = h1 && (!h0 || t1 < t0);
-      stackIndex[sp] = nearIs1 ? lo0.w : lo1.w;
-      stackCount[sp] = nearIs1 ? hi0.w : hi1.w;
-      stackNear[sp] = nearIs1 ? t0 : t1;
-      bool anyHit = h0 || h1;
-      if (!anyHit && sp == 0)
+      if (!bvhInteriorStep(lo0, hi0, h0, t0, lo1, hi1, h1, t1, tmax, sp, index, count, culled))
       {
         done = true;
         break;
       }
-      sp += h0 && h1 ? 1 : 0;
-      int top = anyHit ? sp : max(sp - 1, 0);
-      culled = !anyHit && stackNear[top] > tmax;
-      uint popIndex = stackIndex[top];
-      uint popCount = stackCount[top];
-      sp = top;
-      index = anyHit ? (nearIs1 ? lo1.w : lo0.w) : (culled ? 0u : popIndex);
-      count = anyHit ? (nearIs1 ? hi1.w : hi0.w) : (culled ? 0u : popCount);
     }
     if (done)
     {
@@ -214,14 +190,10 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
     {
       return true;
     }
-    if (sp == 0)
+    if (!bvhPopAfterLeaf(tmax, sp, index, count, culled))
     {
       break;
     }
-    --sp;
-    culled = stackNear[sp] > tmax;
-    index = culled ? 0u : stackIndex[sp];
-    count = culled ? 0u : stackCount[sp];
   }
   return tri >= 0;
 }
