@@ -751,6 +751,25 @@ struct PrecisionRow
   double IdMismatch = kNaN; // GPU id picks differing from the locator's cell
 };
 
+/// A row for one rendered stage: its frame times and its image error
+/// against `ref` (the caller adds depth, pick and geometry errors).
+TradeRow StageRow(const std::string& knob, const std::string& setting, const std::string& method,
+  double value, double triangles, const Stage& st, const Stage& ref)
+{
+  TradeRow row;
+  row.Knob = knob;
+  row.Setting = setting;
+  row.Method = method;
+  row.Value = value;
+  row.Triangles = triangles;
+  row.FirstFrameS = st.FirstSeconds;
+  row.SteadyFrameS = st.SteadySeconds;
+  row.SteadyMinS = st.SteadyMinSeconds;
+  row.ImageRMSE = ImageRMSE(ref.Image, st.Image);
+  row.ImageDiff = ImageDifference(ref.Image, st.Image);
+  return row;
+}
+
 std::string Cell(double v)
 {
   if (!std::isfinite(v))
@@ -920,17 +939,8 @@ bool RunPassBuilder(vtkPolyData* mesh, const Scene& scene, const Options& opt, s
     }
     const Stage& ref = reference ? *reference : *st;
     const DepthError de = CompareDepth(ref, *st);
-    TradeRow row;
-    row.Knob = "pass builder";
-    row.Setting = names[q];
-    row.Method = "vtkRayTracePass";
-    row.Value = q;
-    row.Triangles = mesh->GetNumberOfCells();
-    row.FirstFrameS = st->FirstSeconds;
-    row.SteadyFrameS = st->SteadySeconds;
-    row.SteadyMinS = st->SteadyMinSeconds;
-    row.ImageRMSE = ImageRMSE(ref.Image, st->Image);
-    row.ImageDiff = ImageDifference(ref.Image, st->Image);
+    TradeRow row =
+      StageRow("pass builder", names[q], "vtkRayTracePass", q, mesh->GetNumberOfCells(), *st, ref);
     row.DepthErr = de.Mean;
     row.Coverage = de.Coverage;
     rows.push_back(row);
@@ -988,23 +998,15 @@ bool RunPassKnobs(vtkPolyData* mesh, const Scene& scene, const Options& opt, std
       }
       const Stage& ref = reference ? *reference : *st;
       const DepthError de = CompareDepth(ref, *st);
-      TradeRow row;
-      row.Knob = knob.Name;
-      row.Setting = (v == 0 && knob.Name.find("steps") != std::string::npos)
+      std::string setting = (v == 0 && knob.Name.find("steps") != std::string::npos)
         ? std::string("unlimited")
         : std::to_string(v);
       if (!reference)
       {
-        row.Setting += " (reference)";
+        setting += " (reference)";
       }
-      row.Method = "vtkRayTracePass";
-      row.Value = v;
-      row.Triangles = mesh->GetNumberOfCells();
-      row.FirstFrameS = st->FirstSeconds;
-      row.SteadyFrameS = st->SteadySeconds;
-      row.SteadyMinS = st->SteadyMinSeconds;
-      row.ImageRMSE = ImageRMSE(ref.Image, st->Image);
-      row.ImageDiff = ImageDifference(ref.Image, st->Image);
+      TradeRow row =
+        StageRow(knob.Name, setting, "vtkRayTracePass", v, mesh->GetNumberOfCells(), *st, ref);
       row.DepthErr = de.Mean;
       row.Coverage = de.Coverage;
       rows.push_back(row);
@@ -1066,19 +1068,10 @@ bool RunShadowLights(vtkPolyData* mesh, const Scene& scene, const Options& opt, 
     for (int on = 0; on < 2; ++on)
     {
       const Stage& st = *stages[on];
-      TradeRow row;
-      row.Knob = "pass shadow lights";
-      row.Setting = std::to_string(n) + (n == 1 ? " light shadows " : " lights shadows ") +
-        (on ? "on (reference)" : "off");
-      row.Method = on ? "shadows on" : "shadows off";
-      row.Value = n;
-      row.Triangles = mesh->GetNumberOfCells();
-      row.FirstFrameS = st.FirstSeconds;
-      row.SteadyFrameS = st.SteadySeconds;
-      row.SteadyMinS = st.SteadyMinSeconds;
-      row.ImageRMSE = ImageRMSE(stages[1]->Image, st.Image);
-      row.ImageDiff = ImageDifference(stages[1]->Image, st.Image);
-      rows.push_back(row);
+      rows.push_back(StageRow("pass shadow lights",
+        std::to_string(n) + (n == 1 ? " light shadows " : " lights shadows ") +
+          (on ? "on (reference)" : "off"),
+        on ? "shadows on" : "shadows off", n, mesh->GetNumberOfCells(), st, *stages[1]));
     }
     std::printf("  %d scene light(s): frame %7.1f ms without shadows, %7.1f ms with (min %6.1f / "
                 "%6.1f): %+.1f ms per light; shadows change RMSE %.2f\n",
@@ -1225,22 +1218,13 @@ bool RunLOD(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::vect
       Stage& st = m == 0 ? *traced : *raster;
       Stage& ref = m == 0 ? (refTraced ? *refTraced : *traced) : (refRaster ? *refRaster : *raster);
       const DepthError de = CompareDepth(ref, st);
-      TradeRow row;
-      row.Knob = "lod";
       char setting[32];
       std::snprintf(setting, sizeof(setting), "reduction %.2f", ratio);
-      row.Setting = setting;
-      row.Method = m == 0 ? "traced" : "raster";
-      row.Value = ratio;
-      row.Triangles = lod->GetNumberOfCells();
+      TradeRow row = StageRow(
+        "lod", setting, m == 0 ? "traced" : "raster", ratio, lod->GetNumberOfCells(), st, ref);
       row.PrepS = prep;
       row.BuildS = build;
-      row.FirstFrameS = st.FirstSeconds;
-      row.SteadyFrameS = st.SteadySeconds;
-      row.SteadyMinS = st.SteadyMinSeconds;
       row.PickUs = 1e6 * picks.SecondsPerPick;
-      row.ImageRMSE = ImageRMSE(ref.Image, st.Image);
-      row.ImageDiff = ImageDifference(ref.Image, st.Image);
       row.DepthErr = de.Mean;
       row.Coverage = de.Coverage;
       row.PickMean = pe.Mean;
@@ -1263,16 +1247,9 @@ bool RunLOD(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::vect
       for (int m = 0; m < 2; ++m)
       {
         Stage& st = m == 0 ? *traced : *raster;
-        TradeRow row;
-        row.Knob = "renderer";
-        row.Setting = m == 0 ? "traced (reference)" : "raster";
-        row.Method = m == 0 ? "vtkRayTracePass" : "vtkPolyDataMapper";
-        row.Triangles = lod->GetNumberOfCells();
-        row.FirstFrameS = st.FirstSeconds;
-        row.SteadyFrameS = st.SteadySeconds;
-        row.SteadyMinS = st.SteadyMinSeconds;
-        row.ImageRMSE = ImageRMSE(traced->Image, st.Image);
-        row.ImageDiff = ImageDifference(traced->Image, st.Image);
+        TradeRow row = StageRow("renderer", m == 0 ? "traced (reference)" : "raster",
+          m == 0 ? "vtkRayTracePass" : "vtkPolyDataMapper", kNaN, lod->GetNumberOfCells(), st,
+          *traced);
         row.DepthErr = m == 0 ? 0.0 : de.Mean;
         row.Coverage = m == 0 ? 0.0 : de.Coverage;
         rows.push_back(row);
