@@ -37,34 +37,15 @@ elif case == "Glyphs":
           "the %d glyphs are traced as analytic spheres (traced: %d)" % (points, traced_primitives(view)))
 elif case == "Glyphs3D":
     points = Sphere(Radius=1.0, ThetaResolution=12, PhiResolution=7)
-    display = Show(points, view)
-    display.SetRepresentationType("3D Glyphs")
-    display.GlyphType = "Sphere"
-    display.GlyphType.ThetaResolution = 48
-    display.GlyphType.PhiResolution = 48
-    display.ScaleFactor = 0.25
-    display.DiffuseColor = [0.55, 0.75, 0.85]
-    ColorBy(display, ("POINTS", None))
+    sphere_glyphs_3d(points, view)
     place_camera(view, azimuth=20.0, elevation=25.0)
     Render(view)
     count = points.GetDataInformation().GetNumberOfPoints()
     check(traced_primitives(view) == count,
           "the %d 3D glyphs are traced as analytic spheres (traced: %d)" % (count, traced_primitives(view)))
-    # ParaView's raster view of the same scene (48x48 tessellated spheres).
-    raster = CreateView("RenderView")
-    raster.ViewSize = VIEW_SIZE
-    raster.OrientationAxesVisibility = 1
-    raster.Background = view.Background
-    raster.UseColorPaletteForBackground = 0
-    raster.MultiSamples = 0
-    raster_display = Show(points, raster)
-    raster_display.SetRepresentationType("3D Glyphs")
-    raster_display.GlyphType = "Sphere"
-    raster_display.GlyphType.ThetaResolution = 48
-    raster_display.GlyphType.PhiResolution = 48
-    raster_display.ScaleFactor = 0.25
-    raster_display.DiffuseColor = [0.55, 0.75, 0.85]
-    ColorBy(raster_display, ("POINTS", None))
+    # ParaView's raster view of the same scene.
+    raster = raster_view()
+    sphere_glyphs_3d(points, raster)
     for name in ("CameraPosition", "CameraFocalPoint", "CameraViewUp", "CameraViewAngle"):
         raster.SetPropertyWithName(name, view.GetPropertyValue(name))
     Render(raster)
