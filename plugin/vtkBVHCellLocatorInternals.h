@@ -309,6 +309,21 @@ public:
     out.emplace_back();
     WideNode node;
     node.Clear();
+#if VTKRT_CORE_SSE
+    // The interior kids' own children are what their collapse reads first:
+    // fetch them all now (a tree of millions of nodes is a cache miss per
+    // read otherwise).
+    for (int i = 0; i < n; ++i)
+    {
+      const core::BVHNode& c = this->Tree.nodes[kids[i]];
+      if (!c.isLeaf())
+      {
+        const char* pair = reinterpret_cast<const char*>(&this->Tree.nodes[c.index]);
+        _mm_prefetch(pair, _MM_HINT_T0);
+        _mm_prefetch(pair + sizeof(core::BVHNode), _MM_HINT_T0);
+      }
+    }
+#endif
     for (int i = 0; i < n; ++i)
     {
       const core::BVHNode& c = this->Tree.nodes[kids[i]];
@@ -437,9 +452,27 @@ public:
     {
       // Triangles only (the common case): slot j is triangle j, so the
       // gather runs in parallel.
+      // The gather reads the triangles in leaf order, at random: fetch the
+      // point ids 16 slots ahead and, 8 slots ahead, the points they name
+      // (millions of triangles are a cache miss per read otherwise). Only
+      // within this chunk: other chunks rewrite their slots of `order`.
       vtkSMPTools::For(0, static_cast<vtkIdType>(order.size()), [&](vtkIdType b, vtkIdType e) {
         for (vtkIdType j = b; j < e; ++j)
         {
+#if VTKRT_CORE_SSE
+          if (j + 16 < e)
+          {
+            _mm_prefetch(reinterpret_cast<const char*>(&this->TriVerts[3 * static_cast<std::size_t>(order[j + 16])]), _MM_HINT_T0);
+          }
+          if (j + 8 < e)
+          {
+            const std::uint32_t* ids = &this->TriVerts[3 * static_cast<std::size_t>(order[j + 8])];
+            for (int k = 0; k < 3; ++k)
+            {
+              _mm_prefetch(reinterpret_cast<const char*>(&this->Points[ids[k]]), _MM_HINT_T0);
+            }
+          }
+#endif
           placeTriangle(order[j], static_cast<std::uint32_t>(j));
           order[j] = static_cast<std::uint32_t>(j);
         }

@@ -171,6 +171,24 @@ private:
   std::vector<std::uint8_t> Side;      ///< High only: 1 = goes left in the current split
   std::vector<std::uint32_t> Scratch;  ///< High only: partition buffer (disjoint ranges per task)
 
+  /// Positions ahead whose reference is fetched early where the order goes
+  /// through a permutation (Fast): the LBVH reads the references in Morton
+  /// order, a random walk over an array of 56 bytes a primitive (at 4M
+  /// primitives, a cache and TLB miss per read without it).
+  static constexpr std::uint32_t kPrefetchAhead = 16;
+
+  void prefetchRef(std::uint32_t pos) const
+  {
+#if defined(__GNUC__) || defined(__clang__)
+    if (!Perm.empty() && pos < Perm.size())
+    {
+      __builtin_prefetch(&Refs[Perm[pos]]);
+    }
+#else
+    (void)pos;
+#endif
+  }
+
   /// The primitive at position pos of the current order.
   const BuildRef& refAt(std::uint32_t pos) const
   {
@@ -387,6 +405,7 @@ private:
     AABB<double> box;
     for (std::uint32_t i = begin; i < end; ++i)
     {
+      prefetchRef(i + kPrefetchAhead);
       const BuildRef& r = refAt(i);
       box.extend(r.box);
       centroids.extend(r.centroid());
