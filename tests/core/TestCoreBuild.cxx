@@ -1,5 +1,8 @@
 // Builders: structure invariants for each quality and leaf size; identical
-// node arrays for identical input whatever the thread count; SAH quality
+// node arrays for identical input whatever the thread count, with a
+// caller's parallelFor pool, and with concurrent bounds (empty and NaN
+// primitives skipped alike); the LBVH splitting a cluster that shares one
+// Morton prefix cell spatially; SAH quality
 // order (sweep <= binned <= median, within 5 %); the depth cap on
 // adversarial input (100k triangles with one centroid, exponentially spaced
 // primitives) with queries still matching brute force; refit after moving
