@@ -470,6 +470,63 @@ bool findGlyphArrays(vtkGlyph3DMapper* mapper, GlyphSet& set)
   return !set.Orientation || set.Orientation->GetNumberOfComponents() == components;
 }
 
+/// A block color in place of the property's colors, each still weighted by
+/// its coefficient. VTK 9.1's composite polydata mapper replaces the ambient
+/// and diffuse colors; its glyph mapper calls the property's SetColor, which
+/// replaces the specular color too.
+void applyBlockColor(Instance& inst, vtkProperty* property, const double color[3], bool specularToo)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    inst.Ambient[k] = static_cast<float>(property->GetAmbient() * color[k]);
+    inst.Diffuse[k] = static_cast<float>(property->GetDiffuse() * color[k]);
+    if (specularToo)
+    {
+      inst.Specular[k] = static_cast<float>(property->GetSpecular() * color[k]);
+    }
+  }
+}
+
+/// A cache entry's "used this frame" flag (entries held by pointer or by value).
+template <class T>
+bool& usedFlag(std::unique_ptr<T>& entry)
+{
+  return entry->Used;
+}
+template <class T>
+bool& usedFlag(T& entry)
+{
+  return entry.Used;
+}
+
+/// Marks every entry of a cache unused (the frame's props mark theirs).
+template <class Cache>
+void markUnused(Cache& cache)
+{
+  for (auto& e : cache)
+  {
+    usedFlag(e.second) = false;
+  }
+}
+
+/// Drops the entries no prop used this frame; returns whether any went.
+template <class Cache>
+bool dropUnused(Cache& cache)
+{
+  bool dropped = false;
+  for (auto it = cache.begin(); it != cache.end();)
+  {
+    if (usedFlag(it->second))
+    {
+      ++it;
+      continue;
+    }
+    it = cache.erase(it);
+    dropped = true;
+  }
+  return dropped;
+}
+
 /// A polydata leaf of a composite input with its inherited block color.
 struct Piece
 {
@@ -729,12 +786,7 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
   this->FillMaterial(actor, mapper, inst);
   if (blockColor)
   {
-    // A block color replaces the ambient and diffuse colors.
-    for (int k = 0; k < 3; ++k)
-    {
-      inst.Ambient[k] = static_cast<float>(property->GetAmbient() * blockColor[k]);
-      inst.Diffuse[k] = static_cast<float>(property->GetDiffuse() * blockColor[k]);
-    }
+    applyBlockColor(inst, property, blockColor, false);
   }
 
   if (property->GetRepresentation() == VTK_SURFACE &&
@@ -873,22 +925,16 @@ bool Scene::GetGlyphSphere(vtkGlyph3DMapper* mapper, GlyphSphere& sphere)
   {
     return false;
   }
-  auto& shape = this->GlyphSourceCache[mapper];
-  shape.Used = true;
-  if (shape.Data != source || shape.Time != source->GetMTime())
+  auto& cached = this->GlyphSourceCache[mapper];
+  cached.Used = true;
+  if (cached.Data != source || cached.Shape.Time != source->GetMTime())
   {
-    shape.Data = source;
-    shape.Time = source->GetMTime();
-    shape.Sphere = sphereOfPolyData(source, shape.Center.data(), shape.Radius);
+    cached.Data = source;
+    cached.Shape.Time = source->GetMTime();
+    cached.Sphere = sphereOfPolyData(source, cached.Shape.Center.data(), cached.Shape.Radius);
   }
-  if (!shape.Sphere)
-  {
-    return false;
-  }
-  sphere.Radius = shape.Radius;
-  sphere.Center = shape.Center;
-  sphere.Time = shape.Time;
-  return true;
+  sphere = cached.Shape;
+  return cached.Sphere;
 }
 
 bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, FrameCounters& counters)
@@ -1114,15 +1160,7 @@ void Scene::AddGlyphSet(vtkActor* actor, vtkGlyph3DMapper* mapper, const GlyphSp
   this->FillMaterial(actor, mapper, inst);
   if (set.HasBlockColor)
   {
-    // VTK 9.1 draws the leaf with the property's SetColor(block color): the
-    // ambient, diffuse and specular colors all become it.
-    vtkProperty* property = actor->GetProperty();
-    for (int k = 0; k < 3; ++k)
-    {
-      inst.Ambient[k] = static_cast<float>(property->GetAmbient() * set.BlockColor[k]);
-      inst.Diffuse[k] = static_cast<float>(property->GetDiffuse() * set.BlockColor[k]);
-      inst.Specular[k] = static_cast<float>(property->GetSpecular() * set.BlockColor[k]);
-    }
+    applyBlockColor(inst, actor->GetProperty(), set.BlockColor.data(), true);
   }
   if (!entry->Empty())
   {
@@ -1146,22 +1184,10 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
   traced.clear();
   others.clear();
   this->Instances.clear();
-  for (auto& e : this->TriangleCache)
-  {
-    e.second->Used = false;
-  }
-  for (auto& e : this->SphereCache)
-  {
-    e.second->Used = false;
-  }
-  for (auto& e : this->ColorCache)
-  {
-    e.second->Used = false;
-  }
-  for (auto& e : this->GlyphSourceCache)
-  {
-    e.second.Used = false;
-  }
+  markUnused(this->TriangleCache);
+  markUnused(this->SphereCache);
+  markUnused(this->ColorCache);
+  markUnused(this->GlyphSourceCache);
 
   for (int i = 0; i < count; ++i)
   {
@@ -1230,38 +1256,11 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
   }
 
   // Forget what no prop uses any more.
-  auto forgetUnused = [this](auto& cache) {
-    for (auto it = cache.begin(); it != cache.end();)
-    {
-      if (!it->second->Used)
-      {
-        it = cache.erase(it);
-        this->GeometryDirty = true;
-      }
-      else
-      {
-        ++it;
-      }
-    }
-  };
-  forgetUnused(this->TriangleCache);
-  forgetUnused(this->SphereCache);
-  for (auto it = this->ColorCache.begin(); it != this->ColorCache.end();)
-  {
-    if (!it->second->Used)
-    {
-      it = this->ColorCache.erase(it);
-      this->ColorsDirty = true;
-    }
-    else
-    {
-      ++it;
-    }
-  }
-  for (auto it = this->GlyphSourceCache.begin(); it != this->GlyphSourceCache.end();)
-  {
-    it = it->second.Used ? std::next(it) : this->GlyphSourceCache.erase(it);
-  }
+  const bool trianglesDropped = dropUnused(this->TriangleCache);
+  const bool spheresDropped = dropUnused(this->SphereCache);
+  this->GeometryDirty = this->GeometryDirty || trianglesDropped || spheresDropped;
+  this->ColorsDirty = dropUnused(this->ColorCache) || this->ColorsDirty;
+  dropUnused(this->GlyphSourceCache);
   counters.TracedInstances = static_cast<int>(this->Instances.size());
   for (const Instance& inst : this->Instances)
   {

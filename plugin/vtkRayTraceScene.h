@@ -255,10 +255,8 @@ private:
   struct GlyphSourceShape
   {
     const void* Data = nullptr;
-    vtkMTimeType Time = 0;
     bool Sphere = false;
-    std::array<double, 3> Center{ { 0, 0, 0 } };
-    double Radius = 0.0;
+    GlyphSphere Shape; ///< its Time is the source data's MTime
     bool Used = false;
   };
   std::map<const void*, GlyphSourceShape> GlyphSourceCache;
