@@ -67,6 +67,12 @@ bool intersectRayAABB(vec3 org, vec3 invDir, vec3 bmin, vec3 bmax, float tmin, f
 // origin against the slab. Accepting more boxes than the core never changes
 // the hit, only how much is tested. Needs tmin >= 0 (a parallel axis
 // contributes tnear 0).
+// The parallelBias of intersectRayBoxConservative for a ray's invDir.
+vec3 parallelAxisBias(vec3 invDir)
+{
+  return vec3(equal(invDir, vec3(0.0))) * 3.0e38;
+}
+
 bool intersectRayBoxConservative(vec3 org, vec3 invDir, vec3 parallelBias, vec3 bmin, vec3 bmax,
   float tmin, float tmax, out float tnear)
 {

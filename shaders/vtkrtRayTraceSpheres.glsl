@@ -75,7 +75,7 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
 {
   sphere = -1;
   vec3 invDir = safeInverse(dir);
-  vec3 parallelBias = vec3(equal(invDir, vec3(0.0))) * 3.0e38;
+  vec3 parallelBias = parallelAxisBias(invDir);
   vec3 growBy = vec3(grow);
   float tnear;
   uvec4 rootLo = texelFetch(uNodes, 2 * root);

@@ -114,7 +114,7 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
   tri = -1;
   uv = vec2(0.0);
   vec3 invDir = safeInverse(dir);
-  vec3 parallelBias = vec3(equal(invDir, vec3(0.0))) * 3.0e38;
+  vec3 parallelBias = parallelAxisBias(invDir);
   float tnear;
   uvec4 rootLo = texelFetch(uNodes, 2 * root);
   uvec4 rootHi = texelFetch(uNodes, 2 * root + 1);
