@@ -177,28 +177,25 @@ Result Measure(const Peer& peer, vtkPolyData* pd, const std::vector<Segment>& se
 {
   Result r;
   r.Name = peer.Name;
-  // One untimed round first: a process's first builds pay for fresh heap
-  // pages, the SMP pool's start and symbol binding (measured 5-6x slower
-  // for the first two builds at 100k), which would bias whichever peer
-  // runs first.
-  {
-    void* loc = peer.Create(pd);
-    peer.Build(loc);
-    double t;
-    peer.Query(loc, segs[0], t);
-    peer.Destroy(loc);
-  }
   // First pick: a fresh locator, its build, one query (best of 3: wall
-  // clock, the machine is shared).
+  // clock, the machine is shared). Round 0 is not counted: a process's first
+  // builds pay for fresh heap pages, the SMP pool's start and symbol binding
+  // (measured 5-6x slower for the first two builds at 100k), which would
+  // bias whichever peer runs first.
   r.FirstPickSeconds = 1e30;
   r.BuildSeconds = 1e30;
-  for (int rep = 0; rep < 3; ++rep)
+  for (int rep = 0; rep < 4; ++rep)
   {
     auto t0 = Clock::now();
     void* loc = peer.Create(pd);
     peer.Build(loc);
     double t;
     peer.Query(loc, segs[0], t);
+    if (rep == 0)
+    {
+      peer.Destroy(loc);
+      continue;
+    }
     r.FirstPickSeconds = std::min(r.FirstPickSeconds, Seconds(t0, Clock::now()));
     peer.Destroy(loc);
     loc = peer.Create(pd);
