@@ -257,16 +257,13 @@ int vtkOpenMeshClean::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   this->ResetCounts();
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  vtkPolyData* edgesOut = vtkPolyData::GetData(outputVector, 1);
-  if (!output || !edgesOut)
+  vtkPolyData* output = vtkrt_filters::EmptiedOutput(this, outputVector, 0);
+  vtkPolyData* edgesOut = output ? vtkrt_filters::EmptiedOutput(this, outputVector, 1) : nullptr;
+  if (!edgesOut)
   {
-    vtkErrorMacro("Missing output polydata.");
     return 0;
   }
-  output->Initialize();
-  edgesOut->Initialize();
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   if (!input)
   {
     vtkErrorMacro("No input polydata: connect a vtkPolyData to port 0.");
