@@ -42,28 +42,15 @@ vtkSmartPointer<vtkPolyData> Sphere(int theta, int phi)
 // around it, oriented outward).
 bool AllFacesOutward(vtkPolyData* pd)
 {
-  auto iter = vtk::TakeSmartPointer(pd->GetPolys()->NewIterator());
-  vtkIdType n;
-  const vtkIdType* ids;
-  for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell())
-  {
-    iter->GetCurrentCell(n, ids);
-    double a[3], b[3], c[3], nrm[3];
-    pd->GetPoint(ids[0], a);
-    pd->GetPoint(ids[1], b);
-    pd->GetPoint(ids[2], c);
-    double u[3], v[3];
-    vtkMath::Subtract(b, a, u);
-    vtkMath::Subtract(c, a, v);
-    vtkMath::Cross(u, v, nrm);
-    const double centroid[3] = { (a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3,
-      (a[2] + b[2] + c[2]) / 3 };
-    if (vtkMath::Dot(nrm, centroid) <= 0.0)
+  bool outward = true;
+  vtkrt_test::ForEachTriangle(pd,
+    [&](double p[3][3], double normal[3])
     {
-      return false;
-    }
-  }
-  return true;
+      const double centroid[3] = { (p[0][0] + p[1][0] + p[2][0]) / 3,
+        (p[0][1] + p[1][1] + p[2][1]) / 3, (p[0][2] + p[1][2] + p[2][2]) / 3 };
+      outward = outward && vtkMath::Dot(normal, centroid) > 0.0;
+    });
+  return outward;
 }
 
 // Polygon soup: every triangle gets its own copies of its three points (what

@@ -383,35 +383,12 @@ void TestAttributes()
     "the dropped array is named");
 }
 
-// Calls visit(p, normal) for each face of a triangle mesh: its corners and
-// its (not normalised) normal.
-template <class Visit>
-void ForEachTriangle(vtkPolyData* pd, Visit&& visit)
-{
-  auto iter = vtk::TakeSmartPointer(pd->GetPolys()->NewIterator());
-  vtkIdType n;
-  const vtkIdType* ids;
-  for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell())
-  {
-    iter->GetCurrentCell(n, ids);
-    double p[3][3], u[3], v[3], normal[3];
-    for (int k = 0; k < 3; ++k)
-    {
-      pd->GetPoint(ids[k], p[k]);
-    }
-    vtkMath::Subtract(p[1], p[0], u);
-    vtkMath::Subtract(p[2], p[0], v);
-    vtkMath::Cross(u, v, normal);
-    visit(p, normal);
-  }
-}
-
 // Angle in degrees between a face's normal and the radial direction at its
 // centroid, over all faces of a unit sphere approximation.
 double WorstRadialDeviation(vtkPolyData* pd)
 {
   double worst = 0.0;
-  ForEachTriangle(pd,
+  vtkrt_test::ForEachTriangle(pd,
     [&](double p[3][3], double normal[3])
     {
       double c[3];
@@ -429,7 +406,7 @@ double WorstRadialDeviation(vtkPolyData* pd)
 double WorstAspectRatio(vtkPolyData* pd)
 {
   double worst = 0.0;
-  ForEachTriangle(pd,
+  vtkrt_test::ForEachTriangle(pd,
     [&](double p[3][3], double normal[3])
     {
       const double longest2 = std::max({ vtkMath::Distance2BetweenPoints(p[0], p[1]),

@@ -1,6 +1,6 @@
-// Helpers shared by the filters tests: checks, an error catcher, test inputs
-// (a surface-less polydata, the optional real meshes), OpenMesh's verdict on a
-// mesh, and sampled surface distances.
+// Helpers shared by the filters tests: checks, an error catcher, a walk over
+// a triangle mesh's faces, test inputs (a surface-less polydata, the optional
+// real meshes), OpenMesh's verdict on a mesh, and sampled surface distances.
 #ifndef vtkrtFiltersTestUtilities_h
 #define vtkrtFiltersTestUtilities_h
 
@@ -23,6 +23,7 @@
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkSmartPointer.h"
 #include "vtkStaticCellLocator.h"
+#include "vtkTriangle.h"
 #include "vtksys/SystemTools.hxx"
 
 #include "vtkOpenMeshIncludes.h" // from filters/: quiet OpenMesh includes
@@ -87,6 +88,27 @@ inline vtkIdType FieldCount(vtkPolyData* pd, const char* name)
 {
   auto* a = vtkIdTypeArray::SafeDownCast(pd->GetFieldData()->GetAbstractArray(name));
   return a && a->GetNumberOfValues() == 1 ? a->GetValue(0) : -1;
+}
+
+// Calls visit(p, normal) for each face of a triangle mesh: its corners and
+// its (not normalised) normal.
+template <class Visit>
+void ForEachTriangle(vtkPolyData* pd, Visit&& visit)
+{
+  auto iter = vtk::TakeSmartPointer(pd->GetPolys()->NewIterator());
+  vtkIdType n;
+  const vtkIdType* ids;
+  for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell())
+  {
+    iter->GetCurrentCell(n, ids);
+    double p[3][3], normal[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      pd->GetPoint(ids[k], p[k]);
+    }
+    vtkTriangle::ComputeNormalDirection(p[0], p[1], p[2], normal);
+    visit(p, normal);
+  }
 }
 
 // Two points joined by one line: points but no surface, which the filters refuse.
