@@ -1,6 +1,5 @@
 #include "vtkOpenMeshDecimation.h"
 
-#include "vtkOpenMeshIncludes.h"
 #include "vtkOpenMeshInternals.h"
 
 #include "vtkCellData.h"
@@ -14,13 +13,11 @@
 #include "vtkSMPTools.h"
 #include "vtkStaticCellLocator.h"
 
-VTKRT_OPENMESH_INCLUDES_BEGIN
 #include <OpenMesh/Core/Geometry/QuadricT.hh>
 #include <OpenMesh/Tools/Decimater/CollapseInfoT.hh>
 #include <OpenMesh/Tools/Decimater/ModAspectRatioT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalDeviationT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
-VTKRT_OPENMESH_INCLUDES_END
 
 #include <algorithm>
 #include <array>

@@ -22,11 +22,8 @@
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 
-#include "vtkOpenMeshIncludes.h"
-VTKRT_OPENMESH_INCLUDES_BEGIN
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
-VTKRT_OPENMESH_INCLUDES_END
 
 #include <array>
 #include <cmath>

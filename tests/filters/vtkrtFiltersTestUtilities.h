@@ -26,11 +26,8 @@
 #include "vtkTriangle.h"
 #include "vtksys/SystemTools.hxx"
 
-#include "vtkOpenMeshIncludes.h" // from filters/: quiet OpenMesh includes
-VTKRT_OPENMESH_INCLUDES_BEGIN
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
-VTKRT_OPENMESH_INCLUDES_END
 
 #include <algorithm>
 #include <cmath>
