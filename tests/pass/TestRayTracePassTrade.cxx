@@ -21,7 +21,6 @@
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
-#include "vtkXMLPolyDataReader.h"
 
 #include <algorithm>
 #include <cmath>
@@ -209,16 +208,6 @@ void TestLightShadows()
   ren->SetPass(nullptr);
 }
 
-vtkSmartPointer<vtkPolyData> ReadBunny()
-{
-  vtkNew<vtkXMLPolyDataReader> reader;
-  reader->SetFileName((std::string(VTKRT_DATA_DIR) + "/bunny.vtp").c_str());
-  reader->Update();
-  auto out = vtkSmartPointer<vtkPolyData>::New();
-  out->ShallowCopy(reader->GetOutput());
-  return out;
-}
-
 /// The bunny translated by `t` along (1, -1, 1)/sqrt(3) with the camera,
 /// rendered in one precision mode.
 vtkSmartPointer<vtkImageData> RenderTranslated(vtkPolyData* bunny, double t, int mode)
@@ -258,7 +247,7 @@ vtkSmartPointer<vtkImageData> RenderTranslated(vtkPolyData* bunny, double t, int
 /// geometry.
 void TestPrecisionMode()
 {
-  auto bunny = ReadBunny();
+  auto bunny = ReadPolyData("bunny.vtp");
   Check(bunny->GetNumberOfCells() > 1000, "bunny.vtp read");
   vtkNew<vtkRayTracePass> probe;
   Check(probe->GetPrecisionMode() == vtkRayTracePass::CAMERA_RELATIVE,
@@ -347,7 +336,7 @@ void TestPrecisionMode()
 /// sphere glyphs), identical images whatever the leaf size.
 void TestLeafSize()
 {
-  auto bunny = ReadBunny();
+  auto bunny = ReadPolyData("bunny.vtp");
   auto win = MakeWindow(200, 200);
   vtkNew<vtkRenderer> ren;
   win->AddRenderer(ren);
