@@ -374,13 +374,10 @@ GlyphResult RenderGlyphs(vtkAlgorithm* source, vtkPolyData* sourceData)
   ren->GetActiveCamera()->SetPosition(5, 4, 7);
   ren->GetActiveCamera()->SetFocalPoint(1, 1, 1);
   ren->ResetCamera(-0.5, 2.5, -0.5, 2.5, -0.5, 2.5);
+  auto [raster, traced, pass] = RenderRasterThenTraced(win, ren);
   GlyphResult r;
-  win->Render();
-  r.Raster = Grab(win);
-  vtkNew<vtkRayTracePass> pass;
-  ren->SetPass(pass);
-  win->Render();
-  r.Traced = Grab(win);
+  r.Raster = raster;
+  r.Traced = traced;
   r.TracedProps = pass->GetNumberOfTracedProps();
   r.TracedPrimitives = pass->GetLastTracedPrimitives();
   ren->GetActiveCamera()->Azimuth(10);
