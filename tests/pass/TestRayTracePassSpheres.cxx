@@ -42,6 +42,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 using namespace vtkrtPassTest;
@@ -92,6 +93,16 @@ void TestScreenSizedPoints()
   cam->SetViewAngle(30);
   cam->SetClippingRange(1, 40);
   vtkNew<vtkRayTracePass> pass;
+  // Foreground pixels of a raster frame of `r`, then of a frame traced by `pass`.
+  auto rasterThenTracedPixels = [&](vtkRenderer* r) {
+    r->GetActiveCamera()->SetClippingRange(1, 40);
+    r->SetPass(nullptr);
+    win->Render();
+    const long raster = CountForegroundPixels(Grab(win), kBlack);
+    r->SetPass(pass);
+    win->Render();
+    return std::make_pair(raster, CountForegroundPixels(Grab(win), kBlack));
+  };
 
   // Each step changes the view (or the point size); pass and raster must
   // cover about the same pixels, so every sphere stays PointSize wide.
@@ -119,13 +130,7 @@ void TestScreenSizedPoints()
   for (const Step& step : steps)
   {
     step.Apply();
-    cam->SetClippingRange(1, 40);
-    ren->SetPass(nullptr);
-    win->Render();
-    const long raster = CountForegroundPixels(Grab(win), kBlack);
-    ren->SetPass(pass);
-    win->Render();
-    const long traced = CountForegroundPixels(Grab(win), kBlack);
+    const auto [raster, traced] = rasterThenTracedPixels(ren);
     const double size = actor->GetProperty()->GetPointSize();
     // Five disks PointSize wide (VTK's are a little smaller): all in view.
     const double disk = 5 * vtkMath::Pi() * size * size / 4.0;
@@ -182,13 +187,7 @@ void TestScreenSizedPoints()
     {
       c2->Dolly(1.3);
     }
-    c2->SetClippingRange(1, 40);
-    many->SetPass(nullptr);
-    win->Render();
-    const long raster = CountForegroundPixels(Grab(win), kBlack);
-    many->SetPass(pass);
-    win->Render();
-    const long traced = CountForegroundPixels(Grab(win), kBlack);
+    const auto [raster, traced] = rasterThenTracedPixels(many);
     std::ostringstream s;
     s << "10 actors, " << manySteps[k] << ": traced " << traced << " px, raster " << raster
       << " px (want within 12%), " << pass->GetLastBVHBuilds() << " BVH builds, "
