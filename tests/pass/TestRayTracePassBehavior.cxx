@@ -104,35 +104,6 @@ vtkSmartPointer<vtkActor> GlyphActor(vtkPolyData* points)
   return actor;
 }
 
-/// The world ray of pixel (i, j) (pixel centers, origin bottom left) from
-/// VTK's composite projection, in double: org on the near plane, org + dir
-/// on the far plane.
-struct PixelRays
-{
-  vtkNew<vtkMatrix4x4> ClipToWorld;
-  int Width, Height;
-  PixelRays(vtkRenderer* ren, int w, int h)
-    : Width(w)
-    , Height(h)
-  {
-    vtkMatrix4x4* m = ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
-      static_cast<double>(w) / h, -1, 1);
-    vtkMatrix4x4::Invert(m, this->ClipToWorld);
-  }
-  vtkrt::core::Ray<double> Ray(int i, int j) const
-  {
-    const double x = 2.0 * (i + 0.5) / this->Width - 1.0;
-    const double y = 2.0 * (j + 0.5) / this->Height - 1.0;
-    double n[4] = { x, y, -1.0, 1.0 };
-    double f[4] = { x, y, 1.0, 1.0 };
-    this->ClipToWorld->MultiplyPoint(n, n);
-    this->ClipToWorld->MultiplyPoint(f, f);
-    vtkrt::core::Vec3<double> o(n[0] / n[3], n[1] / n[3], n[2] / n[3]);
-    vtkrt::core::Vec3<double> e(f[0] / f[3], f[1] / f[3], f[2] / f[3]);
-    return vtkrt::core::Ray<double>(o, e - o, 0.0, 1.0);
-  }
-};
-
 void TestCounters()
 {
   auto win = MakeWindow(200, 200);

@@ -179,29 +179,6 @@ struct Scene
   }
 };
 
-struct PixelRays
-{
-  vtkNew<vtkMatrix4x4> ClipToWorld;
-  explicit PixelRays(vtkRenderer* ren)
-  {
-    vtkMatrix4x4::Invert(ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
-                           static_cast<double>(kWidth) / kHeight, -1, 1),
-      this->ClipToWorld);
-  }
-  vtkrt::core::Ray<double> Ray(int i, int j) const
-  {
-    const double x = 2.0 * (i + 0.5) / kWidth - 1.0;
-    const double y = 2.0 * (j + 0.5) / kHeight - 1.0;
-    double n[4] = { x, y, -1.0, 1.0 };
-    double f[4] = { x, y, 1.0, 1.0 };
-    this->ClipToWorld->MultiplyPoint(n, n);
-    this->ClipToWorld->MultiplyPoint(f, f);
-    const vtkrt::core::Vec3<double> o(n[0] / n[3], n[1] / n[3], n[2] / n[3]);
-    const vtkrt::core::Vec3<double> e(f[0] / f[3], f[1] / f[3], f[2] / f[3]);
-    return vtkrt::core::Ray<double>(o, e - o, 0.0, 1.0);
-  }
-};
-
 /// Per pixel of the current view: whether its ray hits one of `spheres`,
 /// and its distance (in pixels) from the nearest silhouette.
 struct AnalyticMask
@@ -212,7 +189,7 @@ struct AnalyticMask
 
   AnalyticMask(vtkRenderer* ren, const std::vector<Sphere>& spheres)
   {
-    PixelRays rays(ren);
+    PixelRays rays(ren, kWidth, kHeight);
     const double pixelAngle =
       2.0 * std::tan(vtkMath::RadiansFromDegrees(ren->GetActiveCamera()->GetViewAngle() / 2.0)) /
       kHeight;
