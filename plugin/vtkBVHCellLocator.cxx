@@ -219,6 +219,11 @@ void vtkBVHCellLocator::BuildTree()
 
   this->Internals->Data.Extract(this->DataSet);
   this->Internals->Data.Build(this->BuildQuality, this->NumberOfCellsPerNode);
+  if (!this->PickingTreeOnDemand && this->Internals->Data.Lazy)
+  {
+    this->Internals->Data.Lazy->buildAll();
+    this->Internals->Data.DropExtractionArrays();
+  }
 
   this->Internals->Data.BuildSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -581,6 +586,7 @@ bool vtkBVHCellLocator::InsideCellBounds(double x[3], vtkIdType cellId)
 //------------------------------------------------------------------------------
 vtkIdType vtkBVHCellLocator::GetNumberOfNodes() const
 {
+  this->Internals->Data.EnsureTree();
   return this->Internals->Data.Stats.Nodes;
 }
 vtkIdType vtkBVHCellLocator::GetNumberOfPrimitives() const
@@ -589,10 +595,12 @@ vtkIdType vtkBVHCellLocator::GetNumberOfPrimitives() const
 }
 int vtkBVHCellLocator::GetTreeDepth() const
 {
+  this->Internals->Data.EnsureTree();
   return this->Internals->Data.Stats.Depth;
 }
 double vtkBVHCellLocator::GetSAHCost() const
 {
+  this->Internals->Data.EnsureTree();
   return this->Internals->Data.Stats.SAHCost;
 }
 double vtkBVHCellLocator::GetBuildTimeSeconds() const
@@ -615,18 +623,39 @@ void vtkBVHCellLocator::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   static const char* qualityNames[] = { "Fast", "SAH", "High" };
   os << indent << "BuildQuality: " << qualityNames[this->BuildQuality] << "\n";
+  os << indent << "PickingTreeOnDemand: " << (this->PickingTreeOnDemand ? "On" : "Off") << "\n";
   os << indent << "Built: " << (this->Internals->HasTree ? "yes" : "no") << "\n";
   const auto& d = this->Internals->Data;
   os << indent << "Leaf size (NumberOfCellsPerNode): " << this->NumberOfCellsPerNode << "\n";
   os << indent << "Primitives: " << d.NumberOfPrimitives() << " (" << d.NumberOfTriangles()
      << " triangles, " << d.NumberOfGeneralCells() << " general cells, " << d.SkippedCells
      << " skipped non-finite cells)\n";
-  os << indent << "Nodes: " << d.Stats.Nodes << "\n";
-  os << indent << "Leaves: " << d.Stats.Leaves << "\n";
-  os << indent << "Wide nodes (picking view, " << vtkrt::locator::BVHCellLocatorData::kWideArity
-     << " children): " << d.Wide.size() << "\n";
-  os << indent << "Depth: " << d.Stats.Depth << "\n";
-  os << indent << "SAH cost: " << d.Stats.SAHCost << "\n";
+  os << indent << "Picking tree (" << vtkrt::locator::BVHCellLocatorData::kWideArity
+     << " children a node): " << d.PickingNodeCount() << " nodes";
+  if (d.Lazy)
+  {
+    // The fast build makes each bucket's subtree at the first query that reaches it.
+    os << ", " << d.Lazy->builtBuckets() << " of " << d.Lazy->bucketCount()
+       << " buckets built so far";
+  }
+  os << "\n";
+  // PrintSelf does not build: the fast build makes the binary tree at the
+  // first query that needs it.
+  if (d.TreeBuilt.Ready.load())
+  {
+    os << indent << "Nodes: " << d.Stats.Nodes << "\n";
+    os << indent << "Leaves: " << d.Stats.Leaves << "\n";
+    os << indent << "Depth: " << d.Stats.Depth << "\n";
+    os << indent << "SAH cost: " << d.Stats.SAHCost << "\n";
+  }
+  else
+  {
+    const char* later = "(binary tree not built yet: the first point, box or all-hits query builds it)";
+    os << indent << "Nodes: " << later << "\n";
+    os << indent << "Leaves: " << (d.Lazy ? d.Lazy->leafCount() : 0) << " (picking tree, so far)\n";
+    os << indent << "Depth: " << (d.Lazy ? d.Lazy->depth() : 0) << " (picking tree levels, so far)\n";
+    os << indent << "SAH cost: " << later << "\n";
+  }
   os << indent << "Build time: " << d.BuildSeconds << " s\n";
   os << indent << "Memory: " << this->GetMemorySize() << " bytes\n";
   os << indent << "Local origin: (" << d.Origin.x << ", " << d.Origin.y << ", " << d.Origin.z

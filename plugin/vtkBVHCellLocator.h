@@ -94,6 +94,24 @@ public:
 
   ///@{
   /**
+   * FAST build of a polygonal surface (all cells triangulated): build each
+   * part of the picking tree (the subtree over one cell of a coarse grid)
+   * when a closest-hit query first reaches it. On (the default),
+   * BuildLocator() returns once the levels above those parts are built, so
+   * that a first pick waits for little more than reading the mesh; the
+   * parts a query reaches are built then, once, and safely from several
+   * threads. Off: BuildLocator() builds the whole tree, and every query
+   * takes its steady time from the first one. The same tree either way.
+   * Point, box and all-hits queries, GenerateRepresentation() and the tree
+   * statistics first complete the tree.
+   */
+  vtkSetMacro(PickingTreeOnDemand, bool);
+  vtkGetMacro(PickingTreeOnDemand, bool);
+  vtkBooleanMacro(PickingTreeOnDemand, bool);
+  ///@}
+
+  ///@{
+  /**
    * Build the tree if it is missing or stale (see class documentation);
    * ForceBuildLocator() always rebuilds. FreeSearchStructure() releases it.
    */
@@ -207,6 +225,7 @@ protected:
   void BuildTree();
 
   int BuildQuality;
+  bool PickingTreeOnDemand = true;
 
 #if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 0)
   // VTK 9.2 (ParaView 5.11) dropped vtkAbstractCellLocator's LazyEvaluation

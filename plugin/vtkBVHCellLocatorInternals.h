@@ -30,6 +30,7 @@
 #include "vtkrt/core/ConservativeFloat.h"
 #include "vtkrt/core/Ray.h"
 #include "vtkrt/core/Triangle.h"
+#include "vtkrt/core/WideBVH.h"
 
 #if VTKRT_CORE_SSE
 #include <xmmintrin.h> // _mm_prefetch
@@ -40,6 +41,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 namespace vtkrt
@@ -92,8 +95,12 @@ class BVHCellLocatorData
 {
 public:
   Vec3d Origin = Vec3d(0.0);
+  Box PointBounds; ///< the finite points' bounds, local (fast path only)
   std::vector<Vec3d> Points;             ///< local copy (point - Origin), fast path only
-  std::vector<std::uint32_t> TriVerts;   ///< 3 point ids per triangle (extraction only)
+  std::vector<std::uint32_t> TriVerts;   ///< 3 point ids per triangle, extraction order (until placed)
+  std::vector<vtkIdType> SrcCell;        ///< TriCell, TriSub, TriFlags in extraction order (until placed)
+  std::vector<std::int32_t> SrcSub;
+  std::vector<std::uint8_t> SrcFlags;
   std::vector<std::uint32_t> TriIds;     ///< 3 point ids per triangle, leaf order
   /// The triangles in leaf order as float, four per pack: the float
   /// pre-test that spares the double test nearly every miss.
@@ -110,34 +117,17 @@ public:
   std::vector<std::uint8_t> TriFlags;    ///< TriangleFlags
   std::vector<vtkIdType> GenCell;        ///< original cell id per general primitive
   std::vector<Box> GenBox;               ///< its bounds, local, slightly widened
-  core::BVH Tree;
-  /// The same tree seen eight children at a time (a re-layout of the
-  /// core's binary nodes, no new split decisions): a third of the levels.
-  /// A pick walks one root-to-leaf chain of dependent loads, so the levels,
-  /// not the bytes, set its cache-miss latency: four lines of a node arrive
-  /// together (prefetched), the next level only after. Boxes are the packed
-  /// float ones, four per BoxPack4; an unused slot has an empty box (never
-  /// hit). Four cache lines.
-  static constexpr int kWideArity = 8;
-  struct alignas(64) WideNode
-  {
-    core::BoxPack4 Box[kWideArity / 4];
-    std::uint32_t Child[kWideArity]; ///< wide node index (Count 0) or first primIndex slot
-    std::uint32_t Count[kWideArity]; ///< primitives of a leaf child; 0 for an interior child
-
-    void Clear()
-    {
-      for (int i = 0; i < kWideArity; ++i)
-      {
-        this->Box[i / 4].clear(i % 4);
-        this->Child[i] = 0;
-        this->Count[i] = 0;
-      }
-    }
-  };
-  static_assert(sizeof(WideNode) == 32 * kWideArity, "a wide node is 32 bytes a child");
+  /// The binary tree of the point, box and all-hits queries (and of the
+  /// closest hit where the float picking path cannot run). The fast build
+  /// leaves it to the first query that needs it: EnsureTree().
+  mutable core::BVH Tree;
+  /// The picking tree, eight children a node (core/WideBVH.h). The fast
+  /// build writes it directly over triangles; the others re-lay the core's
+  /// binary nodes (no new split decisions).
+  static constexpr int kWideArity = core::kWideArity;
+  using WideNode = core::WideNode;
   std::vector<WideNode> Wide;
-  TreeStats Stats;
+  mutable TreeStats Stats;
   vtkIdType SkippedCells = 0;   ///< cells in no leaf (non-finite or empty bounds)
   vtkIdType NonFiniteCells = 0; ///< surface cells dropped at extraction
   double BuildSeconds = 0.0;
@@ -154,10 +144,59 @@ public:
     *this = BVHCellLocatorData();
   }
 
+  /// Whether Tree is there (or not wanted): once set, never cleared before
+  /// Clear(). Copying copies the state, not the mutex.
+  struct TreeState
+  {
+    std::atomic<bool> Ready{ true };
+    std::mutex Mutex;
+    TreeState() = default;
+    TreeState(const TreeState& o)
+      : Ready(o.Ready.load())
+    {
+    }
+    TreeState& operator=(const TreeState& o)
+    {
+      this->Ready.store(o.Ready.load());
+      return *this;
+    }
+  };
+  mutable TreeState TreeBuilt;
+  core::BuildOptions TreeOptions; ///< what EnsureTree builds with
+
+  /// Builds the binary tree if the fast build left it for later; safe to
+  /// call from several query threads at once (one builds, the others wait).
+  void EnsureTree() const
+  {
+    if (this->TreeBuilt.Ready.load(std::memory_order_acquire))
+    {
+      return;
+    }
+    std::lock_guard<std::mutex> lock(this->TreeBuilt.Mutex);
+    if (this->TreeBuilt.Ready.load(std::memory_order_relaxed))
+    {
+      return;
+    }
+    // Every triangle in its slot first: the binary tree is over the
+    // picking tree's slots (leaf order), prim = slot as there.
+    if (this->Lazy)
+    {
+      this->Lazy->buildAll();
+      const_cast<BVHCellLocatorData*>(this)->DropExtractionArrays(); // no bucket build reads them now
+    }
+    this->Tree = core::buildBVHConcurrentBounds(
+      this->TriCell.size(), [this](size_t i) { return this->PrimitiveBox(static_cast<std::uint32_t>(i)); },
+      this->TreeOptions);
+    this->SetTreeStats();
+    this->TreeBuilt.Ready.store(true, std::memory_order_release);
+  }
+
   size_t MemorySize() const
   {
     return this->Points.capacity() * sizeof(Vec3d) +
-      this->TriVerts.capacity() * sizeof(std::uint32_t) +
+      this->TriVerts.capacity() * sizeof(std::uint32_t) + this->SrcCell.capacity() * sizeof(vtkIdType) +
+      this->SrcSub.capacity() * sizeof(std::int32_t) + this->SrcFlags.capacity() +
+      (this->Lazy ? this->Lazy->memoryBytes() : 0) +
       this->TriPacks.capacity() * sizeof(core::TrianglePack4) +
       this->TriIds.capacity() * sizeof(std::uint32_t) +
       this->TriCell.capacity() * sizeof(vtkIdType) +
@@ -216,6 +255,12 @@ public:
     // Boxes straight into the builder's references: no intermediate array
     // of n boxes (fresh pages cost more than the arithmetic here).
     // The box callable only reads: the builder may call it from several threads.
+    this->TreeOptions = options;
+    if (options.quality == core::BuildQuality::Fast && this->GenCell.empty() && nTri > 0)
+    {
+      this->BuildPickingTree(nTri);
+      return;
+    }
     this->Tree = core::buildBVHConcurrentBounds(
       n,
       [this, nTri](size_t i) {
@@ -242,24 +287,150 @@ public:
         this->Extent = std::max(this->Extent, std::max(std::abs(root.min[k]), std::abs(root.max[k])));
       }
     }
-    this->Stats.Nodes = static_cast<vtkIdType>(this->Tree.stats.nodeCount);
-    this->Stats.Leaves = static_cast<vtkIdType>(this->Tree.stats.leafCount);
-    this->Stats.Depth = static_cast<int>(this->Tree.stats.maxDepth);
-    this->Stats.SAHCost = this->Tree.stats.sahCost;
+    this->SetTreeStats();
     this->SkippedCells =
       this->NonFiniteCells + static_cast<vtkIdType>(this->Tree.stats.skippedPrimitives);
   }
 
-  /// Slot i of a wide node gets binary node c's box, rounded outward to float
-  /// (local coordinates: exact directed rounding, as packNodesForGpu with
-  /// origin 0, without its libm calls).
-  static void SetWideBox(WideNode& node, int i, const core::BVHNode& c)
+  void SetTreeStats() const
   {
+    this->Stats.Nodes = static_cast<vtkIdType>(this->Tree.stats.nodeCount);
+    this->Stats.Leaves = static_cast<vtkIdType>(this->Tree.stats.leafCount);
+    this->Stats.Depth = static_cast<int>(this->Tree.stats.maxDepth);
+    this->Stats.SAHCost = this->Tree.stats.sahCost;
+  }
+
+  /// The fast build (triangles only): the picking tree straight over the
+  /// triangles (core::LazyWideBVH): the levels above its buckets now, each
+  /// bucket's subtree when a query first reaches it (which puts its
+  /// triangles in their leaf slots: float pack, point ids, cell id). No
+  /// binary tree, no re-layout: a first pick waits for little more than the
+  /// extraction.
+  void BuildPickingTree(size_t nTri)
+  {
+    this->MakeLeafOrderArrays(nTri);
+    this->Lazy.reset(new LazyPickingTree(PickingTriangles{ this }, this->TreeOptions));
+    this->Lazy->build(nTri, this->PointBounds);
+    this->Tree = core::BVH();
+    this->Stats = TreeStats();
+    this->TreeBuilt.Ready.store(false);
+    this->Extent = 0.0;
     for (int k = 0; k < 3; ++k)
     {
-      node.Box[i / 4].lo[k][i % 4] = core::detail::floorFloat(c.min[k]);
-      node.Box[i / 4].hi[k][i % 4] = core::detail::ceilFloat(c.max[k]);
+      this->Extent = std::max(this->Extent, std::max(std::abs(this->PointBounds.min[k]), std::abs(this->PointBounds.max[k])));
     }
+    this->SkippedCells = this->NonFiniteCells;
+  }
+
+  /// The triangles as LazyWideBVH sees them (by extraction index).
+  struct PickingTriangles
+  {
+    BVHCellLocatorData* Data;
+    Box bounds(std::uint32_t id) const
+    {
+      const std::uint32_t* v = &this->Data->TriVerts[3 * static_cast<size_t>(id)];
+      const Vec3d& a = this->Data->Points[v[0]];
+      const Vec3d& b = this->Data->Points[v[1]];
+      const Vec3d& c = this->Data->Points[v[2]];
+      return Box(glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c)));
+    }
+    void placeLeaf(const std::uint32_t* ids, std::uint32_t begin, std::uint32_t end, float lo[3], float hi[3])
+    {
+      Box box;
+      for (std::uint32_t t = begin; t < end; ++t)
+      {
+        box.extend(this->Data->PlaceTriangle(ids[t - begin], t));
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = core::detail::floorFloat(box.min[a]);
+        hi[a] = core::detail::ceilFloat(box.max[a]);
+      }
+    }
+    /// Stage 0: the point ids; stage 1: the points they name.
+    void prefetch(std::uint32_t id, int stage) const
+    {
+#if VTKRT_CORE_SSE
+      const std::uint32_t* v = &this->Data->TriVerts[3 * static_cast<size_t>(id)];
+      if (stage == 0)
+      {
+        _mm_prefetch(reinterpret_cast<const char*>(v), _MM_HINT_T0);
+        return;
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        _mm_prefetch(reinterpret_cast<const char*>(&this->Data->Points[v[k]]), _MM_HINT_T0);
+      }
+#else
+      (void)id;
+      (void)stage;
+#endif
+    }
+  };
+  using LazyPickingTree = core::LazyWideBVH<PickingTriangles>;
+  /// The fast build's picking tree; null for the other builds (Wide).
+  std::unique_ptr<LazyPickingTree> Lazy;
+
+  /// The per-triangle arrays in leaf order, sized for nTri slots, and the
+  /// extraction-order ones they are filled from (Src*, TriVerts), kept
+  /// until every triangle is placed.
+  void MakeLeafOrderArrays(size_t nTri)
+  {
+    this->SrcCell.swap(this->TriCell);
+    this->SrcSub.swap(this->TriSub);
+    this->SrcFlags.swap(this->TriFlags);
+    this->TriPacks.resize((nTri + 3) / 4);
+    for (size_t k = nTri; k < 4 * this->TriPacks.size(); ++k)
+    {
+      this->TriPacks[k / 4].clear(static_cast<int>(k % 4));
+    }
+    this->TriIds.resize(3 * nTri);
+    this->TriCell.resize(nTri);
+    this->TriSub.resize(nTri);
+    this->TriFlags.resize(nTri);
+  }
+
+  /// Every triangle placed: the extraction-order arrays can go.
+  void DropExtractionArrays()
+  {
+    std::vector<std::uint32_t>().swap(this->TriVerts);
+    std::vector<vtkIdType>().swap(this->SrcCell);
+    std::vector<std::int32_t>().swap(this->SrcSub);
+    std::vector<std::uint8_t>().swap(this->SrcFlags);
+    // Points stay: the exact tests read the double vertices through TriIds.
+  }
+
+  /// Triangle p (extraction order) goes to leaf slot t; returns its box.
+  /// Slots are written from several threads at once, each slot by one.
+  Box PlaceTriangle(std::uint32_t p, std::uint32_t t)
+  {
+    const std::uint32_t* v = &this->TriVerts[3 * static_cast<size_t>(p)];
+    std::copy(v, v + 3, &this->TriIds[3 * static_cast<size_t>(t)]);
+    const Vec3d& a = this->Points[v[0]];
+    const Vec3d& b = this->Points[v[1]];
+    const Vec3d& c = this->Points[v[2]];
+    this->TriPacks[t / 4].set(static_cast<int>(t % 4), a, b, c);
+    if (this->UniformCellBase >= 0)
+    {
+      this->TriCell[t] = this->UniformCellBase + p; // no random reads of the per-triangle arrays
+      this->TriSub[t] = 0;
+      this->TriFlags[t] = WholeTriangle;
+    }
+    else
+    {
+      this->TriCell[t] = this->SrcCell[p];
+      this->TriSub[t] = this->SrcSub[p];
+      this->TriFlags[t] = this->SrcFlags[p];
+    }
+    return Box(glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c)));
+  }
+
+  /// Nodes, leaves and depth of the picking tree (so far, for the fast build).
+  size_t PickingNodeCount() const { return this->Lazy ? this->Lazy->nodeCount() : this->Wide.size(); }
+  const WideNode* PickingRoot() const
+  {
+    return this->Lazy ? (this->Lazy->nodes().empty() ? nullptr : this->Lazy->nodes().data())
+                      : (this->Wide.empty() ? nullptr : this->Wide.data());
   }
 
   /// The up to kWideArity binary nodes a wide node over binary interior node
@@ -308,7 +479,7 @@ public:
     const std::uint32_t w = static_cast<std::uint32_t>(out.size());
     out.emplace_back();
     WideNode node;
-    node.Clear();
+    node.clear();
 #if VTKRT_CORE_SSE
     // The interior kids' own children are what their collapse reads first:
     // fetch them all now (a tree of millions of nodes is a cache miss per
@@ -327,15 +498,15 @@ public:
     for (int i = 0; i < n; ++i)
     {
       const core::BVHNode& c = this->Tree.nodes[kids[i]];
-      SetWideBox(node, i, c);
+      node.setBox(i, c.bounds());
       if (c.isLeaf())
       {
-        node.Child[i] = c.index;
-        node.Count[i] = c.count;
+        node.child[i] = c.index;
+        node.count[i] = c.count;
       }
       else
       {
-        node.Child[i] = this->Collapse(kids[i], out);
+        node.child[i] = this->Collapse(kids[i], out);
       }
     }
     out[w] = node;
@@ -352,7 +523,7 @@ public:
       return;
     }
     WideNode root;
-    root.Clear();
+    root.clear();
     std::uint32_t kids[kWideArity];
     int n = 1;
     if (this->Tree.nodes[0].isLeaf())
@@ -389,20 +560,20 @@ public:
     for (int i = 0; i < n; ++i)
     {
       const core::BVHNode& c = this->Tree.nodes[kids[i]];
-      SetWideBox(this->Wide[0], i, c);
+      this->Wide[0].setBox(i, c.bounds());
       if (c.isLeaf())
       {
-        this->Wide[0].Child[i] = c.index;
-        this->Wide[0].Count[i] = c.count;
+        this->Wide[0].child[i] = c.index;
+        this->Wide[0].count[i] = c.count;
         continue;
       }
       const std::uint32_t offset = static_cast<std::uint32_t>(this->Wide.size());
-      this->Wide[0].Child[i] = offset; // the subtree's root comes first
+      this->Wide[0].child[i] = offset; // the subtree's root comes first
       for (WideNode w : sub[i])
       {
         for (int k = 0; k < kWideArity; ++k)
         {
-          w.Child[k] += w.Count[k] == 0 ? offset : 0;
+          w.child[k] += w.count[k] == 0 ? offset : 0;
         }
         this->Wide.push_back(w);
       }
@@ -422,31 +593,10 @@ public:
     {
       builtTri += p < nTri ? 1 : 0;
     }
-    std::vector<core::TrianglePack4> packs((builtTri + 3) / 4);
-    std::vector<vtkIdType> triCell(builtTri), genCell(order.size() - builtTri);
-    std::vector<std::int32_t> triSub(builtTri);
-    std::vector<std::uint8_t> triFlags(builtTri);
-    std::vector<std::uint32_t> triIds(3 * builtTri);
+    this->MakeLeafOrderArrays(builtTri);
+    std::vector<vtkIdType> genCell(order.size() - builtTri);
     std::vector<Box> genBox(order.size() - builtTri);
-    const bool uniform = this->UniformCellBase >= 0;
-    auto placeTriangle = [&](std::uint32_t p, std::uint32_t t) {
-      for (int k = 0; k < 3; ++k)
-      {
-        triIds[3 * t + k] = this->TriVerts[3 * p + k];
-      }
-      packs[t / 4].set(static_cast<int>(t % 4), this->Points[triIds[3 * t]],
-        this->Points[triIds[3 * t + 1]], this->Points[triIds[3 * t + 2]]);
-      if (uniform)
-      {
-        triCell[t] = this->UniformCellBase + p; // no random reads of the per-triangle arrays
-        triSub[t] = 0;
-        triFlags[t] = WholeTriangle;
-        return;
-      }
-      triCell[t] = this->TriCell[p];
-      triSub[t] = this->TriSub[p];
-      triFlags[t] = this->TriFlags[p];
-    };
+    auto placeTriangle = [&](std::uint32_t p, std::uint32_t t) { this->PlaceTriangle(p, t); };
     std::uint32_t t = 0, g = 0;
     if (builtTri == order.size())
     {
@@ -495,19 +645,9 @@ public:
         }
       }
     }
-    for (size_t k = builtTri; k < 4 * packs.size(); ++k)
-    {
-      packs[k / 4].clear(static_cast<int>(k % 4));
-    }
-    this->TriPacks.swap(packs);
-    this->TriCell.swap(triCell);
-    this->TriSub.swap(triSub);
-    this->TriFlags.swap(triFlags);
-    this->TriIds.swap(triIds);
+    this->DropExtractionArrays();
     this->GenCell.swap(genCell);
     this->GenBox.swap(genBox);
-    std::vector<std::uint32_t>().swap(this->TriVerts);
-    // Points stay: the exact tests read the double vertices through TriIds.
   }
 
   //----------------------------------------------------------------------------
@@ -703,6 +843,7 @@ public:
     cells.clear();
     const Box q(this->ToLocal(Vec3d(bbox[0], bbox[2], bbox[4])),
       this->ToLocal(Vec3d(bbox[1], bbox[3], bbox[5])));
+    this->EnsureTree();
     core::queryBox(this->Tree, q, [&](std::uint32_t prim) {
       if (this->PrimitiveBox(prim).overlaps(q))
       {
@@ -764,6 +905,7 @@ public:
       return true;
     };
     core::PointHit<double> best;
+    this->EnsureTree();
     if (!core::closestPoint(this->Tree, x, radius, fn, best))
     {
       return false;
@@ -793,6 +935,7 @@ public:
     const Vec3d tol(std::sqrt(tol2));
     const Box q(x - tol, x + tol);
     std::vector<vtkIdType> candidates;
+    this->EnsureTree();
     core::queryBox(this->Tree, q, [&](std::uint32_t prim) {
       if (this->PrimitiveBox(prim).overlaps(q))
       {
@@ -820,6 +963,7 @@ public:
   void BoxesAtLevel(int level, std::vector<Box>& boxes) const
   {
     boxes.clear();
+    this->EnsureTree();
     if (this->Tree.empty())
     {
       return;
@@ -895,7 +1039,7 @@ private:
 
   bool MakeSegment(const double p1[3], const double p2[3], core::Ray<double>& ray) const
   {
-    if (this->Tree.empty())
+    if (!this->PickingRoot()) // every build with primitives makes the picking tree
     {
       return false;
     }
@@ -910,17 +1054,21 @@ private:
   bool WalkSegment(const core::Ray<double>& ray, double tol, Isect& isect, core::Hit<double>& hit,
     const core::RayTrianglePrecomputed<double>* triPre = nullptr) const
   {
+    if (Mode == 0)
+    {
+      core::ConservativeRay4 fray;
+      if (fray.init(ray, triPre ? *triPre : core::RayTrianglePrecomputed<double>(ray), tol, this->Extent))
+      {
+        return this->ClosestHitWide(fray, ray, tol, isect, hit);
+      }
+    }
+    // Axis-parallel or extreme segments, and every hit: the core's double
+    // traversal of the binary tree.
+    this->EnsureTree();
     const std::uint32_t* primIndex = this->Tree.primIndex.data();
     const GrownNodeSource nodes{ this->Tree.nodes.data(), this->Tree.nodes.size(), tol };
     if (Mode == 0)
     {
-      core::ConservativeRay4 fray;
-      if (!this->Wide.empty() &&
-        fray.init(ray, triPre ? *triPre : core::RayTrianglePrecomputed<double>(ray), tol, this->Extent))
-      {
-        return this->ClosestHitWide(fray, ray, tol, isect, hit);
-      }
-      // Axis-parallel or extreme segments: the core's double traversal.
       return core::closestHit(nodes, primIndex, ray, isect, hit);
     }
     core::allHits(nodes, primIndex, ray, isect);
@@ -938,14 +1086,17 @@ private:
     Isect& isect, core::Hit<double>& hit) const
   {
     hit = core::Hit<double>();
-    const std::uint32_t* primIndex = this->Tree.primIndex.data();
     const std::uint32_t nTri = static_cast<std::uint32_t>(this->TriCell.size());
     const bool allTriangles = this->GenCell.empty();
+    // Slots are primitives when all are triangles (the binary tree may be
+    // under construction then: not read); otherwise through its primIndex.
+    const std::uint32_t* primIndex = allTriangles ? nullptr : this->Tree.primIndex.data();
     const bool preTest = tol == 0.0; // the float triangle test knows no tolerance
     struct Entry
     {
+      const WideNode* Nodes; ///< the node array Ref indexes (interior children)
       std::uint32_t Ref;
-      std::uint32_t Count; ///< > 0: a leaf (Ref = first primIndex slot)
+      std::uint32_t Count; ///< > 0: a leaf (Ref = first primIndex slot); kWideSubtree: not built yet
       float Dist;
     };
     // Each wide level pushes at most kWideArity - 1 entries; there are at
@@ -1013,17 +1164,24 @@ private:
     };
     // The nearest hit child is walked next without a trip through the
     // stack; the others are pushed farthest first.
-    Entry cur{ 0, 0, 0.0f };
+    Entry cur{ this->PickingRoot(), 0, 0, 0.0f };
     for (;;)
     {
+      if (cur.Count == core::kWideSubtree)
+      {
+        // A bucket of the fast build that no query has reached yet: built
+        // now (once; thread-safe), then walked as if it had been there.
+        const LazyPickingTree::Subtree sub = this->Lazy->subtree(cur.Ref);
+        cur = { sub.nodes, sub.child, sub.count, cur.Dist };
+      }
       if (cur.Count == 0)
       {
-        const WideNode& w = this->Wide[cur.Ref];
+        const WideNode& w = cur.Nodes[cur.Ref];
         alignas(16) float tnear[kWideArity];
         int mask = 0;
         for (int h = 0; h < kWideArity / 4; ++h)
         {
-          mask |= core::intersectBoxes4(fray, w.Box[h], tmaxF, tnear + 4 * h) << (4 * h);
+          mask |= core::intersectBoxes4(fray, w.box[h], tmaxF, tnear + 4 * h) << (4 * h);
         }
         if (mask)
         {
@@ -1033,7 +1191,7 @@ private:
           {
             const int i = CountTrailingZeros(static_cast<unsigned>(mask));
             mask &= mask - 1;
-            const Entry c{ w.Child[i], w.Count[i], tnear[i] };
+            const Entry c{ cur.Nodes, w.child[i], w.count[i], tnear[i] };
             int j = nh++;
             while (j > 0 && hits[j - 1].Dist < c.Dist)
             {
@@ -1044,13 +1202,13 @@ private:
 #if VTKRT_CORE_SSE
             if (c.Count == 0)
             {
-              const char* next = reinterpret_cast<const char*>(&this->Wide[c.Ref]);
+              const char* next = reinterpret_cast<const char*>(&cur.Nodes[c.Ref]);
               for (std::size_t line = 0; line < sizeof(WideNode); line += 64)
               {
                 _mm_prefetch(next + line, _MM_HINT_T0);
               }
             }
-            else if (allTriangles)
+            else if (allTriangles && c.Count != core::kWideSubtree)
             {
               const char* next = reinterpret_cast<const char*>(&this->TriPacks[c.Ref / 4]);
               _mm_prefetch(next, _MM_HINT_T0);
@@ -1262,6 +1420,7 @@ private:
     }
     this->Origin = b.isEmpty() ? Vec3d(0.0) : b.center();
     const Vec3d o = this->Origin;
+    this->PointBounds = b.isEmpty() ? Box() : Box(b.min - o, b.max - o);
     Vec3d* dst = this->Points.data();
     vtkSMPTools::For(0, n, [&](vtkIdType bi, vtkIdType ei) {
       for (vtkIdType i = bi; i < ei; ++i)

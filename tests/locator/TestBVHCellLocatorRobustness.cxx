@@ -386,10 +386,20 @@ int TestRobustRebuild()
 /// (and std::threads) at once give the serial answers.
 int TestRobustThreads()
 {
-  auto pd = MakeBumpySphere(60);
+  // Big enough for 64 buckets: the picking tree's parts are built on demand
+  // by whichever threads reach them first (fresh locators below), against
+  // a reference built whole up front.
+  auto pd = MakeBumpySphere(200);
   vtkNew<vtkBVHCellLocator> loc;
   loc->SetDataSet(pd);
+  loc->PickingTreeOnDemandOff();
   loc->BuildLocator();
+  vtkNew<vtkBVHCellLocator> smpLoc, threadLoc;
+  for (vtkBVHCellLocator* l : { smpLoc.Get(), threadLoc.Get() })
+  {
+    l->SetDataSet(pd);
+    l->BuildLocator();
+  }
   Random rng(71);
   const std::vector<Segment> segs = RandomSegments(pd, 4000, rng);
   const vtkIdType n = static_cast<vtkIdType>(segs.size());
@@ -408,10 +418,11 @@ int TestRobustThreads()
     vtkGenericCell* c = cells.Local();
     for (vtkIdType i = b; i < e; ++i)
     {
-      parallel[i] = Query(loc, segs[i].P1, segs[i].P2, c);
+      parallel[i] = Query(smpLoc, segs[i].P1, segs[i].P2, c);
       double cp[3], d2;
       int sub;
-      loc->FindClosestPoint(segs[i].P1, cp, c, parallelClosest[i], sub, d2);
+      // Completes the tree (once, under a lock) while other threads pick.
+      smpLoc->FindClosestPoint(segs[i].P1, cp, c, parallelClosest[i], sub, d2);
     }
   });
   std::vector<std::thread> workers;
@@ -421,7 +432,7 @@ int TestRobustThreads()
       vtkNew<vtkGenericCell> c;
       for (vtkIdType i = w; i < n; i += 4)
       {
-        threaded[i] = Query(loc, segs[i].P1, segs[i].P2, c);
+        threaded[i] = Query(threadLoc, segs[i].P1, segs[i].P2, c);
       }
     });
   }

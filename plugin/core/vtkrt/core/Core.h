@@ -59,5 +59,6 @@
 #include "vtkrt/core/Sphere.h"
 #include "vtkrt/core/Triangle.h"
 #include "vtkrt/core/TwoLevel.h"
+#include "vtkrt/core/WideBVH.h"
 
 #endif
