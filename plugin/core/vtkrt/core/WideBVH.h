@@ -533,14 +533,28 @@ private:
     Pending--;
   }
 
-  /// Slot i of `node` leads to c; the parent's box and depth grow to hold it.
-  static void setChild(WideNode& node, int i, const detail::WideChildRef& c, detail::WideChildRef& parent)
+  /// Appends a node to `out` (before its subtrees) whose slots 0..n-1 lead
+  /// to child(0), ..., child(n - 1), built in that order; its reference.
+  template <class ChildFn>
+  static detail::WideChildRef appendNode(std::vector<WideNode>& out, int n, ChildFn&& child)
   {
-    node.setBox(i, c.lo, c.hi);
-    node.child[i] = c.child;
-    node.count[i] = c.count;
-    parent.merge(c);
-    parent.depth = std::max(parent.depth, c.depth + 1);
+    const std::uint32_t w = static_cast<std::uint32_t>(out.size());
+    out.emplace_back();
+    WideNode node;
+    node.clear();
+    detail::WideChildRef self;
+    self.child = w;
+    for (int i = 0; i < n; ++i)
+    {
+      const detail::WideChildRef c = child(i);
+      node.setBox(i, c.lo, c.hi);
+      node.child[i] = c.child;
+      node.count[i] = c.count;
+      self.merge(c);
+      self.depth = std::max(self.depth, c.depth + 1);
+    }
+    out[w] = node; // after the children: `out` may have grown
+    return self;
   }
 
   /// A range of one bucket's slots; `middle`: split it at the middle
@@ -619,18 +633,7 @@ private:
       r[best + 1] = hi;
       ++nr;
     }
-    const std::uint32_t w = static_cast<std::uint32_t>(out.size());
-    out.emplace_back();
-    WideNode node;
-    node.clear();
-    detail::WideChildRef self;
-    self.child = w;
-    for (int i = 0; i < nr; ++i)
-    {
-      setChild(node, i, buildRange(r[i], depth + 1, s, out), self);
-    }
-    out[w] = node;
-    return self;
+    return appendNode(out, nr, [&](int i) { return buildRange(r[i], depth + 1, s, out); });
   }
 
   /// [b, e) without its empty buckets at either end.
@@ -694,18 +697,7 @@ private:
       shrink(rb[best + 1], re[best + 1]);
       ++nr;
     }
-    const std::uint32_t w = static_cast<std::uint32_t>(Top.size());
-    Top.emplace_back();
-    WideNode node;
-    node.clear();
-    detail::WideChildRef self;
-    self.child = w;
-    for (int i = 0; i < nr; ++i)
-    {
-      setChild(node, i, buildTop(rb[i], re[i]), self);
-    }
-    Top[w] = node;
-    return self;
+    return appendNode(Top, nr, [&](int i) { return buildTop(rb[i], re[i]); });
   }
 };
 
