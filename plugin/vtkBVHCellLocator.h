@@ -35,11 +35,15 @@
  * a tree exists. With LazyEvaluation on, BuildLocator() only marks the
  * locator and the first query builds. Every query builds the tree when it is
  * missing or stale (vtkCellPicker never calls BuildLocator itself).
- * ForceBuildLocator() always rebuilds.
+ * ForceBuildLocator() always rebuilds. The FAST build of a surface leaves
+ * most of its picking tree to the picks that reach it (PickingTreeOnDemand),
+ * and the binary tree of the other queries to the first of them.
  *
  * Thread safety: once built (and while the dataset is unmodified) all queries
- * are read-only on shared state and may run concurrently from several
- * threads, provided each thread passes its own vtkGenericCell (the overloads
+ * may run concurrently from several threads: they only read shared state,
+ * except the parts of the tree built on demand, each built once by the first
+ * thread that needs it while the others wait. Each thread passes its own
+ * vtkGenericCell (the overloads
  * taking `cell`), and its own output lists. Overloads without a `cell`
  * argument use an internal cell only when they need one (non-triangle cells),
  * so they should not be called concurrently on a general dataset.
