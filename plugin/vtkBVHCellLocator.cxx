@@ -635,7 +635,7 @@ void vtkBVHCellLocator::PrintSelf(ostream& os, vtkIndent indent)
   if (d.Lazy)
   {
     // The fast build makes each bucket's subtree at the first query that reaches it.
-    os << ", " << d.Lazy->builtBuckets() << " of " << d.Lazy->bucketCount()
+    os << ", " << d.Lazy->builtBuckets() << " of " << d.Lazy->subtreeCount()
        << " buckets built so far";
   }
   os << "\n";

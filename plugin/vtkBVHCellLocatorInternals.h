@@ -301,12 +301,8 @@ public:
         {
           return this->GenBox[i - nTri];
         }
-        Box box;
-        for (int k = 0; k < 3; ++k)
-        {
-          box.extend(this->Points[this->TriVerts[3 * i + k]]);
-        }
-        return box; // non-finite or empty: the builder skips it
+        // Non-finite or empty: the builder skips it.
+        return this->TriangleBox(&this->TriVerts[3 * i]);
       },
       options);
     this->Reorder(nTri);
@@ -361,11 +357,7 @@ public:
     BVHCellLocatorData* Data;
     Box bounds(std::uint32_t id) const
     {
-      const std::uint32_t* v = &this->Data->TriVerts[3 * static_cast<size_t>(id)];
-      const Vec3d& a = this->Data->Points[v[0]];
-      const Vec3d& b = this->Data->Points[v[1]];
-      const Vec3d& c = this->Data->Points[v[2]];
-      return Box(glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c)));
+      return this->Data->TriangleBox(&this->Data->TriVerts[3 * static_cast<size_t>(id)]);
     }
     void placeLeaf(const std::uint32_t* ids, std::uint32_t begin, std::uint32_t end, float lo[3], float hi[3])
     {
@@ -455,7 +447,18 @@ public:
       this->TriSub[t] = this->SrcSub[p];
       this->TriFlags[t] = this->SrcFlags[p];
     }
-    return Box(glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c)));
+    return this->TriangleBox(v);
+  }
+
+  /// The box of the triangle whose point ids are v[0], v[1], v[2].
+  Box TriangleBox(const std::uint32_t* v) const
+  {
+    Box box;
+    for (int k = 0; k < 3; ++k)
+    {
+      box.extend(this->Points[v[k]]);
+    }
+    return box;
   }
 
   /// Nodes, leaves and depth of the picking tree (so far, for the fast build).
@@ -1040,12 +1043,7 @@ private:
     const vtkIdType nTri = this->NumberOfTriangles();
     if (static_cast<vtkIdType>(prim) < nTri)
     {
-      Box b;
-      for (int k = 0; k < 3; ++k)
-      {
-        b.extend(this->Vertex(prim, k));
-      }
-      return b;
+      return this->TriangleBox(&this->TriIds[3 * static_cast<size_t>(prim)]);
     }
     return this->GenBox[prim - nTri];
   }

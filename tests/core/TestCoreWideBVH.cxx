@@ -139,6 +139,7 @@ Built build(const std::vector<AABB<double>>& boxes, const AABB<double>& bounds, 
   std::vector<std::atomic<int>> placed(boxes.size());
   BuildOptions options;
   options.maxLeafSize = leafSize;
+  options.numThreads = 1; // order 0: serial (no parallelFor, one thread)
   if (order == 1)
   {
     options.parallelFor = [](std::size_t n, const std::function<void(std::size_t, std::size_t)>& body) {

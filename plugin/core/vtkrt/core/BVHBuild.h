@@ -88,6 +88,18 @@ void parallelChunks(std::size_t n, const BuildOptions& options, Fn&& fn, std::si
   parallelChunks(n, options.parallelFor ? 1u : options.numThreads, fn, work);
 }
 
+/// Spreads the low 21 bits of x to every third bit (Morton codes).
+inline std::uint64_t expandBits21(std::uint64_t x)
+{
+  x &= 0x1fffffull;
+  x = (x | x << 32) & 0x1f00000000ffffull;
+  x = (x | x << 16) & 0x1f0000ff0000ffull;
+  x = (x | x << 8) & 0x100f00f00f00f00full;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+  x = (x | x << 2) & 0x1249249249249249ull;
+  return x;
+}
+
 /// Ceil(log2(x)) for x >= 1.
 inline std::uint32_t ceilLog2(std::uint64_t x)
 {
@@ -193,18 +205,6 @@ private:
   const BuildRef& refAt(std::uint32_t pos) const
   {
     return !Perm.empty() ? Refs[Perm[pos]] : (Order[0].empty() ? Refs[pos] : Refs[Order[0][pos]]);
-  }
-
-  /// Spreads the low 21 bits of x to every third bit.
-  static std::uint64_t expandBits21(std::uint64_t x)
-  {
-    x &= 0x1fffffull;
-    x = (x | x << 32) & 0x1f00000000ffffull;
-    x = (x | x << 16) & 0x1f0000ff0000ffull;
-    x = (x | x << 8) & 0x100f00f00f00f00full;
-    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-    x = (x | x << 2) & 0x1249249249249249ull;
-    return x;
   }
 
   /// LBVH preparation (Lauterbach et al. 2009): 63-bit Morton codes of the

@@ -27,6 +27,7 @@
 #define vtkrt_core_WideBVH_h
 
 #include "vtkrt/core/BVH.h"
+#include "vtkrt/core/BVHBuild.h" // expandBits21, parallelChunks
 #include "vtkrt/core/ConservativeFloat.h"
 
 #include <algorithm>
@@ -108,17 +109,6 @@ struct WideChildRef
   }
 };
 
-/// Spreads the low 10 bits of x to every third bit.
-inline std::uint32_t expandBits10(std::uint32_t x)
-{
-  x &= 0x3ffu;
-  x = (x | x << 16) & 0x30000ffu;
-  x = (x | x << 8) & 0x300f00fu;
-  x = (x | x << 4) & 0x30c30c3u;
-  x = (x | x << 2) & 0x9249249u;
-  return x;
-}
-
 /// Morton code of p with `bits` bits per axis (<= 10) on the grid `scale`
 /// cells over [lo, ...]; outside points clamp to the border cells.
 inline std::uint32_t mortonCode(const Vec3<double>& p, const Vec3<double>& lo, const Vec3<double>& scale, int bits)
@@ -128,7 +118,7 @@ inline std::uint32_t mortonCode(const Vec3<double>& p, const Vec3<double>& lo, c
   for (int a = 0; a < 3; ++a)
   {
     const double q = std::min(std::max((p[a] - lo[a]) * scale[a], 0.0), top); // NaN -> 0
-    code |= expandBits10(static_cast<std::uint32_t>(q)) << (2 - a);
+    code |= static_cast<std::uint32_t>(expandBits21(static_cast<std::uint64_t>(q))) << (2 - a);
   }
   return code;
 }
@@ -225,11 +215,15 @@ public:
     {
       State[k].store(0, std::memory_order_relaxed);
     }
-    Pending.store(0);
+    Subtrees = 0;
     for (std::uint32_t k = 0; k < buckets; ++k)
     {
-      Pending += Start[k + 1] > Start[k] ? 1 : 0;
+      Subtrees += Start[k + 1] > Start[k] ? 1 : 0;
     }
+    BuiltBuckets = 0;
+    BuiltNodes = 0;
+    BuiltLeaves = 0;
+    BuiltDepth = 0;
     detail::WideChildRef root = buildTop(0, buckets);
     if (root.count > 0)
     {
@@ -261,21 +255,24 @@ public:
   /// Builds every subtree not built yet, in parallel (options.parallelFor).
   void buildAll()
   {
-    if (Pending.load(std::memory_order_acquire) == 0)
+    if (complete())
     {
       return;
     }
-    parallel(BucketRoot.size(), [this](std::size_t b, std::size_t e) {
+    detail::parallelChunks(BucketRoot.size(), Options, [this](std::size_t b, std::size_t e) {
       Scratch s;
       for (std::size_t k = b; k < e; ++k)
       {
         ensure(static_cast<std::uint32_t>(k), &s);
       }
-    });
+    }, Start.back());
   }
 
-  bool complete() const { return Pending.load(std::memory_order_acquire) == 0; }
+  bool complete() const { return BuiltBuckets.load(std::memory_order_acquire) == Subtrees; }
+  /// Buckets (the range of subtree()'s index), those holding primitives
+  /// (the subtrees to build) and those built so far.
   std::size_t bucketCount() const { return BucketRoot.size(); }
+  std::size_t subtreeCount() const { return Subtrees; }
   std::size_t builtBuckets() const { return BuiltBuckets.load(); }
   /// Nodes, leaves and depth (wide levels below the root) so far.
   std::size_t nodeCount() const { return Top.size() + BuiltNodes.load(); }
@@ -309,8 +306,8 @@ private:
   std::vector<detail::WideChildRef> BucketRoot; ///< box (from build) and, once built, root
   std::vector<std::vector<WideNode>> BucketNodes; ///< each bucket's nodes, local indices
   std::unique_ptr<std::atomic<std::uint8_t>[]> State; ///< 0 not built, 1 building, 2 built
-  std::atomic<std::size_t> Pending{ 0 };      ///< non-empty buckets not built
-  std::atomic<std::size_t> BuiltBuckets{ 0 };
+  std::size_t Subtrees = 0; ///< buckets holding primitives
+  std::atomic<std::size_t> BuiltBuckets{ 0 }; ///< of those, built
   std::atomic<std::size_t> BuiltNodes{ 0 };
   std::atomic<std::size_t> BuiltLeaves{ 0 };
   std::atomic<std::uint32_t> BuiltDepth{ 0 };
@@ -321,23 +318,9 @@ private:
     std::vector<std::uint64_t> keys, tmp;
     std::vector<std::uint32_t> codes;
     std::size_t leaves = 0;
-    std::uint32_t depth = 0;
     const std::uint32_t* ids = nullptr; ///< the bucket's sorted ids (slot base + i)
     std::uint32_t base = 0;             ///< the bucket's first slot
   };
-
-  template <class Fn>
-  void parallel(std::size_t n, Fn&& fn)
-  {
-    if (Options.parallelFor && n > 1)
-    {
-      Options.parallelFor(n, [&fn](std::size_t b, std::size_t e) { fn(b, e); });
-    }
-    else
-    {
-      fn(std::size_t(0), n);
-    }
-  }
 
   /// Builds bucket k unless built; waits when another thread builds it.
   void ensure(std::uint32_t k, Scratch* scratch)
@@ -372,7 +355,7 @@ private:
     std::vector<std::uint16_t> bucketOf(n);
     std::vector<std::uint32_t> hist(std::size_t(chunks) * buckets, 0);
     std::vector<AABB<double>> boxes(std::size_t(chunks) * buckets);
-    parallel(chunks, [&](std::size_t cb, std::size_t ce) {
+    detail::parallelChunks(chunks, Options, [&](std::size_t cb, std::size_t ce) {
       for (std::size_t c = cb; c < ce; ++c)
       {
         std::uint32_t* h = hist.data() + c * buckets;
@@ -387,7 +370,7 @@ private:
           box[k].extend(b);
         }
       }
-    });
+    }, n);
     // Offsets: bucket-major, chunk-minor (stable: chunk c's ids after c-1's).
     Start.assign(buckets + 1, 0);
     BucketRoot.assign(buckets, detail::WideChildRef());
@@ -415,7 +398,7 @@ private:
     }
     Start[buckets] = sum;
     Order.resize(n);
-    parallel(chunks, [&](std::size_t cb, std::size_t ce) {
+    detail::parallelChunks(chunks, Options, [&](std::size_t cb, std::size_t ce) {
       for (std::size_t c = cb; c < ce; ++c)
       {
         std::uint32_t* h = hist.data() + c * buckets;
@@ -424,7 +407,7 @@ private:
           Order[h[bucketOf[i]]++] = i;
         }
       }
-    });
+    }, n);
   }
 
   /// Stable LSD radix sort of keys (code << 32 | index) on the 30-bit code.
@@ -529,8 +512,7 @@ private:
     while (root.depth > d && !BuiltDepth.compare_exchange_weak(d, root.depth))
     {
     }
-    BuiltBuckets++;
-    Pending--;
+    BuiltBuckets.fetch_add(1, std::memory_order_release);
   }
 
   /// Appends a node to `out` (before its subtrees) whose slots 0..n-1 lead
