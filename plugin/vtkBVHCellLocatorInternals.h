@@ -372,25 +372,7 @@ public:
         hi[a] = core::detail::ceilFloat(box.max[a]);
       }
     }
-    /// Stage 0: the point ids; stage 1: the points they name.
-    void prefetch(std::uint32_t id, int stage) const
-    {
-#if VTKRT_CORE_SSE
-      const std::uint32_t* v = &this->Data->TriVerts[3 * static_cast<size_t>(id)];
-      if (stage == 0)
-      {
-        _mm_prefetch(reinterpret_cast<const char*>(v), _MM_HINT_T0);
-        return;
-      }
-      for (int k = 0; k < 3; ++k)
-      {
-        _mm_prefetch(reinterpret_cast<const char*>(&this->Data->Points[v[k]]), _MM_HINT_T0);
-      }
-#else
-      (void)id;
-      (void)stage;
-#endif
-    }
+    void prefetch(std::uint32_t id, int stage) const { this->Data->PrefetchTriangle(id, stage); }
   };
   using LazyPickingTree = core::LazyWideBVH<PickingTriangles>;
   /// The fast build's picking tree; null for the other builds (Wide).
@@ -448,6 +430,28 @@ public:
       this->TriFlags[t] = this->SrcFlags[p];
     }
     return this->TriangleBox(v);
+  }
+
+  /// Fetches triangle p's (extraction order) data ahead of a random read:
+  /// stage 0 its point ids, stage 1 (later, once they have arrived) the
+  /// points they name.
+  void PrefetchTriangle(std::uint32_t p, int stage) const
+  {
+#if VTKRT_CORE_SSE
+    const std::uint32_t* v = &this->TriVerts[3 * static_cast<size_t>(p)];
+    if (stage == 0)
+    {
+      _mm_prefetch(reinterpret_cast<const char*>(v), _MM_HINT_T0);
+      return;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      _mm_prefetch(reinterpret_cast<const char*>(&this->Points[v[k]]), _MM_HINT_T0);
+    }
+#else
+    (void)p;
+    (void)stage;
+#endif
   }
 
   /// The box of the triangle whose point ids are v[0], v[1], v[2].
@@ -632,7 +636,6 @@ public:
     this->MakeLeafOrderArrays(builtTri);
     std::vector<vtkIdType> genCell(order.size() - builtTri);
     std::vector<Box> genBox(order.size() - builtTri);
-    auto placeTriangle = [&](std::uint32_t p, std::uint32_t t) { this->PlaceTriangle(p, t); };
     std::uint32_t t = 0, g = 0;
     if (builtTri == order.size())
     {
@@ -645,21 +648,15 @@ public:
       vtkSMPTools::For(0, static_cast<vtkIdType>(order.size()), [&](vtkIdType b, vtkIdType e) {
         for (vtkIdType j = b; j < e; ++j)
         {
-#if VTKRT_CORE_SSE
           if (j + 16 < e)
           {
-            _mm_prefetch(reinterpret_cast<const char*>(&this->TriVerts[3 * static_cast<std::size_t>(order[j + 16])]), _MM_HINT_T0);
+            this->PrefetchTriangle(order[j + 16], 0);
           }
           if (j + 8 < e)
           {
-            const std::uint32_t* ids = &this->TriVerts[3 * static_cast<std::size_t>(order[j + 8])];
-            for (int k = 0; k < 3; ++k)
-            {
-              _mm_prefetch(reinterpret_cast<const char*>(&this->Points[ids[k]]), _MM_HINT_T0);
-            }
+            this->PrefetchTriangle(order[j + 8], 1);
           }
-#endif
-          placeTriangle(order[j], static_cast<std::uint32_t>(j));
+          this->PlaceTriangle(order[j], static_cast<std::uint32_t>(j));
           order[j] = static_cast<std::uint32_t>(j);
         }
       });
@@ -670,7 +667,7 @@ public:
       {
         if (p < nTri)
         {
-          placeTriangle(p, t);
+          this->PlaceTriangle(p, t);
           p = t++;
         }
         else
