@@ -134,10 +134,11 @@ public:
   TriangleArray<vtkIdType> SrcCell;        ///< TriCell, TriSub, TriFlags in extraction order (until placed)
   TriangleArray<std::int32_t> SrcSub;
   TriangleArray<std::uint8_t> SrcFlags;
-  TriangleArray<std::uint32_t> TriIds;     ///< 3 point ids per triangle, leaf order
-  /// The triangles in leaf order as float, four per pack: the float
-  /// pre-test that spares the double test nearly every miss.
-  TriangleArray<core::TrianglePack4> TriPacks;
+  /// 3 point ids per triangle, leaf order: the float pre-test (which spares
+  /// the double test nearly every miss) and the exact test both read the
+  /// leaf's triangles through them from Points, so no float copy of the
+  /// triangles competes with them for the cache.
+  TriangleArray<std::uint32_t> TriIds;
   double Extent = 0.0; ///< bound on |local vertex| (inf norm), for the float error bound
   /// >= 0: every triangle t is the VTK_TRIANGLE cell UniformCellBase + t
   /// (extraction order), subId 0 (set by the all-triangle polys path).
@@ -230,7 +231,6 @@ public:
       this->TriVerts.capacity() * sizeof(std::uint32_t) + this->SrcCell.capacity() * sizeof(vtkIdType) +
       this->SrcSub.capacity() * sizeof(std::int32_t) + this->SrcFlags.capacity() +
       (this->Lazy ? this->Lazy->memoryBytes() : 0) +
-      this->TriPacks.capacity() * sizeof(core::TrianglePack4) +
       this->TriIds.capacity() * sizeof(std::uint32_t) +
       this->TriCell.capacity() * sizeof(vtkIdType) +
       this->TriSub.capacity() * sizeof(std::int32_t) + this->TriFlags.capacity() +
@@ -386,11 +386,6 @@ public:
     this->SrcCell.swap(this->TriCell);
     this->SrcSub.swap(this->TriSub);
     this->SrcFlags.swap(this->TriFlags);
-    this->TriPacks.resize((nTri + 3) / 4);
-    for (size_t k = nTri; k < 4 * this->TriPacks.size(); ++k)
-    {
-      this->TriPacks[k / 4].clear(static_cast<int>(k % 4));
-    }
     this->TriIds.resize(3 * nTri);
     this->TriCell.resize(nTri);
     this->TriSub.resize(nTri);
@@ -413,10 +408,6 @@ public:
   {
     const std::uint32_t* v = &this->TriVerts[3 * static_cast<size_t>(p)];
     std::copy(v, v + 3, &this->TriIds[3 * static_cast<size_t>(t)]);
-    const Vec3d& a = this->Points[v[0]];
-    const Vec3d& b = this->Points[v[1]];
-    const Vec3d& c = this->Points[v[2]];
-    this->TriPacks[t / 4].set(static_cast<int>(t % 4), a, b, c);
     if (this->UniformCellBase >= 0)
     {
       this->TriCell[t] = this->UniformCellBase + p; // no random reads of the per-triangle arrays
@@ -1144,7 +1135,7 @@ private:
         tmaxF = core::ConservativeRay4::scaledTmax(ray.tmax);
       }
     };
-    // Triangles [first, end) in leaf order: four lanes of a pack at a time.
+    // Triangles [first, end) in leaf order, four lanes at a time.
     auto testTriangles = [&](std::uint32_t first, std::uint32_t end) {
       if (!preTest)
       {
@@ -1154,27 +1145,23 @@ private:
         }
         return;
       }
-      for (std::uint32_t block = first / 4; 4 * block < end; ++block)
+      for (std::uint32_t t = first; t < end; t += 4)
       {
-        const std::uint32_t lo = std::max(first, 4 * block) - 4 * block;
-        const std::uint32_t hi = std::min(end, 4 * block + 4) - 4 * block;
-        int mask = core::triangleCandidates4(fray, this->TriPacks[block]) &
-          (((1 << hi) - 1) & ~((1 << lo) - 1));
+        const int n = static_cast<int>(std::min<std::uint32_t>(4, end - t));
+        const std::uint32_t* ids = this->TriIds.data() + 3 * static_cast<std::size_t>(t);
+        int mask = core::triangleCandidates4(fray, this->Points.data(), ids, n) & ((1 << n) - 1);
 #if VTKRT_CORE_SSE
-        // The exact test reads the double vertices through the point ids:
-        // start every survivor's loads before the first test waits on one.
-        // A hit then reads its cell id, subId, flags and (to fill the
-        // caller's cell) the dataset's own coordinates of the points.
+        // A hit reads its cell id, subId, flags and (to fill the caller's
+        // cell) the dataset's own coordinates of the points: start every
+        // survivor's loads before the first exact test.
         for (int m = mask; m; m &= m - 1)
         {
-          const std::size_t prim = 4 * static_cast<std::size_t>(block) + CountTrailingZeros(static_cast<unsigned>(m));
-          const std::uint32_t* ids = this->TriIds.data() + 3 * prim;
-          for (int k = 0; k < 3; ++k)
+          const std::size_t prim = t + static_cast<std::size_t>(CountTrailingZeros(static_cast<unsigned>(m)));
+          if (this->DataSetCoords)
           {
-            _mm_prefetch(reinterpret_cast<const char*>(&this->Points[ids[k]]), _MM_HINT_T0);
-            if (this->DataSetCoords)
+            for (int k = 0; k < 3; ++k)
             {
-              _mm_prefetch(reinterpret_cast<const char*>(this->DataSetCoords + 3 * static_cast<std::size_t>(ids[k])), _MM_HINT_T0);
+              _mm_prefetch(reinterpret_cast<const char*>(this->DataSetCoords + 3 * static_cast<std::size_t>(this->TriIds[3 * prim + k])), _MM_HINT_T0);
             }
           }
           _mm_prefetch(reinterpret_cast<const char*>(&this->TriCell[prim]), _MM_HINT_T0);
@@ -1186,7 +1173,7 @@ private:
         {
           const int lane = CountTrailingZeros(static_cast<unsigned>(mask));
           mask &= mask - 1;
-          test(4 * block + static_cast<std::uint32_t>(lane));
+          test(t + static_cast<std::uint32_t>(lane));
         }
       }
     };
@@ -1238,12 +1225,14 @@ private:
             }
             else if (allTriangles && c.Count != core::kWideSubtree)
             {
-              const char* next = reinterpret_cast<const char*>(&this->TriPacks[c.Ref / 4]);
-              _mm_prefetch(next, _MM_HINT_T0);
-              _mm_prefetch(next + 64, _MM_HINT_T0);
-              _mm_prefetch(next + 128, _MM_HINT_T0);
-              // The leaf's point ids: a hit needs them right after the float test.
-              _mm_prefetch(reinterpret_cast<const char*>(this->TriIds.data() + 3 * static_cast<std::size_t>(c.Ref)), _MM_HINT_T0);
+              // The leaf's point ids: the float test reads its points through them.
+              const char* ids = reinterpret_cast<const char*>(this->TriIds.data() + 3 * static_cast<std::size_t>(c.Ref));
+              const char* idsEnd = reinterpret_cast<const char*>(this->TriIds.data() + 3 * static_cast<std::size_t>(c.Ref + c.Count));
+              for (; ids < idsEnd; ids += 64)
+              {
+                _mm_prefetch(ids, _MM_HINT_T0);
+              }
+              _mm_prefetch(idsEnd - 1, _MM_HINT_T0);
             }
 #endif
           }

@@ -8,6 +8,8 @@
 // 100x); boxes hit at corners,
 // edges and faces, with segments ending exactly on them, with and without a
 // tolerance. The pre-tests must also cull: most clear misses are rejected.
+// The triangle test reading its triangles through point ids gives the same
+// bits as the packed form, for one to four lanes.
 #include "CoreTestUtils.h"
 
 #include "vtkrt/core/ConservativeFloat.h"
@@ -35,12 +37,31 @@ void checkTriangle(const Vec3<double>& v0, const Vec3<double>& v1, const Vec3<do
     return; // the caller falls back to double: nothing to check
   }
   TrianglePack4 pack;
+  Vec3<double> points[12]; // the same four triangles, read through point ids
+  std::uint32_t ids[12];
   for (int i = 0; i < 4; ++i)
   {
-    pack.set(i, v0 + Vec3<double>(i), v1 - Vec3<double>(i), v2 + Vec3<double>(2 * i));
+    const Vec3<double> a = i == lane ? v0 : v0 + Vec3<double>(i);
+    const Vec3<double> b = i == lane ? v1 : v1 - Vec3<double>(i);
+    const Vec3<double> d = i == lane ? v2 : v2 + Vec3<double>(2 * i);
+    pack.set(i, a, b, d);
+    // Points stored in reverse so that ids are not the identity.
+    points[11 - 3 * i] = a;
+    points[10 - 3 * i] = b;
+    points[9 - 3 * i] = d;
+    ids[3 * i] = 11 - 3 * i;
+    ids[3 * i + 1] = 10 - 3 * i;
+    ids[3 * i + 2] = 9 - 3 * i;
   }
-  pack.set(lane, v0, v1, v2);
-  const bool candidate = (triangleCandidates4(fray, pack) >> lane) & 1;
+  const int packBits = triangleCandidates4(fray, pack);
+  const bool candidate = (packBits >> lane) & 1;
+  // The gathering form computes the same float coordinates: the same bits
+  // on its n lanes, for every n.
+  for (int n = 1; n <= 4; ++n)
+  {
+    const int lanes = (1 << n) - 1;
+    VTKRT_CHECK((triangleCandidates4(fray, points, ids, n) & lanes) == (packBits & lanes));
+  }
   TriangleHit<double> hit;
   const double inf = std::numeric_limits<double>::infinity();
   const bool hits = intersectRayTriangle(pre, v0, v1, v2, -inf, inf, hit);

@@ -242,18 +242,20 @@ inline int intersectBoxes4(const ConservativeRay4& r, const BoxPack4& b, float t
   return _mm_movemask_ps(_mm_cmple_ps(tn, tf));
 }
 
-/// Bit i set: the double watertight test may hit triangle i (see the top of
-/// this file); clear bits are certain misses.
-inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p)
+namespace detail
+{
+/// triangleCandidates4 on the rows of a TrianglePack4 held in registers:
+/// v[3 * vertex + axis] = that coordinate of the four lanes.
+inline int triangleCandidatesRows4(const ConservativeRay4& r, const __m128 v[9])
 {
   const __m128 ox = _mm_set1_ps(r.org[r.kx]), oy = _mm_set1_ps(r.org[r.ky]), oz = _mm_set1_ps(r.org[r.kz]);
   const __m128 sx = _mm_set1_ps(r.sx), sy = _mm_set1_ps(r.sy);
   __m128 X[3], Y[3], S = _mm_setzero_ps();
   for (int k = 0; k < 3; ++k)
   {
-    const __m128 z = _mm_sub_ps(_mm_load_ps(p.v[3 * k + r.kz]), oz);
-    X[k] = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(p.v[3 * k + r.kx]), ox), _mm_mul_ps(sx, z));
-    Y[k] = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(p.v[3 * k + r.ky]), oy), _mm_mul_ps(sy, z));
+    const __m128 z = _mm_sub_ps(v[3 * k + r.kz], oz);
+    X[k] = _mm_sub_ps(_mm_sub_ps(v[3 * k + r.kx], ox), _mm_mul_ps(sx, z));
+    Y[k] = _mm_sub_ps(_mm_sub_ps(v[3 * k + r.ky], oy), _mm_mul_ps(sy, z));
     S = _mm_max_ps(S, _mm_add_ps(detail::abs4(X[k]), detail::abs4(Y[k])));
   }
   // (A, B, C) = vertices 0, 1, 2.
@@ -268,6 +270,52 @@ inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p
   const __m128 neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(U, negM), _mm_cmplt_ps(V, negM)), _mm_cmplt_ps(W, negM));
   const __m128 pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(U, m), _mm_cmpgt_ps(V, m)), _mm_cmpgt_ps(W, m));
   return ~_mm_movemask_ps(_mm_and_ps(neg, pos)) & 0xf;
+}
+
+/// Point p as floats (x, y, z, 0), each rounded to nearest as
+/// TrianglePack4::set rounds it.
+inline __m128 loadPointFloat(const Vec3<double>& p)
+{
+  const double* c = &p.x;
+  const __m128 xy = _mm_cvtpd_ps(_mm_loadu_pd(c));
+  const __m128 z = _mm_cvtsd_ss(_mm_setzero_ps(), _mm_load_sd(c + 2));
+  return _mm_movelh_ps(xy, z);
+}
+} // namespace detail
+
+/// Bit i set: the double watertight test may hit triangle i (see the top of
+/// this file); clear bits are certain misses.
+inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p)
+{
+  __m128 v[9];
+  for (int k = 0; k < 9; ++k)
+  {
+    v[k] = _mm_load_ps(p.v[k]);
+  }
+  return detail::triangleCandidatesRows4(r, v);
+}
+
+/// triangleCandidates4 over triangles read through point ids: triangle i
+/// (i < n, 1 <= n <= 4) is points[ids[3i]], points[ids[3i+1]],
+/// points[ids[3i+2]]. The same float coordinates as a TrianglePack4 of
+/// them, so the same bits; lanes from n on are undefined (mask them).
+/// A leaf then needs no float copy of its triangles: it reads the point
+/// ids and double points the exact test reads anyway.
+inline int triangleCandidates4(const ConservativeRay4& r, const Vec3<double>* points, const std::uint32_t* ids, int n)
+{
+  __m128 v[9];
+  for (int k = 0; k < 3; ++k)
+  {
+    __m128 a = detail::loadPointFloat(points[ids[k]]);
+    __m128 b = n > 1 ? detail::loadPointFloat(points[ids[3 + k]]) : a;
+    __m128 c = n > 2 ? detail::loadPointFloat(points[ids[6 + k]]) : a;
+    __m128 d = n > 3 ? detail::loadPointFloat(points[ids[9 + k]]) : a;
+    _MM_TRANSPOSE4_PS(a, b, c, d); // a, b, c: the x, y, z rows of vertex k
+    v[3 * k] = a;
+    v[3 * k + 1] = b;
+    v[3 * k + 2] = c;
+  }
+  return detail::triangleCandidatesRows4(r, v);
 }
 #else
 inline int intersectBoxes4(const ConservativeRay4& r, const BoxPack4& b, float tmaxScaled, float tnear[4])
@@ -311,6 +359,17 @@ inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p
     mask |= (neg && pos) ? 0 : (1 << i);
   }
   return mask;
+}
+
+inline int triangleCandidates4(const ConservativeRay4& r, const Vec3<double>* points, const std::uint32_t* ids, int n)
+{
+  TrianglePack4 pack;
+  for (int i = 0; i < 4; ++i)
+  {
+    const std::uint32_t* t = ids + 3 * (i < n ? i : 0);
+    pack.set(i, points[t[0]], points[t[1]], points[t[2]]);
+  }
+  return triangleCandidates4(r, pack);
 }
 #endif
 
