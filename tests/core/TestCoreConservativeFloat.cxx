@@ -57,10 +57,20 @@ void checkTriangle(const Vec3<double>& v0, const Vec3<double>& v1, const Vec3<do
   const bool candidate = (packBits >> lane) & 1;
   // The gathering form computes the same float coordinates: the same bits
   // on its n lanes, for every n.
+  float pointsF[3 * 12 + 1];
+  for (int i = 0; i < 12; ++i)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      pointsF[3 * i + a] = static_cast<float>(points[i][a]);
+    }
+  }
+  pointsF[36] = 0.0f;
   for (int n = 1; n <= 4; ++n)
   {
     const int lanes = (1 << n) - 1;
     VTKRT_CHECK((triangleCandidates4(fray, points, ids, n) & lanes) == (packBits & lanes));
+    VTKRT_CHECK((triangleCandidates4(fray, pointsF, ids, n) & lanes) == (packBits & lanes));
   }
   TriangleHit<double> hit;
   const double inf = std::numeric_limits<double>::infinity();

@@ -283,6 +283,54 @@ inline __m128 loadPointFloat(const Vec3<double>& p)
 }
 } // namespace detail
 
+/// The box constants of a ConservativeRay4, broadcast once per ray: a walk
+/// over many nodes then reloads and broadcasts nothing per node.
+struct ConservativeBoxRay4
+{
+  __m128 oNear[3], oFar[3], inv[3], tmin;
+  int nearRow[3], farRow[3];
+
+  explicit ConservativeBoxRay4(const ConservativeRay4& r)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      oNear[a] = _mm_set1_ps(r.oNear[a]);
+      oFar[a] = _mm_set1_ps(r.oFar[a]);
+      inv[a] = _mm_set1_ps(r.inv[a]);
+      nearRow[a] = r.nearRow[a];
+      farRow[a] = r.farRow[a];
+    }
+    tmin = _mm_set1_ps(r.tmin);
+  }
+};
+
+/// intersectBoxes4 for the eight boxes of two packs (bits 0-3: b[0], 4-7:
+/// b[1]); the same arithmetic, so the same bits and distances.
+inline int intersectBoxes8(const ConservativeBoxRay4& r, const BoxPack4 (&b)[2], float tmaxScaled, float tnear[8])
+{
+  const __m128 tmax = _mm_set1_ps(tmaxScaled);
+  int mask = 0;
+  for (int h = 0; h < 2; ++h)
+  {
+    const float* base = &b[h].lo[0][0];
+    __m128 tn = r.tmin;
+    __m128 tf = _mm_set1_ps(std::numeric_limits<float>::infinity());
+    for (int a = 0; a < 3; ++a)
+    {
+      const __m128 nearPlane = _mm_load_ps(base + r.nearRow[a]);
+      const __m128 farPlane = _mm_load_ps(base + r.farRow[a]);
+      tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(nearPlane, r.oNear[a]), r.inv[a]));
+      tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(farPlane, r.oFar[a]), r.inv[a]));
+    }
+    tf = _mm_add_ps(_mm_mul_ps(tf, _mm_set1_ps(ConservativeRay4::kFarScale)),
+      _mm_set1_ps(ConservativeRay4::kTiny));
+    tf = _mm_min_ps(tf, tmax);
+    _mm_storeu_ps(tnear + 4 * h, tn);
+    mask |= _mm_movemask_ps(_mm_cmple_ps(tn, tf)) << (4 * h);
+  }
+  return mask;
+}
+
 /// Bit i set: the double watertight test may hit triangle i (see the top of
 /// this file); clear bits are certain misses.
 inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p)
@@ -317,6 +365,30 @@ inline int triangleCandidates4(const ConservativeRay4& r, const Vec3<double>* po
   }
   return detail::triangleCandidatesRows4(r, v);
 }
+
+/// The same over float points (x, y, z of point i at pointsF[3i], already
+/// rounded to nearest from the double ones, and one readable float after
+/// the last point): one unaligned load a vertex.
+inline int triangleCandidates4(const ConservativeRay4& r, const float* pointsF, const std::uint32_t* ids, int n)
+{
+  // Lanes from n on repeat the last triangle (no branch per lane).
+  const std::uint32_t* t1 = ids + 3 * (n > 1 ? 1 : 0);
+  const std::uint32_t* t2 = ids + 3 * (n > 2 ? 2 : n - 1);
+  const std::uint32_t* t3 = ids + 3 * (n > 3 ? 3 : n - 1);
+  __m128 v[9];
+  for (int k = 0; k < 3; ++k)
+  {
+    __m128 a = _mm_loadu_ps(pointsF + 3 * static_cast<std::size_t>(ids[k]));
+    __m128 b = _mm_loadu_ps(pointsF + 3 * static_cast<std::size_t>(t1[k]));
+    __m128 c = _mm_loadu_ps(pointsF + 3 * static_cast<std::size_t>(t2[k]));
+    __m128 d = _mm_loadu_ps(pointsF + 3 * static_cast<std::size_t>(t3[k]));
+    _MM_TRANSPOSE4_PS(a, b, c, d); // a, b, c: the x, y, z rows of vertex k
+    v[3 * k] = a;
+    v[3 * k + 1] = b;
+    v[3 * k + 2] = c;
+  }
+  return detail::triangleCandidatesRows4(r, v);
+}
 #else
 inline int intersectBoxes4(const ConservativeRay4& r, const BoxPack4& b, float tmaxScaled, float tnear[4])
 {
@@ -335,6 +407,21 @@ inline int intersectBoxes4(const ConservativeRay4& r, const BoxPack4& b, float t
     mask |= (tn <= tf) ? (1 << i) : 0;
   }
   return mask;
+}
+
+/// Without SSE: the ray itself.
+struct ConservativeBoxRay4
+{
+  ConservativeRay4 ray;
+  explicit ConservativeBoxRay4(const ConservativeRay4& r)
+    : ray(r)
+  {
+  }
+};
+
+inline int intersectBoxes8(const ConservativeBoxRay4& r, const BoxPack4 (&b)[2], float tmaxScaled, float tnear[8])
+{
+  return intersectBoxes4(r.ray, b[0], tmaxScaled, tnear) | intersectBoxes4(r.ray, b[1], tmaxScaled, tnear + 4) << 4;
 }
 
 inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p)
@@ -368,6 +455,23 @@ inline int triangleCandidates4(const ConservativeRay4& r, const Vec3<double>* po
   {
     const std::uint32_t* t = ids + 3 * (i < n ? i : 0);
     pack.set(i, points[t[0]], points[t[1]], points[t[2]]);
+  }
+  return triangleCandidates4(r, pack);
+}
+
+inline int triangleCandidates4(const ConservativeRay4& r, const float* pointsF, const std::uint32_t* ids, int n)
+{
+  TrianglePack4 pack;
+  for (int i = 0; i < 4; ++i)
+  {
+    const std::uint32_t* t = ids + 3 * (i < n ? i : 0);
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        pack.v[3 * k + a][i] = pointsF[3 * static_cast<std::size_t>(t[k]) + a];
+      }
+    }
   }
   return triangleCandidates4(r, pack);
 }
