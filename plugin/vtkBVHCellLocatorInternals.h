@@ -336,7 +336,7 @@ public:
   /// The fast build (triangles only): the picking tree straight over the
   /// triangles (core::LazyWideBVH): the levels above its buckets now, each
   /// bucket's subtree when a query first reaches it (which puts its
-  /// triangles in their leaf slots: float pack, point ids, cell id). No
+  /// triangles in their leaf slots: point ids, cell id). No
   /// binary tree, no re-layout: a first pick waits for little more than the
   /// extraction.
   void BuildPickingTree(size_t nTri)
