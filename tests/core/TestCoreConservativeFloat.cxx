@@ -69,7 +69,6 @@ void checkTriangle(const Vec3<double>& v0, const Vec3<double>& v1, const Vec3<do
   for (int n = 1; n <= 4; ++n)
   {
     const int lanes = (1 << n) - 1;
-    VTKRT_CHECK((triangleCandidates4(fray, points, ids, n) & lanes) == (packBits & lanes));
     VTKRT_CHECK((triangleCandidates4(fray, pointsF, ids, n) & lanes) == (packBits & lanes));
   }
   TriangleHit<double> hit;

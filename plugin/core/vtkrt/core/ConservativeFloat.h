@@ -272,15 +272,6 @@ inline int triangleCandidatesRows4(const ConservativeRay4& r, const __m128 v[9])
   return ~_mm_movemask_ps(_mm_and_ps(neg, pos)) & 0xf;
 }
 
-/// Point p as floats (x, y, z, 0), each rounded to nearest as
-/// TrianglePack4::set rounds it.
-inline __m128 loadPointFloat(const Vec3<double>& p)
-{
-  const double* c = &p.x;
-  const __m128 xy = _mm_cvtpd_ps(_mm_loadu_pd(c));
-  const __m128 z = _mm_cvtsd_ss(_mm_setzero_ps(), _mm_load_sd(c + 2));
-  return _mm_movelh_ps(xy, z);
-}
 } // namespace detail
 
 /// The box constants of a ConservativeRay4, broadcast once per ray: a walk
@@ -344,31 +335,12 @@ inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p
 }
 
 /// triangleCandidates4 over triangles read through point ids: triangle i
-/// (i < n, 1 <= n <= 4) is points[ids[3i]], points[ids[3i+1]],
-/// points[ids[3i+2]]. The same float coordinates as a TrianglePack4 of
-/// them, so the same bits; lanes from n on are undefined (mask them).
-/// A leaf then needs no float copy of its triangles: it reads the point
-/// ids and double points the exact test reads anyway.
-inline int triangleCandidates4(const ConservativeRay4& r, const Vec3<double>* points, const std::uint32_t* ids, int n)
-{
-  __m128 v[9];
-  for (int k = 0; k < 3; ++k)
-  {
-    __m128 a = detail::loadPointFloat(points[ids[k]]);
-    __m128 b = n > 1 ? detail::loadPointFloat(points[ids[3 + k]]) : a;
-    __m128 c = n > 2 ? detail::loadPointFloat(points[ids[6 + k]]) : a;
-    __m128 d = n > 3 ? detail::loadPointFloat(points[ids[9 + k]]) : a;
-    _MM_TRANSPOSE4_PS(a, b, c, d); // a, b, c: the x, y, z rows of vertex k
-    v[3 * k] = a;
-    v[3 * k + 1] = b;
-    v[3 * k + 2] = c;
-  }
-  return detail::triangleCandidatesRows4(r, v);
-}
-
-/// The same over float points (x, y, z of point i at pointsF[3i], already
-/// rounded to nearest from the double ones, and one readable float after
-/// the last point): one unaligned load a vertex.
+/// (i < n, 1 <= n <= 4) is points ids[3i], ids[3i+1], ids[3i+2] of
+/// pointsF (x, y, z of point p at pointsF[3p], each rounded to nearest
+/// from the double point, and one readable float after the last point).
+/// The same float coordinates as a TrianglePack4 of them, so the same
+/// bits; lanes from n on are undefined (mask them). A leaf then needs no
+/// float copy of its triangles: one unaligned load a vertex.
 inline int triangleCandidates4(const ConservativeRay4& r, const float* pointsF, const std::uint32_t* ids, int n)
 {
   // Lanes from n on repeat the last triangle (no branch per lane).
@@ -446,17 +418,6 @@ inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p
     mask |= (neg && pos) ? 0 : (1 << i);
   }
   return mask;
-}
-
-inline int triangleCandidates4(const ConservativeRay4& r, const Vec3<double>* points, const std::uint32_t* ids, int n)
-{
-  TrianglePack4 pack;
-  for (int i = 0; i < 4; ++i)
-  {
-    const std::uint32_t* t = ids + 3 * (i < n ? i : 0);
-    pack.set(i, points[t[0]], points[t[1]], points[t[2]]);
-  }
-  return triangleCandidates4(r, pack);
 }
 
 inline int triangleCandidates4(const ConservativeRay4& r, const float* pointsF, const std::uint32_t* ids, int n)
