@@ -139,8 +139,8 @@ public:
   TriangleArray<std::int32_t> SrcSub;
   TriangleArray<std::uint8_t> SrcFlags;
   /// 3 point ids per triangle, leaf order: the float pre-test (which spares
-  /// the double test nearly every miss) and the exact test both read the
-  /// leaf's triangles through them from Points, so no float copy of the
+  /// the double test nearly every miss) reads the leaf's triangles through
+  /// them from PointsF, the exact test from Points, so no float copy of the
   /// triangles competes with them for the cache.
   TriangleArray<std::uint32_t> TriIds;
   double Extent = 0.0; ///< bound on |local vertex| (inf norm), for the float error bound
@@ -266,6 +266,10 @@ public:
       {
         this->GenCell.push_back(c);
       }
+    }
+    if (this->TriCell.empty())
+    {
+      TriangleArray<float>().swap(this->PointsF); // only the triangle pre-test reads it
     }
     this->ComputeGeneralBoxes(ds);
   }
@@ -447,6 +451,18 @@ public:
     (void)p;
     (void)stage;
 #endif
+  }
+
+  /// Triangle prim's subId and flags (leaf order). Those of all-triangle
+  /// polys are whole VTK_TRIANGLE cells, subId 0: known without a random
+  /// read of TriSub / TriFlags.
+  int TriangleSubId(std::uint32_t prim) const
+  {
+    return this->UniformCellBase >= 0 ? 0 : this->TriSub[prim];
+  }
+  std::uint8_t TriangleFlags(std::uint32_t prim) const
+  {
+    return this->UniformCellBase >= 0 ? std::uint8_t(WholeTriangle) : this->TriFlags[prim];
   }
 
   /// The box of the triangle whose point ids are v[0], v[1], v[2].
@@ -762,14 +778,11 @@ public:
     {
       out.X[k] = p1[k] + hit.t * ray.dir[k];
     }
-    // Triangles of all-triangle polys are whole VTK_TRIANGLE cells, subId 0:
-    // two fewer random reads a pick.
-    const bool uniform = this->UniformCellBase >= 0;
-    const std::uint8_t flags = uniform ? std::uint8_t(WholeTriangle) : this->TriFlags[prim];
+    const std::uint8_t flags = this->TriangleFlags(prim);
     out.NeedsEvaluate = (flags & EvaluateInCell) != 0;
     out.TrianglePointIds =
       (flags & WholeTriangle) ? this->TriIds.data() + 3 * static_cast<std::size_t>(prim) : nullptr;
-    out.SubId = uniform ? 0 : this->TriSub[prim];
+    out.SubId = this->TriangleSubId(prim);
     out.PCoords[0] = hit.u;
     out.PCoords[1] = hit.v;
     out.PCoords[2] = 0.0;
@@ -807,7 +820,7 @@ public:
         const Vec3d& v1 = this->Vertex(prim, 1);
         const Vec3d& v2 = this->Vertex(prim, 2);
         double side = glm::dot(core::triangleNormal(v0, v1, v2), r.dir);
-        if (this->TriFlags[prim] & FlipOrientation)
+        if (this->TriangleFlags(prim) & FlipOrientation)
         {
           side = -side;
         }
@@ -954,8 +967,8 @@ public:
     {
       out.X[k] = best.point[k] + this->Origin[k];
     }
-    out.SubId = this->TriSub[prim];
-    out.NeedsEvaluate = (this->TriFlags[prim] & EvaluateInCell) != 0;
+    out.SubId = this->TriangleSubId(prim);
+    out.NeedsEvaluate = (this->TriangleFlags(prim) & EvaluateInCell) != 0;
     out.Inside = this->ProjectsInside(prim, x) ? 1 : 0;
     return true;
   }
@@ -1173,7 +1186,7 @@ private:
             }
           }
           _mm_prefetch(reinterpret_cast<const char*>(&this->TriCell[prim]), _MM_HINT_T0);
-          if (this->UniformCellBase < 0) // else subId 0 and WholeTriangle: not read
+          if (this->UniformCellBase < 0) // else TriangleSubId / TriangleFlags read neither
           {
             _mm_prefetch(reinterpret_cast<const char*>(&this->TriSub[prim]), _MM_HINT_T0);
             _mm_prefetch(reinterpret_cast<const char*>(&this->TriFlags[prim]), _MM_HINT_T0);

@@ -32,6 +32,7 @@
 #include "vtkrt/core/Ray.h"
 #include "vtkrt/core/Triangle.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -218,28 +219,53 @@ inline __m128 abs4(__m128 x)
 }
 } // namespace detail
 
+/// The box constants of a ConservativeRay4, broadcast once per ray: a walk
+/// over many nodes then reloads and broadcasts nothing per node.
+struct ConservativeBoxRay4
+{
+  __m128 oNear[3], oFar[3], inv[3], tmin;
+  int nearRow[3], farRow[3];
+
+  explicit ConservativeBoxRay4(const ConservativeRay4& r)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      oNear[a] = _mm_set1_ps(r.oNear[a]);
+      oFar[a] = _mm_set1_ps(r.oFar[a]);
+      inv[a] = _mm_set1_ps(r.inv[a]);
+      nearRow[a] = r.nearRow[a];
+      farRow[a] = r.farRow[a];
+    }
+    tmin = _mm_set1_ps(r.tmin);
+  }
+};
+
 /// Bit i set: box i may be hit with entry distance <= tmaxScaled
 /// (ConservativeRay4::scaledTmax); tnear[i] gets a lower bound of its entry
 /// distance (valid for set bits).
-inline int intersectBoxes4(const ConservativeRay4& r, const BoxPack4& b, float tmaxScaled, float tnear[4])
+inline int intersectBoxes4(const ConservativeBoxRay4& r, const BoxPack4& b, float tmaxScaled, float tnear[4])
 {
   static_assert(sizeof(BoxPack4) == 24 * sizeof(float), "lo rows, then hi rows");
   const float* base = &b.lo[0][0];
-  __m128 tn = _mm_set1_ps(r.tmin);
+  __m128 tn = r.tmin;
   __m128 tf = _mm_set1_ps(std::numeric_limits<float>::infinity());
   for (int a = 0; a < 3; ++a)
   {
     const __m128 nearPlane = _mm_load_ps(base + r.nearRow[a]);
     const __m128 farPlane = _mm_load_ps(base + r.farRow[a]);
-    const __m128 inv = _mm_set1_ps(r.inv[a]);
-    tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(nearPlane, _mm_set1_ps(r.oNear[a])), inv));
-    tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(farPlane, _mm_set1_ps(r.oFar[a])), inv));
+    tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(nearPlane, r.oNear[a]), r.inv[a]));
+    tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(farPlane, r.oFar[a]), r.inv[a]));
   }
   tf = _mm_add_ps(_mm_mul_ps(tf, _mm_set1_ps(ConservativeRay4::kFarScale)),
     _mm_set1_ps(ConservativeRay4::kTiny));
   tf = _mm_min_ps(tf, _mm_set1_ps(tmaxScaled));
   _mm_storeu_ps(tnear, tn);
   return _mm_movemask_ps(_mm_cmple_ps(tn, tf));
+}
+
+inline int intersectBoxes4(const ConservativeRay4& r, const BoxPack4& b, float tmaxScaled, float tnear[4])
+{
+  return intersectBoxes4(ConservativeBoxRay4(r), b, tmaxScaled, tnear);
 }
 
 namespace detail
@@ -274,54 +300,6 @@ inline int triangleCandidatesRows4(const ConservativeRay4& r, const __m128 v[9])
 
 } // namespace detail
 
-/// The box constants of a ConservativeRay4, broadcast once per ray: a walk
-/// over many nodes then reloads and broadcasts nothing per node.
-struct ConservativeBoxRay4
-{
-  __m128 oNear[3], oFar[3], inv[3], tmin;
-  int nearRow[3], farRow[3];
-
-  explicit ConservativeBoxRay4(const ConservativeRay4& r)
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      oNear[a] = _mm_set1_ps(r.oNear[a]);
-      oFar[a] = _mm_set1_ps(r.oFar[a]);
-      inv[a] = _mm_set1_ps(r.inv[a]);
-      nearRow[a] = r.nearRow[a];
-      farRow[a] = r.farRow[a];
-    }
-    tmin = _mm_set1_ps(r.tmin);
-  }
-};
-
-/// intersectBoxes4 for the eight boxes of two packs (bits 0-3: b[0], 4-7:
-/// b[1]); the same arithmetic, so the same bits and distances.
-inline int intersectBoxes8(const ConservativeBoxRay4& r, const BoxPack4 (&b)[2], float tmaxScaled, float tnear[8])
-{
-  const __m128 tmax = _mm_set1_ps(tmaxScaled);
-  int mask = 0;
-  for (int h = 0; h < 2; ++h)
-  {
-    const float* base = &b[h].lo[0][0];
-    __m128 tn = r.tmin;
-    __m128 tf = _mm_set1_ps(std::numeric_limits<float>::infinity());
-    for (int a = 0; a < 3; ++a)
-    {
-      const __m128 nearPlane = _mm_load_ps(base + r.nearRow[a]);
-      const __m128 farPlane = _mm_load_ps(base + r.farRow[a]);
-      tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(nearPlane, r.oNear[a]), r.inv[a]));
-      tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(farPlane, r.oFar[a]), r.inv[a]));
-    }
-    tf = _mm_add_ps(_mm_mul_ps(tf, _mm_set1_ps(ConservativeRay4::kFarScale)),
-      _mm_set1_ps(ConservativeRay4::kTiny));
-    tf = _mm_min_ps(tf, tmax);
-    _mm_storeu_ps(tnear + 4 * h, tn);
-    mask |= _mm_movemask_ps(_mm_cmple_ps(tn, tf)) << (4 * h);
-  }
-  return mask;
-}
-
 /// Bit i set: the double watertight test may hit triangle i (see the top of
 /// this file); clear bits are certain misses.
 inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p)
@@ -344,9 +322,9 @@ inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p
 inline int triangleCandidates4(const ConservativeRay4& r, const float* pointsF, const std::uint32_t* ids, int n)
 {
   // Lanes from n on repeat the last triangle (no branch per lane).
-  const std::uint32_t* t1 = ids + 3 * (n > 1 ? 1 : 0);
-  const std::uint32_t* t2 = ids + 3 * (n > 2 ? 2 : n - 1);
-  const std::uint32_t* t3 = ids + 3 * (n > 3 ? 3 : n - 1);
+  const std::uint32_t* t1 = ids + 3 * std::min(1, n - 1);
+  const std::uint32_t* t2 = ids + 3 * std::min(2, n - 1);
+  const std::uint32_t* t3 = ids + 3 * std::min(3, n - 1);
   __m128 v[9];
   for (int k = 0; k < 3; ++k)
   {
@@ -391,9 +369,9 @@ struct ConservativeBoxRay4
   }
 };
 
-inline int intersectBoxes8(const ConservativeBoxRay4& r, const BoxPack4 (&b)[2], float tmaxScaled, float tnear[8])
+inline int intersectBoxes4(const ConservativeBoxRay4& r, const BoxPack4& b, float tmaxScaled, float tnear[4])
 {
-  return intersectBoxes4(r.ray, b[0], tmaxScaled, tnear) | intersectBoxes4(r.ray, b[1], tmaxScaled, tnear + 4) << 4;
+  return intersectBoxes4(r.ray, b, tmaxScaled, tnear);
 }
 
 inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p)
@@ -437,6 +415,12 @@ inline int triangleCandidates4(const ConservativeRay4& r, const float* pointsF, 
   return triangleCandidates4(r, pack);
 }
 #endif
+
+/// The eight boxes of two packs (bits 0-3: b[0], 4-7: b[1]).
+inline int intersectBoxes8(const ConservativeBoxRay4& r, const BoxPack4 (&b)[2], float tmaxScaled, float tnear[8])
+{
+  return intersectBoxes4(r, b[0], tmaxScaled, tnear) | intersectBoxes4(r, b[1], tmaxScaled, tnear + 4) << 4;
+}
 
 } // namespace vtkrt::core
 
