@@ -163,19 +163,31 @@ void vtkBVHCellLocator::ForceBuildLocator()
 //------------------------------------------------------------------------------
 bool vtkBVHCellLocator::PrepareQuery()
 {
-  if (!this->DataSet)
+  if (!this->DataSet && !(this->Internals->HasTree && this->UseExistingSearchStructure))
   {
-    if (this->Internals->HasTree && this->UseExistingSearchStructure)
-    {
-      return true;
-    }
     vtkErrorMacro(<< "No dataset: set one with SetDataSet() before querying");
     return false;
   }
-  if (this->NeedsBuild())
+  if (this->DataSet && this->NeedsBuild())
   {
     std::lock_guard<std::mutex> lock(this->Internals->BuildMutex);
     if (this->NeedsBuild())
+    {
+      this->BuildTree();
+    }
+  }
+  if (!this->Internals->Data.CoordsUnchanged())
+  {
+    // The points array was reallocated or shrunk under the tree (perhaps
+    // without a Modified()): its old coordinates are gone.
+    if (this->UseExistingSearchStructure)
+    {
+      vtkErrorMacro(<< "The dataset's points were reallocated since the locator was built; "
+                       "rebuild it (ForceBuildLocator) or turn UseExistingSearchStructure off");
+      return false;
+    }
+    std::lock_guard<std::mutex> lock(this->Internals->BuildMutex);
+    if (this->DataSet && !this->Internals->Data.CoordsUnchanged())
     {
       this->BuildTree();
     }
@@ -319,7 +331,8 @@ int vtkBVHCellLocator::IntersectWithLine(const double p1[3], const double p2[3],
     cell->PointIds->SetNumberOfIds(3);
     cell->Points->SetNumberOfPoints(3);
     // Double coordinates of polydata / unstructured grids read in place
-    // (no virtual GetPoint per point).
+    // (no virtual GetPoint per point), written in place into the cell's
+    // double points (no virtual SetTuple per point).
     const double* coords = nullptr;
     const int type = this->DataSet->GetDataObjectType();
     if (type == VTK_POLY_DATA || type == VTK_UNSTRUCTURED_GRID)
@@ -328,20 +341,33 @@ int vtkBVHCellLocator::IntersectWithLine(const double p1[3], const double p2[3],
       vtkDoubleArray* d = pts ? vtkDoubleArray::FastDownCast(pts->GetData()) : nullptr;
       coords = d ? d->GetPointer(0) : nullptr;
     }
+    vtkDoubleArray* cellCoords = vtkDoubleArray::FastDownCast(cell->Points->GetData());
+    double* dst = cellCoords && cellCoords->GetNumberOfComponents() == 3 ? cellCoords->GetPointer(0) : nullptr;
     for (int k = 0; k < 3; ++k)
     {
       const vtkIdType id = hit.TrianglePointIds[k];
       double p[3];
       if (coords)
       {
-        std::copy_n(coords + 3 * id, 3, p);
+        p[0] = coords[3 * id];
+        p[1] = coords[3 * id + 1];
+        p[2] = coords[3 * id + 2];
       }
       else
       {
         this->DataSet->GetPoint(id, p);
       }
       cell->PointIds->SetId(k, id);
-      cell->Points->SetPoint(k, p);
+      if (dst)
+      {
+        dst[3 * k] = p[0];
+        dst[3 * k + 1] = p[1];
+        dst[3 * k + 2] = p[2];
+      }
+      else
+      {
+        cell->Points->SetPoint(k, p);
+      }
     }
   }
   else if (cell)

@@ -22,9 +22,10 @@
  *   over cell bounds and each candidate is tested exactly by the cell's own
  *   IntersectWithLine / EvaluatePosition, so semantics are VTK's.
  *
- * Geometry is stored relative to a local origin (the dataset's bounds
+ * Geometry is handled relative to a local origin (the dataset's bounds
  * center) so that meshes far from the world origin keep full precision.
- * Cells with non-finite coordinates are skipped.
+ * Cells with non-finite coordinates are skipped. Double point coordinates
+ * are read in place (no copy); others are copied to double at build.
  *
  * Tolerance: as in vtkCell::IntersectWithLine, tol is a world distance: a
  * triangle is hit when the line's crossing of its plane lies within tol of
@@ -34,7 +35,13 @@
  * modified since the last build, unless UseExistingSearchStructure is on and
  * a tree exists. With LazyEvaluation on, BuildLocator() only marks the
  * locator and the first query builds. Every query builds the tree when it is
- * missing or stale (vtkCellPicker never calls BuildLocator itself).
+ * missing or stale (vtkCellPicker never calls BuildLocator itself). With
+ * UseExistingSearchStructure, as with VTK's locators, the tree is kept and
+ * cells are tested where the dataset's double points are now: moved cells
+ * outside their old boxes are missed (rebuild for exact answers). A points
+ * array that was reallocated or shrunk since the build (even without a
+ * Modified()) is never read: the query rebuilds, or with
+ * UseExistingSearchStructure reports an error and finds nothing.
  * ForceBuildLocator() always rebuilds. The FAST build of a surface leaves
  * most of its picking tree to the picks that reach it (PickingTreeOnDemand),
  * and the binary tree of the other queries to the first of them.

@@ -129,7 +129,10 @@ class BVHCellLocatorData
 public:
   Vec3d Origin = Vec3d(0.0);
   Box PointBounds; ///< the finite points' bounds, local (fast path only)
-  std::vector<Vec3d> Points;             ///< local copy (point - Origin), fast path only
+  /// World coordinates of the points when the dataset's are not double
+  /// (double ones are read in place, DataSetCoords): fast path only.
+  std::vector<Vec3d> PointsCopy;
+  vtkIdType NumberOfPoints = 0;
   /// Points rounded to nearest float, x y z per point and one float of
   /// padding (a point is read as four floats): what the float pre-test
   /// reads, half the bytes of Points.
@@ -147,9 +150,13 @@ public:
   /// >= 0: every triangle t is the VTK_TRIANGLE cell UniformCellBase + t
   /// (extraction order), subId 0 (set by the all-triangle polys path).
   vtkIdType UniformCellBase = -1;
-  /// The dataset's double coordinates at build time, only ever prefetched
-  /// (a prefetch of a stale address is harmless); null when not double.
+  /// The dataset's double coordinates at build time, read in place (the
+  /// exact tests compute point - Origin, the same doubles a local copy would
+  /// hold, and the hit's cell fill then finds them in cache); null when not
+  /// double. DataSetCoordsArray keeps them alive; CoordsUnchanged() tells
+  /// whether the array still has them there.
   const double* DataSetCoords = nullptr;
+  vtkSmartPointer<vtkDataArray> DataSetCoordsArray;
   TriangleArray<vtkIdType> TriCell;        ///< original cell id per triangle
   TriangleArray<std::int32_t> TriSub;      ///< subId per triangle (strips: triangle index)
   TriangleArray<std::uint8_t> TriFlags;    ///< TriangleFlags
@@ -231,7 +238,7 @@ public:
 
   size_t MemorySize() const
   {
-    return this->Points.capacity() * sizeof(Vec3d) + this->PointsF.capacity() * sizeof(float) +
+    return this->PointsCopy.capacity() * sizeof(Vec3d) + this->PointsF.capacity() * sizeof(float) +
       this->TriVerts.capacity() * sizeof(std::uint32_t) + this->SrcCell.capacity() * sizeof(vtkIdType) +
       this->SrcSub.capacity() * sizeof(std::int32_t) + this->SrcFlags.capacity() +
       (this->Lazy ? this->Lazy->memoryBytes() : 0) +
@@ -445,7 +452,7 @@ public:
     }
     for (int k = 0; k < 3; ++k)
     {
-      _mm_prefetch(reinterpret_cast<const char*>(&this->Points[v[k]]), _MM_HINT_T0);
+      _mm_prefetch(reinterpret_cast<const char*>(this->WorldCoords() + 3 * static_cast<std::size_t>(v[k])), _MM_HINT_T0);
     }
 #else
     (void)p;
@@ -471,7 +478,7 @@ public:
     Box box;
     for (int k = 0; k < 3; ++k)
     {
-      box.extend(this->Points[v[k]]);
+      box.extend(this->LocalPoint(v[k]));
     }
     return box;
   }
@@ -816,9 +823,9 @@ public:
         {
           h.X[k] = p1[k] + t * r.dir[k];
         }
-        const Vec3d& v0 = this->Vertex(prim, 0);
-        const Vec3d& v1 = this->Vertex(prim, 1);
-        const Vec3d& v2 = this->Vertex(prim, 2);
+        const Vec3d v0 = this->Vertex(prim, 0);
+        const Vec3d v1 = this->Vertex(prim, 1);
+        const Vec3d v2 = this->Vertex(prim, 2);
         double side = glm::dot(core::triangleNormal(v0, v1, v2), r.dir);
         if (this->TriangleFlags(prim) & FlipOrientation)
         {
@@ -912,9 +919,9 @@ public:
     auto fn = [&](std::uint32_t prim, const Vec3d& p, core::PointHit<double>& cand) {
       if (static_cast<vtkIdType>(prim) < nTri)
       {
-        const Vec3d& v0 = this->Vertex(prim, 0);
-        const Vec3d& v1 = this->Vertex(prim, 1);
-        const Vec3d& v2 = this->Vertex(prim, 2);
+        const Vec3d v0 = this->Vertex(prim, 0);
+        const Vec3d v1 = this->Vertex(prim, 1);
+        const Vec3d v2 = this->Vertex(prim, 2);
         cand.point = core::closestPointOnTriangle(p, v0, v1, v2);
         const Vec3d d = p - cand.point;
         cand.dist2 = glm::dot(d, d);
@@ -1034,12 +1041,34 @@ public:
     }
   }
 
+  /// x y z of each point, world coordinates.
+  const double* WorldCoords() const
+  {
+    return this->DataSetCoords ? this->DataSetCoords : &this->PointsCopy.data()->x;
+  }
+  /// Point id relative to Origin (rounded once, as a stored local copy would be).
+  Vec3d LocalPoint(vtkIdType id) const
+  {
+    const double* c = this->WorldCoords() + 3 * static_cast<std::size_t>(id);
+    return Vec3d(c[0] - this->Origin.x, c[1] - this->Origin.y, c[2] - this->Origin.z);
+  }
+  /// False when the dataset's double coordinates array no longer holds the
+  /// build's points where they were (reallocated or shrunk, perhaps without
+  /// a Modified()): the tree must not read them.
+  bool CoordsUnchanged() const
+  {
+    return !this->DataSetCoordsArray ||
+      (this->DataSetCoordsArray->GetVoidPointer(0) == this->DataSetCoords &&
+        this->DataSetCoordsArray->GetNumberOfTuples() >= this->NumberOfPoints);
+  }
+
 private:
   /// Local double vertex k of (leaf-ordered) triangle prim.
-  const Vec3d& Vertex(std::uint32_t prim, int k) const
+  Vec3d Vertex(std::uint32_t prim, int k) const
   {
-    return this->Points[this->TriIds[3 * static_cast<std::size_t>(prim) + k]];
+    return this->LocalPoint(this->TriIds[3 * static_cast<std::size_t>(prim) + k]);
   }
+
 
   Vec3d ToLocal(const double p[3]) const
   {
@@ -1332,9 +1361,9 @@ private:
   bool IntersectTriangle(std::uint32_t prim, const core::RayTrianglePrecomputed<double>& pre,
     const core::Ray<double>& ray, double tol, double& t, double& u, double& v) const
   {
-    const Vec3d& v0 = this->Vertex(prim, 0);
-    const Vec3d& v1 = this->Vertex(prim, 1);
-    const Vec3d& v2 = this->Vertex(prim, 2);
+    const Vec3d v0 = this->Vertex(prim, 0);
+    const Vec3d v1 = this->Vertex(prim, 1);
+    const Vec3d v2 = this->Vertex(prim, 2);
     core::TriangleHit<double> hit;
     if (core::intersectRayTriangle(pre, v0, v1, v2, ray.tmin, ray.tmax, hit))
     {
@@ -1390,9 +1419,9 @@ private:
   /// Whether x projects into the triangle (vtkTriangle::EvaluatePosition == 1).
   bool ProjectsInside(std::uint32_t prim, const Vec3d& x) const
   {
-    const Vec3d& v0 = this->Vertex(prim, 0);
-    const Vec3d& v1 = this->Vertex(prim, 1);
-    const Vec3d& v2 = this->Vertex(prim, 2);
+    const Vec3d v0 = this->Vertex(prim, 0);
+    const Vec3d v1 = this->Vertex(prim, 1);
+    const Vec3d v2 = this->Vertex(prim, 2);
     double u, v;
     Barycentric(x, v0, v1 - v0, v2 - v0, u, v);
     return u >= 0.0 && v >= 0.0 && u + v <= 1.0;
@@ -1416,32 +1445,38 @@ private:
     this->Origin = b.isEmpty() ? Vec3d(0.0) : b.center();
   }
 
-  /// Local copy of the points around the center of their finite bounds
-  /// (NaN/inf points would poison the center).
+  /// The points: double coordinates read in place (else a double copy of
+  /// them), the Origin at the center of their finite bounds (NaN/inf
+  /// points would poison it), and the float copy of point - Origin.
   void CopyPoints(vtkPoints* pts)
   {
     const vtkIdType n = pts ? pts->GetNumberOfPoints() : 0;
-    this->Points.resize(static_cast<size_t>(n));
+    this->NumberOfPoints = n;
     if (n == 0)
     {
       return;
     }
     auto* d = vtkDoubleArray::FastDownCast(pts->GetData());
-    this->DataSetCoords = d ? d->GetPointer(0) : nullptr;
-    if (!d)
+    if (d && d->GetNumberOfComponents() == 3)
     {
+      this->DataSetCoordsArray = d;
+      this->DataSetCoords = d->GetPointer(0);
+    }
+    else
+    {
+      this->PointsCopy.resize(static_cast<size_t>(n));
       vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
         double p[3];
         for (vtkIdType i = b; i < e; ++i)
         {
           pts->GetPoint(i, p);
-          this->Points[i] = Vec3d(p[0], p[1], p[2]);
+          this->PointsCopy[i] = Vec3d(p[0], p[1], p[2]);
         }
       });
     }
-    const Vec3d* src = d ? reinterpret_cast<const Vec3d*>(d->GetPointer(0)) : this->Points.data();
+    const Vec3d* src = reinterpret_cast<const Vec3d*>(this->WorldCoords());
     // Bounds of the finite points, in fixed chunks (same result for any
-    // thread count), then the shifted copy.
+    // thread count), then the float copy.
     constexpr vtkIdType kChunks = 64;
     std::vector<Box> chunkBox(kChunks);
     vtkSMPTools::For(0, kChunks, [&](vtkIdType cb, vtkIdType ce) {
@@ -1466,17 +1501,16 @@ private:
     this->Origin = b.isEmpty() ? Vec3d(0.0) : b.center();
     const Vec3d o = this->Origin;
     this->PointBounds = b.isEmpty() ? Box() : Box(b.min - o, b.max - o);
-    Vec3d* dst = this->Points.data();
     this->PointsF.resize(3 * static_cast<size_t>(n) + 1);
     float* dstF = this->PointsF.data();
     dstF[3 * n] = 0.0f;
     vtkSMPTools::For(0, n, [&](vtkIdType bi, vtkIdType ei) {
       for (vtkIdType i = bi; i < ei; ++i)
       {
-        dst[i] = src[i] - o;
+        const Vec3d local = src[i] - o;
         for (int a = 0; a < 3; ++a)
         {
-          dstF[3 * i + a] = static_cast<float>(dst[i][a]);
+          dstF[3 * i + a] = static_cast<float>(local[a]);
         }
       }
     });
@@ -1490,7 +1524,7 @@ private:
   {
     const vtkIdType n = polys ? polys->GetNumberOfCells() : 0;
     if (n < 1 || polys->GetNumberOfConnectivityIds() != 3 * n ||
-      this->Points.size() >= std::numeric_limits<std::uint32_t>::max())
+      static_cast<std::uint64_t>(this->NumberOfPoints) >= std::numeric_limits<std::uint32_t>::max())
     {
       return false;
     }
@@ -1511,7 +1545,7 @@ private:
     this->TriCell.resize(first + n);
     this->TriSub.resize(first + n);
     this->TriFlags.resize(first + n);
-    const IdT nPoints = static_cast<IdT>(this->Points.size());
+    const IdT nPoints = static_cast<IdT>(this->NumberOfPoints);
     std::atomic<bool> ok{ true };
     vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
       bool good = true;
@@ -1521,7 +1555,7 @@ private:
         for (int k = 0; k < 3; ++k)
         {
           const IdT id = conn[3 * i + k];
-          good = good && id >= 0 && id < nPoints && core::isFinite(this->Points[id]);
+          good = good && id >= 0 && id < nPoints && core::isFinite(this->LocalPoint(id));
           this->TriVerts[3 * (first + i) + k] = static_cast<std::uint32_t>(good ? id : 0);
         }
         this->TriCell[first + i] = cellBase + i;
@@ -1567,7 +1601,7 @@ private:
     {
       return false;
     }
-    const vtkIdType nPoints = static_cast<vtkIdType>(this->Points.size());
+    const vtkIdType nPoints = this->NumberOfPoints;
     for (vtkIdType i = 0; i < npts; ++i)
     {
       if (pts[i] < 0 || pts[i] >= nPoints)
@@ -1577,7 +1611,7 @@ private:
     }
     for (vtkIdType i = 0; i < npts; ++i)
     {
-      if (!core::isFinite(this->Points[pts[i]]))
+      if (!core::isFinite(this->LocalPoint(pts[i])))
       {
         ++this->NonFiniteCells; // a cell with a NaN/inf point is never hit
         return true;
@@ -1637,8 +1671,8 @@ private:
   void AddQuad(const vtkIdType* pts, vtkIdType cellId)
   {
     // Split along the shorter diagonal, as vtkQuad::IntersectWithLine does.
-    const Vec3d d02 = this->Points[pts[2]] - this->Points[pts[0]];
-    const Vec3d d13 = this->Points[pts[3]] - this->Points[pts[1]];
+    const Vec3d d02 = this->LocalPoint(pts[2]) - this->LocalPoint(pts[0]);
+    const Vec3d d13 = this->LocalPoint(pts[3]) - this->LocalPoint(pts[1]);
     if (glm::dot(d02, d02) <= glm::dot(d13, d13))
     {
       this->AddTriangle(pts[0], pts[1], pts[2], cellId, 0, EvaluateInCell);
@@ -1659,7 +1693,7 @@ private:
     for (vtkIdType i = 0; i < npts; ++i)
     {
       polygon->GetPointIds()->SetId(i, pts[i]);
-      const Vec3d& p = this->Points[pts[i]];
+      const Vec3d p = this->LocalPoint(pts[i]);
       polygon->GetPoints()->SetPoint(i, p.x, p.y, p.z);
     }
     tris->Reset();
@@ -1682,7 +1716,7 @@ private:
   {
     vtkNew<vtkPolygon> polygon;
     vtkNew<vtkIdList> tris;
-    const bool indexable = this->Points.size() < std::numeric_limits<std::uint32_t>::max();
+    const bool indexable = static_cast<std::uint64_t>(this->NumberOfPoints) < std::numeric_limits<std::uint32_t>::max();
     vtkIdType cellId = 0;
     vtkCellArray* arrays[4] = { pd->GetVerts(), pd->GetLines(), pd->GetPolys(), pd->GetStrips() };
     this->ReserveTriangles(arrays[2], arrays[3]);
@@ -1744,7 +1778,7 @@ private:
   {
     vtkNew<vtkPolygon> polygon;
     vtkNew<vtkIdList> tris;
-    const bool indexable = this->Points.size() < std::numeric_limits<std::uint32_t>::max();
+    const bool indexable = static_cast<std::uint64_t>(this->NumberOfPoints) < std::numeric_limits<std::uint32_t>::max();
     const vtkIdType n = ug->GetNumberOfCells();
     for (vtkIdType c = 0; c < n; ++c)
     {

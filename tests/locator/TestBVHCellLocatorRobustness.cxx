@@ -3,6 +3,7 @@
 // thread-safe concurrent queries, representation and PrintSelf.
 #include "LocatorTestUtils.h"
 #include "vtkBVHCellLocator.h"
+#include "vtkDoubleArray.h"
 
 #include "vtkSMPThreadLocalObject.h"
 #include "vtkSMPTools.h"
@@ -320,8 +321,12 @@ int TestRobustRebuild()
   }
   pts->Modified();
   loc->UseExistingSearchStructureOn();
-  LT_CHECK(loc->IntersectWithLine(p1, p2, 0.0, t1, x, pc, sub, c1) == 1);
-  LT_CHECK(t1 == t0); // the existing structure (and its geometry) is kept
+  const vtkMTimeType kept = loc->GetBuildTime();
+  // The old tree, the cells where they are now (as VTK's locators): the
+  // doubled sphere lies outside the old boxes along this segment.
+  const int keptHit = loc->IntersectWithLine(p1, p2, 0.0, t1, x, pc, sub, c1);
+  LT_CHECK(loc->GetBuildTime() == kept); // not rebuilt
+  LT_CHECK(keptHit == 0 || DistanceToCell2(pd, c1, x) < 1e-20);
   loc->UseExistingSearchStructureOff();
   LT_CHECK(loc->IntersectWithLine(p1, p2, 0.0, t1, x, pc, sub, c1) == 1);
   LT_CHECK(t1 < t0); // rebuilt: the bigger sphere is met earlier
@@ -379,6 +384,38 @@ int TestRobustRebuild()
   loc->FreeSearchStructure();
   LT_CHECK(loc->GetNumberOfNodes() == 0);
   LT_CHECK(loc->IntersectWithLine(p1, p2, 0.0, t1, x, pc, sub, c1) == 1); // rebuilt on demand
+
+  // The points array shrunk, then regrown (reallocated), without a
+  // Modified(): the locator reads its coordinates in place, so it must
+  // notice and never read the old storage.
+  {
+    auto mesh = MakeBumpySphere(16);
+    vtkDataArray* coords = mesh->GetPoints()->GetData();
+    vtkNew<vtkDoubleArray> saved;
+    saved->DeepCopy(coords);
+    vtkNew<vtkBVHCellLocator> moved;
+    moved->SetDataSet(mesh);
+    moved->BuildLocator();
+    double tRef;
+    LT_CHECK(moved->IntersectWithLine(p1, p2, 0.0, tRef, x, pc, sub, c0) == 1);
+    vtkNew<ErrorCatcher> catcher;
+    catcher->Watch(moved);
+    moved->UseExistingSearchStructureOn();
+    const vtkMTimeType meshTime = mesh->GetMTime();
+    coords->SetNumberOfTuples(saved->GetNumberOfTuples() / 2);
+    LT_CHECK(mesh->GetMTime() == meshTime); // VTK does not see a change
+    LT_CHECK(moved->IntersectWithLine(p1, p2, 0.0, t1, x, pc, sub, c1) == 0);
+    LT_CHECK(catcher->Errors.size() == 1);
+    coords->SetNumberOfTuples(saved->GetNumberOfTuples());
+    for (vtkIdType i = 0; i < saved->GetNumberOfTuples(); ++i)
+    {
+      coords->SetTuple(i, saved->GetTuple(i));
+    }
+    moved->UseExistingSearchStructureOff();
+    LT_CHECK(moved->IntersectWithLine(p1, p2, 0.0, t1, x, pc, sub, c1) == 1); // rebuilt
+    LT_CHECK(t1 == tRef && c1 == c0);
+    LT_CHECK(catcher->Errors.size() == 1);
+  }
   return 0;
 }
 
