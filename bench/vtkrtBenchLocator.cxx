@@ -7,10 +7,18 @@
 // hits with vtkBVHCellLocator. Ratios are "peer / vtkBVHCellLocator" for
 // rates (below 1: slower than ours) and for times (above 1: slower).
 //
-// Usage: vtkrtBenchLocator [--4m] [--rays N] [--quick] [--only SUBSTR]... [--mesh SUBSTR]
+// Usage: vtkrtBenchLocator [--4m] [--rays N] [--rounds R] [--quick] [--only SUBSTR]...
+//                          [--mesh SUBSTR] [--leaf N]
 //   --only: keep only the peers whose name contains SUBSTR (repeatable; the
 //   first kept peer is the reference of the ratios); --mesh: only the meshes
-//   whose name contains SUBSTR.
+//   whose name contains SUBSTR; --rounds: rate rounds (default 5, below).
+//
+// Rates: this VM's speed drifts by tens of percent over seconds (shared
+// cores and caches), so one timing per peer would compare peers measured at
+// different moments. Every peer is built side by side and the rays are timed
+// in R rounds, each round timing every peer in turn: a peer's rate is its
+// median over the rounds, and its rate ratio the median (with the range) of
+// the per-round ratios, each ratio from timings seconds apart.
 #include "vtkBVHCellLocator.h"
 
 #include "vtkCellLocator.h"
@@ -146,6 +154,7 @@ std::vector<Segment> RandomSegments(vtkPolyData* pd, int count)
 
 std::vector<std::string> g_Only;
 std::string g_Mesh;
+int g_Rounds = 5;
 int g_LeafSize = 0; ///< > 0: vtkBVHCellLocator's NumberOfCellsPerNode (else its default)
 
 struct Result
@@ -159,6 +168,8 @@ struct Result
   int RaysTimed = 0;
   int Hits = 0;
   int Agree = -1; // hits with the same t (1e-9) as vtkBVHCellLocator, of RaysTimed
+  std::vector<double> RoundRates; ///< rays/s of each interleaved round
+  double RatioMedian = 0, RatioMin = 0, RatioMax = 0; ///< of the per-round rate / the reference's
 };
 
 /// One peer: how to make it, build it and query it.
@@ -465,6 +476,61 @@ bool Wanted(const std::string& name)
   return false;
 }
 
+double Median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+/// The interleaved rate rounds (see the top of this file): every peer built
+/// and completed first, then each round times each peer's rays in turn.
+void InterleavedRates(const std::vector<Peer>& peers, vtkPolyData* pd, const std::vector<Segment>& segs,
+  std::vector<Result>& results)
+{
+  std::vector<void*> locs;
+  for (const auto& peer : peers)
+  {
+    void* loc = peer.Create(pd);
+    peer.Build(loc);
+    double t;
+    peer.Query(loc, segs[0], t);
+    if (peer.Complete)
+    {
+      peer.Complete(loc);
+    }
+    locs.push_back(loc);
+  }
+  for (int round = 0; round < g_Rounds; ++round)
+  {
+    for (size_t p = 0; p < peers.size(); ++p)
+    {
+      const int n = std::min(static_cast<int>(segs.size()), peers[p].MaxRays);
+      const double c0 = ThreadSeconds();
+      for (int i = 0; i < n; ++i)
+      {
+        double t;
+        peers[p].Query(locs[p], segs[i], t);
+      }
+      results[p].RoundRates.push_back(n / (ThreadSeconds() - c0));
+    }
+  }
+  for (size_t p = 0; p < peers.size(); ++p)
+  {
+    peers[p].Destroy(locs[p]);
+    Result& r = results[p];
+    r.RaysPerSecond = Median(r.RoundRates);
+    std::vector<double> ratios;
+    for (int round = 0; round < g_Rounds; ++round)
+    {
+      ratios.push_back(r.RoundRates[round] / results[0].RoundRates[round]);
+    }
+    r.RatioMedian = Median(ratios);
+    r.RatioMin = *std::min_element(ratios.begin(), ratios.end());
+    r.RatioMax = *std::max_element(ratios.begin(), ratios.end());
+  }
+}
+
 void RunMesh(const std::string& name, vtkPolyData* pd, int rays, bool quick)
 {
   const vtkIdType tris = pd->GetNumberOfCells();
@@ -509,9 +575,11 @@ void RunMesh(const std::string& name, vtkPolyData* pd, int rays, bool quick)
     results.push_back(r);
     std::fflush(stdout);
   }
+  InterleavedRates(peers, pd, segs, results);
   const Result& ours = results[0];
-  std::printf("| locator | build s | rays/s (1 thread) | rate ratio | first pick ms | first-pick "
-              "ratio | memory | left after delete | same hits |\n");
+  std::printf("| locator | build s | rays/s (1 thread, median of %d rounds) | rate ratio (median, "
+              "range) | first pick ms | first-pick ratio | memory | left after delete | same hits |\n",
+    g_Rounds);
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const auto& r : results)
   {
@@ -520,8 +588,10 @@ void RunMesh(const std::string& name, vtkPolyData* pd, int rays, bool quick)
     {
       std::snprintf(agree, sizeof agree, "%d/%d", r.Agree, r.RaysTimed);
     }
-    std::printf("| %s | %.3f | %.0f | %.3g | %.1f | %.3g | %s | %s | %s |\n", r.Name.c_str(),
-      r.BuildSeconds, r.RaysPerSecond, r.RaysPerSecond / ours.RaysPerSecond,
+    char ratio[64];
+    std::snprintf(ratio, sizeof ratio, "%.3g (%.3g-%.3g)", r.RatioMedian, r.RatioMin, r.RatioMax);
+    std::printf("| %s | %.3f | %.0f | %s | %.1f | %.3g | %s | %s | %s |\n", r.Name.c_str(),
+      r.BuildSeconds, r.RaysPerSecond, ratio,
       1e3 * r.FirstPickSeconds, r.FirstPickSeconds / ours.FirstPickSeconds,
       Human(r.HeapBytes).c_str(), Human(r.LeakBytes).c_str(), agree);
   }
@@ -561,20 +631,24 @@ int main(int argc, char* argv[])
     {
       g_LeafSize = std::max(1, std::atoi(argv[++i]));
     }
+    else if (!std::strcmp(argv[i], "--rounds") && i + 1 < argc)
+    {
+      g_Rounds = std::max(1, std::atoi(argv[++i]));
+    }
     else if (!std::strcmp(argv[i], "--rays") && i + 1 < argc)
     {
       rays = std::max(10, std::atoi(argv[++i]));
     }
   }
   std::printf("# vtkrtBenchLocator\n\nIntersectWithLine(p1, p2, tol=0, ...) over random segments, "
-              "single thread (rates from thread CPU time; build and first pick: best of 3, wall "
+              "single thread (rates from thread CPU time, %d interleaved rounds; build and first pick: best of 3, wall "
               "clock; malloc tuned as NOTES-vtk91.md says, for every peer).\nRatios: peer / "
               "vtkBVHCellLocator (default, fast build). Same hits: t within 1e-6.\n"
               "VTK SMP backend %s (builds may use it); Embree built with 1 thread.\n"
               "vtkBVHCellLocator's fast build makes each part of its picking tree when a query first "
               "reaches it (PickingTreeOnDemand, default): its build and first pick are that; its rate "
               "and memory are the whole tree's, as in the row that builds it up front.\n",
-    vtkSMPTools::GetBackend());
+    g_Rounds, vtkSMPTools::GetBackend());
   auto wantMesh = [](const char* name) { return g_Mesh.empty() || std::strstr(name, g_Mesh.c_str()); };
   if (wantMesh("bunny"))
   {
