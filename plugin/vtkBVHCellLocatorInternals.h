@@ -46,6 +46,12 @@
 #include <utility>
 #include <vector>
 
+#if defined(__GNUC__) || defined(__clang__)
+#define VTKRT_ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define VTKRT_ALWAYS_INLINE
+#endif
+
 namespace vtkrt
 {
 namespace locator
@@ -1151,7 +1157,60 @@ private:
   /// triangles four per step (tol 0), so that only triangles the exact
   /// double test might accept reach it.
   template <class Isect>
-  bool ClosestHitWide(const core::ConservativeRay4& fray, core::Ray<double> ray, double tol,
+  bool ClosestHitWide(const core::ConservativeRay4& fray, const core::Ray<double>& ray, double tol,
+    Isect& isect, core::Hit<double>& hit) const
+  {
+#if VTKRT_CORE_AVX2
+    if (core::useAvx2())
+    {
+      return this->ClosestHitWideAvx2(fray, ray, tol, isect, hit);
+    }
+#endif
+    return this->WalkWide<SseKernels>(fray, ray, tol, isect, hit);
+  }
+
+  /// The float pre-tests of the walk, four lanes a step (SSE, or plain
+  /// loops without it) or eight (AVX2): the same bits either way.
+  struct SseKernels
+  {
+    using BoxRay = core::ConservativeBoxRay4;
+    static constexpr int kTriangleLanes = 4;
+    static int Boxes(const BoxRay& r, const WideNode& w, float tmaxScaled, float tnear[kWideArity])
+    {
+      return core::intersectBoxes8(r, w.box, tmaxScaled, tnear);
+    }
+    static int Triangles(const core::ConservativeRay4& r, const float* pointsF, const std::uint32_t* ids, int n)
+    {
+      return core::triangleCandidates4(r, pointsF, ids, n);
+    }
+  };
+#if VTKRT_CORE_AVX2
+  struct Avx2Kernels
+  {
+    using BoxRay = core::ConservativeBoxRay8;
+    static constexpr int kTriangleLanes = 8;
+    VTKRT_TARGET_AVX2 static int Boxes(const BoxRay& r, const WideNode& w, float tmaxScaled, float tnear[kWideArity])
+    {
+      return core::intersectBoxes8(r, w.box, tmaxScaled, tnear);
+    }
+    VTKRT_TARGET_AVX2 static int Triangles(const core::ConservativeRay4& r, const float* pointsF, const std::uint32_t* ids, int n)
+    {
+      return core::triangleCandidates8(r, pointsF, ids, n);
+    }
+  };
+
+  /// The walk compiled for AVX2 (WalkWide is inlined here, with the
+  /// caller's exact test): only called when the CPU has it.
+  template <class Isect>
+  VTKRT_TARGET_AVX2 bool ClosestHitWideAvx2(const core::ConservativeRay4& fray, const core::Ray<double>& ray,
+    double tol, Isect& isect, core::Hit<double>& hit) const
+  {
+    return this->WalkWide<Avx2Kernels>(fray, ray, tol, isect, hit);
+  }
+#endif
+
+  template <class Kernels, class Isect>
+  VTKRT_ALWAYS_INLINE inline bool WalkWide(const core::ConservativeRay4& fray, core::Ray<double> ray, double tol,
     Isect& isect, core::Hit<double>& hit) const
   {
     hit = core::Hit<double>();
@@ -1174,7 +1233,7 @@ private:
     std::uint32_t sp = 0;
     float tmaxF = core::ConservativeRay4::scaledTmax(ray.tmax);
     bool found = false;
-    auto test = [&](std::uint32_t prim) {
+    auto test = [&](std::uint32_t prim) VTKRT_ALWAYS_INLINE {
       core::Hit<double> candidate = hit;
       if (isect(prim, ray, candidate))
       {
@@ -1186,7 +1245,8 @@ private:
       }
     };
     // Triangles [first, end) in leaf order, four lanes at a time.
-    auto testTriangles = [&](std::uint32_t first, std::uint32_t end) {
+    // Inlined, so that in the AVX2 walk they are compiled for AVX2 too.
+    auto testTriangles = [&](std::uint32_t first, std::uint32_t end) VTKRT_ALWAYS_INLINE {
       if (!preTest)
       {
         for (std::uint32_t prim = first; prim < end; ++prim)
@@ -1195,11 +1255,11 @@ private:
         }
         return;
       }
-      for (std::uint32_t t = first; t < end; t += 4)
+      for (std::uint32_t t = first; t < end; t += Kernels::kTriangleLanes)
       {
-        const int n = static_cast<int>(std::min<std::uint32_t>(4, end - t));
+        const int n = static_cast<int>(std::min<std::uint32_t>(Kernels::kTriangleLanes, end - t));
         const std::uint32_t* ids = this->TriIds.data() + 3 * static_cast<std::size_t>(t);
-        int mask = core::triangleCandidates4(fray, this->PointsF.data(), ids, n) & ((1 << n) - 1);
+        int mask = Kernels::Triangles(fray, this->PointsF.data(), ids, n) & ((1 << n) - 1);
 #if VTKRT_CORE_SSE
         // A hit reads its cell id, subId, flags and (to fill the caller's
         // cell) the dataset's own coordinates of the points: start every
@@ -1232,7 +1292,7 @@ private:
     };
     // The nearest hit child is walked next without a trip through the
     // stack; the others are pushed farthest first.
-    const core::ConservativeBoxRay4 boxRay(fray);
+    const typename Kernels::BoxRay boxRay(fray);
     Entry cur{ this->PickingRoot(), 0, 0, 0.0f };
     for (;;)
     {
@@ -1246,8 +1306,8 @@ private:
       if (cur.Count == 0)
       {
         const WideNode& w = cur.Nodes[cur.Ref];
-        alignas(16) float tnear[kWideArity];
-        int mask = core::intersectBoxes8(boxRay, w.box, tmaxF, tnear);
+        alignas(32) float tnear[kWideArity];
+        int mask = Kernels::Boxes(boxRay, w, tmaxF, tnear);
         if (mask && !(mask & (mask - 1)))
         {
           // One child hit (the most common case): walked next, no sorting.

@@ -71,6 +71,23 @@ void checkTriangle(const Vec3<double>& v0, const Vec3<double>& v1, const Vec3<do
     const int lanes = (1 << n) - 1;
     VTKRT_CHECK((triangleCandidates4(fray, pointsF, ids, n) & lanes) == (packBits & lanes));
   }
+#if VTKRT_CORE_AVX2
+  if (useAvx2())
+  {
+    // The eight-wide AVX2 form: the same bits on each of its n lanes. Ids
+    // 8-11 name the first triangle again (lanes 4-7 repeat lanes 0-3).
+    std::uint32_t ids8[24];
+    for (int i = 0; i < 24; ++i)
+    {
+      ids8[i] = ids[i % 12];
+    }
+    for (int n = 1; n <= 8; ++n)
+    {
+      const int lanes = (1 << n) - 1;
+      VTKRT_CHECK((triangleCandidates8(fray, pointsF, ids8, n) & lanes) == ((packBits | packBits << 4) & lanes));
+    }
+  }
+#endif
   TriangleHit<double> hit;
   const double inf = std::numeric_limits<double>::infinity();
   const bool hits = intersectRayTriangle(pre, v0, v1, v2, -inf, inf, hit);
@@ -193,6 +210,27 @@ void boxes(Counts& c)
     alignas(16) float tnear[4];
     const float tmaxF = ConservativeRay4::scaledTmax(ray.tmax);
     const int mask = intersectBoxes4(fray, pack, tmaxF, tnear);
+    // A wide node's eight-lane test (the pack in both halves): the same
+    // bits and entry distances, by SSE steps and, where it runs, by AVX2.
+    BoxPack8 pack8;
+    for (int i = 0; i < 8; ++i)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        pack8.lo[k][i] = pack.lo[k][i % 4];
+        pack8.hi[k][i] = pack.hi[k][i % 4];
+      }
+    }
+    alignas(32) float tnear8[8];
+    VTKRT_CHECK(intersectBoxes8(ConservativeBoxRay4(fray), pack8, tmaxF, tnear8) == (mask | mask << 4));
+    VTKRT_CHECK(std::memcmp(tnear8, tnear, sizeof tnear) == 0 && std::memcmp(tnear8 + 4, tnear, sizeof tnear) == 0);
+#if VTKRT_CORE_AVX2
+    if (useAvx2())
+    {
+      VTKRT_CHECK(intersectBoxes8(ConservativeBoxRay8(fray), pack8, tmaxF, tnear8) == (mask | mask << 4));
+      VTKRT_CHECK(std::memcmp(tnear8, tnear, sizeof tnear) == 0 && std::memcmp(tnear8 + 4, tnear, sizeof tnear) == 0);
+    }
+#endif
     VTKRT_CHECK((mask & ~(1 << lane)) == 0); // empty lanes never hit
     double tn;
     const bool hits = intersectRayAABB(

@@ -91,8 +91,8 @@ struct Walk
     int used = 0;
     for (int i = 0; i < kWideArity; ++i)
     {
-      const float clo[3] = { n.box[i / 4].lo[0][i % 4], n.box[i / 4].lo[1][i % 4], n.box[i / 4].lo[2][i % 4] };
-      const float chi[3] = { n.box[i / 4].hi[0][i % 4], n.box[i / 4].hi[1][i % 4], n.box[i / 4].hi[2][i % 4] };
+      const float clo[3] = { n.box.lo[0][i], n.box.lo[1][i], n.box.lo[2][i] };
+      const float chi[3] = { n.box.hi[0][i], n.box.hi[1][i], n.box.hi[2][i] };
       if (clo[0] > chi[0])
       {
         continue; // unused slot

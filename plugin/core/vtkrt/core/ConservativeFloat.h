@@ -46,6 +46,21 @@
 #define VTKRT_CORE_SSE 0
 #endif
 
+// Eight-wide AVX2 kernels, compiled for AVX2 function by function (target
+// attribute) and chosen at run time (useAvx2()), so the library still runs
+// on any x86-64. They do the same float operations in the same order as
+// the SSE ones (no FMA: target("avx2") does not enable it), so their bits
+// are the same and so is the proof at the top of this file.
+#if VTKRT_CORE_SSE && (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
+#define VTKRT_CORE_AVX2 1
+#define VTKRT_TARGET_AVX2 __attribute__((target("avx2")))
+#include <cstdlib>
+#include <immintrin.h>
+#else
+#define VTKRT_CORE_AVX2 0
+#define VTKRT_TARGET_AVX2
+#endif
+
 namespace vtkrt::core
 {
 
@@ -75,12 +90,14 @@ struct alignas(16) TrianglePack4
   }
 };
 
-/// Four boxes, structure of arrays: lo[axis][lane], hi[axis][lane], float,
-/// rounded outward. An unused lane holds lo = +inf, hi = -inf (never hit).
-struct alignas(16) BoxPack4
+/// Four (BoxPack4) or eight (BoxPack8) boxes, structure of arrays:
+/// lo[axis][lane], hi[axis][lane], float, rounded outward. An unused lane
+/// holds lo = +inf, hi = -inf (never hit).
+template <int N>
+struct alignas(4 * N) BoxPack
 {
-  float lo[3][4];
-  float hi[3][4];
+  float lo[3][N];
+  float hi[3][N];
 
   void clear(int lane)
   {
@@ -91,6 +108,23 @@ struct alignas(16) BoxPack4
     }
   }
 };
+using BoxPack4 = BoxPack<4>;
+using BoxPack8 = BoxPack<8>; ///< the children of a wide node
+
+/// Whether the AVX2 kernels run: the CPU has AVX2 and the environment
+/// variable VTKRT_NO_AVX2 is unset (set: the SSE kernels, e.g. to compare).
+inline bool useAvx2()
+{
+#if VTKRT_CORE_AVX2
+  static const bool use = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && !std::getenv("VTKRT_NO_AVX2");
+  }();
+  return use;
+#else
+  return false;
+#endif
+}
 
 namespace detail
 {
@@ -240,19 +274,20 @@ struct ConservativeBoxRay4
   }
 };
 
-/// Bit i set: box i may be hit with entry distance <= tmaxScaled
-/// (ConservativeRay4::scaledTmax); tnear[i] gets a lower bound of its entry
-/// distance (valid for set bits).
-inline int intersectBoxes4(const ConservativeBoxRay4& r, const BoxPack4& b, float tmaxScaled, float tnear[4])
+namespace detail
 {
-  static_assert(sizeof(BoxPack4) == 24 * sizeof(float), "lo rows, then hi rows");
-  const float* base = &b.lo[0][0];
+/// Four boxes of a BoxPack<N> (N = 4 * Scale) from lane `first` on.
+template <int Scale>
+inline int intersectBoxLanes4(const ConservativeBoxRay4& r, const BoxPack<4 * Scale>& b, int first, float tmaxScaled, float tnear[4])
+{
+  static_assert(sizeof(BoxPack<4 * Scale>) == 24 * Scale * sizeof(float), "lo rows, then hi rows");
+  const float* base = &b.lo[0][0] + first;
   __m128 tn = r.tmin;
   __m128 tf = _mm_set1_ps(std::numeric_limits<float>::infinity());
   for (int a = 0; a < 3; ++a)
   {
-    const __m128 nearPlane = _mm_load_ps(base + r.nearRow[a]);
-    const __m128 farPlane = _mm_load_ps(base + r.farRow[a]);
+    const __m128 nearPlane = _mm_load_ps(base + Scale * r.nearRow[a]);
+    const __m128 farPlane = _mm_load_ps(base + Scale * r.farRow[a]);
     tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(nearPlane, r.oNear[a]), r.inv[a]));
     tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(farPlane, r.oFar[a]), r.inv[a]));
   }
@@ -261,6 +296,22 @@ inline int intersectBoxes4(const ConservativeBoxRay4& r, const BoxPack4& b, floa
   tf = _mm_min_ps(tf, _mm_set1_ps(tmaxScaled));
   _mm_storeu_ps(tnear, tn);
   return _mm_movemask_ps(_mm_cmple_ps(tn, tf));
+}
+} // namespace detail
+
+/// Bit i set: box i may be hit with entry distance <= tmaxScaled
+/// (ConservativeRay4::scaledTmax); tnear[i] gets a lower bound of its entry
+/// distance (valid for set bits).
+inline int intersectBoxes4(const ConservativeBoxRay4& r, const BoxPack4& b, float tmaxScaled, float tnear[4])
+{
+  return detail::intersectBoxLanes4<1>(r, b, 0, tmaxScaled, tnear);
+}
+
+/// The eight boxes of a wide node (bits 0-7), four per SSE step.
+inline int intersectBoxes8(const ConservativeBoxRay4& r, const BoxPack8& b, float tmaxScaled, float tnear[8])
+{
+  return detail::intersectBoxLanes4<2>(r, b, 0, tmaxScaled, tnear) |
+    detail::intersectBoxLanes4<2>(r, b, 4, tmaxScaled, tnear + 4) << 4;
 }
 
 inline int intersectBoxes4(const ConservativeRay4& r, const BoxPack4& b, float tmaxScaled, float tnear[4])
@@ -340,11 +391,12 @@ inline int triangleCandidates4(const ConservativeRay4& r, const float* pointsF, 
   return detail::triangleCandidatesRows4(r, v);
 }
 #else
-inline int intersectBoxes4(const ConservativeRay4& r, const BoxPack4& b, float tmaxScaled, float tnear[4])
+template <int N>
+inline int intersectBoxesScalar(const ConservativeRay4& r, const BoxPack<N>& b, float tmaxScaled, float tnear[N])
 {
-  const float(*rows[2])[4] = { b.lo, b.hi };
+  const float(*rows[2])[N] = { b.lo, b.hi };
   int mask = 0;
-  for (int i = 0; i < 4; ++i)
+  for (int i = 0; i < N; ++i)
   {
     float tn = r.tmin, tf = std::numeric_limits<float>::infinity();
     for (int a = 0; a < 3; ++a)
@@ -357,6 +409,11 @@ inline int intersectBoxes4(const ConservativeRay4& r, const BoxPack4& b, float t
     mask |= (tn <= tf) ? (1 << i) : 0;
   }
   return mask;
+}
+
+inline int intersectBoxes4(const ConservativeRay4& r, const BoxPack4& b, float tmaxScaled, float tnear[4])
+{
+  return intersectBoxesScalar(r, b, tmaxScaled, tnear);
 }
 
 /// Without SSE: the ray itself.
@@ -372,6 +429,11 @@ struct ConservativeBoxRay4
 inline int intersectBoxes4(const ConservativeBoxRay4& r, const BoxPack4& b, float tmaxScaled, float tnear[4])
 {
   return intersectBoxes4(r.ray, b, tmaxScaled, tnear);
+}
+
+inline int intersectBoxes8(const ConservativeBoxRay4& r, const BoxPack8& b, float tmaxScaled, float tnear[8])
+{
+  return intersectBoxesScalar(r.ray, b, tmaxScaled, tnear);
 }
 
 inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p)
@@ -416,11 +478,100 @@ inline int triangleCandidates4(const ConservativeRay4& r, const float* pointsF, 
 }
 #endif
 
-/// The eight boxes of two packs (bits 0-3: b[0], 4-7: b[1]).
-inline int intersectBoxes8(const ConservativeBoxRay4& r, const BoxPack4 (&b)[2], float tmaxScaled, float tnear[8])
+#if VTKRT_CORE_AVX2
+/// The box constants of a ConservativeRay4 for the eight-wide AVX2 box test.
+struct ConservativeBoxRay8
 {
-  return intersectBoxes4(r, b[0], tmaxScaled, tnear) | intersectBoxes4(r, b[1], tmaxScaled, tnear + 4) << 4;
+  __m256 oNear[3], oFar[3], inv[3], tmin;
+  int nearRow[3], farRow[3]; ///< float offsets of the rows in a BoxPack8
+
+  VTKRT_TARGET_AVX2 explicit ConservativeBoxRay8(const ConservativeRay4& r)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      oNear[a] = _mm256_set1_ps(r.oNear[a]);
+      oFar[a] = _mm256_set1_ps(r.oFar[a]);
+      inv[a] = _mm256_set1_ps(r.inv[a]);
+      nearRow[a] = 2 * r.nearRow[a];
+      farRow[a] = 2 * r.farRow[a];
+    }
+    tmin = _mm256_set1_ps(r.tmin);
+  }
+};
+
+/// intersectBoxes8 in one AVX2 step: the same operations, the same bits.
+VTKRT_TARGET_AVX2 inline int intersectBoxes8(const ConservativeBoxRay8& r, const BoxPack8& b, float tmaxScaled, float tnear[8])
+{
+  const float* base = &b.lo[0][0];
+  __m256 tn = r.tmin;
+  __m256 tf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+  for (int a = 0; a < 3; ++a)
+  {
+    const __m256 nearPlane = _mm256_load_ps(base + r.nearRow[a]);
+    const __m256 farPlane = _mm256_load_ps(base + r.farRow[a]);
+    tn = _mm256_max_ps(tn, _mm256_mul_ps(_mm256_sub_ps(nearPlane, r.oNear[a]), r.inv[a]));
+    tf = _mm256_min_ps(tf, _mm256_mul_ps(_mm256_sub_ps(farPlane, r.oFar[a]), r.inv[a]));
+  }
+  tf = _mm256_add_ps(_mm256_mul_ps(tf, _mm256_set1_ps(ConservativeRay4::kFarScale)),
+    _mm256_set1_ps(ConservativeRay4::kTiny));
+  tf = _mm256_min_ps(tf, _mm256_set1_ps(tmaxScaled));
+  _mm256_storeu_ps(tnear, tn);
+  return _mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OS));
 }
+
+/// triangleCandidates4 over eight triangles (1 <= n <= 8) in one AVX2 step:
+/// the same operations in each lane, so the same bits as two calls of it.
+VTKRT_TARGET_AVX2 inline int triangleCandidates8(const ConservativeRay4& r, const float* pointsF, const std::uint32_t* ids, int n)
+{
+  const std::uint32_t* t[8];
+  for (int i = 0; i < 8; ++i)
+  {
+    t[i] = ids + 3 * std::min(i, n - 1); // lanes from n on repeat the last triangle
+  }
+  __m256 v[9];
+  for (int k = 0; k < 3; ++k)
+  {
+    __m256 m[4];
+    for (int j = 0; j < 4; ++j)
+    {
+      // Lane j in the low half, lane j + 4 in the high half.
+      m[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(pointsF + 3 * static_cast<std::size_t>(t[j][k]))),
+        _mm_loadu_ps(pointsF + 3 * static_cast<std::size_t>(t[j + 4][k])), 1);
+    }
+    // _MM_TRANSPOSE4_PS in each half: the x, y, z rows of vertex k.
+    const __m256 lo01 = _mm256_unpacklo_ps(m[0], m[1]), lo23 = _mm256_unpacklo_ps(m[2], m[3]);
+    const __m256 hi01 = _mm256_unpackhi_ps(m[0], m[1]), hi23 = _mm256_unpackhi_ps(m[2], m[3]);
+    v[3 * k] = _mm256_shuffle_ps(lo01, lo23, _MM_SHUFFLE(1, 0, 1, 0));
+    v[3 * k + 1] = _mm256_shuffle_ps(lo01, lo23, _MM_SHUFFLE(3, 2, 3, 2));
+    v[3 * k + 2] = _mm256_shuffle_ps(hi01, hi23, _MM_SHUFFLE(1, 0, 1, 0));
+  }
+  // detail::triangleCandidatesRows4, eight lanes.
+  const __m256 ox = _mm256_set1_ps(r.org[r.kx]), oy = _mm256_set1_ps(r.org[r.ky]), oz = _mm256_set1_ps(r.org[r.kz]);
+  const __m256 sx = _mm256_set1_ps(r.sx), sy = _mm256_set1_ps(r.sy);
+  const __m256 signBit = _mm256_set1_ps(-0.0f);
+  __m256 X[3], Y[3], S = _mm256_setzero_ps();
+  for (int k = 0; k < 3; ++k)
+  {
+    const __m256 z = _mm256_sub_ps(v[3 * k + r.kz], oz);
+    X[k] = _mm256_sub_ps(_mm256_sub_ps(v[3 * k + r.kx], ox), _mm256_mul_ps(sx, z));
+    Y[k] = _mm256_sub_ps(_mm256_sub_ps(v[3 * k + r.ky], oy), _mm256_mul_ps(sy, z));
+    S = _mm256_max_ps(S, _mm256_add_ps(_mm256_andnot_ps(signBit, X[k]), _mm256_andnot_ps(signBit, Y[k])));
+  }
+  const __m256 U = _mm256_sub_ps(_mm256_mul_ps(X[2], Y[1]), _mm256_mul_ps(Y[2], X[1]));
+  const __m256 V = _mm256_sub_ps(_mm256_mul_ps(X[0], Y[2]), _mm256_mul_ps(Y[0], X[2]));
+  const __m256 W = _mm256_sub_ps(_mm256_mul_ps(X[1], Y[0]), _mm256_mul_ps(Y[1], X[0]));
+  const __m256 E = _mm256_set1_ps(r.E);
+  const __m256 m = _mm256_add_ps(
+    _mm256_mul_ps(S, _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(4.0f), E), _mm256_mul_ps(_mm256_set1_ps(8.0f * ConservativeRay4::kUnit), S))),
+    _mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(8.0f), _mm256_mul_ps(E, E)), _mm256_set1_ps(ConservativeRay4::kTiny)));
+  const __m256 negM = _mm256_sub_ps(_mm256_setzero_ps(), m);
+  const __m256 neg = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(U, negM, _CMP_LT_OS), _mm256_cmp_ps(V, negM, _CMP_LT_OS)),
+    _mm256_cmp_ps(W, negM, _CMP_LT_OS));
+  const __m256 pos = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(U, m, _CMP_GT_OS), _mm256_cmp_ps(V, m, _CMP_GT_OS)),
+    _mm256_cmp_ps(W, m, _CMP_GT_OS));
+  return ~_mm256_movemask_ps(_mm256_and_ps(neg, pos)) & 0xff;
+}
+#endif
 
 } // namespace vtkrt::core
 

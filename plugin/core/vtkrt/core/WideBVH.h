@@ -3,7 +3,8 @@
 // A closest-hit query walks one root-to-leaf chain of dependent node loads,
 // so the number of levels, not the bytes, sets its cache-miss latency: eight
 // children a node is a third of the binary levels. Boxes are float, rounded
-// outward (BoxPack4, four per SSE step); an unused slot has an empty box.
+// outward (BoxPack8: one AVX2 step, or two SSE steps); an unused slot has
+// an empty box.
 //
 // LazyWideBVH writes this tree directly, without a binary tree to collapse,
 // and builds most of it only when a query first reaches it (a first pick
@@ -47,7 +48,7 @@ constexpr int kWideArity = 8;
 /// Four cache lines: the boxes of the eight children, then where they lead.
 struct alignas(64) WideNode
 {
-  BoxPack4 box[kWideArity / 4];
+  BoxPack8 box;
   std::uint32_t child[kWideArity]; ///< wide node index (count 0) or first primitive slot
   std::uint32_t count[kWideArity]; ///< primitives of a leaf child; 0 for an interior child
 
@@ -55,7 +56,7 @@ struct alignas(64) WideNode
   {
     for (int i = 0; i < kWideArity; ++i)
     {
-      box[i / 4].clear(i % 4);
+      box.clear(i);
       child[i] = 0;
       count[i] = 0;
     }
@@ -65,8 +66,8 @@ struct alignas(64) WideNode
   {
     for (int a = 0; a < 3; ++a)
     {
-      box[i / 4].lo[a][i % 4] = lo[a];
-      box[i / 4].hi[a][i % 4] = hi[a];
+      box.lo[a][i] = lo[a];
+      box.hi[a][i] = hi[a];
     }
   }
   /// Slot i's box from a double box, rounded outward to float.
@@ -74,8 +75,8 @@ struct alignas(64) WideNode
   {
     for (int a = 0; a < 3; ++a)
     {
-      box[i / 4].lo[a][i % 4] = detail::floorFloat(b.min[a]);
-      box[i / 4].hi[a][i % 4] = detail::ceilFloat(b.max[a]);
+      box.lo[a][i] = detail::floorFloat(b.min[a]);
+      box.hi[a][i] = detail::ceilFloat(b.max[a]);
     }
   }
 };
