@@ -186,6 +186,21 @@ struct Peer
   int MaxRays;
 };
 
+/// A peer built as the rate rounds see it: after one query (lazy peers,
+/// vtkModifiedBSPTree, finish building there) and Complete.
+void* BuildForRates(const Peer& peer, vtkPolyData* pd, const Segment& first)
+{
+  void* loc = peer.Create(pd);
+  peer.Build(loc);
+  double t;
+  peer.Query(loc, first, t);
+  if (peer.Complete)
+  {
+    peer.Complete(loc);
+  }
+  return loc;
+}
+
 Result Measure(const Peer& peer, vtkPolyData* pd, const std::vector<Segment>& segs,
   std::vector<double>* refT)
 {
@@ -221,15 +236,7 @@ Result Measure(const Peer& peer, vtkPolyData* pd, const std::vector<Segment>& se
   r.RaysTimed = std::min(static_cast<int>(segs.size()), peer.MaxRays);
   std::vector<double> ts(static_cast<size_t>(r.RaysTimed), -1.0);
   const long long heap0 = HeapInUse();
-  void* loc = peer.Create(pd);
-  peer.Build(loc);
-  // One query first: lazy peers (vtkModifiedBSPTree) finish building here.
-  double t;
-  peer.Query(loc, segs[0], t);
-  if (peer.Complete)
-  {
-    peer.Complete(loc);
-  }
+  void* loc = BuildForRates(peer, pd, segs[0]);
   r.HeapBytes = HeapInUse() - heap0;
 
   const double c0 = ThreadSeconds();
@@ -491,15 +498,7 @@ void InterleavedRates(const std::vector<Peer>& peers, vtkPolyData* pd, const std
   std::vector<void*> locs;
   for (const auto& peer : peers)
   {
-    void* loc = peer.Create(pd);
-    peer.Build(loc);
-    double t;
-    peer.Query(loc, segs[0], t);
-    if (peer.Complete)
-    {
-      peer.Complete(loc);
-    }
-    locs.push_back(loc);
+    locs.push_back(BuildForRates(peer, pd, segs[0]));
   }
   for (int round = 0; round < g_Rounds; ++round)
   {
