@@ -141,7 +141,7 @@ public:
   vtkIdType NumberOfPoints = 0;
   /// Points rounded to nearest float, x y z per point and one float of
   /// padding (a point is read as four floats): what the float pre-test
-  /// reads, half the bytes of Points.
+  /// reads, half the bytes of double points.
   TriangleArray<float> PointsF;
   TriangleArray<std::uint32_t> TriVerts;   ///< 3 point ids per triangle, extraction order (until placed)
   TriangleArray<vtkIdType> SrcCell;        ///< TriCell, TriSub, TriFlags in extraction order (until placed)
@@ -1050,7 +1050,8 @@ public:
   /// x y z of each point, world coordinates.
   const double* WorldCoords() const
   {
-    return this->DataSetCoords ? this->DataSetCoords : &this->PointsCopy.data()->x;
+    static_assert(sizeof(Vec3d) == 3 * sizeof(double), "x y z, packed");
+    return this->DataSetCoords ? this->DataSetCoords : reinterpret_cast<const double*>(this->PointsCopy.data());
   }
   /// Point id relative to Origin (rounded once, as a stored local copy would be).
   Vec3d LocalPoint(vtkIdType id) const
@@ -1074,7 +1075,6 @@ private:
   {
     return this->LocalPoint(this->TriIds[3 * static_cast<std::size_t>(prim) + k]);
   }
-
 
   Vec3d ToLocal(const double p[3]) const
   {
@@ -1153,9 +1153,10 @@ private:
   /// The picking hot path: the core's closest-hit contract (ordered,
   /// nearest first, the intersector shrinks ray.tmax) over the eight-wide
   /// view of the same tree, culling in float with the conservative
-  /// pre-tests of core/ConservativeFloat.h: boxes four per SSE step,
-  /// triangles four per step (tol 0), so that only triangles the exact
-  /// double test might accept reach it.
+  /// pre-tests of core/ConservativeFloat.h: a node's eight boxes and a
+  /// leaf's triangles (tol 0) eight per AVX2 step where the CPU has it,
+  /// else four per SSE step, so that only triangles the exact double test
+  /// might accept reach it.
   template <class Isect>
   bool ClosestHitWide(const core::ConservativeRay4& fray, const core::Ray<double>& ray, double tol,
     Isect& isect, core::Hit<double>& hit) const
@@ -1244,7 +1245,7 @@ private:
         tmaxF = core::ConservativeRay4::scaledTmax(ray.tmax);
       }
     };
-    // Triangles [first, end) in leaf order, four lanes at a time.
+    // Triangles [first, end) in leaf order, Kernels::kTriangleLanes at a time.
     // Inlined, so that in the AVX2 walk they are compiled for AVX2 too.
     auto testTriangles = [&](std::uint32_t first, std::uint32_t end) VTKRT_ALWAYS_INLINE {
       if (!preTest)
