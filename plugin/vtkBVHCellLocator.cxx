@@ -330,39 +330,20 @@ int vtkBVHCellLocator::IntersectWithLine(const double p1[3], const double p2[3],
     cell->SetCellTypeToTriangle();
     cell->PointIds->SetNumberOfIds(3);
     cell->Points->SetNumberOfPoints(3);
-    // Double coordinates of polydata / unstructured grids read in place
-    // (no virtual GetPoint per point), written in place into the cell's
-    // double points (no virtual SetTuple per point).
-    const double* coords = nullptr;
-    const int type = this->DataSet->GetDataObjectType();
-    if (type == VTK_POLY_DATA || type == VTK_UNSTRUCTURED_GRID)
-    {
-      vtkPoints* pts = static_cast<vtkPointSet*>(this->DataSet)->GetPoints();
-      vtkDoubleArray* d = pts ? vtkDoubleArray::FastDownCast(pts->GetData()) : nullptr;
-      coords = d ? d->GetPointer(0) : nullptr;
-    }
+    // The coordinates the exact test read (the dataset's double points in
+    // place, else the build's double copy of them), written in place into
+    // the cell's double points: no dataset lookup, no virtual call a point.
+    const double* coords = data.WorldCoords();
     vtkDoubleArray* cellCoords = vtkDoubleArray::FastDownCast(cell->Points->GetData());
     double* dst = cellCoords && cellCoords->GetNumberOfComponents() == 3 ? cellCoords->GetPointer(0) : nullptr;
     for (int k = 0; k < 3; ++k)
     {
       const vtkIdType id = hit.TrianglePointIds[k];
-      double p[3];
-      if (coords)
-      {
-        p[0] = coords[3 * id];
-        p[1] = coords[3 * id + 1];
-        p[2] = coords[3 * id + 2];
-      }
-      else
-      {
-        this->DataSet->GetPoint(id, p);
-      }
+      const double* p = coords + 3 * id;
       cell->PointIds->SetId(k, id);
       if (dst)
       {
-        dst[3 * k] = p[0];
-        dst[3 * k + 1] = p[1];
-        dst[3 * k + 2] = p[2];
+        std::copy_n(p, 3, dst + 3 * k);
       }
       else
       {

@@ -149,8 +149,8 @@ public:
   TriangleArray<std::uint8_t> SrcFlags;
   /// 3 point ids per triangle, leaf order: the float pre-test (which spares
   /// the double test nearly every miss) reads the leaf's triangles through
-  /// them from PointsF, the exact test from Points, so no float copy of the
-  /// triangles competes with them for the cache.
+  /// them from PointsF, the exact test from WorldCoords(), so no float copy
+  /// of the triangles competes with them for the cache.
   TriangleArray<std::uint32_t> TriIds;
   double Extent = 0.0; ///< bound on |local vertex| (inf norm), for the float error bound
   /// >= 0: every triangle t is the VTK_TRIANGLE cell UniformCellBase + t
@@ -263,12 +263,12 @@ public:
   {
     if (auto* pd = vtkPolyData::SafeDownCast(ds))
     {
-      this->CopyPoints(pd->GetPoints());
+      this->BindPoints(pd->GetPoints());
       this->ExtractPolyData(pd);
     }
     else if (auto* ug = vtkUnstructuredGrid::SafeDownCast(ds))
     {
-      this->CopyPoints(ug->GetPoints());
+      this->BindPoints(ug->GetPoints());
       this->ExtractUnstructuredGrid(ug);
     }
     else
@@ -1262,18 +1262,16 @@ private:
         const std::uint32_t* ids = this->TriIds.data() + 3 * static_cast<std::size_t>(t);
         int mask = Kernels::Triangles(fray, this->PointsF.data(), ids, n) & ((1 << n) - 1);
 #if VTKRT_CORE_SSE
-        // A hit reads its cell id, subId, flags and (to fill the caller's
-        // cell) the dataset's own coordinates of the points: start every
+        // The exact test reads the double points (which then fill the
+        // caller's cell), a hit its cell id, subId and flags: start every
         // survivor's loads before the first exact test.
+        const double* coords = this->WorldCoords();
         for (int m = mask; m; m &= m - 1)
         {
           const std::size_t prim = t + static_cast<std::size_t>(CountTrailingZeros(static_cast<unsigned>(m)));
-          if (this->DataSetCoords)
+          for (int k = 0; k < 3; ++k)
           {
-            for (int k = 0; k < 3; ++k)
-            {
-              _mm_prefetch(reinterpret_cast<const char*>(this->DataSetCoords + 3 * static_cast<std::size_t>(this->TriIds[3 * prim + k])), _MM_HINT_T0);
-            }
+            _mm_prefetch(reinterpret_cast<const char*>(coords + 3 * static_cast<std::size_t>(this->TriIds[3 * prim + k])), _MM_HINT_T0);
           }
           _mm_prefetch(reinterpret_cast<const char*>(&this->TriCell[prim]), _MM_HINT_T0);
           if (this->UniformCellBase < 0) // else TriangleSubId / TriangleFlags read neither
@@ -1509,7 +1507,7 @@ private:
   /// The points: double coordinates read in place (else a double copy of
   /// them), the Origin at the center of their finite bounds (NaN/inf
   /// points would poison it), and the float copy of point - Origin.
-  void CopyPoints(vtkPoints* pts)
+  void BindPoints(vtkPoints* pts)
   {
     const vtkIdType n = pts ? pts->GetNumberOfPoints() : 0;
     this->NumberOfPoints = n;

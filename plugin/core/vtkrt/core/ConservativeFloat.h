@@ -545,7 +545,10 @@ VTKRT_TARGET_AVX2 inline int triangleCandidates8(const ConservativeRay4& r, cons
     v[3 * k + 1] = _mm256_shuffle_ps(lo01, lo23, _MM_SHUFFLE(3, 2, 3, 2));
     v[3 * k + 2] = _mm256_shuffle_ps(hi01, hi23, _MM_SHUFFLE(1, 0, 1, 0));
   }
-  // detail::triangleCandidatesRows4, eight lanes.
+  // detail::triangleCandidatesRows4, eight lanes. A copy, not a shared
+  // template: the SSE body must build without AVX2 and this one only with
+  // it (a default-target body cannot inline the AVX2 intrinsics), and
+  // TestCoreConservativeFloat checks the two agree bit for bit.
   const __m256 ox = _mm256_set1_ps(r.org[r.kx]), oy = _mm256_set1_ps(r.org[r.ky]), oz = _mm256_set1_ps(r.org[r.kz]);
   const __m256 sx = _mm256_set1_ps(r.sx), sy = _mm256_set1_ps(r.sy);
   const __m256 signBit = _mm256_set1_ps(-0.0f);
