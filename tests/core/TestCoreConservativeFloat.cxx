@@ -37,54 +37,45 @@ void checkTriangle(const Vec3<double>& v0, const Vec3<double>& v1, const Vec3<do
     return; // the caller falls back to double: nothing to check
   }
   TrianglePack4 pack;
-  Vec3<double> points[12]; // the same four triangles, read through point ids
-  std::uint32_t ids[12];
+  // The same four triangles stored one after another (a leaf's layout),
+  // eight times over so that the eight-wide form can read lanes 4-7 too.
+  float tri[9 * 8 + 1];
   for (int i = 0; i < 4; ++i)
   {
     const Vec3<double> a = i == lane ? v0 : v0 + Vec3<double>(i);
     const Vec3<double> b = i == lane ? v1 : v1 - Vec3<double>(i);
     const Vec3<double> d = i == lane ? v2 : v2 + Vec3<double>(2 * i);
     pack.set(i, a, b, d);
-    // Points stored in reverse so that ids are not the identity.
-    points[11 - 3 * i] = a;
-    points[10 - 3 * i] = b;
-    points[9 - 3 * i] = d;
-    ids[3 * i] = 11 - 3 * i;
-    ids[3 * i + 1] = 10 - 3 * i;
-    ids[3 * i + 2] = 9 - 3 * i;
-  }
-  const int packBits = triangleCandidates4(fray, pack);
-  const bool candidate = (packBits >> lane) & 1;
-  // The gathering form computes the same float coordinates: the same bits
-  // on its n lanes, for every n.
-  float pointsF[3 * 12 + 1];
-  for (int i = 0; i < 12; ++i)
-  {
-    for (int a = 0; a < 3; ++a)
+    const Vec3<double> verts[3] = { a, b, d };
+    for (int k = 0; k < 3; ++k)
     {
-      pointsF[3 * i + a] = static_cast<float>(points[i][a]);
+      for (int ax = 0; ax < 3; ++ax)
+      {
+        tri[9 * i + 3 * k + ax] = tri[9 * (i + 4) + 3 * k + ax] = static_cast<float>(verts[k][ax]);
+      }
     }
   }
-  pointsF[36] = 0.0f;
+  tri[9 * 8] = 0.0f;
+  const int packBits = triangleCandidates4(fray, pack);
+  const bool candidate = (packBits >> lane) & 1;
+  // The leaf form computes the same float coordinates: the same bits on its
+  // n lanes, for every n.
   for (int n = 1; n <= 4; ++n)
   {
     const int lanes = (1 << n) - 1;
-    VTKRT_CHECK((triangleCandidates4(fray, pointsF, ids, n) & lanes) == (packBits & lanes));
+    VTKRT_CHECK((triangleCandidates4(fray, tri, n) & lanes) == (packBits & lanes));
+    // Read from the last n triangles of the array (its end padding in reach).
+    VTKRT_CHECK((triangleCandidates4(fray, tri + 9 * (8 - n), n) & lanes) == ((packBits | packBits << 4) >> (8 - n) & lanes));
   }
 #if VTKRT_CORE_AVX2
   if (useAvx2())
   {
-    // The eight-wide AVX2 form: the same bits on each of its n lanes. Ids
-    // 8-11 name the first triangle again (lanes 4-7 repeat lanes 0-3).
-    std::uint32_t ids8[24];
-    for (int i = 0; i < 24; ++i)
-    {
-      ids8[i] = ids[i % 12];
-    }
+    // The eight-wide AVX2 form: the same bits on each of its n lanes (lanes
+    // 4-7 repeat lanes 0-3).
     for (int n = 1; n <= 8; ++n)
     {
       const int lanes = (1 << n) - 1;
-      VTKRT_CHECK((triangleCandidates8(fray, pointsF, ids8, n) & lanes) == ((packBits | packBits << 4) & lanes));
+      VTKRT_CHECK((triangleCandidates8(fray, tri, n) & lanes) == ((packBits | packBits << 4) & lanes));
     }
   }
 #endif

@@ -363,26 +363,27 @@ inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p
   return detail::triangleCandidatesRows4(r, v);
 }
 
-/// triangleCandidates4 over triangles read through point ids: triangle i
-/// (i < n, 1 <= n <= 4) is points ids[3i], ids[3i+1], ids[3i+2] of
-/// pointsF (x, y, z of point p at pointsF[3p], each rounded to nearest
-/// from the double point, and one readable float after the last point).
-/// The same float coordinates as a TrianglePack4 of them, so the same
-/// bits; lanes from n on are undefined (mask them). A leaf then needs no
-/// float copy of its triangles: one unaligned load a vertex.
-inline int triangleCandidates4(const ConservativeRay4& r, const float* pointsF, const std::uint32_t* ids, int n)
+/// triangleCandidates4 over a leaf's triangles stored one after another:
+/// triangle i (i < n, 1 <= n <= 4) is the nine floats tri[9i .. 9i + 8]
+/// (vertex 0, 1, 2; x, y, z; each rounded to nearest from the double
+/// vertex), and one readable float follows the last triangle. The same
+/// float coordinates as a TrianglePack4 of them, so the same bits; lanes
+/// from n on are undefined (mask them). One unaligned load a vertex, and
+/// no load waits for another (a leaf read through point ids would wait for
+/// the ids before it could fetch the points).
+inline int triangleCandidates4(const ConservativeRay4& r, const float* tri, int n)
 {
   // Lanes from n on repeat the last triangle (no branch per lane).
-  const std::uint32_t* t1 = ids + 3 * std::min(1, n - 1);
-  const std::uint32_t* t2 = ids + 3 * std::min(2, n - 1);
-  const std::uint32_t* t3 = ids + 3 * std::min(3, n - 1);
+  const float* t1 = tri + 9 * std::min(1, n - 1);
+  const float* t2 = tri + 9 * std::min(2, n - 1);
+  const float* t3 = tri + 9 * std::min(3, n - 1);
   __m128 v[9];
   for (int k = 0; k < 3; ++k)
   {
-    __m128 a = _mm_loadu_ps(pointsF + 3 * static_cast<std::size_t>(ids[k]));
-    __m128 b = _mm_loadu_ps(pointsF + 3 * static_cast<std::size_t>(t1[k]));
-    __m128 c = _mm_loadu_ps(pointsF + 3 * static_cast<std::size_t>(t2[k]));
-    __m128 d = _mm_loadu_ps(pointsF + 3 * static_cast<std::size_t>(t3[k]));
+    __m128 a = _mm_loadu_ps(tri + 3 * k);
+    __m128 b = _mm_loadu_ps(t1 + 3 * k);
+    __m128 c = _mm_loadu_ps(t2 + 3 * k);
+    __m128 d = _mm_loadu_ps(t3 + 3 * k);
     _MM_TRANSPOSE4_PS(a, b, c, d); // a, b, c: the x, y, z rows of vertex k
     v[3 * k] = a;
     v[3 * k + 1] = b;
@@ -460,18 +461,15 @@ inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p
   return mask;
 }
 
-inline int triangleCandidates4(const ConservativeRay4& r, const float* pointsF, const std::uint32_t* ids, int n)
+inline int triangleCandidates4(const ConservativeRay4& r, const float* tri, int n)
 {
   TrianglePack4 pack;
   for (int i = 0; i < 4; ++i)
   {
-    const std::uint32_t* t = ids + 3 * (i < n ? i : 0);
-    for (int k = 0; k < 3; ++k)
+    const float* t = tri + 9 * (i < n ? i : 0);
+    for (int k = 0; k < 9; ++k)
     {
-      for (int a = 0; a < 3; ++a)
-      {
-        pack.v[3 * k + a][i] = pointsF[3 * static_cast<std::size_t>(t[k]) + a];
-      }
+      pack.v[k][i] = t[k];
     }
   }
   return triangleCandidates4(r, pack);
@@ -521,12 +519,12 @@ VTKRT_TARGET_AVX2 inline int intersectBoxes8(const ConservativeBoxRay8& r, const
 
 /// triangleCandidates4 over eight triangles (1 <= n <= 8) in one AVX2 step:
 /// the same operations in each lane, so the same bits as two calls of it.
-VTKRT_TARGET_AVX2 inline int triangleCandidates8(const ConservativeRay4& r, const float* pointsF, const std::uint32_t* ids, int n)
+VTKRT_TARGET_AVX2 inline int triangleCandidates8(const ConservativeRay4& r, const float* tri, int n)
 {
-  const std::uint32_t* t[8];
+  const float* t[8];
   for (int i = 0; i < 8; ++i)
   {
-    t[i] = ids + 3 * std::min(i, n - 1); // lanes from n on repeat the last triangle
+    t[i] = tri + 9 * std::min(i, n - 1); // lanes from n on repeat the last triangle
   }
   __m256 v[9];
   for (int k = 0; k < 3; ++k)
@@ -535,8 +533,7 @@ VTKRT_TARGET_AVX2 inline int triangleCandidates8(const ConservativeRay4& r, cons
     for (int j = 0; j < 4; ++j)
     {
       // Lane j in the low half, lane j + 4 in the high half.
-      m[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(pointsF + 3 * static_cast<std::size_t>(t[j][k]))),
-        _mm_loadu_ps(pointsF + 3 * static_cast<std::size_t>(t[j + 4][k])), 1);
+      m[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(t[j] + 3 * k)), _mm_loadu_ps(t[j + 4] + 3 * k), 1);
     }
     // _MM_TRANSPOSE4_PS in each half: the x, y, z rows of vertex k.
     const __m256 lo01 = _mm256_unpacklo_ps(m[0], m[1]), lo23 = _mm256_unpacklo_ps(m[2], m[3]);
