@@ -8,8 +8,10 @@
 // 100x); boxes hit at corners,
 // edges and faces, with segments ending exactly on them, with and without a
 // tolerance. The pre-tests must also cull: most clear misses are rejected.
-// The triangle test reading its triangles through point ids gives the same
-// bits as the packed form, for one to four lanes.
+// The triangle test reading a leaf's triangles one after another gives the
+// same bits as the packed form, for one to eight lanes. The outward
+// rounding helpers (ceilFloat, floorFloat, nextUp, nextDown) agree with
+// std::nextafter on zeros, subnormals, exact floats and values between.
 #include "CoreTestUtils.h"
 
 #include "vtkrt/core/ConservativeFloat.h"
@@ -267,10 +269,42 @@ void checkCounts(const char* what, void (*run)(Counts&))
   VTKRT_CHECK_MSG(c.clearRejected >= c.clearMisses * 99 / 100, "%s: clear misses not culled", what);
 }
 
+/// ceilFloat / floorFloat: the smallest float >= x / largest <= x, and
+/// nextUp / nextDown the neighbours, checked against std::nextafter.
+void roundingHelpers()
+{
+  const float inf = std::numeric_limits<float>::infinity();
+  std::vector<double> xs = { 0.0, -0.0, 1e-50, -1e-50, 1.0, -1.0, 0.1, -0.1, 3e38, -3e38, 1e-40, -1e-40,
+    std::numeric_limits<float>::denorm_min(), -std::numeric_limits<float>::denorm_min(),
+    std::numeric_limits<float>::min(), -std::numeric_limits<float>::min(),
+    0.5 * std::numeric_limits<float>::denorm_min(), 1.5 * std::numeric_limits<float>::denorm_min() };
+  std::uint64_t state = 12345;
+  for (int i = 0; i < 20000; ++i)
+  {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    const double mant = static_cast<double>(state >> 11) * 0x1p-53 * 2.0 - 1.0;
+    const int e = static_cast<int>((state >> 3) % 260) - 150;
+    xs.push_back(std::ldexp(mant, e));
+    xs.push_back(static_cast<double>(static_cast<float>(std::ldexp(mant, e)))); // exact floats
+  }
+  for (const double x : xs)
+  {
+    const float c = detail::ceilFloat(x), f = detail::floorFloat(x);
+    VTKRT_CHECK_MSG(static_cast<double>(c) >= x && !(static_cast<double>(std::nextafter(c, -inf)) >= x),
+      "ceilFloat(%.17g) = %.9g", x, static_cast<double>(c));
+    VTKRT_CHECK_MSG(static_cast<double>(f) <= x && !(static_cast<double>(std::nextafter(f, inf)) <= x),
+      "floorFloat(%.17g) = %.9g", x, static_cast<double>(f));
+    const float xf = static_cast<float>(x);
+    VTKRT_CHECK_MSG(detail::nextUp(xf) == std::nextafter(xf, inf), "nextUp(%.9g)", static_cast<double>(xf));
+    VTKRT_CHECK_MSG(detail::nextDown(xf) == std::nextafter(xf, -inf), "nextDown(%.9g)", static_cast<double>(xf));
+  }
+}
+
 } // namespace
 
 int main()
 {
+  roundingHelpers();
   checkCounts("triangles", triangles);
   checkCounts("boxes", boxes);
 

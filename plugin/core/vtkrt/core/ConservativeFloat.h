@@ -128,33 +128,44 @@ inline bool useAvx2()
 
 namespace detail
 {
-/// Next float toward +inf / -inf of a finite float (no libm call).
+/// One float step up (+1) or down (-1) from finite f, through its bits: the
+/// next float toward +inf / -inf (no libm call). -0 counts as +0.
+inline float stepFloat(float f, bool up)
+{
+  f += 0.0f; // -0 -> +0 (round to nearest), so that 0 steps to +/- denorm_min
+  std::int32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  // Up is +1 on the bits of a float >= +0 and -1 on those of a negative
+  // one; down the opposite, except that +0 goes to -denorm_min.
+  const std::int32_t sign = u >> 31; // 0 or -1
+  std::int32_t next = up ? u + (sign | 1) : (u == 0 ? std::int32_t(0x80000001u) : u - (sign | 1));
+  std::memcpy(&f, &next, sizeof f);
+  return f;
+}
 inline float nextUp(float f)
 {
-  if (f == 0.0f)
-  {
-    return std::numeric_limits<float>::denorm_min();
-  }
-  std::uint32_t u;
-  std::memcpy(&u, &f, sizeof u);
-  u = f > 0.0f ? u + 1 : u - 1;
-  std::memcpy(&f, &u, sizeof f);
-  return f;
+  return stepFloat(f, true);
 }
 inline float nextDown(float f)
 {
-  return -nextUp(-f);
+  return stepFloat(f, false);
 }
-/// Smallest float >= x / largest float <= x, for |x| < FLT_MAX.
+/// Smallest float >= x / largest float <= x, for |x| < FLT_MAX. Without a
+/// branch on the rounding's direction: a ray's setup rounds eight of them,
+/// each as likely to go one way as the other.
 inline float ceilFloat(double x)
 {
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) < x ? nextUp(f) : f;
+  float f = static_cast<float>(x) + 0.0f; // -0 -> +0, as in stepFloat
+  std::int32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  const std::int32_t below = static_cast<double>(f) < x ? 1 : 0;
+  u += below * ((u >> 31) | 1); // stepFloat(f, true) when f < x
+  std::memcpy(&f, &u, sizeof f);
+  return f;
 }
 inline float floorFloat(double x)
 {
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) > x ? nextDown(f) : f;
+  return -ceilFloat(-x);
 }
 } // namespace detail
 
