@@ -76,6 +76,12 @@ double ThreadSeconds()
 }
 
 /// Bytes malloc currently hands out (arena + mmapped chunks).
+#ifdef VTKRT_HAVE_EMBREE
+/// Bytes Embree holds, from its device memory monitor: its BVH arenas are
+/// mapped directly (mallinfo does not see them), its buffers are counted too.
+long long g_EmbreeBytes = 0;
+#endif
+
 long long HeapInUse()
 {
   struct mallinfo2 mi = mallinfo2();
@@ -236,8 +242,15 @@ Result Measure(const Peer& peer, vtkPolyData* pd, const std::vector<Segment>& se
   r.RaysTimed = std::min(static_cast<int>(segs.size()), peer.MaxRays);
   std::vector<double> ts(static_cast<size_t>(r.RaysTimed), -1.0);
   const long long heap0 = HeapInUse();
+#ifdef VTKRT_HAVE_EMBREE
+  const long long embree0 = g_EmbreeBytes;
+#endif
   void* loc = BuildForRates(peer, pd, segs[0]);
   r.HeapBytes = HeapInUse() - heap0;
+#ifdef VTKRT_HAVE_EMBREE
+  // While built (after the destroy, the monitor's count is back near zero).
+  r.HeapBytes = std::max(r.HeapBytes, g_EmbreeBytes - embree0);
+#endif
   // The hits, for the agreement column (the rates come from InterleavedRates).
   for (int i = 0; i < r.RaysTimed; ++i)
   {
@@ -346,7 +359,6 @@ struct EmbreeState
   double Origin[3] = { 0, 0, 0 };
 };
 
-long long g_EmbreeBytes = 0;
 bool EmbreeMemory(void*, ssize_t bytes, bool)
 {
   g_EmbreeBytes += bytes;
@@ -557,17 +569,7 @@ void RunMesh(const std::string& name, vtkPolyData* pd, int rays, bool quick)
   std::vector<Result> results;
   for (const auto& p : peers)
   {
-#ifdef VTKRT_HAVE_EMBREE
-    g_EmbreeBytes = 0;
-#endif
     Result r = Measure(p, pd, segs, &refT);
-#ifdef VTKRT_HAVE_EMBREE
-    if (p.Name.rfind("Embree", 0) == 0)
-    {
-      // Embree allocates through its own aligned allocator: use its monitor.
-      r.HeapBytes = std::max(r.HeapBytes, g_EmbreeBytes);
-    }
-#endif
     results.push_back(r);
     std::fflush(stdout);
   }
