@@ -557,7 +557,7 @@ public:
     const int n = this->WideChildren(b, kids);
     const std::uint32_t w = static_cast<std::uint32_t>(out.size());
     out.emplace_back();
-    WideNode node;
+    core::WideNodeDraft node;
     node.clear();
 #if VTKRT_CORE_SSE
     // The interior kids' own children are what their collapse reads first:
@@ -588,7 +588,7 @@ public:
         node.child[i] = this->Collapse(kids[i], out);
       }
     }
-    out[w] = node;
+    out[w] = node.pack();
     return w;
   }
 
@@ -601,7 +601,7 @@ public:
     {
       return;
     }
-    WideNode root;
+    core::WideNodeDraft root;
     root.clear();
     std::uint32_t kids[kWideArity];
     int n = 1;
@@ -635,19 +635,19 @@ public:
       total += v.size();
     }
     this->Wide.reserve(total);
-    this->Wide.push_back(root);
+    this->Wide.emplace_back(); // the root, packed once its slots are known
     for (int i = 0; i < n; ++i)
     {
       const core::BVHNode& c = this->Tree.nodes[kids[i]];
-      this->Wide[0].setBox(i, c.bounds());
+      root.setBox(i, c.bounds());
       if (c.isLeaf())
       {
-        this->Wide[0].child[i] = c.index;
-        this->Wide[0].count[i] = c.count;
+        root.child[i] = c.index;
+        root.count[i] = c.count;
         continue;
       }
       const std::uint32_t offset = static_cast<std::uint32_t>(this->Wide.size());
-      this->Wide[0].child[i] = offset; // the subtree's root comes first
+      root.child[i] = offset; // the subtree's root comes first
       for (WideNode w : sub[i])
       {
         for (int k = 0; k < kWideArity; ++k)
@@ -658,6 +658,7 @@ public:
       }
       std::vector<WideNode>().swap(sub[i]);
     }
+    this->Wide[0] = root.pack();
   }
 
   /// Renumbers the primitives in leaf order (triangles first, then general

@@ -8,6 +8,9 @@
 // 100x); boxes hit at corners,
 // edges and faces, with segments ending exactly on them, with and without a
 // tolerance. The pre-tests must also cull: most clear misses are rejected.
+// Boxes quantized to a wide node's grid (QuantizedBoxPack8) hold their float
+// boxes and keep every double hit; their SSE and AVX2 tests give the float
+// test's bits and entry distances on the decoded boxes.
 // The triangle test reading a leaf's triangles one after another gives the
 // same bits as the packed form, for one to eight lanes. The outward
 // rounding helpers (ceilFloat, floorFloat, nextUp, nextDown) agree with
@@ -225,13 +228,71 @@ void boxes(Counts& c)
     }
 #endif
     VTKRT_CHECK((mask & ~(1 << lane)) == 0); // empty lanes never hit
+    // The wide node's form: the box quantized on a grid over it and seven
+    // siblings (one lane unused). Its decoded boxes hold the float ones; the
+    // SSE and AVX2 decoding tests give the bits and entry distances of the
+    // float test on the decoded boxes.
+    BoxPack8 siblings = pack8;
+    for (int i = 0; i < 8; ++i)
+    {
+      if (i == lane)
+      {
+        continue;
+      }
+      if (i == (lane + 5) % 8)
+      {
+        siblings.clear(i);
+        continue;
+      }
+      const Vec3<double> shift = 2.0 * (half + Vec3<double>(s * 0.01)) *
+        Vec3<double>(i - lane, (i * 3) % 5 - 2, (i * 7) % 3 - 1) * rng.uniform(0.5, 1.5);
+      for (int k = 0; k < 3; ++k)
+      {
+        siblings.lo[k][i] = roundDownToFloat(box.min[k] + shift[k]);
+        siblings.hi[k][i] = roundUpToFloat(box.max[k] + shift[k]);
+      }
+    }
+    const QuantizedBoxPack8 quant = QuantizedBoxPack8::quantize(siblings);
+    VTKRT_CHECK(quant.valid == (0xff & ~(1 << (lane + 5) % 8)));
+    BoxPack8 decoded;
+    for (int i = 0; i < 8; ++i)
+    {
+      float lo[3], hi[3];
+      quant.lane(i, lo, hi);
+      for (int k = 0; k < 3; ++k)
+      {
+        decoded.lo[k][i] = lo[k];
+        decoded.hi[k][i] = hi[k];
+        VTKRT_CHECK(!(quant.valid >> i & 1) || (lo[k] <= siblings.lo[k][i] && siblings.hi[k][i] <= hi[k]));
+      }
+    }
+    alignas(32) float tnearQ[8], tnearD[8];
+    const int maskQ = intersectBoxes8(ConservativeBoxRay4(fray), quant, tmaxF, tnearQ);
+    const int maskD = intersectBoxes8(ConservativeBoxRay4(fray), decoded, tmaxF, tnearD) & quant.valid;
+    VTKRT_CHECK(maskQ == maskD);
+    for (int i = 0; i < 8; ++i)
+    {
+      VTKRT_CHECK(!(maskQ >> i & 1) || std::memcmp(&tnearQ[i], &tnearD[i], sizeof(float)) == 0);
+    }
+#if VTKRT_CORE_AVX2
+    if (useAvx2())
+    {
+      alignas(32) float tnearQ8[8];
+      VTKRT_CHECK(intersectBoxes8(ConservativeBoxRay8(fray), quant, tmaxF, tnearQ8) == maskQ);
+      for (int i = 0; i < 8; ++i)
+      {
+        VTKRT_CHECK(!(maskQ >> i & 1) || std::memcmp(&tnearQ8[i], &tnearQ[i], sizeof(float)) == 0);
+      }
+    }
+#endif
     double tn;
     const bool hits = intersectRayAABB(
       RayBoxPrecomputed<double>(ray), box.min - Vec3<double>(grow), box.max + Vec3<double>(grow), ray.tmin, ray.tmax, tn);
     if (hits)
     {
       ++c.doubleHits;
-      const bool ok = ((mask >> lane) & 1) && tnear[lane] <= ConservativeRay4::scaledTmax(tn);
+      const bool ok = ((mask >> lane) & 1) && tnear[lane] <= ConservativeRay4::scaledTmax(tn) &&
+        ((maskQ >> lane) & 1) && tnearQ[lane] <= ConservativeRay4::scaledTmax(tn);
       if (!ok)
       {
         ++c.missedByFloat;

@@ -91,16 +91,20 @@ struct Walk
     int used = 0;
     for (int i = 0; i < kWideArity; ++i)
     {
-      const float clo[3] = { n.box.lo[0][i], n.box.lo[1][i], n.box.lo[2][i] };
-      const float chi[3] = { n.box.hi[0][i], n.box.hi[1][i], n.box.hi[2][i] };
-      if (clo[0] > chi[0])
+      if (!n.slotUsed(i))
       {
-        continue; // unused slot
+        continue;
       }
       ++used;
+      float clo[3], chi[3];
+      n.slotBox(i, clo, chi);
+      // What the walk needs: every primitive below lies in every box on its
+      // path (a quantized child box may reach past its parent's grid).
       for (int a = 0; a < 3; ++a)
       {
-        VTKRT_CHECK(lo[a] <= clo[a] && chi[a] <= hi[a]); // the parent's box holds the child's
+        VTKRT_CHECK(clo[a] <= chi[a]);
+        clo[a] = std::max(clo[a], lo[a]);
+        chi[a] = std::min(chi[a], hi[a]);
       }
       visit(nodes, n.child[i], n.count[i], clo, chi, d + 1);
     }

@@ -169,6 +169,114 @@ inline float floorFloat(double x)
 }
 } // namespace detail
 
+/// Eight boxes on a per-axis grid, a byte a plane: half the bytes of a
+/// BoxPack8, so that a wide node is two cache lines instead of four (a
+/// pick's walk waits on one node load a level). Lane i on axis a spans
+/// [origin[a] + lo * step, origin[a] + hi * step] with step = 2^exp[a] and
+/// lo = q[a][i], hi = q[3 + a][i]. The grid is chosen so that every decoded
+/// plane is an exact float (origin is a multiple of step below 2^24 steps
+/// from 0, and q <= 255), which holds the float box it was made from
+/// (planes rounded outward to the grid). So the box tests see float boxes
+/// that contain the exact ones, as with BoxPack8, and the same proof holds.
+struct alignas(64) QuantizedBoxPack8
+{
+  float origin[3];
+  std::int8_t exp[3];
+  std::uint8_t valid;   ///< bit i: lane i holds a box; the others are never hit
+  std::uint8_t q[6][8]; ///< lo rows x, y, z, then hi rows: grid steps above origin
+
+  /// The grid step of axis a (a normal float: exp >= -126).
+  float step(int a) const
+  {
+    const std::int32_t bits = (static_cast<std::int32_t>(exp[a]) + 127) << 23;
+    float f;
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
+  }
+
+  /// Lane i's decoded box (exact floats), for lanes in `valid`.
+  void lane(int i, float lo[3], float hi[3]) const
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = origin[a] + static_cast<float>(q[a][i]) * step(a);
+      hi[a] = origin[a] + static_cast<float>(q[3 + a][i]) * step(a);
+    }
+  }
+
+  /// The lanes of b whose boxes are not empty (lo <= hi on every axis), on
+  /// the finest grid that spans them in 255 steps and keeps every plane an
+  /// exact float. Boxes beyond 1e17 (which the float walk never meets:
+  /// ConservativeRay4::init refuses such extents) get a grid that may not
+  /// hold them.
+  static QuantizedBoxPack8 quantize(const BoxPack<8>& b)
+  {
+    QuantizedBoxPack8 out;
+    out.valid = 0;
+    for (int i = 0; i < 8; ++i)
+    {
+      bool used = true;
+      for (int a = 0; a < 3; ++a)
+      {
+        used = used && b.lo[a][i] <= b.hi[a][i];
+      }
+      out.valid |= used ? static_cast<std::uint8_t>(1u << i) : 0;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (int i = 0; i < 8; ++i)
+      {
+        if (out.valid >> i & 1)
+        {
+          lo = std::min(lo, static_cast<double>(b.lo[a][i]));
+          hi = std::max(hi, static_cast<double>(b.hi[a][i]));
+        }
+      }
+      if (!(lo <= hi) || !(hi - lo < 1e30) || !(std::abs(lo) < 1e30))
+      {
+        lo = hi = 0.0; // no lane, or beyond the float walk's reach
+      }
+      // The smallest exponent whose grid spans [lo, hi] in 255 steps with
+      // every grid point below 2^24 steps from 0 (so exact in float).
+      const double need = std::max((hi - lo) / 255.0, std::max(std::abs(lo), std::abs(hi)) / (0x1p24 - 512.0));
+      int e = -126;
+      if (need > 0.0)
+      {
+        int ne;
+        std::frexp(need, &ne); // need < 2^ne
+        e = std::max(e, ne);
+      }
+      double stepD = std::ldexp(1.0, e), k = std::floor(lo / stepD);
+      while (e < 127 && !(std::ceil(hi / stepD) - k <= 255.0 && std::abs(k) + 256.0 < 0x1p24))
+      {
+        ++e;
+        stepD = std::ldexp(1.0, e);
+        k = std::floor(lo / stepD);
+      }
+      out.exp[a] = static_cast<std::int8_t>(e);
+      out.origin[a] = static_cast<float>(k * stepD); // exact: |k| < 2^24
+      for (int i = 0; i < 8; ++i)
+      {
+        if (out.valid >> i & 1)
+        {
+          const double qlo = std::floor(static_cast<double>(b.lo[a][i]) / stepD) - k;
+          const double qhi = std::ceil(static_cast<double>(b.hi[a][i]) / stepD) - k;
+          out.q[a][i] = static_cast<std::uint8_t>(std::min(255.0, std::max(0.0, qlo)));
+          out.q[3 + a][i] = static_cast<std::uint8_t>(std::min(255.0, std::max(0.0, qhi)));
+        }
+        else
+        {
+          out.q[a][i] = 255;
+          out.q[3 + a][i] = 0;
+        }
+      }
+    }
+    return out;
+  }
+};
+static_assert(sizeof(QuantizedBoxPack8) == 64, "one cache line");
+
 /// Per-ray float constants of both pre-tests.
 struct ConservativeRay4
 {
@@ -270,6 +378,7 @@ struct ConservativeBoxRay4
 {
   __m128 oNear[3], oFar[3], inv[3], tmin;
   int nearRow[3], farRow[3];
+  int qNear[3], qFar[3]; ///< byte offsets of the near / far plane rows in a QuantizedBoxPack8's q
 
   explicit ConservativeBoxRay4(const ConservativeRay4& r)
   {
@@ -280,6 +389,8 @@ struct ConservativeBoxRay4
       inv[a] = _mm_set1_ps(r.inv[a]);
       nearRow[a] = r.nearRow[a];
       farRow[a] = r.farRow[a];
+      qNear[a] = 8 * (3 * r.nearHi[a] + a);
+      qFar[a] = 8 * (3 * (1 - r.nearHi[a]) + a);
     }
     tmin = _mm_set1_ps(r.tmin);
   }
@@ -318,11 +429,55 @@ inline int intersectBoxes4(const ConservativeBoxRay4& r, const BoxPack4& b, floa
   return detail::intersectBoxLanes4<1>(r, b, 0, tmaxScaled, tnear);
 }
 
-/// The eight boxes of a wide node (bits 0-7), four per SSE step.
+/// Eight boxes (bits 0-7), four per SSE step.
 inline int intersectBoxes8(const ConservativeBoxRay4& r, const BoxPack8& b, float tmaxScaled, float tnear[8])
 {
   return detail::intersectBoxLanes4<2>(r, b, 0, tmaxScaled, tnear) |
     detail::intersectBoxLanes4<2>(r, b, 4, tmaxScaled, tnear + 4) << 4;
+}
+
+namespace detail
+{
+/// Lanes first .. first + 3 of the q row at byte offset `row`, decoded
+/// (exact: see QuantizedBoxPack8).
+inline __m128 decodeRow4(const QuantizedBoxPack8& b, int row, int first, __m128 origin, __m128 step)
+{
+  std::int32_t bytes;
+  std::memcpy(&bytes, &b.q[0][0] + row + first, sizeof bytes);
+  const __m128i zero = _mm_setzero_si128();
+  const __m128i q = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(bytes), zero), zero);
+  return _mm_add_ps(_mm_mul_ps(_mm_cvtepi32_ps(q), step), origin);
+}
+
+/// intersectBoxLanes4 on four decoded lanes of a QuantizedBoxPack8.
+inline int intersectQuantizedLanes4(const ConservativeBoxRay4& r, const QuantizedBoxPack8& b, int first, float tmaxScaled, float tnear[4])
+{
+  __m128 tn = r.tmin;
+  __m128 tf = _mm_set1_ps(std::numeric_limits<float>::infinity());
+  for (int a = 0; a < 3; ++a)
+  {
+    const __m128 origin = _mm_set1_ps(b.origin[a]), step = _mm_set1_ps(b.step(a));
+    const __m128 nearPlane = decodeRow4(b, r.qNear[a], first, origin, step);
+    const __m128 farPlane = decodeRow4(b, r.qFar[a], first, origin, step);
+    tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(nearPlane, r.oNear[a]), r.inv[a]));
+    tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(farPlane, r.oFar[a]), r.inv[a]));
+  }
+  tf = _mm_add_ps(_mm_mul_ps(tf, _mm_set1_ps(ConservativeRay4::kFarScale)),
+    _mm_set1_ps(ConservativeRay4::kTiny));
+  tf = _mm_min_ps(tf, _mm_set1_ps(tmaxScaled));
+  _mm_storeu_ps(tnear, tn);
+  return _mm_movemask_ps(_mm_cmple_ps(tn, tf));
+}
+} // namespace detail
+
+/// The eight boxes of a wide node (bits 0-7; unused lanes never), decoded
+/// and tested four per SSE step: the bits and entry distances of the same
+/// test on the decoded BoxPack8.
+inline int intersectBoxes8(const ConservativeBoxRay4& r, const QuantizedBoxPack8& b, float tmaxScaled, float tnear[8])
+{
+  return (detail::intersectQuantizedLanes4(r, b, 0, tmaxScaled, tnear) |
+           detail::intersectQuantizedLanes4(r, b, 4, tmaxScaled, tnear + 4) << 4) &
+    b.valid;
 }
 
 inline int intersectBoxes4(const ConservativeRay4& r, const BoxPack4& b, float tmaxScaled, float tnear[4])
@@ -448,6 +603,22 @@ inline int intersectBoxes8(const ConservativeBoxRay4& r, const BoxPack8& b, floa
   return intersectBoxesScalar(r.ray, b, tmaxScaled, tnear);
 }
 
+inline int intersectBoxes8(const ConservativeBoxRay4& r, const QuantizedBoxPack8& b, float tmaxScaled, float tnear[8])
+{
+  BoxPack8 decoded;
+  for (int i = 0; i < 8; ++i)
+  {
+    float lo[3], hi[3];
+    b.lane(i, lo, hi);
+    for (int a = 0; a < 3; ++a)
+    {
+      decoded.lo[a][i] = lo[a];
+      decoded.hi[a][i] = hi[a];
+    }
+  }
+  return intersectBoxesScalar(r.ray, decoded, tmaxScaled, tnear) & b.valid;
+}
+
 inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p)
 {
   int mask = 0;
@@ -493,6 +664,7 @@ struct ConservativeBoxRay8
 {
   __m256 oNear[3], oFar[3], inv[3], tmin;
   int nearRow[3], farRow[3]; ///< float offsets of the rows in a BoxPack8
+  int qNear[3], qFar[3];     ///< byte offsets of the rows in a QuantizedBoxPack8's q
 
   VTKRT_TARGET_AVX2 explicit ConservativeBoxRay8(const ConservativeRay4& r)
   {
@@ -503,6 +675,8 @@ struct ConservativeBoxRay8
       inv[a] = _mm256_set1_ps(r.inv[a]);
       nearRow[a] = 2 * r.nearRow[a];
       farRow[a] = 2 * r.farRow[a];
+      qNear[a] = 8 * (3 * r.nearHi[a] + a);
+      qFar[a] = 8 * (3 * (1 - r.nearHi[a]) + a);
     }
     tmin = _mm256_set1_ps(r.tmin);
   }
@@ -526,6 +700,30 @@ VTKRT_TARGET_AVX2 inline int intersectBoxes8(const ConservativeBoxRay8& r, const
   tf = _mm256_min_ps(tf, _mm256_set1_ps(tmaxScaled));
   _mm256_storeu_ps(tnear, tn);
   return _mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OS));
+}
+
+/// intersectBoxes8 on a QuantizedBoxPack8 in one AVX2 step: the same
+/// decode and operations, the same bits.
+VTKRT_TARGET_AVX2 inline int intersectBoxes8(const ConservativeBoxRay8& r, const QuantizedBoxPack8& b, float tmaxScaled, float tnear[8])
+{
+  const std::uint8_t* q = &b.q[0][0];
+  __m256 tn = r.tmin;
+  __m256 tf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+  for (int a = 0; a < 3; ++a)
+  {
+    const __m256 origin = _mm256_set1_ps(b.origin[a]), step = _mm256_set1_ps(b.step(a));
+    const __m256 nearPlane = _mm256_add_ps(_mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(
+      _mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + r.qNear[a])))), step), origin);
+    const __m256 farPlane = _mm256_add_ps(_mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(
+      _mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + r.qFar[a])))), step), origin);
+    tn = _mm256_max_ps(tn, _mm256_mul_ps(_mm256_sub_ps(nearPlane, r.oNear[a]), r.inv[a]));
+    tf = _mm256_min_ps(tf, _mm256_mul_ps(_mm256_sub_ps(farPlane, r.oFar[a]), r.inv[a]));
+  }
+  tf = _mm256_add_ps(_mm256_mul_ps(tf, _mm256_set1_ps(ConservativeRay4::kFarScale)),
+    _mm256_set1_ps(ConservativeRay4::kTiny));
+  tf = _mm256_min_ps(tf, _mm256_set1_ps(tmaxScaled));
+  _mm256_storeu_ps(tnear, tn);
+  return _mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OS)) & b.valid;
 }
 
 /// triangleCandidates4 over eight triangles (1 <= n <= 8) in one AVX2 step:

@@ -2,9 +2,10 @@
 //
 // A closest-hit query walks one root-to-leaf chain of dependent node loads,
 // so the number of levels, not the bytes, sets its cache-miss latency: eight
-// children a node is a third of the binary levels. Boxes are float, rounded
-// outward (BoxPack8: one AVX2 step, or two SSE steps); an unused slot has
-// an empty box.
+// children a node is a third of the binary levels. Boxes are quantized to a
+// byte a plane on a grid of exact floats, rounded outward
+// (QuantizedBoxPack8: a node is two cache lines; one AVX2 step, or two SSE
+// steps); an unused slot is never hit.
 //
 // LazyWideBVH writes this tree directly, without a binary tree to collapse,
 // and builds most of it only when a query first reaches it (a first pick
@@ -45,12 +46,27 @@ namespace vtkrt::core
 
 constexpr int kWideArity = 8;
 
-/// Four cache lines: the boxes of the eight children, then where they lead.
+/// Two cache lines: the boxes of the eight children (QuantizedBoxPack8),
+/// then where they lead. Written through a WideNodeDraft.
 struct alignas(64) WideNode
 {
-  BoxPack8 box;
+  QuantizedBoxPack8 box;
   std::uint32_t child[kWideArity]; ///< wide node index (count 0) or first primitive slot
   std::uint32_t count[kWideArity]; ///< primitives of a leaf child; 0 for an interior child
+
+  /// Slot i's box as the walk sees it (holds the float box it was given).
+  void slotBox(int i, float lo[3], float hi[3]) const { box.lane(i, lo, hi); }
+  bool slotUsed(int i) const { return (box.valid >> i & 1) != 0; }
+};
+static_assert(sizeof(WideNode) == 16 * kWideArity, "a wide node is 16 bytes a child");
+
+/// A wide node while its slots are filled: float boxes, rounded outward;
+/// pack() puts them on the node's grid. Slots left clear are unused.
+struct WideNodeDraft
+{
+  BoxPack8 box;
+  std::uint32_t child[kWideArity];
+  std::uint32_t count[kWideArity];
 
   void clear()
   {
@@ -79,8 +95,18 @@ struct alignas(64) WideNode
       box.hi[a][i] = detail::ceilFloat(b.max[a]);
     }
   }
+  WideNode pack() const
+  {
+    WideNode n;
+    n.box = QuantizedBoxPack8::quantize(box);
+    for (int i = 0; i < kWideArity; ++i)
+    {
+      n.child[i] = child[i];
+      n.count[i] = count[i];
+    }
+    return n;
+  }
 };
-static_assert(sizeof(WideNode) == 32 * kWideArity, "a wide node is 32 bytes a child");
 
 /// A slot's count that marks a subtree built on demand: child is its index
 /// (LazyWideBVH::subtree). Any other count > 0 is a leaf, 0 an interior node.
@@ -229,12 +255,12 @@ public:
     if (root.count > 0)
     {
       // One bucket: a root node with that one slot.
-      WideNode node;
+      WideNodeDraft node;
       node.clear();
       node.setBox(0, root.lo, root.hi);
       node.child[0] = root.child;
       node.count[0] = root.count;
-      Top.push_back(node);
+      Top.push_back(node.pack());
     }
     TopDepth = Top.empty() ? 0 : std::max<std::uint32_t>(1, root.depth);
     BuildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -523,7 +549,7 @@ private:
   {
     const std::uint32_t w = static_cast<std::uint32_t>(out.size());
     out.emplace_back();
-    WideNode node;
+    WideNodeDraft node;
     node.clear();
     detail::WideChildRef self;
     self.child = w;
@@ -536,7 +562,7 @@ private:
       self.merge(c);
       self.depth = std::max(self.depth, c.depth + 1);
     }
-    out[w] = node; // after the children: `out` may have grown
+    out[w] = node.pack(); // after the children: `out` may have grown
     return self;
   }
 
