@@ -206,8 +206,8 @@ void boxes(Counts& c)
     alignas(16) float tnear[4];
     const float tmaxF = ConservativeRay4::scaledTmax(ray.tmax);
     const int mask = intersectBoxes4(fray, pack, tmaxF, tnear);
-    // A wide node's eight-lane test (the pack in both halves): the same
-    // bits and entry distances, by SSE steps and, where it runs, by AVX2.
+    // The eight-lane test (the pack in both halves): the same bits and entry
+    // distances.
     BoxPack8 pack8;
     for (int i = 0; i < 8; ++i)
     {
@@ -220,13 +220,6 @@ void boxes(Counts& c)
     alignas(32) float tnear8[8];
     VTKRT_CHECK(intersectBoxes8(ConservativeBoxRay4(fray), pack8, tmaxF, tnear8) == (mask | mask << 4));
     VTKRT_CHECK(std::memcmp(tnear8, tnear, sizeof tnear) == 0 && std::memcmp(tnear8 + 4, tnear, sizeof tnear) == 0);
-#if VTKRT_CORE_AVX2
-    if (useAvx2())
-    {
-      VTKRT_CHECK(intersectBoxes8(ConservativeBoxRay8(fray), pack8, tmaxF, tnear8) == (mask | mask << 4));
-      VTKRT_CHECK(std::memcmp(tnear8, tnear, sizeof tnear) == 0 && std::memcmp(tnear8 + 4, tnear, sizeof tnear) == 0);
-    }
-#endif
     VTKRT_CHECK((mask & ~(1 << lane)) == 0); // empty lanes never hit
     // The wide node's form: the box quantized on a grid over it and seven
     // siblings (one lane unused). Its decoded boxes hold the float ones; the

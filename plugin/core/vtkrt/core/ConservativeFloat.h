@@ -6,7 +6,10 @@
 // and decide every surviving candidate exactly in double.
 //
 // Why they are conservative (u = 2^-24, float unit roundoff):
-// - Boxes are rounded outward to float (BVH.h). The ray origin o is
+// - Boxes are rounded outward to float (BVH.h); a wide node's are then
+//   rounded outward again to its grid, whose decoded planes are exact floats
+//   (QuantizedBoxPack8), so they too are float boxes holding the exact ones.
+//   The ray origin o is
 //   rounded to a float o_f; the residual |o - o_f| (plus an optional
 //   tolerance) is added to each box side by using for the lower planes the
 //   float roundUp(o_f + m) and for the upper planes roundDown(o_f - m) as
@@ -663,8 +666,7 @@ inline int triangleCandidates4(const ConservativeRay4& r, const float* tri, int 
 struct ConservativeBoxRay8
 {
   __m256 oNear[3], oFar[3], inv[3], tmin;
-  int nearRow[3], farRow[3]; ///< float offsets of the rows in a BoxPack8
-  int qNear[3], qFar[3];     ///< byte offsets of the rows in a QuantizedBoxPack8's q
+  int qNear[3], qFar[3]; ///< byte offsets of the rows in a QuantizedBoxPack8's q
 
   VTKRT_TARGET_AVX2 explicit ConservativeBoxRay8(const ConservativeRay4& r)
   {
@@ -673,8 +675,6 @@ struct ConservativeBoxRay8
       oNear[a] = _mm256_set1_ps(r.oNear[a]);
       oFar[a] = _mm256_set1_ps(r.oFar[a]);
       inv[a] = _mm256_set1_ps(r.inv[a]);
-      nearRow[a] = 2 * r.nearRow[a];
-      farRow[a] = 2 * r.farRow[a];
       qNear[a] = 8 * (3 * r.nearHi[a] + a);
       qFar[a] = 8 * (3 * (1 - r.nearHi[a]) + a);
     }
@@ -682,28 +682,8 @@ struct ConservativeBoxRay8
   }
 };
 
-/// intersectBoxes8 in one AVX2 step: the same operations, the same bits.
-VTKRT_TARGET_AVX2 inline int intersectBoxes8(const ConservativeBoxRay8& r, const BoxPack8& b, float tmaxScaled, float tnear[8])
-{
-  const float* base = &b.lo[0][0];
-  __m256 tn = r.tmin;
-  __m256 tf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
-  for (int a = 0; a < 3; ++a)
-  {
-    const __m256 nearPlane = _mm256_load_ps(base + r.nearRow[a]);
-    const __m256 farPlane = _mm256_load_ps(base + r.farRow[a]);
-    tn = _mm256_max_ps(tn, _mm256_mul_ps(_mm256_sub_ps(nearPlane, r.oNear[a]), r.inv[a]));
-    tf = _mm256_min_ps(tf, _mm256_mul_ps(_mm256_sub_ps(farPlane, r.oFar[a]), r.inv[a]));
-  }
-  tf = _mm256_add_ps(_mm256_mul_ps(tf, _mm256_set1_ps(ConservativeRay4::kFarScale)),
-    _mm256_set1_ps(ConservativeRay4::kTiny));
-  tf = _mm256_min_ps(tf, _mm256_set1_ps(tmaxScaled));
-  _mm256_storeu_ps(tnear, tn);
-  return _mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OS));
-}
-
 /// intersectBoxes8 on a QuantizedBoxPack8 in one AVX2 step: the same
-/// decode and operations, the same bits.
+/// decode and operations as the SSE form, the same bits.
 VTKRT_TARGET_AVX2 inline int intersectBoxes8(const ConservativeBoxRay8& r, const QuantizedBoxPack8& b, float tmaxScaled, float tnear[8])
 {
   const std::uint8_t* q = &b.q[0][0];
