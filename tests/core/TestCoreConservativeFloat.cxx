@@ -247,16 +247,13 @@ void boxes(Counts& c)
     }
     const QuantizedBoxPack8 quant = QuantizedBoxPack8::quantize(siblings);
     VTKRT_CHECK(quant.valid == (0xff & ~(1 << (lane + 5) % 8)));
-    BoxPack8 decoded;
+    const BoxPack8 decoded = quant.decoded();
     for (int i = 0; i < 8; ++i)
     {
-      float lo[3], hi[3];
-      quant.lane(i, lo, hi);
       for (int k = 0; k < 3; ++k)
       {
-        decoded.lo[k][i] = lo[k];
-        decoded.hi[k][i] = hi[k];
-        VTKRT_CHECK(!(quant.valid >> i & 1) || (lo[k] <= siblings.lo[k][i] && siblings.hi[k][i] <= hi[k]));
+        VTKRT_CHECK(!(quant.valid >> i & 1) ||
+          (decoded.lo[k][i] <= siblings.lo[k][i] && siblings.hi[k][i] <= decoded.hi[k][i]));
       }
     }
     alignas(32) float tnearQ[8], tnearD[8];

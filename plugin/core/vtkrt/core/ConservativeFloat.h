@@ -207,6 +207,23 @@ struct alignas(64) QuantizedBoxPack8
     }
   }
 
+  /// Every lane decoded (unused lanes too: not boxes).
+  BoxPack<8> decoded() const
+  {
+    BoxPack<8> b;
+    for (int i = 0; i < 8; ++i)
+    {
+      float lo[3], hi[3];
+      lane(i, lo, hi);
+      for (int a = 0; a < 3; ++a)
+      {
+        b.lo[a][i] = lo[a];
+        b.hi[a][i] = hi[a];
+      }
+    }
+    return b;
+  }
+
   /// The lanes of b whose boxes are not empty (lo <= hi on every axis), on
   /// the finest grid that spans them in 255 steps and keeps every plane an
   /// exact float. Boxes beyond 1e17 (which the float walk never meets:
@@ -401,18 +418,17 @@ struct ConservativeBoxRay4
 
 namespace detail
 {
-/// Four boxes of a BoxPack<N> (N = 4 * Scale) from lane `first` on.
-template <int Scale>
-inline int intersectBoxLanes4(const ConservativeBoxRay4& r, const BoxPack<4 * Scale>& b, int first, float tmaxScaled, float tnear[4])
+/// The slab test of four boxes whose near and far planes on axis a are
+/// planes(a, nearPlane, farPlane).
+template <class PlanesFn>
+inline int slabLanes4(const ConservativeBoxRay4& r, PlanesFn&& planes, float tmaxScaled, float tnear[4])
 {
-  static_assert(sizeof(BoxPack<4 * Scale>) == 24 * Scale * sizeof(float), "lo rows, then hi rows");
-  const float* base = &b.lo[0][0] + first;
   __m128 tn = r.tmin;
   __m128 tf = _mm_set1_ps(std::numeric_limits<float>::infinity());
   for (int a = 0; a < 3; ++a)
   {
-    const __m128 nearPlane = _mm_load_ps(base + Scale * r.nearRow[a]);
-    const __m128 farPlane = _mm_load_ps(base + Scale * r.farRow[a]);
+    __m128 nearPlane, farPlane;
+    planes(a, nearPlane, farPlane);
     tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(nearPlane, r.oNear[a]), r.inv[a]));
     tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(farPlane, r.oFar[a]), r.inv[a]));
   }
@@ -421,6 +437,21 @@ inline int intersectBoxLanes4(const ConservativeBoxRay4& r, const BoxPack<4 * Sc
   tf = _mm_min_ps(tf, _mm_set1_ps(tmaxScaled));
   _mm_storeu_ps(tnear, tn);
   return _mm_movemask_ps(_mm_cmple_ps(tn, tf));
+}
+
+/// Four boxes of a BoxPack<N> (N = 4 * Scale) from lane `first` on.
+template <int Scale>
+inline int intersectBoxLanes4(const ConservativeBoxRay4& r, const BoxPack<4 * Scale>& b, int first, float tmaxScaled, float tnear[4])
+{
+  static_assert(sizeof(BoxPack<4 * Scale>) == 24 * Scale * sizeof(float), "lo rows, then hi rows");
+  const float* base = &b.lo[0][0] + first;
+  return slabLanes4(
+    r,
+    [&](int a, __m128& nearPlane, __m128& farPlane) {
+      nearPlane = _mm_load_ps(base + Scale * r.nearRow[a]);
+      farPlane = _mm_load_ps(base + Scale * r.farRow[a]);
+    },
+    tmaxScaled, tnear);
 }
 } // namespace detail
 
@@ -452,24 +483,17 @@ inline __m128 decodeRow4(const QuantizedBoxPack8& b, int row, int first, __m128 
   return _mm_add_ps(_mm_mul_ps(_mm_cvtepi32_ps(q), step), origin);
 }
 
-/// intersectBoxLanes4 on four decoded lanes of a QuantizedBoxPack8.
+/// The slab test on four decoded lanes of a QuantizedBoxPack8.
 inline int intersectQuantizedLanes4(const ConservativeBoxRay4& r, const QuantizedBoxPack8& b, int first, float tmaxScaled, float tnear[4])
 {
-  __m128 tn = r.tmin;
-  __m128 tf = _mm_set1_ps(std::numeric_limits<float>::infinity());
-  for (int a = 0; a < 3; ++a)
-  {
-    const __m128 origin = _mm_set1_ps(b.origin[a]), step = _mm_set1_ps(b.step(a));
-    const __m128 nearPlane = decodeRow4(b, r.qNear[a], first, origin, step);
-    const __m128 farPlane = decodeRow4(b, r.qFar[a], first, origin, step);
-    tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(nearPlane, r.oNear[a]), r.inv[a]));
-    tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(farPlane, r.oFar[a]), r.inv[a]));
-  }
-  tf = _mm_add_ps(_mm_mul_ps(tf, _mm_set1_ps(ConservativeRay4::kFarScale)),
-    _mm_set1_ps(ConservativeRay4::kTiny));
-  tf = _mm_min_ps(tf, _mm_set1_ps(tmaxScaled));
-  _mm_storeu_ps(tnear, tn);
-  return _mm_movemask_ps(_mm_cmple_ps(tn, tf));
+  return slabLanes4(
+    r,
+    [&](int a, __m128& nearPlane, __m128& farPlane) {
+      const __m128 origin = _mm_set1_ps(b.origin[a]), step = _mm_set1_ps(b.step(a));
+      nearPlane = decodeRow4(b, r.qNear[a], first, origin, step);
+      farPlane = decodeRow4(b, r.qFar[a], first, origin, step);
+    },
+    tmaxScaled, tnear);
 }
 } // namespace detail
 
@@ -608,18 +632,7 @@ inline int intersectBoxes8(const ConservativeBoxRay4& r, const BoxPack8& b, floa
 
 inline int intersectBoxes8(const ConservativeBoxRay4& r, const QuantizedBoxPack8& b, float tmaxScaled, float tnear[8])
 {
-  BoxPack8 decoded;
-  for (int i = 0; i < 8; ++i)
-  {
-    float lo[3], hi[3];
-    b.lane(i, lo, hi);
-    for (int a = 0; a < 3; ++a)
-    {
-      decoded.lo[a][i] = lo[a];
-      decoded.hi[a][i] = hi[a];
-    }
-  }
-  return intersectBoxesScalar(r.ray, decoded, tmaxScaled, tnear) & b.valid;
+  return intersectBoxesScalar(r.ray, b.decoded(), tmaxScaled, tnear) & b.valid;
 }
 
 inline int triangleCandidates4(const ConservativeRay4& r, const TrianglePack4& p)
