@@ -9,7 +9,8 @@
 // edges and faces, with segments ending exactly on them, with and without a
 // tolerance. The pre-tests must also cull: most clear misses are rejected.
 // Boxes quantized to a wide node's grid (QuantizedBoxPack8) hold their float
-// boxes and keep every double hit; their SSE and AVX2 tests give the float
+// boxes with exact decoded planes, also far from 0 (offsets to 1e15, sizes
+// 1e-6..1e3), and keep every double hit; their SSE and AVX2 tests give the float
 // test's bits and entry distances on the decoded boxes.
 // The triangle test reading a leaf's triangles one after another gives the
 // same bits as the packed form, for one to eight lanes. The outward
@@ -351,11 +352,65 @@ void roundingHelpers()
   }
 }
 
+/// QuantizedBoxPack8 at the extremes: boxes of size 1e-6..1e3 at offsets up
+/// to 1e15 from 0 (far out, a box is a few float steps wide, or flat), flat
+/// boxes, one to eight lanes. Every decoded plane is the exact value
+/// origin + q * step, and the decoded lanes hold the boxes.
+void quantizedExtremes()
+{
+  Rng rng(7);
+  int packs = 0;
+  for (const double offset : { 0.0, 1.0, -1e3, 1e7, -1e7, 1e12, 1e15 })
+  {
+    for (const double size : { 1e-6, 1e-3, 1.0, 1e3 })
+    {
+      for (int rep = 0; rep < 200; ++rep)
+      {
+        BoxPack8 b;
+        const int used = 1 + rep % 8;
+        for (int i = 0; i < 8; ++i)
+        {
+          b.clear(i);
+          if (i >= used)
+          {
+            continue;
+          }
+          for (int a = 0; a < 3; ++a)
+          {
+            const double lo = offset + size * rng.uniform(-4.0, 4.0);
+            const double hi = lo + size * (rep % 5 == 0 ? 0.0 : rng.uniform(0.0, 2.0));
+            b.lo[a][i] = roundDownToFloat(lo);
+            b.hi[a][i] = roundUpToFloat(hi);
+          }
+        }
+        const QuantizedBoxPack8 q = QuantizedBoxPack8::quantize(b);
+        VTKRT_CHECK(q.valid == (1 << used) - 1);
+        const BoxPack8 d = q.decoded();
+        for (int i = 0; i < used; ++i)
+        {
+          for (int a = 0; a < 3; ++a)
+          {
+            const double step = std::ldexp(1.0, q.exp[a]);
+            VTKRT_CHECK(static_cast<double>(d.lo[a][i]) == static_cast<double>(q.origin[a]) + q.q[a][i] * step);
+            VTKRT_CHECK(static_cast<double>(d.hi[a][i]) == static_cast<double>(q.origin[a]) + q.q[3 + a][i] * step);
+            VTKRT_CHECK_MSG(d.lo[a][i] <= b.lo[a][i] && b.hi[a][i] <= d.hi[a][i],
+              "offset %g size %g: lane %d axis %d [%.9g, %.9g] not in [%.9g, %.9g]", offset, size, i, a,
+              double(b.lo[a][i]), double(b.hi[a][i]), double(d.lo[a][i]), double(d.hi[a][i]));
+          }
+        }
+        ++packs;
+      }
+    }
+  }
+  std::printf("quantized boxes: %d packs at offsets 0..1e15, sizes 1e-6..1e3\n", packs);
+}
+
 } // namespace
 
 int main()
 {
   roundingHelpers();
+  quantizedExtremes();
   checkCounts("triangles", triangles);
   checkCounts("boxes", boxes);
 
