@@ -75,13 +75,13 @@ double ThreadSeconds()
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-/// Bytes malloc currently hands out (arena + mmapped chunks).
 #ifdef VTKRT_HAVE_EMBREE
 /// Bytes Embree holds, from its device memory monitor: its BVH arenas are
 /// mapped directly (mallinfo does not see them), its buffers are counted too.
 long long g_EmbreeBytes = 0;
 #endif
 
+/// Bytes malloc currently hands out (arena + mmapped chunks).
 long long HeapInUse()
 {
   struct mallinfo2 mi = mallinfo2();

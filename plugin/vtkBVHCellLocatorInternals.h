@@ -1593,6 +1593,12 @@ private:
     this->PointBounds = b.isEmpty() ? Box() : Box(b.min - o, b.max - o);
   }
 
+  /// Whether every point id fits the 32-bit ids of the triangle arrays.
+  bool PointsIndexable() const
+  {
+    return static_cast<std::uint64_t>(this->NumberOfPoints) < std::numeric_limits<std::uint32_t>::max();
+  }
+
   /// Polys that are all triangles, read straight from the connectivity in
   /// parallel (no per-cell iterator, no push_back). False, with nothing
   /// added, when a cell is not a triangle or has an out-of-range or
@@ -1601,7 +1607,7 @@ private:
   {
     const vtkIdType n = polys ? polys->GetNumberOfCells() : 0;
     if (n < 1 || polys->GetNumberOfConnectivityIds() != 3 * n ||
-      static_cast<std::uint64_t>(this->NumberOfPoints) >= std::numeric_limits<std::uint32_t>::max())
+      !this->PointsIndexable())
     {
       return false;
     }
@@ -1793,7 +1799,7 @@ private:
   {
     vtkNew<vtkPolygon> polygon;
     vtkNew<vtkIdList> tris;
-    const bool indexable = static_cast<std::uint64_t>(this->NumberOfPoints) < std::numeric_limits<std::uint32_t>::max();
+    const bool indexable = this->PointsIndexable();
     vtkIdType cellId = 0;
     vtkCellArray* arrays[4] = { pd->GetVerts(), pd->GetLines(), pd->GetPolys(), pd->GetStrips() };
     this->ReserveTriangles(arrays[2], arrays[3]);
@@ -1855,7 +1861,7 @@ private:
   {
     vtkNew<vtkPolygon> polygon;
     vtkNew<vtkIdList> tris;
-    const bool indexable = static_cast<std::uint64_t>(this->NumberOfPoints) < std::numeric_limits<std::uint32_t>::max();
+    const bool indexable = this->PointsIndexable();
     const vtkIdType n = ug->GetNumberOfCells();
     for (vtkIdType c = 0; c < n; ++c)
     {

@@ -131,40 +131,34 @@ inline bool useAvx2()
 
 namespace detail
 {
-/// One float step up (+1) or down (-1) from finite f, through its bits: the
-/// next float toward +inf / -inf (no libm call). -0 counts as +0.
-inline float stepFloat(float f, bool up)
+/// Finite f moved `steps` (0 or 1) floats toward +inf, through its bits
+/// (no libm call, no branch): +1 on the bits of a float >= +0, -1 on those
+/// of a negative one. -0 counts as +0, so that 0 steps to denorm_min.
+inline float stepUp(float f, std::int32_t steps)
 {
-  f += 0.0f; // -0 -> +0 (round to nearest), so that 0 steps to +/- denorm_min
+  f += 0.0f; // -0 -> +0 (round to nearest)
   std::int32_t u;
   std::memcpy(&u, &f, sizeof u);
-  // Up is +1 on the bits of a float >= +0 and -1 on those of a negative
-  // one; down the opposite, except that +0 goes to -denorm_min.
-  const std::int32_t sign = u >> 31; // 0 or -1
-  std::int32_t next = up ? u + (sign | 1) : (u == 0 ? std::int32_t(0x80000001u) : u - (sign | 1));
-  std::memcpy(&f, &next, sizeof f);
+  u += steps * ((u >> 31) | 1);
+  std::memcpy(&f, &u, sizeof f);
   return f;
 }
+/// Next float toward +inf / -inf of a finite float.
 inline float nextUp(float f)
 {
-  return stepFloat(f, true);
+  return stepUp(f, 1);
 }
 inline float nextDown(float f)
 {
-  return stepFloat(f, false);
+  return -nextUp(-f);
 }
 /// Smallest float >= x / largest float <= x, for |x| < FLT_MAX. Without a
 /// branch on the rounding's direction: a ray's setup rounds eight of them,
 /// each as likely to go one way as the other.
 inline float ceilFloat(double x)
 {
-  float f = static_cast<float>(x) + 0.0f; // -0 -> +0, as in stepFloat
-  std::int32_t u;
-  std::memcpy(&u, &f, sizeof u);
-  const std::int32_t below = static_cast<double>(f) < x ? 1 : 0;
-  u += below * ((u >> 31) | 1); // stepFloat(f, true) when f < x
-  std::memcpy(&f, &u, sizeof f);
-  return f;
+  const float f = static_cast<float>(x);
+  return stepUp(f, static_cast<double>(f) < x ? 1 : 0);
 }
 inline float floorFloat(double x)
 {
@@ -305,6 +299,7 @@ struct ConservativeRay4
   float oNear[3], oFar[3], inv[3];
   int nearHi[3];
   int nearRow[3], farRow[3]; ///< float offsets of the near / far plane rows in a BoxPack4
+  int qNear[3], qFar[3];     ///< byte offsets of the near / far plane rows in a QuantizedBoxPack8's q
   float tmin;
   // Triangles: the float origin, the shear of the double test, the
   // coordinate error bound E.
@@ -357,6 +352,8 @@ struct ConservativeRay4
       nearHi[a] = d < 0.0 ? 1 : 0;
       nearRow[a] = 12 * nearHi[a] + 4 * a;
       farRow[a] = 12 * (1 - nearHi[a]) + 4 * a;
+      qNear[a] = 8 * (3 * nearHi[a] + a);
+      qFar[a] = 8 * (3 * (1 - nearHi[a]) + a);
       oNear[a] = d < 0.0 ? oHi : oLo;
       oFar[a] = d < 0.0 ? oLo : oHi;
     }
@@ -409,8 +406,8 @@ struct ConservativeBoxRay4
       inv[a] = _mm_set1_ps(r.inv[a]);
       nearRow[a] = r.nearRow[a];
       farRow[a] = r.farRow[a];
-      qNear[a] = 8 * (3 * r.nearHi[a] + a);
-      qFar[a] = 8 * (3 * (1 - r.nearHi[a]) + a);
+      qNear[a] = r.qNear[a];
+      qFar[a] = r.qFar[a];
     }
     tmin = _mm_set1_ps(r.tmin);
   }
@@ -688,8 +685,8 @@ struct ConservativeBoxRay8
       oNear[a] = _mm256_set1_ps(r.oNear[a]);
       oFar[a] = _mm256_set1_ps(r.oFar[a]);
       inv[a] = _mm256_set1_ps(r.inv[a]);
-      qNear[a] = 8 * (3 * r.nearHi[a] + a);
-      qFar[a] = 8 * (3 * (1 - r.nearHi[a]) + a);
+      qNear[a] = r.qNear[a];
+      qFar[a] = r.qFar[a];
     }
     tmin = _mm256_set1_ps(r.tmin);
   }
