@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <mutex>
 #include <vector>
@@ -36,6 +37,9 @@ struct vtkBVHCellLocator::vtkInternals
   BVHCellLocatorData Data;
   bool HasTree = false;
   std::mutex BuildMutex;
+  // The polydata the tree was built over (when the dataset is one): its
+  // staleness is judged by GeometryMTime().
+  vtkPolyData* BuiltPolyData = nullptr;
   // Scratch cell for the overloads that take none; never used concurrently
   // by the thread-safe forms.
   vtkNew<vtkGenericCell> ScratchCell;
@@ -81,6 +85,42 @@ private:
   vtkGenericCell* Given;
   vtkGenericCell* Own = nullptr;
 };
+// What DataSet->GetCell(cellId, cell) gives for a triangle, from the point
+// ids kept with it and the coordinates the exact test read (the dataset's
+// double points in place, else the build's double copy): no cell lookup and
+// no virtual call a point. A cell that already holds three double points
+// (the previous pick's triangle, as in vtkCellPicker's loop) is overwritten
+// in place: resizing its arrays again was most of a hit's cost. As with
+// vtkPolyData::GetCell, nothing is marked modified.
+void FillTriangleCell(vtkGenericCell* cell, const std::uint32_t* ids, const double* coords)
+{
+  cell->SetCellTypeToTriangle();
+  if (cell->PointIds->GetNumberOfIds() != 3)
+  {
+    cell->PointIds->SetNumberOfIds(3);
+  }
+  vtkDoubleArray* cellCoords = vtkDoubleArray::FastDownCast(cell->Points->GetData());
+  if (!cellCoords || cellCoords->GetNumberOfComponents() != 3 || cellCoords->GetNumberOfTuples() != 3)
+  {
+    cell->Points->SetNumberOfPoints(3);
+    cellCoords = vtkDoubleArray::FastDownCast(cell->Points->GetData());
+  }
+  double* dst = cellCoords && cellCoords->GetNumberOfComponents() == 3 ? cellCoords->GetPointer(0) : nullptr;
+  for (int k = 0; k < 3; ++k)
+  {
+    const vtkIdType id = ids[k];
+    const double* p = coords + 3 * id;
+    cell->PointIds->SetId(k, id);
+    if (dst)
+    {
+      std::copy_n(p, 3, dst + 3 * k);
+    }
+    else
+    {
+      cell->Points->SetPoint(k, p);
+    }
+  }
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -111,7 +151,30 @@ bool vtkBVHCellLocator::NeedsBuild() const
     return false;
   }
   const vtkMTimeType built = this->BuildTime.GetMTime();
-  return this->MTime.GetMTime() > built || (this->DataSet && this->DataSet->GetMTime() > built);
+  return this->MTime.GetMTime() > built || (this->DataSet && this->GeometryMTime() > built);
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkBVHCellLocator::GeometryMTime() const
+{
+  vtkPolyData* pd = this->Internals->BuiltPolyData;
+  if (pd != this->DataSet)
+  {
+    return this->DataSet->GetMTime();
+  }
+  // What vtkPolyData::GetMTime covers, less the point, cell and field data:
+  // attributes move no cell, and visiting every attribute array was a fifth
+  // of a pick's fixed cost. GetVerts() and the others never allocate (an
+  // empty polydata answers a shared empty array), so this is thread-safe.
+  vtkMTimeType t = pd->vtkObject::GetMTime();
+  if (vtkPoints* points = pd->GetPoints())
+  {
+    t = std::max(t, points->GetMTime());
+  }
+  t = std::max(t, pd->GetVerts()->GetMTime());
+  t = std::max(t, pd->GetLines()->GetMTime());
+  t = std::max(t, pd->GetPolys()->GetMTime());
+  return std::max(t, pd->GetStrips()->GetMTime());
 }
 
 //------------------------------------------------------------------------------
@@ -201,6 +264,7 @@ void vtkBVHCellLocator::BuildTree()
   this->Internals->HasTree = false;
   this->FreeCellBounds();
   this->Internals->Data.Clear();
+  this->Internals->BuiltPolyData = vtkPolyData::SafeDownCast(this->DataSet);
   if (!this->DataSet || this->DataSet->GetNumberOfCells() < 1)
   {
     this->Internals->HasTree = this->DataSet != nullptr;
@@ -248,6 +312,7 @@ void vtkBVHCellLocator::FreeSearchStructure()
 {
   this->Internals->Data.Clear();
   this->Internals->HasTree = false;
+  this->Internals->BuiltPolyData = nullptr;
   this->FreeCellBounds();
 }
 
@@ -325,31 +390,7 @@ int vtkBVHCellLocator::IntersectWithLine(const double p1[3], const double p2[3],
   }
   if (cell && hit.TrianglePointIds)
   {
-    // What DataSet->GetCell(cellId, cell) gives for a triangle, from the ids
-    // kept with the triangle (skips the dataset's cell lookup).
-    cell->SetCellTypeToTriangle();
-    cell->PointIds->SetNumberOfIds(3);
-    cell->Points->SetNumberOfPoints(3);
-    // The coordinates the exact test read (the dataset's double points in
-    // place, else the build's double copy of them), written in place into
-    // the cell's double points: no dataset lookup, no virtual call a point.
-    const double* coords = data.WorldCoords();
-    vtkDoubleArray* cellCoords = vtkDoubleArray::FastDownCast(cell->Points->GetData());
-    double* dst = cellCoords && cellCoords->GetNumberOfComponents() == 3 ? cellCoords->GetPointer(0) : nullptr;
-    for (int k = 0; k < 3; ++k)
-    {
-      const vtkIdType id = hit.TrianglePointIds[k];
-      const double* p = coords + 3 * id;
-      cell->PointIds->SetId(k, id);
-      if (dst)
-      {
-        std::copy_n(p, 3, dst + 3 * k);
-      }
-      else
-      {
-        cell->Points->SetPoint(k, p);
-      }
-    }
+    FillTriangleCell(cell, hit.TrianglePointIds, data.WorldCoords());
   }
   else if (cell)
   {

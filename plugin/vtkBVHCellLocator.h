@@ -33,7 +33,9 @@
  *
  * Build: BuildLocator() rebuilds when the dataset (or this locator) was
  * modified since the last build, unless UseExistingSearchStructure is on and
- * a tree exists. With LazyEvaluation on, BuildLocator() only marks the
+ * a tree exists. For vtkPolyData that means the polydata itself, its points
+ * or its cell arrays: a modified attribute array (scalars, normals) moves no
+ * cell and triggers no rebuild. With LazyEvaluation on, BuildLocator() only marks the
  * locator and the first query builds. Every query builds the tree when it is
  * missing or stale (vtkCellPicker never calls BuildLocator itself). With
  * UseExistingSearchStructure, as with VTK's locators, the tree is kept and
@@ -228,6 +230,10 @@ protected:
 
   // True when the tree is missing or older than the dataset / this object.
   bool NeedsBuild() const;
+  // The dataset's MTime as far as the tree depends on it: for the polydata
+  // it was built over, its own, its points' and its cells' (not its
+  // attributes'); for other datasets GetMTime().
+  vtkMTimeType GeometryMTime() const;
   // Builds when needed; returns false (after an error where VTK gives one)
   // when there is nothing to query.
   bool PrepareQuery();

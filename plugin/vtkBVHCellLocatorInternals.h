@@ -1310,8 +1310,27 @@ private:
         }
       }
     };
-    // The nearest hit child is walked next without a trip through the
-    // stack; the others are pushed farthest first.
+    // A child that waits on the stack: its node's lines, or a leaf's float
+    // triangles (what the float test reads), fetched meanwhile.
+    auto prefetchEntry = [&](const Entry& c) VTKRT_ALWAYS_INLINE {
+#if VTKRT_CORE_SSE
+      if (c.Count == 0)
+      {
+        const char* next = reinterpret_cast<const char*>(&c.Nodes[c.Ref]);
+        for (std::size_t line = 0; line < sizeof(WideNode); line += 64)
+        {
+          _mm_prefetch(next + line, _MM_HINT_T0);
+        }
+      }
+      else if (allTriangles && c.Count != core::kWideSubtree)
+      {
+        this->PrefetchRange(this->TrianglesF.data() + 9 * static_cast<std::size_t>(c.Ref),
+          this->TrianglesF.data() + 9 * static_cast<std::size_t>(c.Ref + c.Count));
+      }
+#else
+      (void)c;
+#endif
+    };
     const typename Kernels::BoxRay boxRay(fray);
     Entry cur{ this->PickingRoot(), 0, 0, 0.0f };
     for (;;)
@@ -1328,51 +1347,34 @@ private:
         const WideNode& w = cur.Nodes[cur.Ref];
         alignas(32) float tnear[kWideArity];
         int mask = Kernels::Boxes(boxRay, w, tmaxF, tnear);
-        if (mask && !(mask & (mask - 1)))
-        {
-          // One child hit (the most common case): walked next, no sorting.
-          const int i = CountTrailingZeros(static_cast<unsigned>(mask));
-          cur = { cur.Nodes, w.child[i], w.count[i], tnear[i] };
-          continue;
-        }
         if (mask)
         {
-          Entry hits[kWideArity];
-          int nh = 0;
+          // The nearest hit child is walked next (one hit, the most common
+          // case, is just that); the others go on the stack farthest first,
+          // their first loads started now.
+          int i = CountTrailingZeros(static_cast<unsigned>(mask));
+          mask &= mask - 1;
+          Entry nearest{ cur.Nodes, w.child[i], w.count[i], tnear[i] };
+          const std::uint32_t base = sp;
           while (mask)
           {
-            const int i = CountTrailingZeros(static_cast<unsigned>(mask));
+            i = CountTrailingZeros(static_cast<unsigned>(mask));
             mask &= mask - 1;
-            const Entry c{ cur.Nodes, w.child[i], w.count[i], tnear[i] };
-            int j = nh++;
-            while (j > 0 && hits[j - 1].Dist < c.Dist)
+            Entry c{ cur.Nodes, w.child[i], w.count[i], tnear[i] };
+            if (c.Dist < nearest.Dist)
             {
-              hits[j] = hits[j - 1];
+              std::swap(c, nearest);
+            }
+            prefetchEntry(c);
+            std::uint32_t j = sp++;
+            while (j > base && stack[j - 1].Dist < c.Dist)
+            {
+              stack[j] = stack[j - 1];
               --j;
             }
-            hits[j] = c;
-#if VTKRT_CORE_SSE
-            if (c.Count == 0)
-            {
-              const char* next = reinterpret_cast<const char*>(&cur.Nodes[c.Ref]);
-              for (std::size_t line = 0; line < sizeof(WideNode); line += 64)
-              {
-                _mm_prefetch(next + line, _MM_HINT_T0);
-              }
-            }
-            else if (allTriangles && c.Count != core::kWideSubtree)
-            {
-              // The leaf's float triangles, which the float test reads.
-              this->PrefetchRange(this->TrianglesF.data() + 9 * static_cast<std::size_t>(c.Ref),
-                this->TrianglesF.data() + 9 * static_cast<std::size_t>(c.Ref + c.Count));
-            }
-#endif
+            stack[j] = c;
           }
-          for (int i = 0; i + 1 < nh; ++i)
-          {
-            stack[sp++] = hits[i];
-          }
-          cur = hits[nh - 1];
+          cur = nearest;
           continue;
         }
       }

@@ -27,6 +27,7 @@ double SegLength(const Segment& s)
   return std::sqrt(vtkMath::Distance2BetweenPoints(s.P1, s.P2));
 }
 
+/// The cell holds cell cellId's point ids and exact coordinates.
 bool SameCellPoints(vtkDataSet* ds, vtkIdType cellId, vtkGenericCell* cell)
 {
   vtkNew<vtkIdList> ids;
@@ -38,6 +39,13 @@ bool SameCellPoints(vtkDataSet* ds, vtkIdType cellId, vtkGenericCell* cell)
   for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
   {
     if (ids->GetId(i) != cell->GetPointId(i))
+    {
+      return false;
+    }
+    double p[3], q[3];
+    ds->GetPoint(ids->GetId(i), p);
+    cell->GetPoints()->GetPoint(i, q);
+    if (p[0] != q[0] || p[1] != q[1] || p[2] != q[2])
     {
       return false;
     }

@@ -4,6 +4,7 @@
 #include "LocatorTestUtils.h"
 #include "vtkBVHCellLocator.h"
 #include "vtkDoubleArray.h"
+#include "vtkPointData.h"
 
 #include "vtkSMPThreadLocalObject.h"
 #include "vtkSMPTools.h"
@@ -343,8 +344,32 @@ int TestRobustRebuild()
   const vtkMTimeType before = loc->GetBuildTime();
   loc->BuildLocator();
   LT_CHECK(loc->GetBuildTime() == before); // up to date: nothing to do
+
+  // A new or modified attribute array moves no cell: the polydata's MTime
+  // changes, the tree is kept. A modified cell array rebuilds it.
+  {
+    vtkNew<vtkDoubleArray> scalars;
+    scalars->SetNumberOfTuples(pd->GetNumberOfPoints());
+    scalars->Fill(1.0);
+    const vtkMTimeType dataTime = pd->GetMTime();
+    pd->GetPointData()->SetScalars(scalars);
+    scalars->Modified();
+    LT_CHECK(pd->GetMTime() > dataTime);
+    double t2;
+    vtkIdType c2;
+    LT_CHECK(loc->IntersectWithLine(p1, p2, 0.0, t2, x, pc, sub, c2) == 1);
+    LT_CHECK(loc->GetBuildTime() == before);
+    LT_CHECK(t2 == t1 && c2 == c1);
+    pd->GetPolys()->Modified();
+    LT_CHECK(loc->IntersectWithLine(p1, p2, 0.0, t2, x, pc, sub, c2) == 1);
+    LT_CHECK(loc->GetBuildTime() > before);
+    LT_CHECK(t2 == t1 && c2 == c1);
+    pd->GetPointData()->SetScalars(nullptr);
+  }
+  loc->BuildLocator();
+  const vtkMTimeType afterAttributes = loc->GetBuildTime();
   loc->ForceBuildLocator();
-  LT_CHECK(loc->GetBuildTime() > before);
+  LT_CHECK(loc->GetBuildTime() > afterAttributes);
 
   // Knobs: leaf size and quality change the tree; answers stay the same.
   for (int q : { vtkBVHCellLocator::FAST, vtkBVHCellLocator::SAH, vtkBVHCellLocator::HIGH })

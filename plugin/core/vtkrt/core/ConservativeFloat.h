@@ -166,6 +166,32 @@ inline float floorFloat(double x)
 }
 } // namespace detail
 
+namespace detail
+{
+/// kPow2.v[e + 128] = 2^e for the grid exponents -126..127 (0 below): a
+/// box test reads a node's three grid steps with one load each, not
+/// through the float's bits.
+struct Pow2Table
+{
+  float v[256];
+};
+constexpr Pow2Table makePow2Table()
+{
+  Pow2Table t{};
+  float up = 1.0f, down = 1.0f;
+  for (int e = 0; e <= 126; ++e)
+  {
+    t.v[128 + e] = up;
+    t.v[128 - e] = down;
+    up *= 2.0f;
+    down *= 0.5f;
+  }
+  t.v[255] = up; // 2^127
+  return t;
+}
+alignas(64) inline constexpr Pow2Table kPow2 = makePow2Table();
+} // namespace detail
+
 /// Eight boxes on a per-axis grid, a byte a plane: half the bytes of a
 /// BoxPack8, so that a wide node is two cache lines instead of four (a
 /// pick's walk waits on one node load a level). Lane i on axis a spans
@@ -183,13 +209,8 @@ struct alignas(64) QuantizedBoxPack8
   std::uint8_t q[6][8]; ///< lo rows x, y, z, then hi rows: grid steps above origin
 
   /// The grid step of axis a (a normal float: exp >= -126).
-  float step(int a) const
-  {
-    const std::int32_t bits = (static_cast<std::int32_t>(exp[a]) + 127) << 23;
-    float f;
-    std::memcpy(&f, &bits, sizeof f);
-    return f;
-  }
+  float step(int a) const { return detail::kPow2.v[exp[a] + 128]; }
+
 
   /// Lane i's decoded box (exact floats), for lanes in `valid`.
   void lane(int i, float lo[3], float hi[3]) const
@@ -297,9 +318,17 @@ struct ConservativeRay4
   // Boxes: per axis, the float origin for the near and the far plane, the
   // near plane's row (0: lo, 1: hi) and the float inverse direction.
   float oNear[3], oFar[3], inv[3];
+  /// Which plane is near on each axis, and where the kernels find it: set
+  /// together from the direction's signs (SignRows).
+  struct SignRows
+  {
+    int nearHi[3];             ///< 1: the hi plane is near (direction < 0)
+    int nearRow[3], farRow[3]; ///< float offsets of the near / far plane rows in a BoxPack4
+    int qNear[3], qFar[3];     ///< byte offsets of the near / far plane rows in a QuantizedBoxPack8's q
+  };
   int nearHi[3];
-  int nearRow[3], farRow[3]; ///< float offsets of the near / far plane rows in a BoxPack4
-  int qNear[3], qFar[3];     ///< byte offsets of the near / far plane rows in a QuantizedBoxPack8's q
+  int nearRow[3], farRow[3];
+  int qNear[3], qFar[3];
   float tmin;
   // Triangles: the float origin, the shear of the double test, the
   // coordinate error bound E.
@@ -330,6 +359,7 @@ struct ConservativeRay4
     {
       return false;
     }
+    int signs = 0;
     for (int a = 0; a < 3; ++a)
     {
       const double d = ray.dir[a];
@@ -349,14 +379,11 @@ struct ConservativeRay4
       const double up = static_cast<double>(of) + m, down = static_cast<double>(of) - m;
       const float oLo = detail::ceilFloat(up + std::abs(up) * std::numeric_limits<double>::epsilon());
       const float oHi = detail::floorFloat(down - std::abs(down) * std::numeric_limits<double>::epsilon());
-      nearHi[a] = d < 0.0 ? 1 : 0;
-      nearRow[a] = 12 * nearHi[a] + 4 * a;
-      farRow[a] = 12 * (1 - nearHi[a]) + 4 * a;
-      qNear[a] = 8 * (3 * nearHi[a] + a);
-      qFar[a] = 8 * (3 * (1 - nearHi[a]) + a);
+      signs |= d < 0.0 ? 1 << a : 0;
       oNear[a] = d < 0.0 ? oHi : oLo;
       oFar[a] = d < 0.0 ? oLo : oHi;
     }
+    setSignRows(signs);
     tmin = detail::floorFloat(ray.tmin);
     kx = tri.kx;
     ky = tri.ky;
@@ -365,6 +392,38 @@ struct ConservativeRay4
     sy = static_cast<float>(tri.sy);
     E = detail::ceilFloat(16.0 * 0x1p-24 * Q * (1.0 + 1e-6));
     return true;
+  }
+
+  /// The rows of the direction's sign bits (bit a: dir[a] < 0), one table
+  /// copy instead of five integer formulas per axis.
+  void setSignRows(int signs)
+  {
+    static_assert(sizeof(SignRows) == 15 * sizeof(int), "five rows of three");
+    static const auto table = [] {
+      struct Table
+      {
+        SignRows rows[8];
+      } t;
+      for (int b = 0; b < 8; ++b)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          const int hi = b >> a & 1;
+          t.rows[b].nearHi[a] = hi;
+          t.rows[b].nearRow[a] = 12 * hi + 4 * a;
+          t.rows[b].farRow[a] = 12 * (1 - hi) + 4 * a;
+          t.rows[b].qNear[a] = 8 * (3 * hi + a);
+          t.rows[b].qFar[a] = 8 * (3 * (1 - hi) + a);
+        }
+      }
+      return t;
+    }();
+    const SignRows& r = table.rows[signs];
+    std::memcpy(nearHi, r.nearHi, sizeof nearHi);
+    std::memcpy(nearRow, r.nearRow, sizeof nearRow);
+    std::memcpy(farRow, r.farRow, sizeof farRow);
+    std::memcpy(qNear, r.qNear, sizeof qNear);
+    std::memcpy(qFar, r.qFar, sizeof qFar);
   }
 
   /// The float bound to compare box entry distances with, for a double tmax.
@@ -394,6 +453,7 @@ inline __m128 abs4(__m128 x)
 struct ConservativeBoxRay4
 {
   __m128 oNear[3], oFar[3], inv[3], tmin;
+  __m128 farScale, tiny; ///< ConservativeRay4::kFarScale, kTiny
   int nearRow[3], farRow[3];
   int qNear[3], qFar[3]; ///< byte offsets of the near / far plane rows in a QuantizedBoxPack8's q
 
@@ -410,6 +470,8 @@ struct ConservativeBoxRay4
       qFar[a] = r.qFar[a];
     }
     tmin = _mm_set1_ps(r.tmin);
+    farScale = _mm_set1_ps(ConservativeRay4::kFarScale);
+    tiny = _mm_set1_ps(ConservativeRay4::kTiny);
   }
 };
 
@@ -429,8 +491,7 @@ inline int slabLanes4(const ConservativeBoxRay4& r, PlanesFn&& planes, float tma
     tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(nearPlane, r.oNear[a]), r.inv[a]));
     tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(farPlane, r.oFar[a]), r.inv[a]));
   }
-  tf = _mm_add_ps(_mm_mul_ps(tf, _mm_set1_ps(ConservativeRay4::kFarScale)),
-    _mm_set1_ps(ConservativeRay4::kTiny));
+  tf = _mm_add_ps(_mm_mul_ps(tf, r.farScale), r.tiny);
   tf = _mm_min_ps(tf, _mm_set1_ps(tmaxScaled));
   _mm_storeu_ps(tnear, tn);
   return _mm_movemask_ps(_mm_cmple_ps(tn, tf));
@@ -676,6 +737,7 @@ inline int triangleCandidates4(const ConservativeRay4& r, const float* tri, int 
 struct ConservativeBoxRay8
 {
   __m256 oNear[3], oFar[3], inv[3], tmin;
+  __m256 farScale, tiny; ///< ConservativeRay4::kFarScale, kTiny
   int qNear[3], qFar[3]; ///< byte offsets of the rows in a QuantizedBoxPack8's q
 
   VTKRT_TARGET_AVX2 explicit ConservativeBoxRay8(const ConservativeRay4& r)
@@ -689,6 +751,8 @@ struct ConservativeBoxRay8
       qFar[a] = r.qFar[a];
     }
     tmin = _mm256_set1_ps(r.tmin);
+    farScale = _mm256_set1_ps(ConservativeRay4::kFarScale);
+    tiny = _mm256_set1_ps(ConservativeRay4::kTiny);
   }
 };
 
@@ -698,19 +762,20 @@ VTKRT_TARGET_AVX2 inline int intersectBoxes8(const ConservativeBoxRay8& r, const
 {
   const std::uint8_t* q = &b.q[0][0];
   __m256 tn = r.tmin;
-  __m256 tf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+  __m256 tf;
   for (int a = 0; a < 3; ++a)
   {
-    const __m256 origin = _mm256_set1_ps(b.origin[a]), step = _mm256_set1_ps(b.step(a));
+    const __m256 origin = _mm256_broadcast_ss(&b.origin[a]);
+    const __m256 step = _mm256_broadcast_ss(&detail::kPow2.v[b.exp[a] + 128]);
     const __m256 nearPlane = _mm256_add_ps(_mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(
       _mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + r.qNear[a])))), step), origin);
     const __m256 farPlane = _mm256_add_ps(_mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(
       _mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + r.qFar[a])))), step), origin);
     tn = _mm256_max_ps(tn, _mm256_mul_ps(_mm256_sub_ps(nearPlane, r.oNear[a]), r.inv[a]));
-    tf = _mm256_min_ps(tf, _mm256_mul_ps(_mm256_sub_ps(farPlane, r.oFar[a]), r.inv[a]));
+    const __m256 tfa = _mm256_mul_ps(_mm256_sub_ps(farPlane, r.oFar[a]), r.inv[a]);
+    tf = a == 0 ? tfa : _mm256_min_ps(tf, tfa); // min(+inf, x) is x: the SSE form's bits
   }
-  tf = _mm256_add_ps(_mm256_mul_ps(tf, _mm256_set1_ps(ConservativeRay4::kFarScale)),
-    _mm256_set1_ps(ConservativeRay4::kTiny));
+  tf = _mm256_add_ps(_mm256_mul_ps(tf, r.farScale), r.tiny);
   tf = _mm256_min_ps(tf, _mm256_set1_ps(tmaxScaled));
   _mm256_storeu_ps(tnear, tn);
   return _mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OS)) & b.valid;
