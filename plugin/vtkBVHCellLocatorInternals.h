@@ -1147,10 +1147,11 @@ private:
   {
     if (Mode == 0)
     {
-      core::ConservativeRay4 fray;
-      if (fray.init(ray, triPre ? *triPre : core::RayTrianglePrecomputed<double>(ray), tol, this->Extent))
+      const int walked =
+        this->ClosestHitWide(ray, triPre ? *triPre : core::RayTrianglePrecomputed<double>(ray), tol, isect, hit);
+      if (walked >= 0)
       {
-        return this->ClosestHitWide(fray, ray, tol, isect, hit);
+        return walked != 0;
       }
     }
     // Axis-parallel or extreme segments, and every hit: the core's double
@@ -1173,17 +1174,24 @@ private:
   /// leaf's triangles (tol 0) eight per AVX2 step where the CPU has it,
   /// else four per SSE step, so that only triangles the exact double test
   /// might accept reach it.
+  /// Returns 1 (hit), 0 (none), or -1 when the float walk cannot take the
+  /// segment (ConservativeRay4::init refuses it: the caller walks in double).
   template <class Isect>
-  bool ClosestHitWide(const core::ConservativeRay4& fray, const core::Ray<double>& ray, double tol,
-    Isect& isect, core::Hit<double>& hit) const
+  int ClosestHitWide(const core::Ray<double>& ray, const core::RayTrianglePrecomputed<double>& triPre,
+    double tol, Isect& isect, core::Hit<double>& hit) const
   {
 #if VTKRT_CORE_AVX2
     if (core::useAvx2())
     {
-      return this->ClosestHitWideAvx2(fray, ray, tol, isect, hit);
+      return this->ClosestHitWideAvx2(ray, triPre, tol, isect, hit);
     }
 #endif
-    return this->WalkWide<SseKernels>(fray, ray, tol, isect, hit);
+    core::ConservativeRay4 fray;
+    if (!fray.init(ray, triPre, tol, this->Extent))
+    {
+      return -1;
+    }
+    return this->WalkWide<SseKernels>(fray, ray, tol, isect, hit) ? 1 : 0;
   }
 
   /// The float pre-tests of the walk, four lanes a step (SSE, or plain
@@ -1216,13 +1224,19 @@ private:
     }
   };
 
-  /// The walk compiled for AVX2 (WalkWide is inlined here, with the
-  /// caller's exact test): only called when the CPU has it.
+  /// The ray's float constants and the walk compiled for AVX2 (WalkWide is
+  /// inlined here, with the caller's exact test): only called when the CPU
+  /// has it. ClosestHitWide's return values.
   template <class Isect>
-  VTKRT_TARGET_AVX2 bool ClosestHitWideAvx2(const core::ConservativeRay4& fray, const core::Ray<double>& ray,
-    double tol, Isect& isect, core::Hit<double>& hit) const
+  VTKRT_TARGET_AVX2 int ClosestHitWideAvx2(const core::Ray<double>& ray,
+    const core::RayTrianglePrecomputed<double>& triPre, double tol, Isect& isect, core::Hit<double>& hit) const
   {
-    return this->WalkWide<Avx2Kernels>(fray, ray, tol, isect, hit);
+    core::ConservativeRay4 fray;
+    if (!fray.initAvx2(ray, triPre, tol, this->Extent))
+    {
+      return -1;
+    }
+    return this->WalkWide<Avx2Kernels>(fray, ray, tol, isect, hit) ? 1 : 0;
   }
 #endif
 

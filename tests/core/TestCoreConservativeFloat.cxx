@@ -20,6 +20,10 @@
 
 #include "vtkrt/core/ConservativeFloat.h"
 
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
 using namespace vtkrt::core;
 using namespace vtkrt::test;
 
@@ -405,10 +409,73 @@ void quantizedExtremes()
   std::printf("quantized boxes: %d packs at offsets 0..1e15, sizes 1e-6..1e3\n", packs);
 }
 
+/// ConservativeRay4::initAvx2 fills the same fields as init, bit for bit,
+/// and refuses the same rays: random directions and origins over many
+/// scales, exact floats, signed zeros, axis-parallel, subnormal and huge
+/// components, growths and extents.
+void initForms()
+{
+#if VTKRT_CORE_AVX2
+  if (!useAvx2())
+  {
+    std::printf("init forms: no AVX2 here, skipped\n");
+    return;
+  }
+  Rng rng(77);
+  const double specials[] = { 0.0, -0.0, 1.0, -1.0, 0.5, 1e-300, -1e-310, 1e-45, 3e38, -1e17, 1e18,
+    0x1p-149, 16777217.0, -0.1, 1e8 + 0.3 };
+  auto component = [&](int kind) {
+    switch (kind % 4)
+    {
+      case 0:
+        return specials[rng.index(sizeof specials / sizeof specials[0])];
+      case 1:
+        return static_cast<double>(static_cast<float>(rng.uniform(-10, 10))); // an exact float
+      default:
+        return rng.uniform(-1, 1) * std::pow(10.0, rng.uniform(-30, 20));
+    }
+  };
+  int compared = 0, refused = 0;
+  for (int i = 0; i < 200000; ++i)
+  {
+    Ray<double> ray;
+    for (int a = 0; a < 3; ++a)
+    {
+      ray.org[a] = component(static_cast<int>(rng.index(4)));
+      ray.dir[a] = component(static_cast<int>(rng.index(4)));
+    }
+    ray.tmin = rng.index(4) == 0 ? rng.uniform(0, 1) : 0.0;
+    ray.tmax = 1.0;
+    if (!ray.isValid())
+    {
+      continue;
+    }
+    const double grow = rng.index(3) == 0 ? rng.uniform(0, 1e-3) : 0.0;
+    const double extent = std::pow(10.0, rng.uniform(-6, 18));
+    const RayTrianglePrecomputed<double> pre(ray);
+    ConservativeRay4 a, b;
+    std::memset(&a, 0, sizeof a);
+    std::memset(&b, 0, sizeof b);
+    const bool okA = a.init(ray, pre, grow, extent);
+    const bool okB = b.initAvx2(ray, pre, grow, extent);
+    VTKRT_CHECK(okA == okB);
+    if (okA && okB)
+    {
+      ++compared;
+      VTKRT_CHECK(std::memcmp(&a, &b, sizeof a) == 0);
+    }
+    refused += okA ? 0 : 1;
+  }
+  VTKRT_CHECK(compared > 50000 && refused > 1000);
+  std::printf("init forms: %d rays the same bit for bit, %d refused by both\n", compared, refused);
+#endif
+}
+
 } // namespace
 
 int main()
 {
+  initForms();
   roundingHelpers();
   quantizedExtremes();
   checkCounts("triangles", triangles);

@@ -394,6 +394,15 @@ struct ConservativeRay4
     return true;
   }
 
+#if VTKRT_CORE_AVX2
+  /// init() with the three axes in one AVX step each: the same operations
+  /// in the same order as init()'s loop, lane by lane (no FMA), so the same
+  /// fields, bit for bit (TestCoreConservativeFloat compares them). Only
+  /// where the CPU has AVX2 (useAvx2()).
+  VTKRT_TARGET_AVX2 bool initAvx2(
+    const Ray<double>& ray, const RayTrianglePrecomputed<double>& tri, double grow, double extent);
+#endif
+
   /// The rows of the direction's sign bits (bit a: dir[a] < 0), one table
   /// copy instead of five integer formulas per axis.
   void setSignRows(int signs)
@@ -438,6 +447,86 @@ struct ConservativeRay4
     return static_cast<float>(tmax) * (kFarScale * (1.0f + 0x1p-22f)) + kTiny;
   }
 };
+
+#if VTKRT_CORE_AVX2
+namespace detail
+{
+/// ceilFloat of four doubles: the nearest float, one step up where it lies
+/// below (through the float's bits, as stepUp).
+VTKRT_TARGET_AVX2 inline __m128 ceilFloat4(__m256d x)
+{
+  const __m128 f = _mm_add_ps(_mm256_cvtpd_ps(x), _mm_setzero_ps()); // -0 -> +0
+  const __m256d below = _mm256_cmp_pd(_mm256_cvtps_pd(f), x, _CMP_LT_OQ);
+  // The low half of each 64-bit mask: a 32-bit mask a lane.
+  const __m128i step = _mm256_castsi256_si128(
+    _mm256_permutevar8x32_epi32(_mm256_castpd_si256(below), _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7)));
+  const __m128i u = _mm_castps_si128(f);
+  const __m128i dir = _mm_or_si128(_mm_srai_epi32(u, 31), _mm_set1_epi32(1));
+  return _mm_castsi128_ps(_mm_add_epi32(u, _mm_and_si128(step, dir)));
+}
+} // namespace detail
+
+VTKRT_TARGET_AVX2 inline bool ConservativeRay4::initAvx2(
+  const Ray<double>& ray, const RayTrianglePrecomputed<double>& tri, double grow, double extent)
+{
+  if (_mm_getcsr() & 0x8040u) // FTZ or DAZ: underflow is not gradual
+  {
+    return false;
+  }
+  const double oMax = std::max(std::abs(ray.org.x), std::max(std::abs(ray.org.y), std::abs(ray.org.z)));
+  const double Q = extent + oMax;
+  if (!(Q <= 1e17) || !(grow >= 0.0) || !(grow <= 1e17) || !(ray.tmin >= 0.0) || !(ray.tmin <= 1e30))
+  {
+    return false;
+  }
+  // Lane 3 is padding: direction 1, origin 0.
+  const __m256d d = _mm256_setr_pd(ray.dir.x, ray.dir.y, ray.dir.z, 1.0);
+  const __m256d o = _mm256_setr_pd(ray.org.x, ray.org.y, ray.org.z, 0.0);
+  const __m256d absMask = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffLL));
+  const __m128 absMaskF = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+  const __m256d eps = _mm256_set1_pd(std::numeric_limits<double>::epsilon());
+  const __m128 invF = _mm256_cvtpd_ps(_mm256_div_pd(_mm256_set1_pd(1.0), d));
+  const __m128 absInv = _mm_and_ps(invF, absMaskF);
+  const int usable = _mm_movemask_ps(_mm_and_ps(_mm_cmple_ps(absInv, _mm_set1_ps(std::numeric_limits<float>::max())),
+                       _mm_cmpge_ps(absInv, _mm_set1_ps(0x1p-100f)))) &
+    ~_mm256_movemask_pd(_mm256_cmp_pd(d, _mm256_setzero_pd(), _CMP_EQ_OQ));
+  if ((usable & 7) != 7)
+  {
+    return false;
+  }
+  const __m128 of = _mm256_cvtpd_ps(o);
+  const __m256d ofD = _mm256_cvtps_pd(of);
+  const __m256d mExact = _mm256_add_pd(_mm256_and_pd(_mm256_sub_pd(o, ofD), absMask), _mm256_set1_pd(grow));
+  const __m256d m = _mm256_add_pd(mExact, _mm256_mul_pd(mExact, eps));
+  const __m256d up = _mm256_add_pd(ofD, m), down = _mm256_sub_pd(ofD, m);
+  const __m128 oLo = detail::ceilFloat4(_mm256_add_pd(up, _mm256_mul_pd(_mm256_and_pd(up, absMask), eps)));
+  // floorFloat(x) = -ceilFloat(-x)
+  const __m256d negDown = _mm256_sub_pd(_mm256_mul_pd(_mm256_and_pd(down, absMask), eps), down);
+  const __m128 signF = _mm_set1_ps(-0.0f);
+  const __m128 oHi = _mm_xor_ps(detail::ceilFloat4(negDown), signF);
+  const __m256d negD = _mm256_cmp_pd(d, _mm256_setzero_pd(), _CMP_LT_OQ);
+  const __m128 neg = _mm_castsi128_ps(_mm256_castsi256_si128(
+    _mm256_permutevar8x32_epi32(_mm256_castpd_si256(negD), _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7))));
+  alignas(16) float lanes[4][4];
+  _mm_store_ps(lanes[0], invF);
+  _mm_store_ps(lanes[1], of);
+  _mm_store_ps(lanes[2], _mm_blendv_ps(oLo, oHi, neg));
+  _mm_store_ps(lanes[3], _mm_blendv_ps(oHi, oLo, neg));
+  std::memcpy(inv, lanes[0], sizeof inv);
+  std::memcpy(org, lanes[1], sizeof org);
+  std::memcpy(oNear, lanes[2], sizeof oNear);
+  std::memcpy(oFar, lanes[3], sizeof oFar);
+  setSignRows(_mm_movemask_ps(neg) & 7);
+  tmin = detail::floorFloat(ray.tmin);
+  kx = tri.kx;
+  ky = tri.ky;
+  kz = tri.kz;
+  sx = static_cast<float>(tri.sx);
+  sy = static_cast<float>(tri.sy);
+  E = detail::ceilFloat(16.0 * 0x1p-24 * Q * (1.0 + 1e-6));
+  return true;
+}
+#endif
 
 #if VTKRT_CORE_SSE
 namespace detail
