@@ -56,6 +56,7 @@ namespace vtkrt
 {
 namespace locator
 {
+
 using Vec3d = core::Vec3<double>;
 using Box = core::AABB<double>;
 
@@ -1208,6 +1209,11 @@ private:
     {
       return core::triangleCandidates4(r, tri, n);
     }
+    static void PrefetchChildren(
+      const WideNode& w, std::uintptr_t nodeBase, std::uintptr_t leafBase, std::uintptr_t leafStride)
+    {
+      BVHCellLocatorData::PrefetchChildren(w, nodeBase, leafBase, leafStride);
+    }
   };
 #if VTKRT_CORE_AVX2
   struct Avx2Kernels
@@ -1221,6 +1227,32 @@ private:
     VTKRT_TARGET_AVX2 static int Triangles(const core::ConservativeRay4& r, const float* tri, int n)
     {
       return core::triangleCandidates8(r, tri, n);
+    }
+    /// PrefetchChildren's eight addresses in two AVX2 steps.
+    VTKRT_TARGET_AVX2 static void PrefetchChildren(
+      const WideNode& w, std::uintptr_t nodeBase, std::uintptr_t leafBase, std::uintptr_t leafStride)
+    {
+      static_assert(sizeof(WideNode) == 128, "a child node's offset is its index shifted by 7");
+      const __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(w.child));
+      const __m256i interior =
+        _mm256_cmpeq_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(w.count)), _mm256_setzero_si256());
+      alignas(32) std::uint64_t address[kWideArity];
+      for (int half = 0; half < 2; ++half)
+      {
+        const __m256i c = _mm256_cvtepu32_epi64(
+          half ? _mm256_extracti128_si256(child, 1) : _mm256_castsi256_si128(child));
+        const __m256i isNode = _mm256_cvtepi32_epi64(
+          half ? _mm256_extracti128_si256(interior, 1) : _mm256_castsi256_si128(interior));
+        const __m256i node = _mm256_add_epi64(_mm256_set1_epi64x(static_cast<long long>(nodeBase)), _mm256_slli_epi64(c, 7));
+        const __m256i leaf = _mm256_add_epi64(_mm256_set1_epi64x(static_cast<long long>(leafBase)),
+          _mm256_mul_epu32(c, _mm256_set1_epi64x(static_cast<long long>(leafStride))));
+        _mm256_store_si256(reinterpret_cast<__m256i*>(address + 4 * half), _mm256_blendv_epi8(leaf, node, isNode));
+      }
+      for (const std::uint64_t p : address)
+      {
+        _mm_prefetch(reinterpret_cast<const char*>(p), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(p + 64), _MM_HINT_T0);
+      }
     }
   };
 
@@ -1251,12 +1283,24 @@ private:
     // under construction then: not read); otherwise through its primIndex.
     const std::uint32_t* primIndex = allTriangles ? nullptr : this->Tree.primIndex.data();
     const bool preTest = tol == 0.0; // the float triangle test knows no tolerance
+    // Picking data larger than a core's L2 cache: below the top levels, a
+    // node's children are fetched while its boxes are tested, so that the
+    // step to the next node or leaf seldom waits on memory (1M triangles:
+    // 13-16% quicker a pick, interleaved against the walk without it; below
+    // the size, the fetches only cost: 7,000 triangles 13% slower).
+    const bool prefetchChildren = nTri + this->GenCell.size() >= kPrefetchChildrenMinPrimitives;
+    // A leaf slot leads to its float triangles (all triangles) or to its
+    // primIndex entries.
+    const std::uintptr_t leafBase = allTriangles ? reinterpret_cast<std::uintptr_t>(this->TrianglesF.data())
+                                                 : reinterpret_cast<std::uintptr_t>(primIndex);
+    const std::uintptr_t leafStride = allTriangles ? 9 * sizeof(float) : sizeof(std::uint32_t);
     struct Entry
     {
       const WideNode* Nodes; ///< the node array Ref indexes (interior children)
       std::uint32_t Ref;
       std::uint32_t Count; ///< > 0: a leaf (Ref = first primIndex slot); kWideSubtree: not built yet
       float Dist;
+      std::uint32_t Depth; ///< wide levels below the root
     };
     // Each wide level pushes at most kWideArity - 1 entries; there are at
     // most kMaxDepth levels.
@@ -1346,7 +1390,7 @@ private:
 #endif
     };
     const typename Kernels::BoxRay boxRay(fray);
-    Entry cur{ this->PickingRoot(), 0, 0, 0.0f };
+    Entry cur{ this->PickingRoot(), 0, 0, 0.0f, 0 };
     for (;;)
     {
       if (cur.Count == core::kWideSubtree)
@@ -1354,11 +1398,15 @@ private:
         // A bucket of the fast build that no query has reached yet: built
         // now (once; thread-safe), then walked as if it had been there.
         const LazyPickingTree::Subtree sub = this->Lazy->subtree(cur.Ref);
-        cur = { sub.nodes, sub.child, sub.count, cur.Dist };
+        cur = { sub.nodes, sub.child, sub.count, cur.Dist, cur.Depth };
       }
       if (cur.Count == 0)
       {
         const WideNode& w = cur.Nodes[cur.Ref];
+        if (prefetchChildren && cur.Depth >= kPrefetchChildrenDepth)
+        {
+          Kernels::PrefetchChildren(w, reinterpret_cast<std::uintptr_t>(cur.Nodes), leafBase, leafStride);
+        }
         alignas(32) float tnear[kWideArity];
         int mask = Kernels::Boxes(boxRay, w, tmaxF, tnear);
         if (mask)
@@ -1368,13 +1416,13 @@ private:
           // their first loads started now.
           int i = CountTrailingZeros(static_cast<unsigned>(mask));
           mask &= mask - 1;
-          Entry nearest{ cur.Nodes, w.child[i], w.count[i], tnear[i] };
+          Entry nearest{ cur.Nodes, w.child[i], w.count[i], tnear[i], cur.Depth + 1 };
           const std::uint32_t base = sp;
           while (mask)
           {
             i = CountTrailingZeros(static_cast<unsigned>(mask));
             mask &= mask - 1;
-            Entry c{ cur.Nodes, w.child[i], w.count[i], tnear[i] };
+            Entry c{ cur.Nodes, w.child[i], w.count[i], tnear[i], cur.Depth + 1 };
             if (c.Dist < nearest.Dist)
             {
               std::swap(c, nearest);
@@ -1420,6 +1468,37 @@ private:
         cur = stack[--sp];
       } while (cur.Dist > tmaxF);
     }
+  }
+
+  /// The walk fetches children ahead (PrefetchChildren) for trees over this
+  /// many primitives, below this many wide levels: the first three levels
+  /// and their children (8^3 nodes, 64 KiB) stay in L2 anyway.
+  static constexpr std::size_t kPrefetchChildrenMinPrimitives = 32768;
+  static constexpr std::uint32_t kPrefetchChildrenDepth = 3;
+
+  /// Starts the loads of node w's children: both lines of each child node,
+  /// the first two lines of each leaf's slots (leafBase + slot * leafStride).
+  /// Without branches: an unused slot fetches node 0 of the array, a slot
+  /// built on demand some line of the leaf data, both harmless. Addresses
+  /// are integers: a prefetch never faults, and no pointer is formed out of
+  /// its array.
+  static void PrefetchChildren(
+    const WideNode& w, std::uintptr_t nodeBase, std::uintptr_t leafBase, std::uintptr_t leafStride)
+  {
+#if VTKRT_CORE_SSE
+    for (int i = 0; i < kWideArity; ++i)
+    {
+      const std::uintptr_t c = w.child[i];
+      const std::uintptr_t p = w.count[i] == 0 ? nodeBase + c * sizeof(WideNode) : leafBase + c * leafStride;
+      _mm_prefetch(reinterpret_cast<const char*>(p), _MM_HINT_T0);
+      _mm_prefetch(reinterpret_cast<const char*>(p + 64), _MM_HINT_T0);
+    }
+#else
+    (void)w;
+    (void)nodeBase;
+    (void)leafBase;
+    (void)leafStride;
+#endif
   }
 
 #if VTKRT_CORE_SSE

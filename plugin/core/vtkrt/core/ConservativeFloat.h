@@ -189,7 +189,8 @@ constexpr Pow2Table makePow2Table()
   t.v[255] = up; // 2^127
   return t;
 }
-alignas(64) inline constexpr Pow2Table kPow2 = makePow2Table();
+// Internal linkage: read RIP-relative, not through a shared library's GOT.
+alignas(64) static constexpr Pow2Table kPow2 = makePow2Table();
 } // namespace detail
 
 /// Eight boxes on a per-axis grid, a byte a plane: half the bytes of a
