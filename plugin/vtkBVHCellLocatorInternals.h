@@ -37,11 +37,16 @@
 #endif
 
 #include <algorithm>
+#if defined(__linux__)
+#include <sys/mman.h> // madvise
+#endif
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <memory>
+#include <new>
 #include <mutex>
 #include <utility>
 #include <vector>
@@ -57,13 +62,14 @@ namespace vtkrt
 namespace locator
 {
 
+
 using Vec3d = core::Vec3<double>;
 using Box = core::AABB<double>;
 
 /// std::allocator whose resize() leaves new elements default-initialized
 /// (no zero fill): the per-triangle arrays are written element by element
 /// right after, and a first pick should not wait for a memset of them
-/// (60 MB at 1M triangles).
+/// (60 MB at 1M triangles). Large arrays get a huge page hint (allocate()).
 template <class T>
 struct NoFillAllocator : std::allocator<T>
 {
@@ -87,6 +93,40 @@ struct NoFillAllocator : std::allocator<T>
   {
     ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
+  /// Arrays of several MiB go on 2 MiB boundaries with a transparent huge
+  /// page hint (Linux; as Embree does for its BVH): a pick reads them at
+  /// random, and with 4 KiB pages nearly every such read also missed the
+  /// TLB (1M triangles: picks 3-5% quicker with the hint, same locator and
+  /// rays in one process, rounds alternating). Only a hint: memory is the
+  /// same, and elsewhere or with THP off this is plain malloc.
+  T* allocate(std::size_t n)
+  {
+    if (n > std::numeric_limits<std::size_t>::max() / sizeof(T))
+    {
+      throw std::bad_alloc();
+    }
+    const std::size_t bytes = n * sizeof(T);
+    void* p = nullptr;
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    constexpr std::size_t kHugePage = std::size_t(2) << 20;
+    if (bytes >= 2 * kHugePage)
+    {
+      if (posix_memalign(&p, kHugePage, bytes) != 0)
+      {
+        throw std::bad_alloc();
+      }
+      madvise(p, bytes, MADV_HUGEPAGE);
+      return static_cast<T*>(p);
+    }
+#endif
+    p = std::malloc(bytes ? bytes : 1);
+    if (!p)
+    {
+      throw std::bad_alloc();
+    }
+    return static_cast<T*>(p);
+  }
+  void deallocate(T* p, std::size_t) noexcept { std::free(p); }
 };
 /// A per-triangle array (see NoFillAllocator).
 template <class T>
