@@ -780,8 +780,7 @@ public:
     const core::RayTrianglePrecomputed<double> triPre(ray);
     const vtkIdType nTri = this->NumberOfTriangles();
     vtkIdType bestCell = -1;
-    LineHit general;
-    bool generalBest = false;
+    bool generalBest = false; ///< out holds a general cell's hit (a triangle's is filled after the walk)
 
     // Ties (same t) go to the lowest cell id, so the answer does not depend
     // on the traversal order.
@@ -820,14 +819,16 @@ public:
       hit.t = t;
       bestCell = cellId;
       generalBest = true;
-      general.T = t;
-      general.SubId = sub;
-      general.CellId = cellId;
+      out.T = t;
+      out.SubId = sub;
+      out.CellId = cellId;
       for (int k = 0; k < 3; ++k)
       {
-        general.X[k] = x[k];
-        general.PCoords[k] = pc[k];
+        out.X[k] = x[k];
+        out.PCoords[k] = pc[k];
       }
+      out.NeedsEvaluate = false;
+      out.TrianglePointIds = nullptr;
       return true;
     };
     core::Hit<double> hit;
@@ -837,8 +838,6 @@ public:
     }
     if (generalBest)
     {
-      out = general;
-      out.NeedsEvaluate = false;
       return true;
     }
     const std::uint32_t prim = hit.prim;

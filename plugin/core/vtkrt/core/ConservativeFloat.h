@@ -327,9 +327,7 @@ struct ConservativeRay4
     int nearRow[3], farRow[3]; ///< float offsets of the near / far plane rows in a BoxPack4
     int qNear[3], qFar[3];     ///< byte offsets of the near / far plane rows in a QuantizedBoxPack8's q
   };
-  int nearHi[3];
-  int nearRow[3], farRow[3];
-  int qNear[3], qFar[3];
+  SignRows rows;
   float tmin;
   // Triangles: the float origin, the shear of the double test, the
   // coordinate error bound E.
@@ -404,37 +402,9 @@ struct ConservativeRay4
     const Ray<double>& ray, const RayTrianglePrecomputed<double>& tri, double grow, double extent);
 #endif
 
-  /// The rows of the direction's sign bits (bit a: dir[a] < 0), one table
-  /// copy instead of five integer formulas per axis.
-  void setSignRows(int signs)
-  {
-    static_assert(sizeof(SignRows) == 15 * sizeof(int), "five rows of three");
-    static const auto table = [] {
-      struct Table
-      {
-        SignRows rows[8];
-      } t;
-      for (int b = 0; b < 8; ++b)
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          const int hi = b >> a & 1;
-          t.rows[b].nearHi[a] = hi;
-          t.rows[b].nearRow[a] = 12 * hi + 4 * a;
-          t.rows[b].farRow[a] = 12 * (1 - hi) + 4 * a;
-          t.rows[b].qNear[a] = 8 * (3 * hi + a);
-          t.rows[b].qFar[a] = 8 * (3 * (1 - hi) + a);
-        }
-      }
-      return t;
-    }();
-    const SignRows& r = table.rows[signs];
-    std::memcpy(nearHi, r.nearHi, sizeof nearHi);
-    std::memcpy(nearRow, r.nearRow, sizeof nearRow);
-    std::memcpy(farRow, r.farRow, sizeof farRow);
-    std::memcpy(qNear, r.qNear, sizeof qNear);
-    std::memcpy(qFar, r.qFar, sizeof qFar);
-  }
+  /// The rows of the direction's sign bits (bit a: dir[a] < 0): one copy
+  /// from a table made at compile time (kSignRows).
+  void setSignRows(int signs);
 
   /// The float bound to compare box entry distances with, for a double tmax.
   static float scaledTmax(double tmax)
@@ -448,6 +418,39 @@ struct ConservativeRay4
     return static_cast<float>(tmax) * (kFarScale * (1.0f + 0x1p-22f)) + kTiny;
   }
 };
+
+namespace detail
+{
+struct SignRowsTable
+{
+  ConservativeRay4::SignRows rows[8];
+};
+constexpr SignRowsTable makeSignRows()
+{
+  SignRowsTable t{};
+  for (int b = 0; b < 8; ++b)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      const int hi = b >> a & 1;
+      t.rows[b].nearHi[a] = hi;
+      t.rows[b].nearRow[a] = 12 * hi + 4 * a;
+      t.rows[b].farRow[a] = 12 * (1 - hi) + 4 * a;
+      t.rows[b].qNear[a] = 8 * (3 * hi + a);
+      t.rows[b].qFar[a] = 8 * (3 * (1 - hi) + a);
+    }
+  }
+  return t;
+}
+/// ConservativeRay4::SignRows of each sign pattern (internal linkage: no
+/// guard, no GOT).
+static constexpr SignRowsTable kSignRows = makeSignRows();
+} // namespace detail
+
+inline void ConservativeRay4::setSignRows(int signs)
+{
+  rows = detail::kSignRows.rows[signs];
+}
 
 #if VTKRT_CORE_AVX2
 namespace detail
@@ -554,10 +557,10 @@ struct ConservativeBoxRay4
       oNear[a] = _mm_set1_ps(r.oNear[a]);
       oFar[a] = _mm_set1_ps(r.oFar[a]);
       inv[a] = _mm_set1_ps(r.inv[a]);
-      nearRow[a] = r.nearRow[a];
-      farRow[a] = r.farRow[a];
-      qNear[a] = r.qNear[a];
-      qFar[a] = r.qFar[a];
+      nearRow[a] = r.rows.nearRow[a];
+      farRow[a] = r.rows.farRow[a];
+      qNear[a] = r.rows.qNear[a];
+      qFar[a] = r.rows.qFar[a];
     }
     tmin = _mm_set1_ps(r.tmin);
     farScale = _mm_set1_ps(ConservativeRay4::kFarScale);
@@ -743,8 +746,8 @@ inline int intersectBoxesScalar(const ConservativeRay4& r, const BoxPack<N>& b, 
     float tn = r.tmin, tf = std::numeric_limits<float>::infinity();
     for (int a = 0; a < 3; ++a)
     {
-      tn = std::max(tn, (rows[r.nearHi[a]][a][i] - r.oNear[a]) * r.inv[a]);
-      tf = std::min(tf, (rows[1 - r.nearHi[a]][a][i] - r.oFar[a]) * r.inv[a]);
+      tn = std::max(tn, (rows[r.rows.nearHi[a]][a][i] - r.oNear[a]) * r.inv[a]);
+      tf = std::min(tf, (rows[1 - r.rows.nearHi[a]][a][i] - r.oFar[a]) * r.inv[a]);
     }
     tf = std::min(tf * ConservativeRay4::kFarScale + ConservativeRay4::kTiny, tmaxScaled);
     tnear[i] = tn;
@@ -837,8 +840,8 @@ struct ConservativeBoxRay8
       oNear[a] = _mm256_set1_ps(r.oNear[a]);
       oFar[a] = _mm256_set1_ps(r.oFar[a]);
       inv[a] = _mm256_set1_ps(r.inv[a]);
-      qNear[a] = r.qNear[a];
-      qFar[a] = r.qFar[a];
+      qNear[a] = r.rows.qNear[a];
+      qFar[a] = r.rows.qFar[a];
     }
     tmin = _mm256_set1_ps(r.tmin);
     farScale = _mm256_set1_ps(ConservativeRay4::kFarScale);
