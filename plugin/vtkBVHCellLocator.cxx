@@ -361,7 +361,9 @@ int vtkBVHCellLocator::IntersectWithLine(const double p1[3], const double p2[3],
   double& t, double x[3], double pcoords[3], int& subId, vtkIdType& cellId, vtkGenericCell* cell)
 {
   cellId = -1;
-  if (!this->PrepareQuery() || !IsFinite3(p1) || !IsFinite3(p2) || !std::isfinite(tol))
+  // Non-finite endpoints make an invalid segment, which ClosestHit refuses
+  // (no separate test on the picking path).
+  if (!this->PrepareQuery() || !std::isfinite(tol))
   {
     return 0;
   }
