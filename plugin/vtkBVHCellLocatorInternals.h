@@ -62,7 +62,6 @@ namespace vtkrt
 namespace locator
 {
 
-
 using Vec3d = core::Vec3<double>;
 using Box = core::AABB<double>;
 
