@@ -69,17 +69,17 @@ using Box = core::AABB<double>;
 /// (no zero fill): the per-triangle arrays are written element by element
 /// right after, and a first pick should not wait for a memset of them
 /// (60 MB at 1M triangles). Large arrays get a huge page hint (allocate()).
-template <class T>
+template <class T, bool HugePageHint = true>
 struct NoFillAllocator : std::allocator<T>
 {
   template <class U>
   struct rebind
   {
-    using other = NoFillAllocator<U>;
+    using other = NoFillAllocator<U, HugePageHint>;
   };
   NoFillAllocator() = default;
   template <class U>
-  NoFillAllocator(const NoFillAllocator<U>&) noexcept
+  NoFillAllocator(const NoFillAllocator<U, HugePageHint>&) noexcept
   {
   }
   template <class U>
@@ -108,7 +108,7 @@ struct NoFillAllocator : std::allocator<T>
     void* p = nullptr;
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     constexpr std::size_t kHugePage = std::size_t(2) << 20;
-    if (bytes >= 2 * kHugePage)
+    if (HugePageHint && bytes >= 2 * kHugePage)
     {
       if (posix_memalign(&p, kHugePage, bytes) != 0)
       {
@@ -127,9 +127,13 @@ struct NoFillAllocator : std::allocator<T>
   }
   void deallocate(T* p, std::size_t) noexcept { std::free(p); }
 };
-/// A per-triangle array (see NoFillAllocator).
+/// A per-triangle array that picks read at random (see NoFillAllocator).
 template <class T>
 using TriangleArray = std::vector<T, NoFillAllocator<T>>;
+/// A per-triangle array of the build, written and read in order: no huge
+/// page hint (faulting huge pages in costs a first pick time for nothing).
+template <class T>
+using ExtractionArray = std::vector<T, NoFillAllocator<T, false>>;
 
 /// One segment/cell intersection, in world coordinates.
 struct LineHit
@@ -179,7 +183,7 @@ public:
   /// (double ones are read in place, DataSetCoords): fast path only.
   std::vector<Vec3d> PointsCopy;
   vtkIdType NumberOfPoints = 0;
-  TriangleArray<std::uint32_t> TriVerts;   ///< 3 point ids per triangle, extraction order (until placed)
+  ExtractionArray<std::uint32_t> TriVerts;   ///< 3 point ids per triangle, extraction order (until placed)
   TriangleArray<vtkIdType> SrcCell;        ///< TriCell, TriSub, TriFlags in extraction order (until placed)
   TriangleArray<std::int32_t> SrcSub;
   TriangleArray<std::uint8_t> SrcFlags;
@@ -462,7 +466,7 @@ public:
   /// Every triangle placed: the extraction-order arrays can go.
   void DropExtractionArrays()
   {
-    TriangleArray<std::uint32_t>().swap(this->TriVerts);
+    ExtractionArray<std::uint32_t>().swap(this->TriVerts);
     TriangleArray<vtkIdType>().swap(this->SrcCell);
     TriangleArray<std::int32_t>().swap(this->SrcSub);
     TriangleArray<std::uint8_t>().swap(this->SrcFlags);
