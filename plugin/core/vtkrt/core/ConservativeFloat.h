@@ -346,15 +346,8 @@ struct ConservativeRay4
   /// a precondition fails: use the double tests for this ray.
   bool init(const Ray<double>& ray, const RayTrianglePrecomputed<double>& tri, double grow, double extent)
   {
-#if VTKRT_CORE_SSE
-    if (_mm_getcsr() & 0x8040u) // FTZ or DAZ: underflow is not gradual
-    {
-      return false;
-    }
-#endif
-    const double oMax = std::max(std::abs(ray.org.x), std::max(std::abs(ray.org.y), std::abs(ray.org.z)));
-    const double Q = extent + oMax;
-    if (!(Q <= 1e17) || !(grow >= 0.0) || !(grow <= 1e17) || !(ray.tmin >= 0.0) || !(ray.tmin <= 1e30))
+    double Q;
+    if (!usable(ray, grow, extent, Q))
     {
       return false;
     }
@@ -383,6 +376,27 @@ struct ConservativeRay4
       oFar[a] = d < 0.0 ? oLo : oHi;
     }
     setSignRows(signs);
+    setScalars(ray, tri, Q);
+    return true;
+  }
+
+  /// init's preconditions (the file's header); Q = extent + |origin|inf.
+  static bool usable(const Ray<double>& ray, double grow, double extent, double& Q)
+  {
+#if VTKRT_CORE_SSE
+    if (_mm_getcsr() & 0x8040u) // FTZ or DAZ: underflow is not gradual
+    {
+      return false;
+    }
+#endif
+    const double oMax = std::max(std::abs(ray.org.x), std::max(std::abs(ray.org.y), std::abs(ray.org.z)));
+    Q = extent + oMax;
+    return Q <= 1e17 && grow >= 0.0 && grow <= 1e17 && ray.tmin >= 0.0 && ray.tmin <= 1e30;
+  }
+
+  /// The constants that are no per-axis work: tmin, the shear, E.
+  void setScalars(const Ray<double>& ray, const RayTrianglePrecomputed<double>& tri, double Q)
+  {
     tmin = detail::floorFloat(ray.tmin);
     kx = tri.kx;
     ky = tri.ky;
@@ -390,7 +404,6 @@ struct ConservativeRay4
     sx = static_cast<float>(tri.sx);
     sy = static_cast<float>(tri.sy);
     E = detail::ceilFloat(16.0 * 0x1p-24 * Q * (1.0 + 1e-6));
-    return true;
   }
 
 #if VTKRT_CORE_AVX2
@@ -473,13 +486,8 @@ VTKRT_TARGET_AVX2 inline __m128 ceilFloat4(__m256d x)
 VTKRT_TARGET_AVX2 inline bool ConservativeRay4::initAvx2(
   const Ray<double>& ray, const RayTrianglePrecomputed<double>& tri, double grow, double extent)
 {
-  if (_mm_getcsr() & 0x8040u) // FTZ or DAZ: underflow is not gradual
-  {
-    return false;
-  }
-  const double oMax = std::max(std::abs(ray.org.x), std::max(std::abs(ray.org.y), std::abs(ray.org.z)));
-  const double Q = extent + oMax;
-  if (!(Q <= 1e17) || !(grow >= 0.0) || !(grow <= 1e17) || !(ray.tmin >= 0.0) || !(ray.tmin <= 1e30))
+  double Q;
+  if (!usable(ray, grow, extent, Q))
   {
     return false;
   }
@@ -521,13 +529,7 @@ VTKRT_TARGET_AVX2 inline bool ConservativeRay4::initAvx2(
   std::memcpy(oNear, lanes[2], sizeof oNear);
   std::memcpy(oFar, lanes[3], sizeof oFar);
   setSignRows(_mm_movemask_ps(neg) & 7);
-  tmin = detail::floorFloat(ray.tmin);
-  kx = tri.kx;
-  ky = tri.ky;
-  kz = tri.kz;
-  sx = static_cast<float>(tri.sx);
-  sy = static_cast<float>(tri.sy);
-  E = detail::ceilFloat(16.0 * 0x1p-24 * Q * (1.0 + 1e-6));
+  setScalars(ray, tri, Q);
   return true;
 }
 #endif
