@@ -14,6 +14,7 @@ int TestRobustDegenerateCells();
 int TestRobustBadInput();
 int TestRobustRebuild();
 int TestRobustThreads();
+int TestRobustLargeMesh();
 int TestPickerTriangles();
 int TestPickerQuads();
 
@@ -30,6 +31,7 @@ int main(int argc, char* argv[])
     { "ExtremeCoordinates", TestRobustExtremeCoordinates },
     { "DegenerateCells", TestRobustDegenerateCells }, { "BadInput", TestRobustBadInput },
     { "Rebuild", TestRobustRebuild }, { "Threads", TestRobustThreads },
+    { "LargeMesh", TestRobustLargeMesh },
     { "PickerTriangles", TestPickerTriangles }, { "PickerQuads", TestPickerQuads } };
   if (argc < 2)
   {
