@@ -374,6 +374,32 @@ inline std::map<vtkIdType, double> BruteForceAllHits(
   return hits;
 }
 
+/// The cell holds cell cellId's point ids and exact coordinates.
+inline bool SameCellPoints(vtkDataSet* ds, vtkIdType cellId, vtkGenericCell* cell)
+{
+  vtkNew<vtkIdList> ids;
+  ds->GetCellPoints(cellId, ids);
+  if (ids->GetNumberOfIds() != cell->GetNumberOfPoints())
+  {
+    return false;
+  }
+  for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
+  {
+    if (ids->GetId(i) != cell->GetPointId(i))
+    {
+      return false;
+    }
+    double p[3], q[3];
+    ds->GetPoint(ids->GetId(i), p);
+    cell->GetPoints()->GetPoint(i, q);
+    if (p[0] != q[0] || p[1] != q[1] || p[2] != q[2])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 /// Squared distance from x to cell c (its EvaluatePosition).
 inline double DistanceToCell2(vtkDataSet* ds, vtkIdType c, const double x[3])
 {

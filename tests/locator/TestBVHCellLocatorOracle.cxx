@@ -27,32 +27,6 @@ double SegLength(const Segment& s)
   return std::sqrt(vtkMath::Distance2BetweenPoints(s.P1, s.P2));
 }
 
-/// The cell holds cell cellId's point ids and exact coordinates.
-bool SameCellPoints(vtkDataSet* ds, vtkIdType cellId, vtkGenericCell* cell)
-{
-  vtkNew<vtkIdList> ids;
-  ds->GetCellPoints(cellId, ids);
-  if (ids->GetNumberOfIds() != cell->GetNumberOfPoints())
-  {
-    return false;
-  }
-  for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
-  {
-    if (ids->GetId(i) != cell->GetPointId(i))
-    {
-      return false;
-    }
-    double p[3], q[3];
-    ds->GetPoint(ids->GetId(i), p);
-    cell->GetPoints()->GetPoint(i, q);
-    if (p[0] != q[0] || p[1] != q[1] || p[2] != q[2])
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
 /// For a segment aimed exactly at a vertex or edge: whether the surface is
 /// really crossed there (not just touched at a silhouette): four segments
 /// offset sideways by 1e-7 of the diagonal all hit near the same t.

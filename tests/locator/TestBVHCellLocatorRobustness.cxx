@@ -4,7 +4,6 @@
 #include "LocatorTestUtils.h"
 #include "vtkBVHCellLocator.h"
 #include "vtkDoubleArray.h"
-#include "vtkIdList.h"
 #include "vtkMath.h"
 #include "vtkPointData.h"
 
@@ -482,16 +481,7 @@ int TestRobustLargeMesh()
     const double len = std::sqrt(vtkMath::Distance2BetweenPoints(s.P1, s.P2));
     LT_CHECK(std::abs(t - ref.T) * len <= 1e-9 * diag);
     LT_CHECK(cellId == ref.CellId || DistanceToCell2(pd, ref.CellId, x) <= 1e-16 * diag * diag);
-    vtkNew<vtkIdList> ids;
-    pd->GetCellPoints(cellId, ids);
-    LT_CHECK(cell->GetNumberOfPoints() == 3 && ids->GetNumberOfIds() == 3);
-    for (vtkIdType k = 0; k < 3 && k < cell->GetNumberOfPoints(); ++k)
-    {
-      double p[3], q[3];
-      pd->GetPoint(ids->GetId(k), p);
-      cell->GetPoints()->GetPoint(k, q);
-      LT_CHECK(cell->GetPointId(k) == ids->GetId(k) && p[0] == q[0] && p[1] == q[1] && p[2] == q[2]);
-    }
+    LT_CHECK(SameCellPoints(pd, cellId, cell));
     const Answer w = Query(whole, s.P1, s.P2, cell);
     LT_CHECK(w.Hit == 1 && w.T == t && w.CellId == cellId);
   }

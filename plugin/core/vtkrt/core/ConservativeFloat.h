@@ -212,7 +212,6 @@ struct alignas(64) QuantizedBoxPack8
   /// The grid step of axis a (a normal float: exp >= -126).
   float step(int a) const { return detail::kPow2.v[exp[a] + 128]; }
 
-
   /// Lane i's decoded box (exact floats), for lanes in `valid`.
   void lane(int i, float lo[3], float hi[3]) const
   {
@@ -468,15 +467,19 @@ inline void ConservativeRay4::setSignRows(int signs)
 #if VTKRT_CORE_AVX2
 namespace detail
 {
+/// Four 64-bit lane masks as four 32-bit ones (the low half of each).
+VTKRT_TARGET_AVX2 inline __m128i narrowMask(__m256d mask)
+{
+  return _mm256_castsi256_si128(
+    _mm256_permutevar8x32_epi32(_mm256_castpd_si256(mask), _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7)));
+}
+
 /// ceilFloat of four doubles: the nearest float, one step up where it lies
 /// below (through the float's bits, as stepUp).
 VTKRT_TARGET_AVX2 inline __m128 ceilFloat4(__m256d x)
 {
   const __m128 f = _mm_add_ps(_mm256_cvtpd_ps(x), _mm_setzero_ps()); // -0 -> +0
-  const __m256d below = _mm256_cmp_pd(_mm256_cvtps_pd(f), x, _CMP_LT_OQ);
-  // The low half of each 64-bit mask: a 32-bit mask a lane.
-  const __m128i step = _mm256_castsi256_si128(
-    _mm256_permutevar8x32_epi32(_mm256_castpd_si256(below), _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7)));
+  const __m128i step = narrowMask(_mm256_cmp_pd(_mm256_cvtps_pd(f), x, _CMP_LT_OQ));
   const __m128i u = _mm_castps_si128(f);
   const __m128i dir = _mm_or_si128(_mm_srai_epi32(u, 31), _mm_set1_epi32(1));
   return _mm_castsi128_ps(_mm_add_epi32(u, _mm_and_si128(step, dir)));
@@ -516,9 +519,7 @@ VTKRT_TARGET_AVX2 inline bool ConservativeRay4::initAvx2(
   const __m256d negDown = _mm256_sub_pd(_mm256_mul_pd(_mm256_and_pd(down, absMask), eps), down);
   const __m128 signF = _mm_set1_ps(-0.0f);
   const __m128 oHi = _mm_xor_ps(detail::ceilFloat4(negDown), signF);
-  const __m256d negD = _mm256_cmp_pd(d, _mm256_setzero_pd(), _CMP_LT_OQ);
-  const __m128 neg = _mm_castsi128_ps(_mm256_castsi256_si128(
-    _mm256_permutevar8x32_epi32(_mm256_castpd_si256(negD), _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7))));
+  const __m128 neg = _mm_castsi128_ps(detail::narrowMask(_mm256_cmp_pd(d, _mm256_setzero_pd(), _CMP_LT_OQ)));
   alignas(16) float lanes[4][4];
   _mm_store_ps(lanes[0], invF);
   _mm_store_ps(lanes[1], of);
@@ -548,7 +549,6 @@ inline __m128 abs4(__m128 x)
 struct ConservativeBoxRay4
 {
   __m128 oNear[3], oFar[3], inv[3], tmin;
-  __m128 farScale, tiny; ///< ConservativeRay4::kFarScale, kTiny
   int nearRow[3], farRow[3];
   int qNear[3], qFar[3]; ///< byte offsets of the near / far plane rows in a QuantizedBoxPack8's q
 
@@ -565,8 +565,6 @@ struct ConservativeBoxRay4
       qFar[a] = r.rows.qFar[a];
     }
     tmin = _mm_set1_ps(r.tmin);
-    farScale = _mm_set1_ps(ConservativeRay4::kFarScale);
-    tiny = _mm_set1_ps(ConservativeRay4::kTiny);
   }
 };
 
@@ -586,7 +584,8 @@ inline int slabLanes4(const ConservativeBoxRay4& r, PlanesFn&& planes, float tma
     tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(nearPlane, r.oNear[a]), r.inv[a]));
     tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(farPlane, r.oFar[a]), r.inv[a]));
   }
-  tf = _mm_add_ps(_mm_mul_ps(tf, r.farScale), r.tiny);
+  tf = _mm_add_ps(_mm_mul_ps(tf, _mm_set1_ps(ConservativeRay4::kFarScale)),
+    _mm_set1_ps(ConservativeRay4::kTiny));
   tf = _mm_min_ps(tf, _mm_set1_ps(tmaxScaled));
   _mm_storeu_ps(tnear, tn);
   return _mm_movemask_ps(_mm_cmple_ps(tn, tf));
@@ -832,7 +831,6 @@ inline int triangleCandidates4(const ConservativeRay4& r, const float* tri, int 
 struct ConservativeBoxRay8
 {
   __m256 oNear[3], oFar[3], inv[3], tmin;
-  __m256 farScale, tiny; ///< ConservativeRay4::kFarScale, kTiny
   int qNear[3], qFar[3]; ///< byte offsets of the rows in a QuantizedBoxPack8's q
 
   VTKRT_TARGET_AVX2 explicit ConservativeBoxRay8(const ConservativeRay4& r)
@@ -846,8 +844,6 @@ struct ConservativeBoxRay8
       qFar[a] = r.rows.qFar[a];
     }
     tmin = _mm256_set1_ps(r.tmin);
-    farScale = _mm256_set1_ps(ConservativeRay4::kFarScale);
-    tiny = _mm256_set1_ps(ConservativeRay4::kTiny);
   }
 };
 
@@ -857,20 +853,19 @@ VTKRT_TARGET_AVX2 inline int intersectBoxes8(const ConservativeBoxRay8& r, const
 {
   const std::uint8_t* q = &b.q[0][0];
   __m256 tn = r.tmin;
-  __m256 tf;
+  __m256 tf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
   for (int a = 0; a < 3; ++a)
   {
-    const __m256 origin = _mm256_broadcast_ss(&b.origin[a]);
-    const __m256 step = _mm256_broadcast_ss(&detail::kPow2.v[b.exp[a] + 128]);
+    const __m256 origin = _mm256_set1_ps(b.origin[a]), step = _mm256_set1_ps(b.step(a));
     const __m256 nearPlane = _mm256_add_ps(_mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(
       _mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + r.qNear[a])))), step), origin);
     const __m256 farPlane = _mm256_add_ps(_mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(
       _mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + r.qFar[a])))), step), origin);
     tn = _mm256_max_ps(tn, _mm256_mul_ps(_mm256_sub_ps(nearPlane, r.oNear[a]), r.inv[a]));
-    const __m256 tfa = _mm256_mul_ps(_mm256_sub_ps(farPlane, r.oFar[a]), r.inv[a]);
-    tf = a == 0 ? tfa : _mm256_min_ps(tf, tfa); // min(+inf, x) is x: the SSE form's bits
+    tf = _mm256_min_ps(tf, _mm256_mul_ps(_mm256_sub_ps(farPlane, r.oFar[a]), r.inv[a]));
   }
-  tf = _mm256_add_ps(_mm256_mul_ps(tf, r.farScale), r.tiny);
+  tf = _mm256_add_ps(_mm256_mul_ps(tf, _mm256_set1_ps(ConservativeRay4::kFarScale)),
+    _mm256_set1_ps(ConservativeRay4::kTiny));
   tf = _mm256_min_ps(tf, _mm256_set1_ps(tmaxScaled));
   _mm256_storeu_ps(tnear, tn);
   return _mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OS)) & b.valid;
