@@ -19,12 +19,14 @@
 // ordered traversal that pushes the far child and descends into the near one
 // holds at most kMaxDepth entries (one per level of the current path):
 // kMaxStackSize (64) > kMaxDepth (48) can never overflow.
-// GPU copy: packNodesForGpu() writes 8 floats per node (RGBA32F texels lo,
-// hi), boxes rounded OUTWARD and expressed relative to a local origin.
+// GPU copy: packGpuNodes() writes one gpu::Node (GpuLayout.h: two RGBA32UI
+// texels, float boxes as bits) per node, boxes rounded OUTWARD and expressed
+// relative to a local origin.
 #ifndef vtkrt_core_BVH_h
 #define vtkrt_core_BVH_h
 
 #include "vtkrt/core/AABB.h"
+#include "vtkrt/core/GpuLayout.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -158,29 +160,43 @@ inline float relativeUpper(double x, double origin)
 }
 } // namespace detail
 
-/// Float GPU copy of the nodes, 8 floats per node (see the layout above),
-/// boxes relative to `origin` (use the same origin for the vertices, see
-/// LocalFrame.h) and rounded outward so float traversal never misses what
-/// double traversal would hit. Ready for glBufferData into an RGBA32F
-/// texture buffer (2 texels per node). Triangle vertices rounded to nearest
-/// float always lie inside these boxes; a sphere whose float center and
-/// radius both round outward can poke out by about one float ulp (a
-/// sub-ulp silhouette difference, no missing geometry).
-inline std::vector<float> packNodesForGpu(
+/// Float GPU copy of the nodes (gpu::Node, see GpuLayout.h), boxes relative
+/// to `origin` (use the same origin for the vertices, see LocalFrame.h) and
+/// rounded outward so float traversal never misses what double traversal
+/// would hit. Triangle vertices rounded to nearest float always lie inside
+/// these boxes; a sphere whose float center and radius both round outward
+/// can poke out by about one float ulp (a sub-ulp silhouette difference, no
+/// missing geometry).
+inline std::vector<gpu::Node> packGpuNodes(
   const std::vector<BVHNode>& nodes, const Vec3<double>& origin = Vec3<double>(0.0))
 {
-  std::vector<float> out(nodes.size() * 8);
+  std::vector<gpu::Node> out(nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i)
   {
     const BVHNode& n = nodes[i];
-    float* o = out.data() + 8 * i;
+    gpu::Node& o = out[i];
     for (int k = 0; k < 3; ++k)
     {
-      o[k] = detail::relativeLower(n.min[k], origin[k]);
-      o[4 + k] = detail::relativeUpper(n.max[k], origin[k]);
+      o.lo[k] = detail::relativeLower(n.min[k], origin[k]);
+      o.hi[k] = detail::relativeUpper(n.max[k], origin[k]);
     }
-    o[3] = uintBitsToFloat(n.index);
-    o[7] = uintBitsToFloat(n.count);
+    o.index = n.index;
+    o.count = n.count;
+  }
+  return out;
+}
+
+/// The same nodes as 8 floats each (lo.xyz, bits(index), hi.xyz,
+/// bits(count)): the view the float CPU traversal and the tests read.
+inline std::vector<float> packNodesForGpu(
+  const std::vector<BVHNode>& nodes, const Vec3<double>& origin = Vec3<double>(0.0))
+{
+  const std::vector<gpu::Node> packed = packGpuNodes(nodes, origin);
+  std::vector<float> out(packed.size() * 8);
+  static_assert(sizeof(gpu::Node) == 8 * sizeof(float), "a node is 8 floats");
+  if (!packed.empty())
+  {
+    std::memcpy(out.data(), packed.data(), packed.size() * sizeof(gpu::Node));
   }
   return out;
 }

@@ -14,7 +14,11 @@
 //   BVH.h        the flattened layout (read its header comment: the GPU walks
 //                it as is), BVHNode, BVH{nodes, primIndex, stats},
 //                BuildQuality/BuildOptions/BuildStats, kMaxDepth, kMaxStackSize,
-//                packNodesForGpu(bvh, origin) -> 8 floats per node
+//                packGpuNodes(bvh.nodes, origin) -> gpu::Node per node
+//                (packNodesForGpu: the same as 8 floats per node)
+//   GpuLayout.h  the records the GPU reads (gpu::Node, Triangle, Sphere,
+//                Ellipsoid, InstanceRecord, Light, flags) and glslLayout(),
+//                the GLSL generated from them
 //   BVHBuild.h   buildBVH(vector<AABB<double>>, options): generic builder
 //                (Fast = LBVH, Medium = binned SAH, High = sweep SAH);
 //                refit(bvh, boundsOf) after primitives moved
@@ -38,9 +42,10 @@
 //     -> hit.prim (triangle id), hit.t, hit.u, hit.v
 // Typical use (GPU upload):
 //   Vec3<double> o = localOrigin(mesh.vertices, mesh.vertexCount);
-//   std::vector<float> nodes = packNodesForGpu(bvh, o);      // RGBA32F, 2 texels/node
+//   std::vector<gpu::Node> nodes = packGpuNodes(bvh.nodes, o); // RGBA32UI, 2 texels/node
 //   std::vector<float> verts = relativeFloatVertices(mesh.vertices, n, o);
-//   primIndex: bvh.primIndex (uint32) -> R32UI texture buffer
+//   primitives are stored in leaf order (bvh.primIndex[k] is the original
+//   id of slot k), so the GPU needs no index buffer
 // Threads: builds are deterministic whatever BuildOptions::numThreads; all
 // queries are const on the tree, but intersector objects cache per-ray data:
 // give each thread its own.
@@ -52,6 +57,7 @@
 #include "vtkrt/core/BVHBuild.h"
 #include "vtkrt/core/BVHTraversal.h"
 #include "vtkrt/core/LocalFrame.h"
+#include "vtkrt/core/GpuLayout.h"
 #include "vtkrt/core/Math.h"
 #include "vtkrt/core/Mesh.h"
 #include "vtkrt/core/Plane.h"

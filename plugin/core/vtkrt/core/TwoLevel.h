@@ -11,6 +11,9 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 namespace vtkrt::core
 {
 
@@ -151,6 +154,48 @@ private:
   std::vector<glm::dmat4> WorldToObject;
   BVH Top;
 };
+
+/// The GPU's top level: a BVH over the instances' world boxes, its nodes
+/// relative to `anchor` (the ray origin is moved there in double on the
+/// CPU), and the instance of each leaf slot (records go in that order, so
+/// leaves index them directly).
+struct GpuTopLevel
+{
+  std::vector<gpu::Node> nodes;
+  std::vector<std::uint32_t> order;
+  Vec3<double> anchor{ 0.0 };
+};
+
+/// Builds the GPU top level over `worldBoxes`. The boxes are padded for the
+/// float rounding of the anchor-relative ray origin, a millionth of the
+/// root's extent.
+inline GpuTopLevel buildGpuTopLevel(const std::vector<AABB<double>>& worldBoxes)
+{
+  GpuTopLevel top;
+  const BVH bvh = buildBVH(worldBoxes);
+  top.anchor = bvh.bounds().center();
+  top.nodes = packGpuNodes(bvh.nodes, top.anchor);
+  top.order = bvh.primIndex;
+  if (top.nodes.empty())
+  {
+    return top;
+  }
+  float extent = 0.0f;
+  for (int k = 0; k < 3; ++k)
+  {
+    extent = std::max({ extent, std::abs(top.nodes[0].lo[k]), std::abs(top.nodes[0].hi[k]) });
+  }
+  const float pad = 1e-6f * extent;
+  for (gpu::Node& n : top.nodes)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      n.lo[c] -= pad;
+      n.hi[c] += pad;
+    }
+  }
+  return top;
+}
 
 } // namespace vtkrt::core
 

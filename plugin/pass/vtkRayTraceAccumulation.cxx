@@ -1,0 +1,131 @@
+#include "vtkRayTraceAccumulation.h"
+
+#include "vtkRayTraceShader.h"
+
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+
+namespace vtkrt
+{
+namespace pass
+{
+
+Accumulation::Accumulation() = default;
+Accumulation::~Accumulation() = default;
+
+int Accumulation::BeginFrame()
+{
+  const int before = this->Frames;
+  this->Frames = 0;
+  return before;
+}
+
+void Accumulation::Allocate(vtkOpenGLRenderWindow* win, int width, int height)
+{
+  vtkOpenGLState* ostate = win->GetState();
+  this->Color->SetContext(win);
+  this->Color->Allocate2D(width, height, 4, VTK_FLOAT);
+  this->Depth->SetContext(win);
+  this->Depth->AllocateDepth(width, height, vtkTextureObject::Float32);
+  this->FBO->SetContext(win);
+  ostate->PushFramebufferBindings();
+  this->FBO->Bind();
+  this->FBO->AddColorAttachment(0, this->Color);
+  this->FBO->AddDepthAttachment(this->Depth);
+  ostate->PopFramebufferBindings();
+  this->Size[0] = width;
+  this->Size[1] = height;
+}
+
+void Accumulation::Trace(vtkOpenGLRenderWindow* win, vtkRenderer* ren, vtkOpenGLQuadHelper* tracer,
+  std::vector<float> signature, bool restart, int framesBefore, int samplesPerPixel)
+{
+  vtkOpenGLState* ostate = win->GetState();
+  int width = 0, height = 0, originX = 0, originY = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);
+  width = std::max(width, 1);
+  height = std::max(height, 1);
+  const bool resized = width != this->Size[0] || height != this->Size[1];
+  restart = restart || resized || framesBefore == 0 || signature != this->Signature;
+  if (resized)
+  {
+    this->Allocate(win, width, height);
+  }
+  this->Frames = restart ? 1 : framesBefore + 1;
+  this->Signature.swap(signature);
+
+  ostate->PushFramebufferBindings();
+  this->FBO->Bind();
+  this->FBO->ActivateDrawBuffers(1);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
+  ostate->vtkglViewport(0, 0, width, height);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
+  if (restart)
+  {
+    vtkOpenGLState::ScopedglClearColor clearColor(ostate);
+    ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+    ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  }
+  // The depth is the first frame's; later frames only add colors.
+  ostate->vtkglDepthMask(restart ? GL_TRUE : GL_FALSE);
+  ostate->vtkglEnable(GL_BLEND);
+  ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+  vtkShaderProgram* program = tracer->Program;
+  program->SetUniformi("uFirstSample", (this->Frames - 1) * samplesPerPixel);
+  const float pixelSize[2] = { 2.0f / width, 2.0f / height };
+  program->SetUniform2f("uPixelSize", pixelSize);
+  tracer->Render();
+  ostate->PopFramebufferBindings();
+}
+
+bool Accumulation::Resolve(vtkOpenGLRenderWindow* win, int samplesPerPixel, FrameCounters& counters)
+{
+  if (!ReadyQuadProgram(win, this->ResolveProgram, ResolveShaderSource(), counters))
+  {
+    return false;
+  }
+  vtkOpenGLState* ostate = win->GetState();
+  vtkShaderProgram* resolve = this->ResolveProgram->Program;
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglEnable(GL_BLEND);
+  ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  this->Color->Activate();
+  this->Depth->Activate();
+  resolve->SetUniformi("uAccumulation", this->Color->GetTextureUnit());
+  resolve->SetUniformi("uAccumulationDepth", this->Depth->GetTextureUnit());
+  resolve->SetUniformf(
+    "uInverseSamples", 1.0f / static_cast<float>(this->Frames * samplesPerPixel));
+  this->ResolveProgram->Render();
+  this->Color->Deactivate();
+  this->Depth->Deactivate();
+  return true;
+}
+
+void Accumulation::Release(vtkWindow* w)
+{
+  if (this->ResolveProgram)
+  {
+    this->ResolveProgram->ReleaseGraphicsResources(w);
+    this->ResolveProgram.reset();
+  }
+  this->FBO->ReleaseGraphicsResources(w);
+  this->Color->ReleaseGraphicsResources(w);
+  this->Depth->ReleaseGraphicsResources(w);
+  this->Size[0] = this->Size[1] = 0;
+  this->Signature.clear();
+  this->Frames = 0;
+}
+
+} // namespace pass
+} // namespace vtkrt

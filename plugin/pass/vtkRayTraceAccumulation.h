@@ -1,0 +1,70 @@
+// Private to vtkRayTracePass: sub-pixel sampling and progressive
+// accumulation. The tracer adds each frame's samples into a float buffer
+// (sum of hit colors, hit count) with the first frame's depth; the resolve
+// draws their average, blended by coverage over the background. Any change
+// of what the image is traced from restarts the sum.
+#ifndef vtkRayTraceAccumulation_h
+#define vtkRayTraceAccumulation_h
+
+#include "vtkRayTraceTypes.h"
+
+#include "vtkNew.h"
+
+#include <memory>
+#include <vector>
+
+class vtkOpenGLFramebufferObject;
+class vtkOpenGLQuadHelper;
+class vtkOpenGLRenderWindow;
+class vtkRenderer;
+class vtkTextureObject;
+class vtkWindow;
+
+namespace vtkrt
+{
+namespace pass
+{
+
+class Accumulation
+{
+public:
+  Accumulation();
+  ~Accumulation();
+
+  /// Starts a frame: the frames accumulated so far, the count then 0 until
+  /// Trace() says otherwise.
+  int BeginFrame();
+
+  /// Traces `samplesPerPixel` rays per pixel with `tracer` (current, its
+  /// samplers bound) into the buffer. It restarts when `restart`, when the
+  /// viewport was resized, when nothing was accumulated before
+  /// (`framesBefore` 0) or when `signature` (what the image is traced from)
+  /// changed; else it continues the sample sequence.
+  void Trace(vtkOpenGLRenderWindow* win, vtkRenderer* ren, vtkOpenGLQuadHelper* tracer,
+    std::vector<float> signature, bool restart, int framesBefore, int samplesPerPixel);
+
+  /// Draws the average into the bound framebuffer; false when the resolve
+  /// shader does not compile.
+  bool Resolve(vtkOpenGLRenderWindow* win, int samplesPerPixel, FrameCounters& counters);
+
+  /// Frames averaged into the last image (0: the pass drew straight).
+  int GetFrames() const { return this->Frames; }
+
+  void Release(vtkWindow* w);
+
+private:
+  void Allocate(vtkOpenGLRenderWindow* win, int width, int height);
+
+  vtkNew<vtkOpenGLFramebufferObject> FBO;
+  vtkNew<vtkTextureObject> Color;
+  vtkNew<vtkTextureObject> Depth;
+  std::unique_ptr<vtkOpenGLQuadHelper> ResolveProgram;
+  int Size[2] = { 0, 0 };
+  std::vector<float> Signature;
+  int Frames = 0;
+};
+
+} // namespace pass
+} // namespace vtkrt
+
+#endif

@@ -1,0 +1,77 @@
+// Private to vtkRayTracePass: the GPU copies of the packed scene, one
+// RGBA32UI texture buffer each (read by usamplerBuffer), uploaded only when
+// what they hold changed, within the texel limit.
+#ifndef vtkRayTraceBuffers_h
+#define vtkRayTraceBuffers_h
+
+#include "vtkNew.h"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+class vtkOpenGLBufferObject;
+class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
+class vtkTextureObject;
+class vtkWindow;
+
+namespace vtkrt
+{
+namespace pass
+{
+struct PackedColors;
+struct PackedGeometry;
+
+/// One texture buffer of 16-byte texels.
+class TextureBuffer
+{
+public:
+  TextureBuffer();
+  ~TextureBuffer();
+  TextureBuffer(const TextureBuffer&) = delete;
+  TextureBuffer& operator=(const TextureBuffer&) = delete;
+
+  /// Uploads `texels` texels (an empty array gets one zero texel so the
+  /// sampler is always complete). Returns the bytes uploaded.
+  std::size_t Upload(vtkOpenGLRenderWindow* win, const void* data, std::size_t texels);
+  template <class Record>
+  std::size_t Upload(vtkOpenGLRenderWindow* win, const std::vector<Record>& records)
+  {
+    return this->Upload(win, records.data(), records.size() * sizeof(Record) / 16);
+  }
+  void Release(vtkWindow* w);
+  std::size_t GetTexels() const { return this->Texels; }
+  vtkTextureObject* GetTexture() const { return this->Texture; }
+
+private:
+  vtkOpenGLBufferObject* Buffer;
+  vtkTextureObject* Texture;
+  std::size_t Texels = 0;
+};
+
+/// The scene's buffers, named as the shader's samplers.
+class SceneBuffers
+{
+public:
+  TextureBuffer Nodes, Triangles, TriangleVertices, Spheres, SphereIds, Normals, Colors, Instances,
+    TopNodes;
+
+  /// Uploads the packed geometry when it fits `limit` texels per buffer;
+  /// otherwise `error` says which is too large and nothing is uploaded.
+  /// Returns the bytes uploaded.
+  std::size_t UploadGeometry(vtkOpenGLRenderWindow* win, const PackedGeometry& packed,
+    std::size_t limit, bool& fits, std::string& error);
+  std::size_t UploadColors(vtkOpenGLRenderWindow* win, const PackedColors& packed,
+    std::size_t limit, bool& fits, std::string& error);
+
+  /// Activates the textures of the samplers `program` uses and points them
+  /// at their units; returns the textures to deactivate after drawing.
+  std::vector<vtkTextureObject*> Bind(vtkShaderProgram* program);
+  void Release(vtkWindow* w);
+};
+
+} // namespace pass
+} // namespace vtkrt
+
+#endif

@@ -1,0 +1,277 @@
+#include "vtkRayTraceGeometry.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkDataArray.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include "vtkrt/core/BVHBuild.h"
+#include "vtkrt/core/LocalFrame.h"
+#include "vtkrt/core/Mesh.h"
+
+#include <limits>
+#include <optional>
+
+namespace vtkrt
+{
+namespace pass
+{
+
+using core::Vec3;
+
+namespace
+{
+/// Takes a freshly built BVH into `g`: its skipped-primitive count and, when
+/// it is not empty, the local origin (the center of what is traced: NaN
+/// primitives are not in the tree), the bounds relative to it and the GPU
+/// nodes. Returns the origin, or nothing for an empty tree.
+std::optional<Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh)
+{
+  g.SkippedPrimitives = bvh.stats.skippedPrimitives;
+  if (bvh.empty())
+  {
+    return std::nullopt;
+  }
+  const core::AABB<double> b = bvh.bounds();
+  const Vec3<double> origin = b.center();
+  g.Origin = { { origin.x, origin.y, origin.z } };
+  for (int k = 0; k < 3; ++k)
+  {
+    g.LocalBounds[2 * k] = b.min[k] - g.Origin[k];
+    g.LocalBounds[2 * k + 1] = b.max[k] - g.Origin[k];
+  }
+  g.Nodes = core::packGpuNodes(bvh.nodes, origin);
+  return origin;
+}
+
+/// The fan triangulation of polys and the triangles of strips, as point id
+/// triples with their VTK cell ids.
+void triangulate(vtkPolyData* poly, std::vector<std::uint32_t>& indices, std::vector<std::uint32_t>& cellIds)
+{
+  vtkIdType cellId = poly->GetNumberOfVerts() + poly->GetNumberOfLines();
+  vtkIdType npts;
+  const vtkIdType* pts;
+  auto polys = vtk::TakeSmartPointer(poly->GetPolys()->NewIterator());
+  for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell(), ++cellId)
+  {
+    polys->GetCurrentCell(npts, pts);
+    for (vtkIdType k = 1; k + 1 < npts; ++k)
+    {
+      indices.insert(indices.end(), { std::uint32_t(pts[0]), std::uint32_t(pts[k]), std::uint32_t(pts[k + 1]) });
+      cellIds.push_back(std::uint32_t(cellId));
+    }
+  }
+  auto strips = vtk::TakeSmartPointer(poly->GetStrips()->NewIterator());
+  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell(), ++cellId)
+  {
+    strips->GetCurrentCell(npts, pts);
+    for (vtkIdType i = 0; i + 2 < npts; ++i)
+    {
+      indices.insert(indices.end(),
+        { std::uint32_t(pts[i]), std::uint32_t(pts[i + 1 + i % 2]), std::uint32_t(pts[i + 1 + (i + 1) % 2]) });
+      cellIds.push_back(std::uint32_t(cellId));
+    }
+  }
+}
+
+/// The data's point normals, when there is one per point.
+void readNormals(vtkPolyData* poly, std::size_t pointCount, std::vector<core::gpu::Normal>& out)
+{
+  vtkDataArray* normals = poly->GetPointData()->GetNormals();
+  if (!normals || normals->GetNumberOfComponents() != 3 ||
+    normals->GetNumberOfTuples() != static_cast<vtkIdType>(pointCount))
+  {
+    return;
+  }
+  out.resize(pointCount);
+  double nv[3];
+  for (std::size_t i = 0; i < pointCount; ++i)
+  {
+    normals->GetTuple(static_cast<vtkIdType>(i), nv);
+    out[i] = { { static_cast<float>(nv[0]), static_cast<float>(nv[1]), static_cast<float>(nv[2]) }, 0.0f };
+  }
+}
+} // namespace
+
+void ReadPoints(vtkPoints* pts, std::vector<Vec3<double>>& out)
+{
+  const vtkIdType n = pts ? pts->GetNumberOfPoints() : 0;
+  out.resize(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    pts->GetPoint(i, &out[static_cast<std::size_t>(i)].x);
+  }
+}
+
+std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOptions& options)
+{
+  auto g = std::make_unique<Geometry>();
+  std::vector<Vec3<double>> points;
+  ReadPoints(poly->GetPoints(), points);
+  std::vector<std::uint32_t> indices;
+  std::vector<std::uint32_t> cellIds;
+  triangulate(poly, indices, cellIds);
+
+  core::TriangleMesh<double> mesh(points, indices);
+  core::BVH bvh = core::buildTriangleBVH(mesh, options);
+  g->Spheres = false;
+  g->VertexCount = points.size();
+  const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh);
+  if (!adopted)
+  {
+    return g;
+  }
+  const std::vector<Vec3<float>> rel = core::relativeFloatPoints(points.data(), points.size(), *adopted);
+  const std::size_t n = bvh.primIndex.size();
+  g->PrimitiveCount = n;
+  g->Triangles.resize(n);
+  g->TriangleVertices.resize(n);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const std::uint32_t tri = bvh.primIndex[k];
+    core::gpu::Triangle& t = g->Triangles[k];
+    float* corners[3] = { t.v0, t.v1, t.v2 };
+    for (int v = 0; v < 3; ++v)
+    {
+      const std::uint32_t vi = indices[3 * tri + v];
+      corners[v][0] = rel[vi].x;
+      corners[v][1] = rel[vi].y;
+      corners[v][2] = rel[vi].z;
+      g->TriangleVertices[k].ids[v] = vi;
+    }
+    t.cellId = cellIds[tri];
+    t.unused1 = t.unused2 = 0.0f;
+    g->TriangleVertices[k].unused = 0;
+  }
+  readNormals(poly, points.size(), g->Normals);
+  return g;
+}
+
+std::unique_ptr<Geometry> BuildSpheres(const std::vector<Vec3<double>>& centers,
+  const std::vector<double>& radii, const std::vector<std::uint32_t>& ids,
+  const core::BuildOptions& options)
+{
+  auto g = std::make_unique<Geometry>();
+  g->Spheres = true;
+  core::SphereSet<double> set(centers, radii);
+  core::BVH bvh = core::buildSphereBVH(set, options);
+  const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh);
+  if (!adopted)
+  {
+    return g;
+  }
+  const Vec3<double> origin = *adopted;
+  const std::size_t n = bvh.primIndex.size();
+  g->PrimitiveCount = n;
+  g->SphereRecords.resize(n);
+  g->SphereIds.resize(n);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const std::uint32_t s = bvh.primIndex[k];
+    const Vec3<double> c = centers[s] - origin;
+    g->SphereRecords[k] = { { static_cast<float>(c.x), static_cast<float>(c.y), static_cast<float>(c.z) },
+      static_cast<float>(radii[s]) };
+    g->SphereIds[k] = ids[s];
+  }
+  return g;
+}
+
+std::unique_ptr<Geometry> BuildScreenSpheres(
+  vtkPolyData* poly, bool everyCellPoint, const core::BuildOptions& options)
+{
+  std::vector<Vec3<double>> all;
+  ReadPoints(poly->GetPoints(), all);
+  std::vector<char> used(all.size(), 0);
+  vtkIdType npts;
+  const vtkIdType* pts;
+  auto mark = [&](vtkCellArray* cells) {
+    auto it = vtk::TakeSmartPointer(cells->NewIterator());
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+    {
+      it->GetCurrentCell(npts, pts);
+      for (vtkIdType k = 0; k < npts; ++k)
+      {
+        if (pts[k] >= 0 && static_cast<std::size_t>(pts[k]) < used.size())
+        {
+          used[static_cast<std::size_t>(pts[k])] = 1;
+        }
+      }
+    }
+  };
+  mark(poly->GetVerts());
+  if (everyCellPoint)
+  {
+    mark(poly->GetPolys());
+    mark(poly->GetStrips());
+    mark(poly->GetLines());
+  }
+  std::vector<Vec3<double>> centers;
+  std::vector<std::uint32_t> ids;
+  for (std::size_t i = 0; i < all.size(); ++i)
+  {
+    if (used[i])
+    {
+      centers.push_back(all[i]);
+      ids.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  // Bare centers: the smallest radius the builder accepts (boxes of
+  // points); the shader adds each frame's radius.
+  const std::vector<double> radii(centers.size(), std::numeric_limits<double>::min());
+  std::unique_ptr<Geometry> g = BuildSpheres(centers, radii, ids, options);
+  g->ScreenSized = true;
+  for (core::gpu::Sphere& s : g->SphereRecords)
+  {
+    s.radius = 0.0f;
+  }
+  return g;
+}
+
+std::unique_ptr<Geometry> BuildEllipsoids(const std::vector<std::array<double, 12>>& maps,
+  const std::vector<core::AABB<double>>& boxes, const std::vector<std::uint32_t>& ids,
+  const core::BuildOptions& options)
+{
+  auto g = std::make_unique<Geometry>();
+  g->Spheres = true;
+  g->Ellipsoids = true;
+  core::BVH bvh = core::buildBVH(boxes, options);
+  const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh);
+  if (!adopted)
+  {
+    return g;
+  }
+  const Vec3<double> origin = *adopted;
+  // Leaves index texels of the sphere buffer: three per ellipsoid.
+  for (core::gpu::Node& node : g->Nodes)
+  {
+    if (node.count > 0)
+    {
+      node.index *= core::gpu::kEllipsoidTexels;
+    }
+  }
+  const std::size_t n = bvh.primIndex.size();
+  g->PrimitiveCount = n;
+  g->EllipsoidRecords.resize(n);
+  g->SphereIds.resize(core::gpu::kEllipsoidTexels * n);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const std::array<double, 12>& m = maps[bvh.primIndex[k]];
+    core::gpu::Ellipsoid& e = g->EllipsoidRecords[k];
+    for (int r = 0; r < 3; ++r)
+    {
+      e.rows[r][0] = static_cast<float>(m[4 * r + 0]);
+      e.rows[r][1] = static_cast<float>(m[4 * r + 1]);
+      e.rows[r][2] = static_cast<float>(m[4 * r + 2]);
+      e.rows[r][3] = static_cast<float>(m[4 * r + 3] + m[4 * r + 0] * origin.x +
+        m[4 * r + 1] * origin.y + m[4 * r + 2] * origin.z);
+      // The shader reads an ellipsoid's id at any of its texels.
+      g->SphereIds[core::gpu::kEllipsoidTexels * k + r] = bvh.primIndex.empty() ? 0 : ids[bvh.primIndex[k]];
+    }
+  }
+  return g;
+}
+
+} // namespace pass
+} // namespace vtkrt

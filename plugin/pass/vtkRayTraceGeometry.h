@@ -1,0 +1,49 @@
+// Private to vtkRayTracePass: builds one Geometry (the BVH and its
+// primitives in the GPU's layout) from VTK data. No GL here.
+#ifndef vtkRayTraceGeometry_h
+#define vtkRayTraceGeometry_h
+
+#include "vtkRayTraceTypes.h"
+
+#include "vtkrt/core/AABB.h"
+#include "vtkrt/core/BVH.h"
+
+#include <memory>
+
+class vtkPoints;
+class vtkPolyData;
+
+namespace vtkrt
+{
+namespace pass
+{
+
+/// The points as double vectors (empty for null points).
+void ReadPoints(vtkPoints* pts, std::vector<core::Vec3<double>>& out);
+
+/// Triangles of polys (fan, as VTK's raster) and strips (VTK's winding),
+/// with their VTK cell ids, point normals when the data has them, and the
+/// BVH over them.
+std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOptions& options);
+
+/// Spheres (centers, radii, VTK point ids) and the BVH over them.
+std::unique_ptr<Geometry> BuildSpheres(const std::vector<core::Vec3<double>>& centers,
+  const std::vector<double>& radii, const std::vector<std::uint32_t>& ids,
+  const core::BuildOptions& options);
+
+/// Points drawn as spheres (the vertices' points, or every point of a
+/// cell with the points representation): spheres of radius 0 in the GPU
+/// records, their BVH over the bare centers (each frame gives the radii).
+std::unique_ptr<Geometry> BuildScreenSpheres(
+  vtkPolyData* poly, bool everyCellPoint, const core::BuildOptions& options);
+
+/// Ellipsoids, each given by the affine map of world space onto its unit
+/// sphere (rows of [A | b]) and its box, with their VTK point ids.
+std::unique_ptr<Geometry> BuildEllipsoids(const std::vector<std::array<double, 12>>& maps,
+  const std::vector<core::AABB<double>>& boxes, const std::vector<std::uint32_t>& ids,
+  const core::BuildOptions& options);
+
+} // namespace pass
+} // namespace vtkrt
+
+#endif

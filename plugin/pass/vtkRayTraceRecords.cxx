@@ -1,0 +1,283 @@
+#include "vtkRayTraceRecords.h"
+
+#include "vtkRayTracePacker.h"
+
+#include "vtkCamera.h"
+#include "vtkMath.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkOpenGLCamera.h"
+#include "vtkOpenGLRenderer.h"
+
+#include "vtkrt/core/Math.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vtkrt
+{
+namespace pass
+{
+
+void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCoordinates)
+{
+  vtkMatrix4x4* wcvc;
+  vtkMatrix3x3* normalMatrix;
+  vtkMatrix4x4* vcdc;
+  vtkMatrix4x4* wcdc;
+  cam->GetKeyMatrices(ren, wcvc, normalMatrix, vcdc, wcdc);
+  cam->GetPosition(this->Eye);
+  for (int k = 0; k < 3; ++k)
+  {
+    this->Origin[k] = worldCoordinates ? 0.0 : this->Eye[k];
+  }
+  vtkNew<vtkMatrix4x4> worldToClip; // row-major P * V
+  vtkMatrix4x4::Transpose(wcdc, worldToClip);
+  vtkNew<vtkMatrix4x4> originTranslation;
+  for (int k = 0; k < 3; ++k)
+  {
+    originTranslation->SetElement(k, 3, this->Origin[k]);
+  }
+  vtkMatrix4x4::Multiply4x4(worldToClip, originTranslation, this->CameraToClip);
+  vtkMatrix4x4::Invert(this->CameraToClip, this->ClipToCamera);
+  cam->GetDirectionOfProjection(this->DirectionOfProjection);
+}
+
+ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* ren,
+  const double localToShader[16], const double eyeInShader[3])
+{
+  ScreenSphereRadii out;
+  const Geometry& g = *inst.Geom;
+  if (!g.ScreenSized || !ren || !ren->GetActiveCamera())
+  {
+    return out;
+  }
+  vtkCamera* cam = ren->GetActiveCamera();
+  int size[2];
+  int origin[2];
+  ren->GetTiledSizeAndOrigin(size, size + 1, origin, origin + 1);
+  const double pixels = static_cast<double>(std::max(1, size[1]));
+  // World radius per unit of view depth (perspective) or constant (parallel).
+  const double perDepth =
+    inst.PointSize * std::tan(vtkMath::RadiansFromDegrees(cam->GetViewAngle()) / 2.0) / pixels;
+  const double constant = inst.PointSize * cam->GetParallelScale() / pixels;
+  // Local units -> world units: the actor's (uniform) scale.
+  double m3[3][3];
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      m3[r][c] = localToShader[4 * r + c];
+    }
+  }
+  const double scale = std::cbrt(std::abs(vtkMath::Determinant3x3(m3)));
+  if (!(scale > 0.0) || !std::isfinite(scale))
+  {
+    return out;
+  }
+  if (cam->GetParallelProjection())
+  {
+    out.Plane[3] = constant / scale;
+  }
+  else
+  {
+    // depth(c) = dop . (M c + t - eye), affine in the local center c.
+    double dop[3];
+    cam->GetDirectionOfProjection(dop);
+    double w = 0.0;
+    for (int r = 0; r < 3; ++r)
+    {
+      w += dop[r] * (localToShader[4 * r + 3] - eyeInShader[r]);
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      out.Plane[c] = perDepth / scale * (dop[0] * m3[0][c] + dop[1] * m3[1][c] + dop[2] * m3[2][c]);
+    }
+    out.Plane[3] = perDepth / scale * w;
+  }
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const double p[3] = { g.LocalBounds[(corner & 1) ? 1 : 0], g.LocalBounds[(corner & 2) ? 3 : 2],
+      g.LocalBounds[(corner & 4) ? 5 : 4] };
+    out.MaxLocal = std::max(out.MaxLocal,
+      out.Plane[0] * p[0] + out.Plane[1] * p[1] + out.Plane[2] * p[2] + out.Plane[3]);
+  }
+  out.MaxWorld = out.MaxLocal * scale;
+  return out;
+}
+
+namespace
+{
+/// The instance's local (Geometry::Origin-relative) to shader matrix.
+void localToShader(const Instance& inst, const CameraFrame& camera, vtkMatrix4x4* out)
+{
+  const Geometry& g = *inst.Geom;
+  out->DeepCopy(inst.Matrix.data());
+  for (int r = 0; r < 3; ++r)
+  {
+    double t = out->GetElement(r, 3);
+    for (int c = 0; c < 3; ++c)
+    {
+      t += out->GetElement(r, c) * g.Origin[c];
+    }
+    out->SetElement(r, 3, t - camera.Origin[r]);
+  }
+}
+
+/// The instance's world box: its local box's 8 corners through its matrix.
+core::AABB<double> worldBox(const Instance& inst)
+{
+  const Geometry& g = *inst.Geom;
+  core::AABB<double> box;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    double p[4] = { g.LocalBounds[(corner & 1) ? 1 : 0] + g.Origin[0],
+      g.LocalBounds[(corner & 2) ? 3 : 2] + g.Origin[1],
+      g.LocalBounds[(corner & 4) ? 5 : 4] + g.Origin[2], 1.0 };
+    double w[4];
+    for (int r = 0; r < 4; ++r)
+    {
+      w[r] = inst.Matrix[4 * r] * p[0] + inst.Matrix[4 * r + 1] * p[1] +
+        inst.Matrix[4 * r + 2] * p[2] + inst.Matrix[4 * r + 3];
+    }
+    box.extend(core::Vec3<double>(w[0] / w[3], w[1] / w[3], w[2] / w[3]));
+  }
+  return box;
+}
+
+/// The shader-space box of the instance, padded for the float rounding of
+/// the transformed ray and by the largest screen-sphere radius.
+void shaderBox(const Instance& inst, vtkMatrix4x4* toShader, double grow, core::gpu::InstanceRecord& rec)
+{
+  const Geometry& g = *inst.Geom;
+  double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
+  double hi[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    double p[4] = { g.LocalBounds[(corner & 1) ? 1 : 0], g.LocalBounds[(corner & 2) ? 3 : 2],
+      g.LocalBounds[(corner & 4) ? 5 : 4], 1.0 };
+    toShader->MultiplyPoint(p, p);
+    for (int k = 0; k < 3; ++k)
+    {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  }
+  double pad = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    pad = std::max({ pad, std::abs(lo[k]), std::abs(hi[k]) });
+  }
+  pad = pad * 1e-6 + grow;
+  for (int k = 0; k < 3; ++k)
+  {
+    rec.boxMin[k] = core::roundDownToFloat(lo[k] - pad);
+    rec.boxMax[k] = core::roundUpToFloat(hi[k] + pad);
+  }
+}
+
+std::uint32_t instanceFlags(const Instance& inst, bool mirrored)
+{
+  using namespace core::gpu;
+  const Geometry& g = *inst.Geom;
+  std::uint32_t flags = g.Spheres ? kInstanceSpheres : 0u;
+  flags |= g.Ellipsoids ? kInstanceEllipsoids : 0u;
+  flags |= inst.Lit ? kInstanceLit : 0u;
+  flags |= inst.UseVertexNormals ? kInstanceVertexNormals : 0u;
+  if (inst.Color)
+  {
+    flags |= inst.Color->CellColors ? kInstanceCellColors : kInstancePointColors;
+    flags |= inst.Color->Texture ? kInstanceColorTexture : 0u;
+  }
+  flags |= mirrored ? kInstanceMirrored : 0u;
+  return flags;
+}
+} // namespace
+
+double FrameRecords::DefaultOcclusionRadius() const
+{
+  core::AABB<double> all;
+  for (const auto& b : this->WorldBoxes)
+  {
+    all.extend(b.min);
+    all.extend(b.max);
+  }
+  const auto diagonal = all.max - all.min;
+  return 0.1 * std::sqrt(diagonal.x * diagonal.x + diagonal.y * diagonal.y + diagonal.z * diagonal.z);
+}
+
+bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlacements& places,
+  const CameraFrame& camera, vtkRenderer* ren, FrameRecords& out)
+{
+  out.Records.assign(instances.size(), core::gpu::InstanceRecord{});
+  out.ClipPlanes.clear();
+  out.WorldBoxes.resize(instances.size());
+  const double eyeInShader[3] = { camera.Eye[0] - camera.Origin[0], camera.Eye[1] - camera.Origin[1],
+    camera.Eye[2] - camera.Origin[2] };
+  for (std::size_t i = 0; i < instances.size(); ++i)
+  {
+    const Instance& inst = instances[i];
+    const auto place = places.GeometryPlaces.find(inst.Geom);
+    const auto colorBase = inst.Color ? places.ColorBases.find(inst.Color) : places.ColorBases.end();
+    if (place == places.GeometryPlaces.end() || (inst.Color && colorBase == places.ColorBases.end()))
+    {
+      return false;
+    }
+    vtkNew<vtkMatrix4x4> toShader;
+    localToShader(inst, camera, toShader);
+    vtkNew<vtkMatrix4x4> shaderToLocal;
+    vtkMatrix4x4::Invert(toShader, shaderToLocal);
+    // Points drawn as spheres: radii from this frame's camera.
+    const ScreenSphereRadii screen = ComputeScreenSphereRadii(inst, ren, toShader->GetData(), eyeInShader);
+    out.WorldBoxes[i] = worldBox(inst);
+    if (screen.MaxWorld > 0.0)
+    {
+      // Grown by the radius bound rounded up to a power of two, so the top
+      // level is rebuilt only when a zoom crosses one.
+      const double grow = std::exp2(std::ceil(std::log2(screen.MaxWorld)));
+      out.WorldBoxes[i].min -= core::Vec3<double>(grow);
+      out.WorldBoxes[i].max += core::Vec3<double>(grow);
+    }
+    core::gpu::InstanceRecord& rec = out.Records[i];
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        rec.cameraToLocal[r][c] = static_cast<float>(shaderToLocal->GetElement(r, c));
+      }
+    }
+    shaderBox(inst, toShader, screen.MaxWorld, rec);
+    rec.root = place->second.Root;
+    rec.flags = instanceFlags(inst, toShader->Determinant() < 0.0);
+    for (int k = 0; k < 3; ++k)
+    {
+      rec.ambient[k] = inst.Ambient[k];
+      rec.diffuse[k] = inst.Diffuse[k];
+      rec.specular[k] = inst.Specular[k];
+    }
+    rec.specularPower = inst.SpecularPower;
+    rec.colorBase = inst.Color ? colorBase->second : 0u;
+    rec.normalBase = place->second.NormalBase;
+    rec.firstClipPlane = static_cast<std::uint32_t>(out.ClipPlanes.size() / 4);
+    rec.clipPlaneCount = static_cast<std::uint32_t>(inst.ClipPlanes.size());
+    rec.propIndex = static_cast<std::uint32_t>(inst.PropIndex);
+    rec.ambientIntensity = inst.AmbientIntensity;
+    rec.diffuseIntensity = inst.DiffuseIntensity;
+    rec.sphereGrow = static_cast<float>(screen.MaxLocal);
+    for (int k = 0; k < 4; ++k)
+    {
+      rec.screenRadiusPlane[k] = static_cast<float>(screen.Plane[k]);
+    }
+    for (const auto& pl : inst.ClipPlanes)
+    {
+      const double d = pl[3] + pl[0] * camera.Origin[0] + pl[1] * camera.Origin[1] + pl[2] * camera.Origin[2];
+      out.ClipPlanes.insert(out.ClipPlanes.end(),
+        { static_cast<float>(pl[0]), static_cast<float>(pl[1]), static_cast<float>(pl[2]),
+          static_cast<float>(d) });
+    }
+  }
+  return true;
+}
+
+} // namespace pass
+} // namespace vtkrt

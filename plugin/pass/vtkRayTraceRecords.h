@@ -1,0 +1,85 @@
+// Private to vtkRayTracePass: the per-frame instance records. Each traced
+// instance gets its camera-relative matrix and box (made in double on the
+// CPU), its material, its places in the packed buffers and, for points drawn
+// as spheres, this frame's radii; clip planes and the instances' world boxes
+// (for the top level) come with them.
+#ifndef vtkRayTraceRecords_h
+#define vtkRayTraceRecords_h
+
+#include "vtkRayTraceTypes.h"
+
+#include "vtkNew.h"
+
+#include "vtkrt/core/AABB.h"
+
+#include <array>
+#include <vector>
+
+class vtkMatrix4x4;
+class vtkOpenGLCamera;
+class vtkOpenGLRenderer;
+class vtkRenderer;
+
+namespace vtkrt
+{
+namespace pass
+{
+struct ScenePlacements;
+
+/// The frame's camera in the shader's coordinates, from VTK's own matrices
+/// (the ones raster uses).
+struct CameraFrame
+{
+  /// The shader's origin: the eye (camera-relative) or the world origin
+  /// (WORLD precision mode: plain float world values).
+  double Origin[3] = { 0, 0, 0 };
+  double Eye[3] = { 0, 0, 0 }; ///< in world coordinates
+  double DirectionOfProjection[3] = { 0, 0, 1 };
+  vtkNew<vtkMatrix4x4> CameraToClip; ///< row-major, from the shader's coordinates
+  vtkNew<vtkMatrix4x4> ClipToCamera;
+
+  void Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCoordinates);
+};
+
+/// Radii of screen-sized spheres (points drawn as spheres) for one frame.
+/// VTK draws such a point PointSize pixels wide whatever its distance, so
+/// the pass gives it the world radius PointSize * tan(viewAngle / 2) * z / H
+/// at view depth z (perspective; H: the viewport's height in pixels) or
+/// PointSize * parallelScale / H (parallel). That radius is affine in the
+/// center, so the shader evaluates it per sphere from one plane, and the
+/// BVH over the bare centers stays valid for every camera: its boxes grow by
+/// the largest radius over the geometry's box. A camera move builds nothing.
+struct ScreenSphereRadii
+{
+  std::array<double, 4> Plane{ { 0, 0, 0, 0 } }; ///< local radius: max(0, Plane . (c, 1))
+  double MaxLocal = 0.0; ///< bound of that radius over the geometry's local box
+  double MaxWorld = 0.0; ///< the same bound in world units
+};
+
+/// `localToShader`: row-major local (Geometry::Origin-relative) to shader
+/// coordinates, `eyeInShader`: the camera position in shader coordinates.
+ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* ren,
+  const double localToShader[16], const double eyeInShader[3]);
+
+/// The records of one frame, in instance order.
+struct FrameRecords
+{
+  std::vector<core::gpu::InstanceRecord> Records;
+  std::vector<float> ClipPlanes; ///< (n, d) per plane in the shader's coordinates
+  /// World boxes of the instances (camera independent; grown by the largest
+  /// screen-sphere radius rounded up to a power of two).
+  std::vector<core::AABB<double>> WorldBoxes;
+
+  /// A tenth of the diagonal of the world boxes' union.
+  double DefaultOcclusionRadius() const;
+};
+
+/// Fails (returns false) only when an instance's geometry or colors have no
+/// place in the uploaded buffers.
+bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlacements& places,
+  const CameraFrame& camera, vtkRenderer* ren, FrameRecords& out);
+
+} // namespace pass
+} // namespace vtkrt
+
+#endif

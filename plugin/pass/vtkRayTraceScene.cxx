@@ -1,0 +1,422 @@
+#include "vtkRayTraceScene.h"
+
+#include "vtkRayTraceGeometry.h"
+
+#include "vtkActor.h"
+#include "vtkCompositeDataDisplayAttributes.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkCompositePolyDataMapper.h"
+#include "vtkCompositePolyDataMapper2.h"
+#include "vtkDataObject.h"
+#include "vtkDataObjectTree.h"
+#include "vtkDataObjectTreeIterator.h"
+#include "vtkGlyph3DMapper.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace vtkrt
+{
+namespace pass
+{
+
+namespace
+{
+/// The polydata's verts/lines cells decide whether the pass can trace it.
+bool hasUntraceableCells(vtkPolyData* poly, bool pointsAsSpheres)
+{
+  if (poly->GetNumberOfLines() > 0)
+  {
+    return true;
+  }
+  return poly->GetNumberOfVerts() > 0 && !pointsAsSpheres;
+}
+
+/// A cache entry's "used this frame" flag (entries held by pointer or by value).
+template <class T>
+bool& usedFlag(std::unique_ptr<T>& entry)
+{
+  return entry->Used;
+}
+template <class T>
+bool& usedFlag(T& entry)
+{
+  return entry.Used;
+}
+
+/// Marks every entry of a cache unused (the frame's props mark theirs).
+template <class Cache>
+void markUnused(Cache& cache)
+{
+  for (auto& e : cache)
+  {
+    usedFlag(e.second) = false;
+  }
+}
+
+/// Drops the entries no prop used this frame; returns whether any went.
+template <class Cache>
+bool dropUnused(Cache& cache)
+{
+  bool dropped = false;
+  for (auto it = cache.begin(); it != cache.end();)
+  {
+    if (usedFlag(it->second))
+    {
+      ++it;
+      continue;
+    }
+    it = cache.erase(it);
+    dropped = true;
+  }
+  return dropped;
+}
+
+/// A polydata leaf of a composite input with its inherited block color.
+struct Piece
+{
+  vtkPolyData* Poly;
+  bool HasColor;
+  std::array<double, 3> Color;
+};
+
+/// Walks a composite dataset as vtkCompositePolyDataMapper2 does: block
+/// visibility, color and opacity apply to the block and everything below
+/// it. Returns false when something cannot be traced (a translucent block,
+/// a non-polydata leaf).
+bool collectPieces(vtkDataObject* object, vtkCompositeDataDisplayAttributes* attributes,
+  bool visible, double opacity, Piece inherited, std::vector<Piece>& pieces)
+{
+  if (!object)
+  {
+    return true;
+  }
+  if (attributes)
+  {
+    if (attributes->HasBlockVisibility(object))
+    {
+      visible = attributes->GetBlockVisibility(object);
+    }
+    if (attributes->HasBlockOpacity(object))
+    {
+      opacity = attributes->GetBlockOpacity(object);
+    }
+    if (attributes->HasBlockColor(object))
+    {
+      inherited.HasColor = true;
+      attributes->GetBlockColor(object, inherited.Color.data());
+    }
+  }
+  if (auto* poly = vtkPolyData::SafeDownCast(object))
+  {
+    if (!visible)
+    {
+      return true;
+    }
+    if (opacity < 1.0)
+    {
+      return false;
+    }
+    inherited.Poly = poly;
+    pieces.push_back(inherited);
+    return true;
+  }
+  if (auto* tree = vtkDataObjectTree::SafeDownCast(object))
+  {
+    auto it = vtk::TakeSmartPointer(tree->NewTreeIterator());
+    it->TraverseSubTreeOff();
+    it->VisitOnlyLeavesOff();
+    bool ok = true;
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      ok = collectPieces(it->GetCurrentDataObject(), attributes, visible, opacity, inherited, pieces) && ok;
+    }
+    return ok;
+  }
+  return false;
+}
+
+} // namespace
+
+bool Scene::IsTraceable(vtkProp* prop)
+{
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  if (!actor || !actor->GetVisibility() || !actor->GetMapper())
+  {
+    return false;
+  }
+  vtkMapper* mapper = actor->GetMapper();
+  const bool glyphs = vtkGlyph3DMapper::SafeDownCast(mapper) != nullptr;
+  if (!glyphs && !vtkPolyDataMapper::SafeDownCast(mapper) &&
+    !vtkCompositePolyDataMapper::SafeDownCast(mapper))
+  {
+    return false;
+  }
+  vtkProperty* property = actor->GetProperty();
+  if (property->GetOpacity() < 1.0 || actor->GetTexture() || property->GetNumberOfTextures() > 0 ||
+    property->GetEdgeVisibility() || actor->GetBackfaceProperty() ||
+    property->GetBackfaceCulling() || property->GetFrontfaceCulling() ||
+    property->GetInterpolation() == VTK_PBR)
+  {
+    return false;
+  }
+  const int representation = property->GetRepresentation();
+  if (representation == VTK_WIREFRAME ||
+    (representation == VTK_POINTS && (glyphs || !property->GetRenderPointsAsSpheres())))
+  {
+    return false;
+  }
+  // Translucent scalars (colors with alpha) or a forced translucency.
+  return !actor->HasTranslucentPolygonalGeometry();
+}
+
+bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
+  FrameCounters& counters, const double* blockColor)
+{
+  vtkProperty* property = actor->GetProperty();
+  const bool pointsAsSpheres = property->GetRenderPointsAsSpheres() &&
+    (property->GetRepresentation() == VTK_POINTS || poly->GetNumberOfVerts() > 0);
+  const vtkMTimeType time = poly->GetMTime();
+  Instance inst;
+  inst.PropIndex = propIndex;
+  this->FillMaterial(actor, mapper, inst);
+  if (blockColor)
+  {
+    ApplyBlockColor(inst, property, blockColor, false);
+  }
+
+  if (property->GetRepresentation() == VTK_SURFACE &&
+    (poly->GetNumberOfPolys() > 0 || poly->GetNumberOfStrips() > 0))
+  {
+    auto& entry = this->TriangleCache[poly];
+    if (!entry || entry->SourceTime != time || entry->Quality != this->BuildQuality ||
+      entry->LeafSize != this->LeafSize)
+    {
+      entry = BuildTriangles(poly, this->Options());
+      entry->Quality = this->BuildQuality;
+      entry->LeafSize = this->LeafSize;
+      entry->SourceTime = time;
+      entry->Keep = poly;
+      ++counters.BVHBuilds;
+      this->GeometryDirty = true;
+    }
+    if (!entry->Used)
+    {
+      entry->Used = true;
+    }
+    if (!entry->Empty())
+    {
+      Instance tri = inst;
+      tri.Geom = entry.get();
+      tri.Color = this->GetColors(mapper, poly, time);
+      tri.UseVertexNormals = !entry->Normals.empty() && property->GetInterpolation() != VTK_FLAT;
+      this->Instances.push_back(tri);
+    }
+  }
+
+  if (pointsAsSpheres)
+  {
+    // VTK draws these PointSize pixels wide at any distance: the BVH is
+    // over the bare centers, the radii come with each frame's camera
+    // (ScreenSphereRadii), so neither a camera move nor a new point size
+    // rebuilds anything.
+    std::ostringstream key;
+    key << "points:" << property->GetRepresentation();
+    auto& entry = this->SphereCache[std::make_pair(static_cast<const void*>(poly), nullptr)];
+    if (!entry || entry->SourceTime != time || entry->SourceKey != key.str() ||
+      entry->Quality != this->BuildQuality)
+    {
+      entry = BuildScreenSpheres(
+        poly, property->GetRepresentation() == VTK_POINTS, this->SphereOptions());
+      entry->Quality = this->BuildQuality;
+      entry->SourceTime = time;
+      entry->SourceKey = key.str();
+      entry->Keep = poly;
+      ++counters.BVHBuilds;
+      this->GeometryDirty = true;
+    }
+    entry->Used = true;
+    if (!entry->Empty())
+    {
+      Instance sph = inst;
+      sph.Geom = entry.get();
+      sph.PointSize = std::max(0.0, static_cast<double>(property->GetPointSize()));
+      Colors* colors = this->GetColors(mapper, poly, time);
+      sph.Color = colors && !colors->CellColors ? colors : nullptr;
+      this->Instances.push_back(sph);
+    }
+  }
+  return true;
+}
+
+bool Scene::AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& counters)
+{
+  vtkMapper* mapper = actor->GetMapper();
+  mapper->Update();
+  vtkDataObject* input = mapper->GetInputDataObject(0, 0);
+  const bool pointsAsSpheres = actor->GetProperty()->GetRenderPointsAsSpheres();
+  std::vector<Piece> pieces;
+  bool ok = true;
+  if (auto* poly = vtkPolyData::SafeDownCast(input))
+  {
+    pieces.push_back({ poly, false, { { 0, 0, 0 } } });
+  }
+  else if (vtkCompositeDataSet::SafeDownCast(input))
+  {
+    vtkCompositeDataDisplayAttributes* attributes = nullptr;
+    if (auto* m2 = vtkCompositePolyDataMapper2::SafeDownCast(mapper))
+    {
+      attributes = m2->GetCompositeDataDisplayAttributes();
+    }
+    Piece root{ nullptr, false, { { 0, 0, 0 } } };
+    ok = collectPieces(input, attributes, true, 1.0, root, pieces);
+  }
+  else if (input)
+  {
+    ok = false;
+  }
+  for (const Piece& piece : pieces)
+  {
+    ok = ok && !hasUntraceableCells(piece.Poly, pointsAsSpheres);
+  }
+  if (ok)
+  {
+    for (const Piece& piece : pieces)
+    {
+      this->AddPolyData(actor, mapper, piece.Poly, propIndex, counters,
+        piece.HasColor ? piece.Color.data() : nullptr);
+    }
+  }
+  return ok;
+}
+
+void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkProp*>& traced,
+  std::vector<vtkProp*>& others, FrameCounters& counters)
+{
+  traced.clear();
+  others.clear();
+  this->Instances.clear();
+  markUnused(this->TriangleCache);
+  markUnused(this->SphereCache);
+  markUnused(this->ColorCache);
+  markUnused(this->GlyphSourceCache);
+
+  for (int i = 0; i < count; ++i)
+  {
+    vtkProp* prop = props[i];
+    if (!IsTraceable(prop))
+    {
+      others.push_back(prop);
+      continue;
+    }
+    vtkActor* actor = vtkActor::SafeDownCast(prop);
+    vtkMapper* mapper = actor->GetMapper();
+    const int propIndex = static_cast<int>(traced.size());
+    const std::size_t firstInstance = this->Instances.size();
+    bool ok = false;
+    if (auto* glyphs = vtkGlyph3DMapper::SafeDownCast(mapper))
+    {
+      ok = this->AddGlyphs(actor, glyphs, propIndex, counters);
+    }
+    else
+    {
+      ok = this->AddPolyDataMapper(actor, propIndex, counters);
+    }
+    if (ok)
+    {
+      traced.push_back(prop);
+    }
+    else
+    {
+      this->Instances.resize(firstInstance);
+      others.push_back(prop);
+    }
+  }
+
+  // Forget what no prop uses any more.
+  const bool trianglesDropped = dropUnused(this->TriangleCache);
+  const bool spheresDropped = dropUnused(this->SphereCache);
+  this->GeometryDirty = this->GeometryDirty || trianglesDropped || spheresDropped;
+  this->ColorsDirty = dropUnused(this->ColorCache) || this->ColorsDirty;
+  dropUnused(this->GlyphSourceCache);
+  counters.TracedInstances = static_cast<int>(this->Instances.size());
+  for (const Instance& inst : this->Instances)
+  {
+    counters.TracedPrimitives += inst.Geom->PrimitiveCount;
+  }
+}
+
+bool Scene::HasTriangles() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return !i.Geom->Spheres; });
+}
+bool Scene::HasSpheres() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.Geom->Spheres; });
+}
+bool Scene::HasScreenSpheres() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.Geom->ScreenSized; });
+}
+bool Scene::HasEllipsoids() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.Geom->Ellipsoids; });
+}
+bool Scene::HasVertexNormals() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.UseVertexNormals; });
+}
+bool Scene::HasColors() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.Color != nullptr; });
+}
+bool Scene::HasColorTexture() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.Color != nullptr && i.Color->Texture; });
+}
+
+core::BuildOptions Scene::Options() const
+{
+  core::BuildOptions options;
+  options.quality = this->BuildQuality == 0
+    ? core::BuildQuality::Fast
+    : (this->BuildQuality == 2 ? core::BuildQuality::High : core::BuildQuality::Medium);
+  options.maxLeafSize = this->LeafSize;
+  return options;
+}
+
+core::BuildOptions Scene::SphereOptions() const
+{
+  core::BuildOptions options = this->Options();
+  // A sphere test (one texel fetch, a few flops) costs the shader far less
+  // than a node visit (four fetches, two box tests): shallower trees with
+  // larger leaves trace faster (about 5% on random sphere clouds, llvmpipe).
+  options.traversalCost = 3.0;
+  options.maxLeafSize = 16;
+  return options;
+}
+
+void Scene::Clear()
+{
+  this->TriangleCache.clear();
+  this->SphereCache.clear();
+  this->ColorCache.clear();
+  this->GlyphSourceCache.clear();
+  this->Instances.clear();
+  this->GeometryDirty = true;
+  this->ColorsDirty = true;
+}
+
+} // namespace pass
+} // namespace vtkrt
+

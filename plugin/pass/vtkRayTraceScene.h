@@ -1,0 +1,149 @@
+// Private to vtkRayTracePass: scene extraction. Renderer props become the
+// frame's instances, over geometry cached per data object (rebuilt only when
+// its MTime, build quality or leaf size changes) and colors cached per
+// (mapper, data). No GL here.
+#ifndef vtkRayTraceScene_h
+#define vtkRayTraceScene_h
+
+#include "vtkRayTraceGlyphs.h"
+#include "vtkRayTraceTypes.h"
+
+#include "vtkrt/core/BVH.h"
+
+#include <map>
+#include <memory>
+#include <utility>
+#include <vector>
+
+class vtkActor;
+class vtkGlyph3DMapper;
+class vtkMapper;
+class vtkPolyData;
+class vtkProp;
+class vtkProperty;
+class vtkRenderer;
+
+namespace vtkrt
+{
+namespace pass
+{
+
+/// A block color in place of the property's colors, each still weighted by
+/// its coefficient (the specular one too when `specularToo`).
+void ApplyBlockColor(Instance& inst, vtkProperty* property, const double color[3], bool specularToo);
+
+/// Renderer props -> instances, with geometry cached by (data object, MTime).
+class Scene
+{
+public:
+  /// Extracts the props; `traced` receives the props the pass draws (a prop
+  /// index in an instance indexes it), `others` the ones left to raster.
+  void Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vtkProp*>& traced,
+    std::vector<vtkProp*>& others, FrameCounters& counters);
+
+  /// True when the cached geometry or colors changed since MarkPacked().
+  bool GeometryChanged() const { return this->GeometryDirty; }
+  bool ColorsChanged() const { return this->ColorsDirty; }
+  void MarkGeometryPacked() { this->GeometryDirty = false; }
+  void MarkColorsPacked() { this->ColorsDirty = false; }
+
+  /// Every cached, non-empty geometry (triangles first, then spheres), in
+  /// a stable order.
+  template <class Fn>
+  void ForEachGeometry(Fn&& fn) const
+  {
+    for (const auto& e : this->TriangleCache)
+    {
+      if (!e.second->Empty())
+      {
+        fn(*e.second);
+      }
+    }
+    for (const auto& e : this->SphereCache)
+    {
+      if (!e.second->Empty())
+      {
+        fn(*e.second);
+      }
+    }
+  }
+  /// Every cached colors entry, in a stable order.
+  template <class Fn>
+  void ForEachColors(Fn&& fn) const
+  {
+    for (const auto& e : this->ColorCache)
+    {
+      fn(*e.second);
+    }
+  }
+
+  const std::vector<Instance>& GetInstances() const { return this->Instances; }
+  bool HasTriangles() const;
+  bool HasSpheres() const;
+  bool HasScreenSpheres() const;
+  bool HasEllipsoids() const;
+  bool HasVertexNormals() const;
+  bool HasColors() const;
+  bool HasColorTexture() const;
+
+  void Clear();
+
+  /// 0: fast (LBVH), 1: binned SAH (default), 2: full-sweep SAH. Geometry
+  /// built with another quality is rebuilt on its next use.
+  void SetBuildQuality(int quality) { this->BuildQuality = quality; }
+
+  /// Maximum triangles per leaf of the triangle BVHs (>= 1, default 4).
+  /// Triangle geometry built with another leaf size is rebuilt on its next
+  /// use; sphere BVHs keep their own leaf size.
+  void SetLeafSize(int size) { this->LeafSize = static_cast<std::uint32_t>(size < 1 ? 1 : size); }
+
+  /// Whether this prop would be traced (public for documentation/tests).
+  static bool IsTraceable(vtkProp* prop);
+
+private:
+  bool AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
+    FrameCounters& counters, const double* blockColor = nullptr);
+  /// The prop's polydata pieces, each through AddPolyData; false (left to
+  /// raster) when some piece cannot be traced.
+  bool AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& counters);
+  /// A glyph mapper's plain input or every visible, non-empty leaf of its
+  /// composite input (as vtkOpenGLGlyph3DMapper), each through AddGlyphSet;
+  /// false (left to raster) when the source is not a sphere or some set's
+  /// arrays are not traceable.
+  bool AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, FrameCounters& counters);
+  /// The sphere the mapper's single source is; false when it is not one.
+  bool GetGlyphSphere(vtkGlyph3DMapper* mapper, GlyphSphere& sphere);
+  /// One set's spheres or ellipsoids, cached per (mapper, dataset), and its instance.
+  void AddGlyphSet(vtkActor* actor, vtkGlyph3DMapper* mapper, const GlyphSphere& sphere,
+    const GlyphSet& set, int propIndex, FrameCounters& counters);
+  Colors* GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time);
+  void FillMaterial(vtkActor* actor, vtkMapper* mapper, Instance& inst) const;
+
+  core::BuildOptions Options() const;
+  core::BuildOptions SphereOptions() const; ///< Options() tuned for cheap sphere tests
+
+  int BuildQuality = 1;
+  std::uint32_t LeafSize = 4;
+  std::map<const void*, std::unique_ptr<Geometry>> TriangleCache;
+  /// Points as spheres: (polydata, null); glyphs: (mapper, dataset).
+  std::map<std::pair<const void*, const void*>, std::unique_ptr<Geometry>> SphereCache;
+  std::map<std::pair<const void*, const void*>, std::unique_ptr<Colors>> ColorCache;
+  /// Whether a glyph source that is not a vtkSphereSource is a sphere, per
+  /// mapper, decided once per (source data, MTime).
+  struct GlyphSourceShape
+  {
+    const void* Data = nullptr;
+    bool Sphere = false;
+    GlyphSphere Shape; ///< its Time is the source data's MTime
+    bool Used = false;
+  };
+  std::map<const void*, GlyphSourceShape> GlyphSourceCache;
+  std::vector<Instance> Instances;
+  bool GeometryDirty = true;
+  bool ColorsDirty = true;
+};
+
+} // namespace pass
+} // namespace vtkrt
+
+#endif

@@ -1,0 +1,134 @@
+#include "vtkRayTraceShader.h"
+
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkShaderProgram.h"
+
+#include "vtkrtRayTraceKernels.h"
+#include "vtkrtRayTraceMain.h"
+#include "vtkrtRayTraceResolve.h"
+#include "vtkrtRayTraceSpheres.h"
+#include "vtkrtRayTraceTriangles.h"
+
+#include "vtkrt/core/BVH.h"
+#include "vtkrt/core/GpuLayout.h"
+
+#include <sstream>
+
+namespace vtkrt
+{
+namespace pass
+{
+
+std::string Features::Key() const
+{
+  std::ostringstream s;
+  s << "T" << this->Triangles << "S" << this->Spheres << "N" << this->VertexNormals << "C"
+    << this->Colors << "P" << this->ClipPlanes << "L" << this->Lights << "x"
+    << this->LightComplexity << "I" << this->IdMode << "D" << this->Fp64 << "X"
+    << this->TopLevel << "A" << this->SamplesPerPixel << "H" << this->Shadows << "O"
+    << this->AmbientOcclusionSamples << "M" << this->MaximumTraversalSteps << "W"
+    << this->WorldCoordinates << "Q" << this->ScreenSpheres << "E" << this->Ellipsoids << "X"
+    << this->ColorTexture;
+  return s.str();
+}
+
+std::string AssembleShader(const Features& f)
+{
+  std::ostringstream s;
+  s << (f.Fp64 ? "#version 400 core\n#define VTKRT_HAS_FP64\n" : "#version 330 core\n");
+  s << "// vtkrt feature key " << f.Key() << "\n";
+  const std::pair<bool, const char*> switches[] = { { f.Triangles, "VTKRT_HAS_TRIANGLES" },
+    { f.Spheres, "VTKRT_HAS_SPHERES" }, { f.VertexNormals, "VTKRT_HAS_VERTEX_NORMALS" },
+    { f.Colors, "VTKRT_HAS_COLORS" }, { f.ColorTexture, "VTKRT_HAS_COLOR_TEXTURE" },
+    { f.Triangles && (f.VertexNormals || f.Colors), "VTKRT_HAS_TRIANGLE_VERTICES" },
+    { f.IdMode, "VTKRT_ID_MODE" }, { f.TopLevel, "VTKRT_HAS_TOP_LEVEL" } };
+  for (const auto& sw : switches)
+  {
+    if (sw.first)
+    {
+      s << "#define " << sw.second << "\n";
+    }
+  }
+  if (f.SamplesPerPixel > 0)
+  {
+    s << "#define VTKRT_SAMPLES_PER_PIXEL " << f.SamplesPerPixel << "\n";
+  }
+  const std::pair<bool, const char*> more[] = { { f.Shadows, "VTKRT_SHADOWS" },
+    { f.WorldCoordinates, "VTKRT_WORLD_COORDINATES" }, { f.ScreenSpheres, "VTKRT_SCREEN_SPHERES" },
+    { f.Ellipsoids, "VTKRT_HAS_ELLIPSOIDS" } };
+  for (const auto& sw : more)
+  {
+    if (sw.first)
+    {
+      s << "#define " << sw.second << "\n";
+    }
+  }
+  s << "#define VTKRT_AMBIENT_OCCLUSION_SAMPLES " << f.AmbientOcclusionSamples << "\n";
+  s << "#define VTKRT_MAXIMUM_TRAVERSAL_STEPS " << f.MaximumTraversalSteps << "\n";
+  s << "#define VTKRT_NUMBER_OF_CLIP_PLANES " << f.ClipPlanes << "\n";
+  s << "#define VTKRT_NUMBER_OF_LIGHTS " << f.Lights << "\n";
+  s << "#define VTKRT_LIGHT_COMPLEXITY " << f.LightComplexity << "\n";
+  s << "#define VTKRT_STACK_SIZE " << core::kMaxStackSize << "\n";
+  s << core::gpu::glslLayout();
+  s << vtkrtRayTraceKernels << "\n";
+  if (f.Triangles)
+  {
+    s << vtkrtRayTraceTriangles << "\n";
+  }
+  if (f.Spheres)
+  {
+    s << vtkrtRayTraceSpheres << "\n";
+  }
+  s << vtkrtRayTraceMain;
+  return s.str();
+}
+
+std::string ResolveShaderSource()
+{
+  return std::string("#version 330 core\n") + vtkrtRayTraceResolve;
+}
+
+bool ReadyQuadProgram(vtkOpenGLRenderWindow* win, std::unique_ptr<vtkOpenGLQuadHelper>& helper,
+  const std::string& source, FrameCounters& counters)
+{
+  if (!helper)
+  {
+    helper.reset(new vtkOpenGLQuadHelper(win, nullptr, source.c_str(), ""));
+    ++counters.ShaderCompiles;
+  }
+  else
+  {
+    win->GetShaderCache()->ReadyShaderProgram(helper->Program);
+  }
+  return helper->Program && helper->Program->GetCompiled();
+}
+
+ProgramCache::ProgramCache() = default;
+ProgramCache::~ProgramCache() = default;
+
+vtkOpenGLQuadHelper* ProgramCache::Ready(
+  vtkOpenGLRenderWindow* win, const Features& f, FrameCounters& counters)
+{
+  const std::string key = f.Key();
+  if (key != this->LastKey)
+  {
+    this->LastSource = AssembleShader(f);
+    this->LastKey = key;
+  }
+  auto& helper = this->Programs[key];
+  return ReadyQuadProgram(win, helper, this->LastSource, counters) ? helper.get() : nullptr;
+}
+
+void ProgramCache::Release(vtkWindow* w)
+{
+  for (auto& p : this->Programs)
+  {
+    p.second->ReleaseGraphicsResources(w);
+  }
+  this->Programs.clear();
+}
+
+} // namespace pass
+} // namespace vtkrt

@@ -1,0 +1,59 @@
+// Private to vtkRayTracePass: the fragment shader a frame's features need
+// (only the chunks and defines it uses, with the GPU layout generated from
+// core/GpuLayout.h), compiled once per feature key and kept.
+#ifndef vtkRayTraceShader_h
+#define vtkRayTraceShader_h
+
+#include "vtkRayTraceTypes.h"
+
+#include <map>
+#include <memory>
+#include <string>
+
+class vtkOpenGLQuadHelper;
+class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
+class vtkWindow;
+
+namespace vtkrt
+{
+namespace pass
+{
+
+/// The fragment shader source for a feature set.
+std::string AssembleShader(const Features& f);
+
+/// The resolve shader of the accumulation buffer.
+std::string ResolveShaderSource();
+
+/// Full-screen-quad programs by feature key.
+class ProgramCache
+{
+public:
+  ProgramCache();
+  ~ProgramCache();
+
+  /// The program for `f`, compiled on first use (counted) and made current;
+  /// null (with the source kept for inspection) when it does not compile.
+  vtkOpenGLQuadHelper* Ready(vtkOpenGLRenderWindow* win, const Features& f, FrameCounters& counters);
+
+  const std::string& GetLastKey() const { return this->LastKey; }
+  const std::string& GetLastSource() const { return this->LastSource; }
+
+  void Release(vtkWindow* w);
+
+private:
+  std::map<std::string, std::unique_ptr<vtkOpenGLQuadHelper>> Programs;
+  std::string LastKey;
+  std::string LastSource; ///< LastKey's shader source (outlives the cached programs)
+};
+
+/// Makes a cached quad helper's program current, or compiles it into
+/// `helper` from `source` (counted); false when it does not compile.
+bool ReadyQuadProgram(vtkOpenGLRenderWindow* win, std::unique_ptr<vtkOpenGLQuadHelper>& helper,
+  const std::string& source, FrameCounters& counters);
+
+} // namespace pass
+} // namespace vtkrt
+
+#endif

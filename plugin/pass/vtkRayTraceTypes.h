@@ -1,0 +1,134 @@
+// Private to vtkRayTracePass: what one frame's units hand each other. The
+// scene extraction fills Geometry (per data object, cached), Colors (per
+// mapper and data) and Instance (per frame); Features say what the shader
+// needs; FrameCounters what the frame did. No GL here.
+#ifndef vtkRayTraceTypes_h
+#define vtkRayTraceTypes_h
+
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+
+#include "vtkrt/core/GpuLayout.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+class vtkObject;
+
+namespace vtkrt
+{
+namespace pass
+{
+
+/// One bottom-level BVH with its primitives (triangles of one polydata, or
+/// spheres or ellipsoids of one glyph set / point set) in the GPU's layout,
+/// relative to its local origin, with local indices (the packer adds the
+/// bases).
+struct Geometry
+{
+  bool Spheres = false;
+  vtkMTimeType SourceTime = 0; ///< cache key part: MTime of what it was built from
+  std::string SourceKey;       ///< extra key (e.g. sphere radius settings)
+  int Quality = -1;            ///< the build quality it was built with
+  std::uint32_t LeafSize = 0;  ///< the maximum leaf size it was built with (triangles)
+  std::array<double, 3> Origin{ { 0, 0, 0 } }; ///< local origin (model coordinates)
+  std::array<double, 6> LocalBounds{ { 0, 0, 0, 0, 0, 0 } }; ///< relative to Origin
+  std::vector<core::gpu::Node> Nodes;
+  std::vector<core::gpu::Triangle> Triangles; ///< leaf order
+  std::vector<core::gpu::TriangleVertices> TriangleVertices;
+  std::vector<core::gpu::Sphere> SphereRecords;       ///< leaf order
+  std::vector<core::gpu::Ellipsoid> EllipsoidRecords; ///< leaf order
+  std::vector<std::uint32_t> SphereIds; ///< VTK point id per sphere texel (leaf order)
+  std::vector<core::gpu::Normal> Normals; ///< per vertex, empty if none
+  std::size_t PrimitiveCount = 0;
+  std::size_t VertexCount = 0;
+  std::size_t SkippedPrimitives = 0; ///< NaN or degenerate, never traced
+  bool Used = false;
+  /// Points drawn as spheres: the BVH is over the bare centers and the
+  /// uploaded radii are 0; each frame gives the radii (ScreenSphereRadii).
+  bool ScreenSized = false;
+  /// Sphere glyphs scaled per component: ellipsoids (Spheres is set too).
+  bool Ellipsoids = false;
+  vtkSmartPointer<vtkObject> Keep; ///< keeps the keyed object alive
+  vtkSmartPointer<vtkObject> KeepData; ///< glyphs: the keyed dataset (key: mapper, dataset)
+
+  bool Empty() const { return Nodes.empty(); }
+};
+
+/// Colors of one (mapper, data) pair: RGBA8 per point or per cell.
+struct Colors
+{
+  vtkMTimeType SourceTime = 0;
+  bool CellColors = false;
+  /// InterpolateScalarsBeforeMapping: the mapper's color texture instead of
+  /// colors. Packed then holds a header (texel offset from its base, texture
+  /// width, height, coordinate components), the points' texture coordinates
+  /// (float bits) and the texture's RGBA8 texels, row by row.
+  bool Texture = false;
+  std::vector<std::uint32_t> Packed;
+  bool Used = false;
+  vtkSmartPointer<vtkObject> Keep;
+};
+
+/// One traced instance of a geometry, rebuilt every frame (cheap).
+struct Instance
+{
+  Geometry* Geom = nullptr;
+  Colors* Color = nullptr;
+  int PropIndex = 0;
+  std::array<double, 16> Matrix; ///< model to world, row-major (actor matrix)
+  std::array<float, 3> Ambient{ { 0, 0, 0 } };
+  std::array<float, 3> Diffuse{ { 0, 0, 0 } };
+  std::array<float, 3> Specular{ { 0, 0, 0 } };
+  float SpecularPower = 1.0f;
+  float AmbientIntensity = 0.0f; ///< weights of scalar colors, which replace
+  float DiffuseIntensity = 1.0f; ///< the ambient and diffuse colors (VTK 9.1)
+  bool Lit = true;
+  bool UseVertexNormals = false;
+  double PointSize = 0.0; ///< > 0: screen-sized spheres this many pixels wide
+  std::vector<std::array<double, 4>> ClipPlanes; ///< world: n.x + d >= 0 kept
+};
+
+/// What a frame needs from the shader; also the program cache key.
+struct Features
+{
+  bool Triangles = false;
+  bool Spheres = false;
+  bool VertexNormals = false;
+  bool Colors = false;
+  bool ColorTexture = false; ///< some colors come through a color texture
+  int ClipPlanes = 0;
+  int Lights = 0;
+  int LightComplexity = 0;
+  bool IdMode = false;
+  bool Fp64 = false;
+  bool TopLevel = false;
+  int SamplesPerPixel = 0; ///< 0: one centered ray straight to the framebuffer
+  bool Shadows = false;
+  int AmbientOcclusionSamples = 0;
+  int MaximumTraversalSteps = 0; ///< 0: unlimited
+  bool WorldCoordinates = false; ///< vtkRayTracePass::WORLD precision mode
+  bool ScreenSpheres = false;    ///< points drawn as spheres (per-frame radii)
+  bool Ellipsoids = false;       ///< sphere glyphs scaled per component
+
+  std::string Key() const;
+};
+
+/// Counters of the work one frame did.
+struct FrameCounters
+{
+  int BVHBuilds = 0;      ///< bottom level (per data object)
+  int TopLevelBuilds = 0; ///< over the instances
+  std::size_t GeometryBytesUploaded = 0;
+  std::size_t FrameBytesUploaded = 0;
+  int ShaderCompiles = 0;
+  std::size_t TracedPrimitives = 0;
+  int TracedInstances = 0;
+};
+
+} // namespace pass
+} // namespace vtkrt
+
+#endif
