@@ -132,8 +132,8 @@ bool IsCollapseLegal(Mesh& mesh, const CollapseInfo& ci)
 // vertices) stays within the bound of some face around it, and every new
 // face's centroid and edge midpoints stay within the bound of the input
 // surface. OpenMesh's ModHausdorffT only does the first, with removed
-// vertices only, which let the output wander (measured up to 6.5x the bound
-// on the Stanford bunny, at its holes).
+// vertices only, which let the output wander far past the bound at holes
+// (docs/filters.md).
 class SurfaceDistanceGuard
 {
 public:
@@ -369,8 +369,7 @@ private:
 // faces, plus, on open boundaries, the plane through each boundary edge
 // perpendicular to its face (weighted by the edge's squared length), which
 // holds boundaries in place the way the faces hold the surface. OpenMesh's
-// ModQuadricT has no boundary term: on the bunny its holes' rims drifted,
-// doubling the Hausdorff distance of a 90% reduction.
+// ModQuadricT has no boundary term, so the rims of holes drift.
 class BoundaryQuadrics
 {
 public:

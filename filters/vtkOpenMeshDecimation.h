@@ -19,9 +19,9 @@
  *   surface (exact), nor any input face centroid or edge midpoint; and no
  *   centroid or edge midpoint of a decimated face lies farther than this
  *   from the input surface. Between those samples the distance can exceed
- *   the bound slightly (measured: at most 7% on the Stanford bunny, both
- *   ways). OpenMesh's ModHausdorffT checks only the first, one-sided, which
- *   let the output drift up to 6.5x the bound. (Quadric errors are
+ *   the bound slightly (docs/filters.md gives the measurements). OpenMesh's
+ *   ModHausdorffT checks only the first, one-sided, which lets the output
+ *   drift far past the bound. (Quadric errors are
  *   area-weighted, so they cannot serve as a distance bound.);
  * - MaximumNormalDeviation (degrees, default 180 = off): no face normal turns
  *   by more than this (ModNormalDeviationT); faces never flip in any case

@@ -25,30 +25,10 @@ uniform vec3 uEye;
 const vec3 uEye = vec3(0.0);
 #endif
 
-// Per-instance records (VTKRT_INSTANCE_TEXELS texels each), rewritten every
-// frame because their matrices are camera-relative:
-// 0-2: rows of the camera-to-local affine matrix
-// 3: (camera-relative box min, bits(BVH root node))
-// 4: (camera-relative box max, bits(flags))
-// 5: (ambient color, specular power)   (colors weighted by intensity)
-// 6: (diffuse color, bits(color base))
-// 7: (specular color, bits(normal base))
-// 8: bits(first clip plane, clip plane count, prop index, 0)
-// 9: (ambient intensity, diffuse intensity, grow, 0): scalar colors replace
-//    the ambient and diffuse colors, weighted by these (as VTK 9.1 does);
-//    grow: BVH boxes of screen-sized spheres grow by it (local units)
-// 10: screen-sized spheres (points drawn as spheres): local radius =
-//    max(0, dot(texel.xyz, center) + texel.w), from this frame's camera
-uniform usamplerBuffer uInstances;
-
-const uint kInstanceSpheres = 1u;
-const uint kInstanceLit = 2u;
-const uint kInstanceVertexNormals = 4u;
-const uint kInstancePointColors = 8u;
-const uint kInstanceCellColors = 16u;
-const uint kInstanceMirrored = 32u;
-const uint kInstanceEllipsoids = 64u;
-const uint kInstanceColorTexture = 128u; // point colors through the mapper's color texture
+// Per-instance records (core::gpu::InstanceRecord), rewritten every frame
+// because their matrices are camera-relative; read through the accessors
+// instance<Field>(i) and flags kInstance<Name> that the pass generates from
+// vtkrt/core/GpuLayout.h.
 
 #ifdef VTKRT_HAS_COLORS
 uniform usamplerBuffer uColors; // packed RGBA8, four per texel
@@ -72,16 +52,6 @@ uniform vec3 uLightPosition[VTKRT_NUMBER_OF_LIGHTS];  // camera-relative
 uniform vec3 uLightAttenuation[VTKRT_NUMBER_OF_LIGHTS];
 uniform vec3 uLightCone[VTKRT_NUMBER_OF_LIGHTS]; // (cone angle, exponent, positional)
 #endif
-
-vec4 instanceTexel(int instance, int i)
-{
-  return uintBitsToFloat(texelFetch(uInstances, instance * VTKRT_INSTANCE_TEXELS + i));
-}
-
-uvec4 instanceBits(int instance, int i)
-{
-  return texelFetch(uInstances, instance * VTKRT_INSTANCE_TEXELS + i);
-}
 
 #if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
 // Any hit of a ray from org along dir within (0, tmax] (the core's anyHit).
@@ -279,15 +249,14 @@ vec4 lookupColorTexture(int base, vec2 st)
 void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tBest,
   inout int hitInstance, inout int hitPrimitive, inout vec2 hitUV, bool stopAtFirstHit)
 {
-  vec4 boxMin = instanceTexel(instance, 3);
-  vec4 boxMax = instanceTexel(instance, 4);
-  uint flags = instanceBits(instance, 4).w;
+  vec3 boxMin = instanceBoxMin(instance);
+  vec3 boxMax = instanceBoxMax(instance);
+  uint flags = instanceFlags(instance);
   float t0 = 0.0;
   float t1 = tBest;
 #if VTKRT_NUMBER_OF_CLIP_PLANES > 0
-  uvec4 info = instanceBits(instance, 8);
-  int firstPlane = int(info.x);
-  int planeCount = int(info.y);
+  int firstPlane = int(instanceFirstClipPlane(instance));
+  int planeCount = int(instanceClipPlaneCount(instance));
   bool clippedAway = false;
   for (int c = 0; c < planeCount; ++c)
   {
@@ -302,21 +271,21 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
   }
 #endif
   float tnear;
-  if (!intersectRayAABB(org, invDir, boxMin.xyz, boxMax.xyz, t0, t1, tnear))
+  if (!intersectRayAABB(org, invDir, boxMin, boxMax, t0, t1, tnear))
   {
     return;
   }
-  vec4 r0 = instanceTexel(instance, 0);
-  vec4 r1 = instanceTexel(instance, 1);
-  vec4 r2 = instanceTexel(instance, 2);
+  vec4 r0 = instanceCameraToLocalRow0(instance);
+  vec4 r1 = instanceCameraToLocalRow1(instance);
+  vec4 r2 = instanceCameraToLocalRow2(instance);
   vec3 localOrg = vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
   vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
-  int root = int(instanceBits(instance, 3).w);
+  int root = int(instanceRoot(instance));
   int primitive = -1;
   vec2 uv = vec2(0.0);
 #ifdef VTKRT_SCREEN_SPHERES
-  vec4 radiusPlane = instanceTexel(instance, 10);
-  float grow = instanceTexel(instance, 9).z;
+  vec4 radiusPlane = instanceScreenRadiusPlane(instance);
+  float grow = instanceSphereGrow(instance);
 #else
   vec4 radiusPlane = vec4(0.0);
   float grow = 0.0;
@@ -489,11 +458,10 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
   vec4 clip = uCameraToClip * vec4(p, 1.0);
   outDepth = clamp(0.5 * (clip.z / clip.w) + 0.5, 0.0, 1.0);
 
-  vec4 r0 = instanceTexel(hitInstance, 0);
-  vec4 r1 = instanceTexel(hitInstance, 1);
-  vec4 r2 = instanceTexel(hitInstance, 2);
-  uint flags = instanceBits(hitInstance, 4).w;
-  uvec4 info = instanceBits(hitInstance, 8);
+  vec4 r0 = instanceCameraToLocalRow0(hitInstance);
+  vec4 r1 = instanceCameraToLocalRow1(hitInstance);
+  vec4 r2 = instanceCameraToLocalRow2(hitInstance);
+  uint flags = instanceFlags(hitInstance);
 
   // Local normals map to camera space by the transpose of the camera-to-local
   // matrix (the inverse transpose of local-to-camera).
@@ -527,7 +495,7 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 #ifdef VTKRT_HAS_COLORS
     if ((flags & (kInstancePointColors | kInstanceCellColors)) != 0u)
     {
-      int cb = int(instanceBits(hitInstance, 6).w);
+      int cb = int(instanceColorBase(hitInstance));
 #ifdef VTKRT_HAS_COLOR_TEXTURE
       if ((flags & kInstanceColorTexture) != 0u)
       {
@@ -563,7 +531,7 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 #ifdef VTKRT_HAS_VERTEX_NORMALS
       if ((flags & kInstanceVertexNormals) != 0u)
       {
-        int nb = int(instanceBits(hitInstance, 7).w);
+        int nb = int(instanceNormalBase(hitInstance));
         localNormal = w0 * uintBitsToFloat(texelFetch(uNormals, nb + i0).xyz) +
           hitUV.x * uintBitsToFloat(texelFetch(uNormals, nb + i1).xyz) +
           hitUV.y * uintBitsToFloat(texelFetch(uNormals, nb + i2).xyz);
@@ -572,7 +540,7 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 #ifdef VTKRT_HAS_COLORS
       if ((flags & kInstancePointColors) != 0u)
       {
-        int cb = int(instanceBits(hitInstance, 6).w);
+        int cb = int(instanceColorBase(hitInstance));
 #ifdef VTKRT_HAS_COLOR_TEXTURE
         if ((flags & kInstanceColorTexture) != 0u)
         {
@@ -593,7 +561,7 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 #ifdef VTKRT_HAS_COLORS
     if ((flags & kInstanceCellColors) != 0u)
     {
-      scalarColor = fetchColor(int(instanceBits(hitInstance, 6).w) + int(vtkId));
+      scalarColor = fetchColor(int(instanceColorBase(hitInstance)) + int(vtkId));
     }
 #endif
   }
@@ -601,7 +569,7 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 
 #ifdef VTKRT_ID_MODE
   // RGB: the VTK cell (or point, for spheres) id, 24 bits; A: prop index + 1.
-  uint prop = info.z + 1u;
+  uint prop = instancePropIndex(hitInstance) + 1u;
   outColor = vec4(float(vtkId & 255u), float((vtkId >> 8) & 255u),
                 float((vtkId >> 16) & 255u), float(prop & 255u)) / 255.0;
 #else
@@ -629,16 +597,12 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
     n = -n;
   }
 
-  vec4 t5 = instanceTexel(hitInstance, 5);
-  vec4 t6 = instanceTexel(hitInstance, 6);
-  vec4 t7 = instanceTexel(hitInstance, 7);
-  vec3 ambientColor = t5.xyz;
-  vec3 diffuseColor = t6.xyz;
+  vec3 ambientColor = instanceAmbient(hitInstance);
+  vec3 diffuseColor = instanceDiffuse(hitInstance);
   if (scalarColor.x >= 0.0)
   {
-    vec4 intensities = instanceTexel(hitInstance, 9);
-    ambientColor = intensities.x * scalarColor.rgb;
-    diffuseColor = intensities.y * scalarColor.rgb;
+    ambientColor = instanceAmbientIntensity(hitInstance) * scalarColor.rgb;
+    diffuseColor = instanceDiffuseIntensity(hitInstance) * scalarColor.rgb;
   }
   // Unit geometric normal on the viewer's side (secondary ray offsets).
   vec3 ngView = normalize(ng);
@@ -646,7 +610,8 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
   {
     ngView = -ngView;
   }
-  vec3 color = shadeLikeVTK(p, n, ngView, ambientColor, diffuseColor, t7.xyz, t5.w,
+  vec3 color = shadeLikeVTK(p, n, ngView, ambientColor, diffuseColor, instanceSpecular(hitInstance),
+    instanceSpecularPower(hitInstance),
     (flags & kInstanceLit) != 0u);
   outColor = vec4(clamp(color, 0.0, 1.0), 1.0);
 #endif

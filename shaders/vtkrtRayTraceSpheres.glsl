@@ -64,7 +64,7 @@ bool intersectRaySphere(vec3 org, vec3 dir, vec3 center, float radius, float tmi
 // radius 0 in uSpheres: each gets max(0, dot(radiusPlane.xyz, center) +
 // radiusPlane.w), this frame's radius, and every box grows by `grow`, a bound
 // of that radius over the instance (0.0 for other sphere sets, so one form of
-// the box test serves both; measured no slower).
+// the box test serves both at no cost).
 // Ellipsoids (VTKRT_HAS_ELLIPSOIDS, `ellipsoids` set: sphere glyphs scaled
 // per component) take three texels each, the rows of the affine map of local
 // space onto their unit sphere: the ray is mapped there (t is unchanged by

@@ -400,7 +400,7 @@ core::BuildOptions Scene::SphereOptions() const
   core::BuildOptions options = this->Options();
   // A sphere test (one texel fetch, a few flops) costs the shader far less
   // than a node visit (four fetches, two box tests): shallower trees with
-  // larger leaves trace faster (about 5% on random sphere clouds, llvmpipe).
+  // larger leaves trace faster (docs/pass.md).
   options.traversalCost = 3.0;
   options.maxLeafSize = 16;
   return options;
