@@ -22,6 +22,9 @@
 //   BVHBuild.h   buildBVH(vector<AABB<double>>, options): generic builder
 //                (Fast = LBVH, Medium = binned SAH, High = sweep SAH);
 //                refit(bvh, boundsOf) after primitives moved
+//   build/       the builders, one a file (LBVHBuilder, BinnedSAHBuilder,
+//                SweepSAHBuilder over TopDownBuilder; DefaultBuilder picks
+//                by quality), parallelChunks, TreeStats, Refit
 //   BVHTraversal.h closestHit / anyHit / allHits (ray + intersector callable),
 //                closestPoint (point + callable, max distance), queryBox;
 //                also over the packed float copy (GpuNodeSource)

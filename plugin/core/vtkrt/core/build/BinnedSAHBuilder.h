@@ -1,0 +1,207 @@
+// BuildQuality::Medium: binned SAH (Wald 2007). Each range's centroids are
+// binned on all three axes; the split is the bin boundary of least SAH
+// cost, the references partitioned in place.
+#ifndef vtkrt_core_build_BinnedSAHBuilder_h
+#define vtkrt_core_build_BinnedSAHBuilder_h
+
+#include "vtkrt/core/build/SAH.h"
+#include "vtkrt/core/build/TopDownBuilder.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <new>
+#include <vector>
+
+namespace vtkrt::core::detail
+{
+
+class BinnedSAHBuilder : public TopDownBuilder<BinnedSAHBuilder>
+{
+public:
+  static constexpr std::uint32_t kMaxBins = 64;
+
+  BinnedSAHBuilder(std::vector<BuildRef>& refs, const BuildOptions& options)
+    : TopDownBuilder(refs, options)
+  {
+    Options.numBins = std::max<std::uint32_t>(2, std::min<std::uint32_t>(Options.numBins, kMaxBins));
+  }
+
+private:
+  friend class TopDownBuilder<BinnedSAHBuilder>;
+
+  static constexpr bool kBottomUpBounds = false;
+
+  struct Bin
+  {
+    AABB<double> box;
+    std::uint32_t count;
+  };
+
+  /// One node's bins on the three axes. Fixed-size scratch on the stack,
+  /// raw storage initialized for the nb bins in use only: no allocation, no
+  /// 3 x kMaxBins constructor calls.
+  struct Bins
+  {
+    alignas(Bin) unsigned char storage[3 * kMaxBins * sizeof(Bin)];
+    std::uint32_t nb;
+    double scale[3];
+    bool active[3]; ///< the centroids spread on this axis
+    Bin* axis(int a) { return reinterpret_cast<Bin*>(storage) + a * kMaxBins; }
+    const Bin* axis(int a) const { return reinterpret_cast<const Bin*>(storage) + a * kMaxBins; }
+  };
+
+  /// The best split found so far: before bin `bin` on `axis`.
+  struct Candidate
+  {
+    double cost = std::numeric_limits<double>::infinity();
+    int axis = -1;
+    std::uint32_t bin = 0;
+  };
+
+  std::uint32_t expectedLeafSize() const { return Options.maxLeafSize; }
+  const BuildRef& refAt(std::uint32_t pos) const { return Refs[pos]; }
+  void prepare() {}
+  void finish() {}
+
+  std::uint32_t medianSplit(std::uint32_t begin, std::uint32_t end, const AABB<double>& centroids)
+  {
+    const std::uint32_t mid = begin + (end - begin) / 2;
+    const Vec3<double> ext = centroids.diagonal();
+    if (ext.x > 0.0 || ext.y > 0.0 || ext.z > 0.0)
+    {
+      const int axis = centroids.largestAxis();
+      std::nth_element(Refs.begin() + begin, Refs.begin() + mid, Refs.begin() + end, AxisLess{ axis });
+    }
+    return mid;
+  }
+
+  /// The split position, or `end` when a leaf is cheaper (only considered
+  /// when the range fits in a leaf).
+  std::uint32_t split(std::uint32_t begin, std::uint32_t end, const AABB<double>& box, const AABB<double>& centroids)
+  {
+    const std::uint32_t count = end - begin;
+    Bins bins;
+    // Small ranges get fewer bins: the sweeps cost O(bins) per node.
+    bins.nb = std::min(Options.numBins, std::max<std::uint32_t>(2, count));
+    fillBins(bins, begin, end, centroids);
+    Candidate best;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      if (bins.active[axis])
+      {
+        sweepAxis(bins, axis, best);
+      }
+    }
+    if (best.axis < 0)
+    {
+      return count <= Options.maxLeafSize ? end : medianSplit(begin, end, centroids);
+    }
+    if (leafIsCheaper(Options, count, best.cost, box))
+    {
+      return end;
+    }
+    const int axis = best.axis;
+    const std::uint32_t bin = best.bin;
+    const double lo = centroids.min[axis];
+    const double axisScale = bins.scale[axis];
+    const std::uint32_t nb = bins.nb;
+    auto it = std::partition(Refs.begin() + begin, Refs.begin() + end, [&](const BuildRef& r) {
+      return binOf(r.centroid()[axis], lo, axisScale, nb) < bin;
+    });
+    const std::uint32_t mid = static_cast<std::uint32_t>(it - Refs.begin());
+    if (mid == begin || mid == end)
+    {
+      return medianSplit(begin, end, centroids);
+    }
+    return mid;
+  }
+
+  /// Empties bins.nb bins per axis, then bins [begin, end) on all three
+  /// axes in one pass over the primitives (scale and active in locals: the
+  /// pass writes bins, and so never reloads them).
+  void fillBins(Bins& bins, std::uint32_t begin, std::uint32_t end, const AABB<double>& centroids) const
+  {
+    const std::uint32_t nb = bins.nb;
+    double scale[3];
+    bool active[3];
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      const double extent = centroids.max[axis] - centroids.min[axis];
+      active[axis] = extent > 0.0;
+      scale[axis] = active[axis] ? nb / extent : 0.0;
+      Bin* axisBins = bins.axis(axis);
+      for (std::uint32_t b = 0; b < nb; ++b)
+      {
+        new (&axisBins[b]) Bin{ AABB<double>(), 0u };
+      }
+      bins.scale[axis] = scale[axis];
+      bins.active[axis] = active[axis];
+    }
+    for (std::uint32_t i = begin; i < end; ++i)
+    {
+      const BuildRef& r = Refs[i];
+      const Vec3<double> c = r.centroid();
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        if (active[axis])
+        {
+          Bin& bin = bins.axis(axis)[binOf(c[axis], centroids.min[axis], scale[axis], nb)];
+          bin.box.extend(r.box);
+          bin.count++;
+        }
+      }
+    }
+  }
+
+  /// The SAH cost of every bin boundary on `axis` (right sides accumulated
+  /// first, then the left ones); keeps the cheapest in `best` (a local copy
+  /// during the sweep, in registers).
+  static void sweepAxis(const Bins& bins, int axis, Candidate& best)
+  {
+    const std::uint32_t nb = bins.nb;
+    const Bin* axisBins = bins.axis(axis);
+    double rightArea[kMaxBins];
+    std::uint32_t rightCount[kMaxBins];
+    Candidate local = best;
+    AABB<double> acc;
+    std::uint32_t n = 0;
+    for (std::uint32_t b = nb - 1; b > 0; --b)
+    {
+      acc.extend(axisBins[b].box);
+      n += axisBins[b].count;
+      rightArea[b] = acc.halfArea();
+      rightCount[b] = n;
+    }
+    acc = AABB<double>();
+    n = 0;
+    for (std::uint32_t b = 1; b < nb; ++b)
+    {
+      acc.extend(axisBins[b - 1].box);
+      n += axisBins[b - 1].count;
+      if (n == 0 || rightCount[b] == 0)
+      {
+        continue;
+      }
+      const double cost = acc.halfArea() * n + rightArea[b] * rightCount[b];
+      if (cost < local.cost)
+      {
+        local.cost = cost;
+        local.axis = axis;
+        local.bin = b;
+      }
+    }
+    best = local;
+  }
+
+  static std::uint32_t binOf(double c, double lo, double scale, std::uint32_t nb)
+  {
+    const double f = (c - lo) * scale;
+    const std::uint32_t b = f > 0.0 ? static_cast<std::uint32_t>(f) : 0u;
+    return std::min(b, nb - 1);
+  }
+};
+
+} // namespace vtkrt::core::detail
+
+#endif
