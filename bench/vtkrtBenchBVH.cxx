@@ -1,10 +1,11 @@
 // vtkrtBenchBVH: the core BVH on generated terrains (~100k, 1M, 4M
-// triangles) and the Stanford bunny (if /work/shared/data/bunny.ply or
-// $VTKRT_BUNNY exists): build time per builder, SAH cost, memory, closest-hit
-// rays/s on one thread and on all threads, against brute force (small
-// case) and Embree 3 (when found at build time) in the same run.
+// triangles) and the Stanford bunny (bunny.ply from $VTKRT_DATA_DIR or the
+// project's data/, see vtkrtDataFile.h): build time per builder, SAH cost,
+// memory, closest-hit rays/s on one thread and on all threads, against brute
+// force (small case) and Embree 3 (when found at build time) in the same run.
 // Usage: vtkrtBenchBVH [--quick] [--rays N]
 #include "vtkrt/core/Core.h"
+#include "vtkrtDataFile.h"
 
 #ifdef VTKRT_HAVE_EMBREE
 #include <embree3/rtcore.h>
@@ -426,16 +427,20 @@ int main(int argc, char** argv)
     benchMesh(makeTerrain(708, 2), rayCount, false, true, threads);  // ~1M
     benchMesh(makeTerrain(1415, 3), rayCount, false, true, threads); // ~4M
   }
-  const char* env = std::getenv("VTKRT_BUNNY");
+  const std::string bunnyPath = vtkrtDataFile::Find("bunny.ply");
   Mesh bunny;
   bunny.name = "bunny";
-  if (readAsciiPly(env ? env : "/work/shared/data/bunny.ply", bunny))
+  if (readAsciiPly(bunnyPath, bunny))
   {
     benchMesh(bunny, rayCount, true, true, threads);
   }
+  else if (bunnyPath.empty())
+  {
+    std::printf("\n%s: skipped\n", vtkrtDataFile::NotFound("bunny.ply").c_str());
+  }
   else
   {
-    std::printf("\nbunny: no ASCII PLY found (set VTKRT_BUNNY), skipped\n");
+    std::printf("\nbunny: %s is not an ASCII PLY, skipped\n", bunnyPath.c_str());
   }
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);

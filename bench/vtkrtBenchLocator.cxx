@@ -20,6 +20,7 @@
 // median over the rounds, and its rate ratio the median (with the range) of
 // the per-round ratios, each ratio from timings seconds apart.
 #include "vtkBVHCellLocator.h"
+#include "vtkrtDataFile.h"
 
 #include "vtkCellLocator.h"
 #include "vtkGenericCell.h"
@@ -50,7 +51,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -120,16 +120,17 @@ vtkSmartPointer<vtkPolyData> BumpySphere(int res)
   return pd;
 }
 
+/// bunny.ply from $VTKRT_DATA_DIR or data/ (vtkrtDataFile.h); nullptr when neither has it.
 vtkSmartPointer<vtkPolyData> Bunny()
 {
-  const char* path = "/work/shared/data/bunny.ply";
-  std::ifstream f(path);
-  if (!f.good())
+  const std::string path = vtkrtDataFile::Find("bunny.ply");
+  if (path.empty())
   {
+    std::printf("\n%s: skipped\n", vtkrtDataFile::NotFound("bunny.ply").c_str());
     return nullptr;
   }
   vtkNew<vtkPLYReader> reader;
-  reader->SetFileName(path);
+  reader->SetFileName(path.c_str());
   reader->Update();
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->DeepCopy(reader->GetOutput());

@@ -36,12 +36,15 @@
 //
 // Usage: vtkrtBenchTrade [--quick] [--out DIR] [--size PIXELS]
 //                        [--mesh FILE.ply|.obj|.stl|.vtp|generated]
+// The default mesh is bunny.ply from $VTKRT_DATA_DIR or the project's data/
+// (vtkrtDataFile.h); --quick defaults to the generated one.
 #include "vtkrtPlot.h"
 
 #include "vtkBVHCellLocator.h"
 #include "vtkEGLHeadlessRenderWindow.h"
 #include "vtkOpenMeshDecimation.h"
 #include "vtkRayTracePass.h"
+#include "vtkrtDataFile.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -122,7 +125,7 @@ struct Options
 {
   bool Quick = false;
   std::string Out = "results";
-  std::string Mesh; // empty: the bunny when present, else generated
+  std::string Mesh; // empty: bunny.ply (vtkrtDataFile) when found, else generated
   int Size = 384;
   int Frames = 7;        // steady frames timed (median and minimum reported)
   int Repeats = 3;       // builder: best of this many builds and ray sweeps
@@ -1754,10 +1757,10 @@ int main(int argc, char* argv[])
 
   vtkSmartPointer<vtkPolyData> mesh;
   std::string meshName;
-  const char* bunny = "/work/shared/data/bunny.ply";
   if (opt.Mesh.empty())
   {
-    opt.Mesh = vtksys::SystemTools::FileExists(bunny) ? bunny : "generated";
+    const std::string bunny = vtkrtDataFile::Find("bunny.ply");
+    opt.Mesh = bunny.empty() ? "generated" : bunny;
   }
   if (opt.Mesh == "generated")
   {
