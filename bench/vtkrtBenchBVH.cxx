@@ -1,16 +1,17 @@
 // vtkrtBenchBVH: the core BVH on generated terrains (~100k, 1M, 4M
-// triangles) and the Stanford bunny (if /work/shared/data/bunny.ply or
-// $VTKRT_BUNNY exists): build time per builder, SAH cost, memory, closest-hit
-// rays/s on one thread and on all threads, against brute force (small
-// case) and Embree 3 (when found at build time) in the same run.
+// triangles) and the Stanford bunny (bunny.ply from $VTKRT_DATA_DIR or the
+// project's data/, see vtkrtDataFile.h): build time per builder, SAH cost,
+// memory, closest-hit rays/s on one thread and on all threads, against brute
+// force (small case) and Embree 3 (when found at build time) in the same run.
 // Usage: vtkrtBenchBVH [--quick] [--rays N]
 #include "vtkrt/core/Core.h"
+#include "vtkrtBenchTiming.h"
+#include "vtkrtDataFile.h"
 
 #ifdef VTKRT_HAVE_EMBREE
 #include <embree3/rtcore.h>
 #endif
 
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -22,27 +23,15 @@
 #include <vector>
 
 #include <sys/resource.h>
-#include <time.h>
 
 using namespace vtkrt::core;
 
 namespace
 {
 
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t0)
-{
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-/// CPU time of the calling thread: single-thread figures that stay honest
-/// on a machine shared with other jobs (wall time there includes waiting).
-double threadCpuSeconds()
-{
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+using vtkrtBench::Clock;
+using vtkrtBench::Seconds;
+using vtkrtBench::ThreadSeconds;
 
 struct Mesh
 {
@@ -212,9 +201,9 @@ std::size_t traceRange(const BVH& bvh, const Mesh& m, const std::vector<Ray<doub
 double raysPerCpuSecond(const BVH& bvh, const Mesh& m, const std::vector<Ray<double>>& rays)
 {
   static volatile std::size_t sink; // keeps the traversal from being optimized away
-  const double c0 = threadCpuSeconds();
+  const double c0 = ThreadSeconds();
   sink = traceRange(bvh, m, rays, 0, rays.size(), nullptr);
-  return rays.size() / (threadCpuSeconds() - c0);
+  return rays.size() / (ThreadSeconds() - c0);
 }
 
 /// Rays per second with `threads` threads (rays split in equal chunks).
@@ -239,7 +228,7 @@ double raysPerSecond(const BVH& bvh, const Mesh& m, const std::vector<Ray<double
   {
     hits += c;
   }
-  return rays.size() / secondsSince(t0);
+  return rays.size() / Seconds(t0, Clock::now());
 }
 
 #ifdef VTKRT_HAVE_EMBREE
@@ -255,7 +244,7 @@ EmbreeResult runEmbree(const Mesh& m, const std::vector<Ray<double>>& rays, cons
 {
   EmbreeResult r;
   RTCDevice device = rtcNewDevice("threads=1");
-  const double c0 = threadCpuSeconds();
+  const double c0 = ThreadSeconds();
   RTCScene scene = rtcNewScene(device);
   rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
@@ -275,10 +264,10 @@ EmbreeResult runEmbree(const Mesh& m, const std::vector<Ray<double>>& rays, cons
   rtcAttachGeometry(scene, geom);
   rtcReleaseGeometry(geom);
   rtcCommitScene(scene);
-  r.buildSeconds = threadCpuSeconds() - c0;
+  r.buildSeconds = ThreadSeconds() - c0;
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  const double c1 = threadCpuSeconds();
+  const double c1 = ThreadSeconds();
   std::vector<std::uint32_t> prims(rays.size());
   for (std::size_t i = 0; i < rays.size(); ++i)
   {
@@ -298,7 +287,7 @@ EmbreeResult runEmbree(const Mesh& m, const std::vector<Ray<double>>& rays, cons
     rtcIntersect1(scene, &ctx, &rh);
     prims[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? kInvalidIndex : rh.hit.primID;
   }
-  r.raysPerSecond = rays.size() / (threadCpuSeconds() - c1);
+  r.raysPerSecond = rays.size() / (ThreadSeconds() - c1);
   for (std::size_t i = 0; i < rays.size(); ++i)
   {
     r.hits += prims[i] != kInvalidIndex;
@@ -330,9 +319,9 @@ void benchMesh(const Mesh& m, std::size_t rayCount, bool brute, bool sweep, unsi
     BuildOptions opt;
     opt.quality = qualities[q];
     opt.numThreads = 1;
-    const double c0 = threadCpuSeconds();
+    const double c0 = ThreadSeconds();
     const BVH single = buildTriangleBVH(m.view(), opt);
-    const double buildCpu = threadCpuSeconds() - c0;
+    const double buildCpu = ThreadSeconds() - c0;
     opt.numThreads = threads;
     BVH bvh = buildTriangleBVH(m.view(), opt);
     std::size_t hits1 = 0, hitsN = 0;
@@ -364,7 +353,7 @@ void benchMesh(const Mesh& m, std::size_t rayCount, bool brute, bool sweep, unsi
   {
     const std::size_t n = std::min<std::size_t>(rays.size(), 300);
     TriangleIntersector<double> isect(m.view());
-    const double c0 = threadCpuSeconds();
+    const double c0 = ThreadSeconds();
     std::size_t disagree = 0;
     for (std::size_t i = 0; i < n; ++i)
     {
@@ -382,7 +371,7 @@ void benchMesh(const Mesh& m, std::size_t rayCount, bool brute, bool sweep, unsi
       }
       disagree += best.prim != ours[i];
     }
-    const double rate = n / (threadCpuSeconds() - c0);
+    const double rate = n / (ThreadSeconds() - c0);
     const double bvhRate = raysPerCpuSecond(reference, m, rays);
     std::printf("brute force: %.1f rays per CPU-second; binned-sah BVH is %.0fx faster; %zu of %zu rays "
                 "disagree on the hit triangle\n",
@@ -426,16 +415,20 @@ int main(int argc, char** argv)
     benchMesh(makeTerrain(708, 2), rayCount, false, true, threads);  // ~1M
     benchMesh(makeTerrain(1415, 3), rayCount, false, true, threads); // ~4M
   }
-  const char* env = std::getenv("VTKRT_BUNNY");
+  const std::string bunnyPath = vtkrtDataFile::Find("bunny.ply");
   Mesh bunny;
   bunny.name = "bunny";
-  if (readAsciiPly(env ? env : "/work/shared/data/bunny.ply", bunny))
+  if (readAsciiPly(bunnyPath, bunny))
   {
     benchMesh(bunny, rayCount, true, true, threads);
   }
+  else if (bunnyPath.empty())
+  {
+    std::printf("\n%s: skipped\n", vtkrtDataFile::NotFound("bunny.ply").c_str());
+  }
   else
   {
-    std::printf("\nbunny: no ASCII PLY found (set VTKRT_BUNNY), skipped\n");
+    std::printf("\nbunny: %s is not an ASCII PLY, skipped\n", bunnyPath.c_str());
   }
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);

@@ -20,6 +20,8 @@
 // median over the rounds, and its rate ratio the median (with the range) of
 // the per-round ratios, each ratio from timings seconds apart.
 #include "vtkBVHCellLocator.h"
+#include "vtkrtBenchTiming.h"
+#include "vtkrtDataFile.h"
 
 #include "vtkCellLocator.h"
 #include "vtkGenericCell.h"
@@ -43,14 +45,11 @@
 #endif
 
 #include <malloc.h>
-#include <time.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -59,21 +58,9 @@
 
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point a, Clock::time_point b)
-{
-  return std::chrono::duration<double>(b - a).count();
-}
-
-/// CPU time of the calling thread: single-thread query rates stay
-/// meaningful on a shared, loaded machine.
-double ThreadSeconds()
-{
-  timespec t;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
+using vtkrtBench::Clock;
+using vtkrtBench::Seconds;
+using vtkrtBench::ThreadSeconds;
 
 #ifdef VTKRT_HAVE_EMBREE
 /// Bytes Embree holds, from its device memory monitor: its BVH arenas are
@@ -120,16 +107,17 @@ vtkSmartPointer<vtkPolyData> BumpySphere(int res)
   return pd;
 }
 
+/// bunny.ply from $VTKRT_DATA_DIR or data/ (vtkrtDataFile.h); nullptr when neither has it.
 vtkSmartPointer<vtkPolyData> Bunny()
 {
-  const char* path = "/work/shared/data/bunny.ply";
-  std::ifstream f(path);
-  if (!f.good())
+  const std::string path = vtkrtDataFile::Find("bunny.ply");
+  if (path.empty())
   {
+    std::printf("\n%s: skipped\n", vtkrtDataFile::NotFound("bunny.ply").c_str());
     return nullptr;
   }
   vtkNew<vtkPLYReader> reader;
-  reader->SetFileName(path);
+  reader->SetFileName(path.c_str());
   reader->Update();
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->DeepCopy(reader->GetOutput());

@@ -15,6 +15,7 @@
 // --peers picks the sphere peers, "none" times the pass alone)
 #include "vtkEGLHeadlessRenderWindow.h"
 #include "vtkRayTracePass.h"
+#include "vtkrtBenchTiming.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -33,10 +34,9 @@
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 
-#include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <ctime>
 #include <functional>
 #include <iomanip>
 #include <iostream>
@@ -46,11 +46,11 @@
 
 namespace
 {
-using Clock = std::chrono::steady_clock;
+using vtkrtBench::Clock;
 
 double Ms(Clock::time_point a, Clock::time_point b)
 {
-  return std::chrono::duration<double, std::milli>(b - a).count();
+  return 1e3 * vtkrtBench::Seconds(a, b);
 }
 
 struct Timing
@@ -60,13 +60,10 @@ struct Timing
   double SteadyCpu = 0; ///< process CPU time per steady frame (all threads)
 };
 
-/// Process CPU time in ms: on a shared machine, less sensitive to other
-/// processes than wall time (llvmpipe's threads are all counted).
+/// Process CPU time in ms (vtkrtBench::ProcessSeconds).
 double CpuMs()
 {
-  timespec ts;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+  return 1e3 * vtkrtBench::ProcessSeconds();
 }
 
 /// A UV sphere with about `triangles` triangles.
@@ -159,65 +156,78 @@ void Row(
             << p.SteadyCpu << std::setprecision(2) << std::setw(8) << r.SteadyCpu / p.SteadyCpu
             << std::endl; // rows appear as they are measured (long runs)
 }
-} // namespace
-
-int main(int argc, char* argv[])
+/// An actor of `mapper` in `ren`, returned for its property.
+vtkActor* AddActor(vtkRenderer* ren, vtkMapper* mapper)
 {
-  bool large = false;
-  int frames = 6;
-  std::vector<int> sizes = { 512, 1024 };
-  std::vector<long> meshes = { 100000, 1000000 };
-  std::vector<long> sphereCounts = { 10000, 100000 };
-  std::vector<long> meshesArg, spheresArg;
-  std::string peers = "glyphs,points,impostors";
-  auto parseList = [](const char* text)
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  ren->AddActor(actor);
+  return actor;
+}
+
+struct Options
+{
+  bool Large = false;
+  int Frames = 6;
+  std::vector<int> Sizes = { 512, 1024 };
+  std::vector<long> Meshes = { 100000, 1000000 };
+  std::vector<long> SphereCounts = { 10000, 100000 };
+  std::string Peers = "glyphs,points,impostors";
+};
+
+/// The positive numbers of a comma-separated list.
+std::vector<long> ParseList(const char* text)
+{
+  std::vector<long> out;
+  std::stringstream list(text);
+  std::string item;
+  while (std::getline(list, item, ','))
   {
-    std::vector<long> out;
-    std::stringstream list(text);
-    std::string item;
-    while (std::getline(list, item, ','))
+    if (std::atol(item.c_str()) > 0)
     {
-      if (std::atol(item.c_str()) > 0)
-      {
-        out.push_back(std::atol(item.c_str()));
-      }
+      out.push_back(std::atol(item.c_str()));
     }
-    return out;
-  };
+  }
+  return out;
+}
+
+bool ParseArgs(int argc, char* argv[], Options& opt)
+{
+  std::vector<long> meshesArg, spheresArg;
   bool meshesGiven = false, spheresGiven = false;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
     if (a == "--large")
     {
-      large = true;
+      opt.Large = true;
     }
     else if (a == "--frames" && i + 1 < argc)
     {
-      frames = std::max(1, std::atoi(argv[++i]));
+      opt.Frames = std::max(1, std::atoi(argv[++i]));
     }
     else if (a == "--meshes" && i + 1 < argc)
     {
-      meshesArg = parseList(argv[++i]);
+      meshesArg = ParseList(argv[++i]);
       meshesGiven = true;
     }
     else if (a == "--spheres" && i + 1 < argc)
     {
-      spheresArg = parseList(argv[++i]);
+      spheresArg = ParseList(argv[++i]);
       spheresGiven = true;
     }
     else if (a == "--peers" && i + 1 < argc)
     {
-      peers = argv[++i];
+      opt.Peers = argv[++i];
     }
     else if (a == "--sizes" && i + 1 < argc)
     {
-      sizes.clear();
+      opt.Sizes.clear();
       std::stringstream list(argv[++i]);
       std::string item;
       while (std::getline(list, item, ','))
       {
-        sizes.push_back(std::atoi(item.c_str()));
+        opt.Sizes.push_back(std::atoi(item.c_str()));
       }
     }
     else
@@ -226,14 +236,27 @@ int main(int argc, char* argv[])
                 << " [--large] [--frames N] [--sizes 512,1024] [--meshes N,..] "
                    "[--spheres N,..]"
                    " [--peers glyphs,points,impostors]\n";
-      return EXIT_FAILURE;
+      return false;
     }
   }
-  vtkEGLHeadlessRenderWindow::TuneMallocForLargeBuffers();
-  vtkNew<vtkEGLHeadlessRenderWindow> win;
-  win->SetMultiSamples(0);
-  win->SetSize(64, 64);
-  win->Render();
+  if (opt.Large)
+  {
+    opt.Meshes.push_back(4000000);
+    opt.SphereCounts.push_back(1000000);
+  }
+  if (meshesGiven)
+  {
+    opt.Meshes = meshesArg;
+  }
+  if (spheresGiven)
+  {
+    opt.SphereCounts = spheresArg;
+  }
+  return true;
+}
+
+void PrintHeader(vtkEGLHeadlessRenderWindow* win, int frames)
+{
   std::cout << "vtkrtBenchPass: " << win->GetGLRenderer() << ", " << frames
             << " orbit frames after a first frame; times in ms; ratio = peer / "
                "pass\n\n";
@@ -243,107 +266,114 @@ int main(int argc, char* argv[])
             << std::setw(10) << "peer cpu" << std::setw(10) << "pass cpu" << std::setw(8)
             << "cpu rat"
             << "\n";
+}
 
-  if (large)
+/// Triangles: the pass against vtkPolyDataMapper.
+void RunMeshes(vtkRenderWindow* win, int size, const Options& opt)
+{
+  for (long n : opt.Meshes)
   {
-    meshes.push_back(4000000);
-    sphereCounts.push_back(1000000);
+    auto mesh = MeshOf(n);
+    auto setup = [&](vtkRenderer* ren)
+    {
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputData(mesh);
+      AddActor(ren, mapper);
+    };
+    const Timing pass = Measure(win, setup, true, opt.Frames);
+    const Timing raster = Measure(win, setup, false, opt.Frames);
+    Row(std::to_string(mesh->GetNumberOfCells() / 1000) + "k triangles", size,
+      "vtkPolyDataMapper", pass, raster);
   }
-  if (meshesGiven)
+}
+
+/// Spheres: the pass against the sphere peers opt.Peers names.
+void RunSpheres(vtkRenderWindow* win, int size, const Options& opt)
+{
+  auto wants = [&](const std::string& peer) { return opt.Peers.find(peer) != std::string::npos; };
+  const int frames = opt.Frames;
+  for (long n : opt.SphereCounts)
   {
-    meshes = meshesArg;
+    auto spheres = SpheresOf(n);
+    auto glyphs = [&](int resolution)
+    {
+      return [&, resolution](vtkRenderer* ren)
+      {
+        vtkNew<vtkSphereSource> source;
+        source->SetThetaResolution(resolution);
+        source->SetPhiResolution(resolution);
+        source->SetRadius(1.0);
+        vtkNew<vtkGlyph3DMapper> mapper;
+        mapper->SetInputData(spheres);
+        mapper->SetSourceConnection(source->GetOutputPort());
+        mapper->SetScaleArray("radius");
+        mapper->SetScaleModeToScaleByMagnitude();
+        AddActor(ren, mapper);
+      };
+    };
+    auto points = [&](vtkRenderer* ren)
+    {
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputData(spheres);
+      vtkActor* actor = AddActor(ren, mapper);
+      actor->GetProperty()->SetRenderPointsAsSpheres(true);
+      actor->GetProperty()->SetPointSize(static_cast<float>(size) / 100.0f);
+    };
+    auto impostors = [&](vtkRenderer* ren)
+    {
+      vtkNew<vtkOpenGLSphereMapper> mapper;
+      mapper->SetInputData(spheres);
+      mapper->SetScaleArray("radius");
+      AddActor(ren, mapper);
+    };
+    const std::string scene = std::to_string(n / 1000) + "k spheres";
+    const Timing pass = Measure(win, glyphs(16), true, frames);
+    if (opt.Peers == "none")
+    {
+      Row(scene, size, "(pass alone)", pass, pass);
+    }
+    const struct
+    {
+      const char* Key;
+      const char* Name;
+      std::function<void(vtkRenderer*)> Setup;
+      int Frames;
+    } peers[] = {
+      // Triangulated glyphs are slow at 100k+: fewer frames there.
+      { "glyphs", "vtkGlyph3DMapper 16x16", glyphs(16), n > 20000 ? 2 : frames },
+      { "points", "RenderPointsAsSpheres", points, frames },
+      { "impostors", "vtkOpenGLSphereMapper", impostors, frames },
+    };
+    for (const auto& peer : peers)
+    {
+      if (wants(peer.Key))
+      {
+        const Timing timing = Measure(win, peer.Setup, false, peer.Frames);
+        Row(scene, size, peer.Name, pass, timing);
+      }
+    }
   }
-  if (spheresGiven)
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Options opt;
+  if (!ParseArgs(argc, argv, opt))
   {
-    sphereCounts = spheresArg;
+    return EXIT_FAILURE;
   }
-  auto wants = [&](const std::string& peer) { return peers.find(peer) != std::string::npos; };
-  for (int size : sizes)
+  vtkEGLHeadlessRenderWindow::TuneMallocForLargeBuffers();
+  vtkNew<vtkEGLHeadlessRenderWindow> win;
+  win->SetMultiSamples(0);
+  win->SetSize(64, 64);
+  win->Render();
+  PrintHeader(win, opt.Frames);
+  for (int size : opt.Sizes)
   {
     win->SetSize(size, size);
-    for (long n : meshes)
-    {
-      auto mesh = MeshOf(n);
-      auto setup = [&](vtkRenderer* ren)
-      {
-        vtkNew<vtkPolyDataMapper> mapper;
-        mapper->SetInputData(mesh);
-        vtkNew<vtkActor> actor;
-        actor->SetMapper(mapper);
-        ren->AddActor(actor);
-      };
-      const Timing pass = Measure(win, setup, true, frames);
-      const Timing raster = Measure(win, setup, false, frames);
-      Row(std::to_string(mesh->GetNumberOfCells() / 1000) + "k triangles", size,
-        "vtkPolyDataMapper", pass, raster);
-    }
-    for (long n : sphereCounts)
-    {
-      auto spheres = SpheresOf(n);
-      auto glyphs = [&](int resolution)
-      {
-        return [&, resolution](vtkRenderer* ren)
-        {
-          vtkNew<vtkSphereSource> source;
-          source->SetThetaResolution(resolution);
-          source->SetPhiResolution(resolution);
-          source->SetRadius(1.0);
-          vtkNew<vtkGlyph3DMapper> mapper;
-          mapper->SetInputData(spheres);
-          mapper->SetSourceConnection(source->GetOutputPort());
-          mapper->SetScaleArray("radius");
-          mapper->SetScaleModeToScaleByMagnitude();
-          vtkNew<vtkActor> actor;
-          actor->SetMapper(mapper);
-          ren->AddActor(actor);
-        };
-      };
-      const std::string scene = std::to_string(n / 1000) + "k spheres";
-      const Timing pass = Measure(win, glyphs(16), true, frames);
-      if (peers == "none")
-      {
-        Row(scene, size, "(pass alone)", pass, pass);
-      }
-      if (wants("glyphs"))
-      {
-        // Triangulated glyphs are slow at 100k+: fewer frames there.
-        const Timing glyph = Measure(win, glyphs(16), false, n > 20000 ? 2 : frames);
-        Row(scene, size, "vtkGlyph3DMapper 16x16", pass, glyph);
-      }
-      if (wants("points"))
-      {
-        const Timing points = Measure(
-          win,
-          [&](vtkRenderer* ren)
-          {
-            vtkNew<vtkPolyDataMapper> mapper;
-            mapper->SetInputData(spheres);
-            vtkNew<vtkActor> actor;
-            actor->SetMapper(mapper);
-            actor->GetProperty()->SetRenderPointsAsSpheres(true);
-            actor->GetProperty()->SetPointSize(static_cast<float>(size) / 100.0f);
-            ren->AddActor(actor);
-          },
-          false, frames);
-        Row(scene, size, "RenderPointsAsSpheres", pass, points);
-      }
-      if (wants("impostors"))
-      {
-        const Timing impostors = Measure(
-          win,
-          [&](vtkRenderer* ren)
-          {
-            vtkNew<vtkOpenGLSphereMapper> mapper;
-            mapper->SetInputData(spheres);
-            mapper->SetScaleArray("radius");
-            vtkNew<vtkActor> actor;
-            actor->SetMapper(mapper);
-            ren->AddActor(actor);
-          },
-          false, frames);
-        Row(scene, size, "vtkOpenGLSphereMapper", pass, impostors);
-      }
-    }
+    RunMeshes(win, size, opt);
+    RunSpheres(win, size, opt);
   }
   return EXIT_SUCCESS;
 }

@@ -86,133 +86,111 @@ void MakeLogAxis(vtkAxis* axis, double lo, double hi)
   axis->SetRange(a, b);
   axis->SetCustomTickPositions(positions, labels);
 }
+
+const int kWidth = 880;
+const int kHeight = 480;
+
+/// Adds `s` as the `index`-th plot of `xy` (log10 of the values on a log
+/// axis) and grows `range` ([axis][lo, hi]) to its points.
+void AddCurve(vtkChartXY* xy, const Series& s, int index, const Axis& xAxis, const Axis& yAxis,
+  double range[2][2])
+{
+  vtkNew<vtkTable> table;
+  vtkNew<vtkDoubleArray> xs;
+  xs->SetName("x");
+  vtkNew<vtkDoubleArray> ys;
+  ys->SetName(s.Name.c_str());
+  const size_t n = std::min(s.X.size(), s.Y.size());
+  for (size_t i = 0; i < n; ++i)
+  {
+    double x = s.X[i];
+    double y = s.Y[i];
+    if (!std::isfinite(x) || !std::isfinite(y))
+    {
+      continue;
+    }
+    if (xAxis.Log)
+    {
+      x = std::log10(std::max(x, xAxis.LogFloor));
+    }
+    if (yAxis.Log)
+    {
+      y = std::log10(std::max(y, yAxis.LogFloor));
+    }
+    range[0][0] = std::min(range[0][0], x);
+    range[0][1] = std::max(range[0][1], x);
+    range[1][0] = std::min(range[1][0], y);
+    range[1][1] = std::max(range[1][1], y);
+    xs->InsertNextValue(x);
+    ys->InsertNextValue(y);
+  }
+  table->AddColumn(xs);
+  table->AddColumn(ys);
+
+  // A line needs two points (VTK reports an error otherwise): markers only.
+  vtkPlot* plot = xy->AddPlot(xs->GetNumberOfTuples() >= 2 ? vtkChart::LINE : vtkChart::POINTS);
+  plot->SetInputData(table, 0, 1);
+  plot->SetLabel(s.Name);
+  const unsigned char* pal = kPalette[index % 8];
+  if (s.Color[0] >= 0)
+  {
+    plot->SetColor(static_cast<unsigned char>(s.Color[0]), static_cast<unsigned char>(s.Color[1]),
+      static_cast<unsigned char>(s.Color[2]), 255);
+  }
+  else
+  {
+    plot->SetColor(pal[0], pal[1], pal[2], 255);
+  }
+  plot->SetWidth(2.5);
+  if (s.Dashed)
+  {
+    plot->GetPen()->SetLineType(vtkPen::DASH_LINE);
+  }
+  if (auto* points = vtkPlotPoints::SafeDownCast(plot))
+  {
+    points->SetMarkerStyle(kMarkers[index % 5]);
+    points->SetMarkerSize(8.0);
+  }
 }
 
-bool WritePNG(const Chart& chart, const std::string& path)
+/// Fixes `axis` to the data's range lo..hi (log10 of it on a log axis).
+void SetRange(vtkAxis* axis, const Axis& spec, double lo, double hi)
 {
-  vtkNew<vtkEGLHeadlessRenderWindow> window;
-  window->SetSize(chart.Width, chart.Height);
-  window->SetMultiSamples(0);
-  window->Initialize();
-  if (!window->IsContextReady())
+  if (lo > hi)
   {
-    std::cerr << "vtkrtPlot: no EGL context, cannot draw " << path << "\n";
-    return false;
+    return; // no data
   }
-
-  vtkNew<vtkContextView> view;
-  view->SetRenderWindow(window);
-  view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
-
-  vtkNew<vtkChartXY> xy;
-  view->GetScene()->AddItem(xy);
-  xy->SetTitle(chart.Title);
-  xy->GetTitleProperties()->SetFontSize(17);
-  xy->SetShowLegend(true);
-  xy->GetLegend()->SetLabelSize(13);
-  xy->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
-  xy->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
-  StyleAxis(xy->GetAxis(vtkAxis::BOTTOM), chart.XLabel);
-  StyleAxis(xy->GetAxis(vtkAxis::LEFT), chart.YLabel);
-  double range[2][2] = { { HUGE_VAL, -HUGE_VAL }, { HUGE_VAL, -HUGE_VAL } };
-
-  int index = 0;
-  for (const Series& s : chart.Curves)
+  if (spec.Log)
   {
-    vtkNew<vtkTable> table;
-    vtkNew<vtkDoubleArray> xs;
-    xs->SetName("x");
-    vtkNew<vtkDoubleArray> ys;
-    ys->SetName(s.Name.c_str());
-    const size_t n = std::min(s.X.size(), s.Y.size());
-    for (size_t i = 0; i < n; ++i)
-    {
-      double x = s.X[i];
-      double y = s.Y[i];
-      if (!std::isfinite(x) || !std::isfinite(y))
-      {
-        continue;
-      }
-      if (chart.LogX)
-      {
-        x = std::log10(std::max(x, chart.LogFloor));
-      }
-      if (chart.LogY)
-      {
-        y = std::log10(std::max(y, chart.LogFloor));
-      }
-      range[0][0] = std::min(range[0][0], x);
-      range[0][1] = std::max(range[0][1], x);
-      range[1][0] = std::min(range[1][0], y);
-      range[1][1] = std::max(range[1][1], y);
-      xs->InsertNextValue(x);
-      ys->InsertNextValue(y);
-    }
-    table->AddColumn(xs);
-    table->AddColumn(ys);
-
-    // A line needs two points (VTK reports an error otherwise): markers only.
-    vtkPlot* plot = xy->AddPlot(xs->GetNumberOfTuples() >= 2 ? vtkChart::LINE : vtkChart::POINTS);
-    plot->SetInputData(table, 0, 1);
-    plot->SetLabel(s.Name);
-    const unsigned char* pal = kPalette[index % 8];
-    if (s.Color[0] >= 0)
-    {
-      plot->SetColor(static_cast<unsigned char>(s.Color[0]), static_cast<unsigned char>(s.Color[1]),
-        static_cast<unsigned char>(s.Color[2]), 255);
-    }
-    else
-    {
-      plot->SetColor(pal[0], pal[1], pal[2], 255);
-    }
-    plot->SetWidth(2.5);
-    if (s.Dashed)
-    {
-      plot->GetPen()->SetLineType(vtkPen::DASH_LINE);
-    }
-    if (auto* points = vtkPlotPoints::SafeDownCast(plot))
-    {
-      points->SetMarkerStyle(kMarkers[index % 5]);
-      points->SetMarkerSize(8.0);
-    }
-    ++index;
+    MakeLogAxis(axis, lo, hi);
+    return;
   }
-
-  const bool log[2] = { chart.LogX, chart.LogY };
-  const bool fromZero[2] = { chart.XFromZero, chart.YFromZero };
-  vtkAxis* axes[2] = { xy->GetAxis(vtkAxis::BOTTOM), xy->GetAxis(vtkAxis::LEFT) };
-  for (int k = 0; k < 2; ++k)
+  // Markers on the plot's edge are cut: pad the data range.
+  if (spec.FromZero)
   {
-    if (range[k][0] > range[k][1])
-    {
-      continue; // no data
-    }
-    if (log[k])
-    {
-      MakeLogAxis(axes[k], range[k][0], range[k][1]);
-    }
-    else
-    {
-      // Markers on the plot's edge are cut: pad the data range.
-      double lo = fromZero[k] ? std::min(0.0, range[k][0]) : range[k][0];
-      double hi = fromZero[k] ? std::max(0.0, range[k][1]) : range[k][1];
-      const double span = hi > lo ? hi - lo : std::max(1e-12, 0.1 * std::abs(hi));
-      axes[k]->SetBehavior(vtkAxis::FIXED);
-      axes[k]->SetRange(lo == 0.0 && fromZero[k] ? 0.0 : lo - 0.06 * span, hi + 0.06 * span);
-    }
+    lo = std::min(0.0, lo);
+    hi = std::max(0.0, hi);
   }
-  const LegendCorner corner = chart.Legend;
+  const double span = hi > lo ? hi - lo : std::max(1e-12, 0.1 * std::abs(hi));
+  axis->SetBehavior(vtkAxis::FIXED);
+  axis->SetRange(lo == 0.0 && spec.FromZero ? 0.0 : lo - 0.06 * span, hi + 0.06 * span);
+}
+
+void PlaceLegend(vtkChartLegend* legend, LegendCorner corner)
+{
   const bool bottom = corner == LegendCorner::BottomLeft || corner == LegendCorner::BottomCenter ||
     corner == LegendCorner::BottomRight;
   const bool left = corner == LegendCorner::TopLeft || corner == LegendCorner::BottomLeft;
   const bool center = corner == LegendCorner::TopCenter || corner == LegendCorner::BottomCenter;
-  xy->GetLegend()->SetVerticalAlignment(bottom ? vtkChartLegend::BOTTOM : vtkChartLegend::TOP);
-  xy->GetLegend()->SetHorizontalAlignment(
+  legend->SetVerticalAlignment(bottom ? vtkChartLegend::BOTTOM : vtkChartLegend::TOP);
+  legend->SetHorizontalAlignment(
     left ? vtkChartLegend::LEFT : (center ? vtkChartLegend::CENTER : vtkChartLegend::RIGHT));
-  xy->GetLegend()->SetInline(corner != LegendCorner::OutsideRight);
+  legend->SetInline(corner != LegendCorner::OutsideRight);
+}
 
-  window->Render();
-
+/// The window's image as a PNG file at `path`.
+bool SavePNG(vtkRenderWindow* window, const std::string& path)
+{
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
   grab->SetInputBufferTypeToRGB();
@@ -228,6 +206,49 @@ bool WritePNG(const Chart& chart, const std::string& path)
   if (writer->GetErrorCode() != 0)
   {
     std::cerr << "vtkrtPlot: could not write " << path << "\n";
+    return false;
+  }
+  return true;
+}
+}
+
+bool WritePNG(const std::string& path, const std::string& title, const Axis& x, const Axis& y,
+  const std::vector<Series>& curves, LegendCorner legend)
+{
+  vtkNew<vtkEGLHeadlessRenderWindow> window;
+  window->SetSize(kWidth, kHeight);
+  window->SetMultiSamples(0);
+  window->Initialize();
+  if (!window->IsContextReady())
+  {
+    std::cerr << "vtkrtPlot: no EGL context, cannot draw " << path << "\n";
+    return false;
+  }
+
+  vtkNew<vtkContextView> view;
+  view->SetRenderWindow(window);
+  view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
+
+  vtkNew<vtkChartXY> xy;
+  view->GetScene()->AddItem(xy);
+  xy->SetTitle(title);
+  xy->GetTitleProperties()->SetFontSize(17);
+  xy->SetShowLegend(true);
+  xy->GetLegend()->SetLabelSize(13);
+  StyleAxis(xy->GetAxis(vtkAxis::BOTTOM), x.Label);
+  StyleAxis(xy->GetAxis(vtkAxis::LEFT), y.Label);
+  double range[2][2] = { { HUGE_VAL, -HUGE_VAL }, { HUGE_VAL, -HUGE_VAL } };
+  for (size_t i = 0; i < curves.size(); ++i)
+  {
+    AddCurve(xy, curves[i], static_cast<int>(i), x, y, range);
+  }
+  SetRange(xy->GetAxis(vtkAxis::BOTTOM), x, range[0][0], range[0][1]);
+  SetRange(xy->GetAxis(vtkAxis::LEFT), y, range[1][0], range[1][1]);
+  PlaceLegend(xy->GetLegend(), legend);
+
+  window->Render();
+  if (!SavePNG(window, path))
+  {
     return false;
   }
   window->Finalize();

@@ -1,10 +1,14 @@
 // vtkrtPlot: headless line charts for benchmarks, drawn with VTK's own
 // charts (vtkChartXY in a vtkContextView) on a vtkEGLHeadlessRenderWindow
 // and written as PNG. No plotting dependency beyond VTK.
+//
+// A chart is one call: WritePNG(path, title, x axis, y axis, curves), each
+// curve picked from a table's rows with SeriesOf.
 #ifndef vtkrtPlot_h
 #define vtkrtPlot_h
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vtkrtPlot
@@ -21,6 +25,54 @@ struct Series
   bool Dashed = false;
 };
 
+/// The curve `name` through (x(row), y(row)) for every row of `rows` that
+/// `keep(row)` accepts, in the rows' order.
+template <class Rows, class Keep, class X, class Y>
+Series SeriesOf(std::string name, const Rows& rows, Keep keep, X x, Y y)
+{
+  Series s;
+  s.Name = std::move(name);
+  for (const auto& row : rows)
+  {
+    if (keep(row))
+    {
+      s.X.push_back(x(row));
+      s.Y.push_back(y(row));
+    }
+  }
+  return s;
+}
+
+/// One axis: its title and its scale.
+struct Axis
+{
+  std::string Label;
+  bool Log = false;
+  // On a log axis, values <= 0 cannot be drawn: they are raised to this
+  // floor (say so in the label when it matters).
+  double LogFloor = 1e-9;
+  // A linear axis spans the data (padded a little), stretched to 0 when set.
+  bool FromZero = false;
+};
+
+/// A linear axis spanning the data.
+inline Axis Linear(std::string label)
+{
+  return { std::move(label), false, 1e-9, false };
+}
+
+/// A linear axis spanning the data and 0.
+inline Axis LinearFromZero(std::string label)
+{
+  return { std::move(label), false, 1e-9, true };
+}
+
+/// A log axis; values below `floor` are drawn at it.
+inline Axis Log(std::string label, double floor = 1e-9)
+{
+  return { std::move(label), true, floor, false };
+}
+
 /// Where the legend goes inside the plot area (choose where no data is).
 enum class LegendCorner
 {
@@ -33,29 +85,12 @@ enum class LegendCorner
   OutsideRight ///< right of the plot area, which shrinks to make room
 };
 
-struct Chart
-{
-  std::string Title;
-  std::string XLabel;
-  std::string YLabel;
-  bool LogX = false;
-  bool LogY = false;
-  // On a log axis, values <= 0 cannot be drawn: they are raised to this
-  // floor (say so in the axis label when it matters).
-  double LogFloor = 1e-9;
-  // A linear axis spans the data (padded a little), stretched to 0 when set.
-  bool XFromZero = false;
-  bool YFromZero = false;
-  LegendCorner Legend = LegendCorner::OutsideRight;
-  int Width = 880;
-  int Height = 480;
-  std::vector<Series> Curves;
-};
-
-/// Renders `chart` headless and writes it to `path` (PNG). Returns false,
-/// with a message on stderr, when no EGL context could be made or the file
-/// could not be written. Points with non-finite coordinates are left out.
-bool WritePNG(const Chart& chart, const std::string& path);
+/// Draws `curves` under `title` on the axes `x` and `y`, headless, and
+/// writes the chart to `path` (PNG). Returns false, with a message on
+/// stderr, when no EGL context could be made or the file could not be
+/// written. Points with non-finite coordinates are left out.
+bool WritePNG(const std::string& path, const std::string& title, const Axis& x, const Axis& y,
+  const std::vector<Series>& curves, LegendCorner legend = LegendCorner::OutsideRight);
 }
 
 #endif

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Regenerates the demo scene of vtkrt-render (needs Debian's python3-vtk9):
 
-    /usr/bin/python3 data/make_demo_data.py /work/shared/data/bunny.ply
+    /usr/bin/python3 data/make_demo_data.py data/bunny.ply
 
 - data/bunny.vtp: the Stanford bunny (points and triangles only, normals
   computed here), binary, zlib-compressed, 32-bit ids.
@@ -88,8 +88,8 @@ def spheres(mesh, out_path):
 
 if __name__ == "__main__":
     import os
-    src = sys.argv[1] if len(sys.argv) > 1 else "/work/shared/data/bunny.ply"
     here = os.path.dirname(os.path.abspath(__file__))
+    src = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "bunny.ply")
     mesh = bunny(src, os.path.join(here, "bunny.vtp"))
     spheres(mesh, os.path.join(here, "demo-spheres.vtp"))
     print("bunny: %d points, %d triangles" % (mesh.GetNumberOfPoints(), mesh.GetNumberOfPolys()))

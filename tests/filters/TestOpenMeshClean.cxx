@@ -468,9 +468,9 @@ void TestNonManifoldVertices()
   VTKRT_CHECK(clean->GetOutput()->GetNumberOfPolys() == 8, "all faces kept");
 }
 
-void TestTeapot(const std::string& path)
+void TestTeapot()
 {
-  vtkSmartPointer<vtkPolyData> teapot = vtkrt_test::ReadOptionalMesh(path, "teapot");
+  vtkSmartPointer<vtkPolyData> teapot = vtkrt_test::ReadDataMesh("teapot.obj", "teapot");
   if (!teapot)
   {
     return;
@@ -599,9 +599,9 @@ void TestBadInput()
   VTKRT_CHECK(catcher->Errors.empty() && clean->IsClosedManifold(), "recovers");
 }
 
-void TestBunny(const std::string& path)
+void TestBunny()
 {
-  vtkSmartPointer<vtkPolyData> in = vtkrt_test::ReadOptionalMesh(path, "bunny");
+  vtkSmartPointer<vtkPolyData> in = vtkrt_test::ReadDataMesh("bunny.ply", "bunny");
   if (!in)
   {
     return;
@@ -633,7 +633,7 @@ void TestBunny(const std::string& path)
 
 } // namespace
 
-int main(int argc, char* argv[])
+int main()
 {
   TestSplitSphereIsWeldedAndOriented();
   TestTexturedSphereSeam();
@@ -645,8 +645,8 @@ int main(int argc, char* argv[])
   TestNonManifoldVertices();
   TestNestedShells();
   TestBadInput();
-  TestBunny(argc > 1 ? argv[1] : "");
-  TestTeapot(argc > 2 ? argv[2] : "");
+  TestBunny();
+  TestTeapot();
   std::cout << (vtkrt_test::Failures() ? "FAILED: " : "passed, failures: ")
             << vtkrt_test::Failures() << std::endl;
   return vtkrt_test::Failures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE;

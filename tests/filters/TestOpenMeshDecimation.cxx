@@ -515,7 +515,7 @@ void TestBadInput()
 
 } // namespace
 
-int main(int argc, char* argv[])
+int main()
 {
   TestTargets();
   TestErrorBound(Sphere(64, 64), "sphere", 0.002);
@@ -526,7 +526,7 @@ int main(int argc, char* argv[])
   TestAttributes();
   TestShapeLimits();
   TestBadInput();
-  if (auto bunnyFile = vtkrt_test::ReadOptionalMesh(argc > 1 ? argv[1] : "", "bunny"))
+  if (auto bunnyFile = vtkrt_test::ReadDataMesh("bunny.ply", "bunny"))
   {
     vtkNew<vtkOpenMeshClean> clean;
     clean->SetInputData(bunnyFile);

@@ -1,6 +1,6 @@
 // Helpers shared by the filters tests: checks, an error catcher, a walk over
-// a triangle mesh's faces, test inputs (a surface-less polydata, the optional
-// real meshes), OpenMesh's verdict on a mesh, and sampled surface distances.
+// a triangle mesh's faces, test inputs (a surface-less polydata, the real
+// meshes of data/), OpenMesh's verdict on a mesh, and sampled surface distances.
 #ifndef vtkrtFiltersTestUtilities_h
 #define vtkrtFiltersTestUtilities_h
 
@@ -25,6 +25,8 @@
 #include "vtkStaticCellLocator.h"
 #include "vtkTriangle.h"
 #include "vtksys/SystemTools.hxx"
+
+#include "vtkrtDataFile.h"
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
@@ -123,15 +125,18 @@ inline vtkSmartPointer<vtkPolyData> LinesOnly()
   return pd;
 }
 
-// A real mesh (.ply or .obj) from outside the source tree, or null, saying the
-// test on it is skipped, when the file is absent: the suite runs without it.
-inline vtkSmartPointer<vtkPolyData> ReadOptionalMesh(const std::string& path, const char* name)
+// A real mesh (.ply or .obj) by file name from $VTKRT_DATA_DIR or the
+// project's data/ (vtkrtDataFile.h); a failed check and null when neither
+// folder holds it.
+inline vtkSmartPointer<vtkPolyData> ReadDataMesh(const std::string& file, const char* name)
 {
-  if (!vtksys::SystemTools::FileExists(path))
+  const std::string path = vtkrtDataFile::Find(file);
+  if (path.empty())
   {
-    std::cout << name << ": " << path << " absent, skipped" << std::endl;
+    VTKRT_CHECK(false, name << ": " << vtkrtDataFile::NotFound(file));
     return nullptr;
   }
+  std::cout << name << ": " << path << std::endl;
   const std::string ext =
     vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path));
   vtkSmartPointer<vtkPolyDataAlgorithm> reader;

@@ -23,11 +23,12 @@
 #include "vtkTriangleFilter.h"
 #include "vtkCellType.h"
 
+#include "vtkrtDataFile.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <set>
@@ -165,28 +166,24 @@ inline vtkSmartPointer<vtkPolyData> MakeBumpySphere(int res, double radius = 1.0
   return pd;
 }
 
-/// The Stanford bunny from /work/shared/data when present (nullptr otherwise).
+/// The Stanford bunny, bunny.ply from $VTKRT_DATA_DIR or the project's
+/// data/ (vtkrtDataFile.h); a failed check and nullptr when neither has it.
 inline vtkSmartPointer<vtkPolyData> LoadBunny()
 {
-  const char* candidates[] = { "/work/shared/data/bunny.ply", "../shared/data/bunny.ply" };
-  for (const char* path : candidates)
+  const std::string path = vtkrtDataFile::Find("bunny.ply");
+  LT_CHECK_MSG(!path.empty(), vtkrtDataFile::NotFound("bunny.ply"));
+  if (path.empty())
   {
-    std::ifstream f(path);
-    if (!f.good())
-    {
-      continue;
-    }
-    vtkNew<vtkPLYReader> reader;
-    reader->SetFileName(path);
-    reader->Update();
-    auto pd = vtkSmartPointer<vtkPolyData>::New();
-    pd->DeepCopy(reader->GetOutput());
-    if (pd->GetNumberOfCells() > 0)
-    {
-      return pd;
-    }
+    return nullptr;
   }
-  return nullptr;
+  std::cout << "bunny: " << path << std::endl;
+  vtkNew<vtkPLYReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->DeepCopy(reader->GetOutput());
+  LT_CHECK_MSG(pd->GetNumberOfCells() > 0, path << " holds no cells");
+  return pd->GetNumberOfCells() > 0 ? pd : nullptr;
 }
 
 inline double Diagonal(vtkDataSet* ds)
