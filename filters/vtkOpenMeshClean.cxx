@@ -9,6 +9,8 @@
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkIdList.h"
+#include "vtkSMPThreadLocalObject.h"
 #include "vtkSMPTools.h"
 #include "vtkStaticPointLocator.h"
 #include "vtkUnsignedCharArray.h"
@@ -252,6 +254,56 @@ void vtkOpenMeshClean::ResetCounts()
   this->NumberOfRejectedFaces = 0;
 }
 
+namespace
+{
+/// Merges every point into the first point (lowest id) within `tol` of it
+/// that is not itself merged, whatever the SMP backend and thread count:
+/// VTK 9.1's vtkStaticPointLocator::MergePoints with a tolerance is not
+/// deterministic under TBB. The neighbour queries run in parallel, the
+/// assignment in id order.
+void MergePointsInOrder(
+  vtkStaticPointLocator* locator, vtkPoints* pts, double tol, std::vector<vtkIdType>& mergeMap)
+{
+  const vtkIdType n = static_cast<vtkIdType>(mergeMap.size());
+  std::vector<std::vector<vtkIdType>> later(static_cast<std::size_t>(n));
+  vtkSMPThreadLocalObject<vtkIdList> found;
+  vtkSMPTools::For(0, n,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      vtkIdList* ids = found.Local();
+      double p[3];
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        pts->GetPoint(i, p);
+        locator->FindPointsWithinRadius(tol, p, ids);
+        for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+        {
+          if (ids->GetId(k) > i)
+          {
+            later[static_cast<std::size_t>(i)].push_back(ids->GetId(k));
+          }
+        }
+      }
+    });
+  std::fill(mergeMap.begin(), mergeMap.end(), -1);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    if (mergeMap[static_cast<std::size_t>(i)] >= 0)
+    {
+      continue;
+    }
+    mergeMap[static_cast<std::size_t>(i)] = i;
+    for (vtkIdType j : later[static_cast<std::size_t>(i)])
+    {
+      if (mergeMap[static_cast<std::size_t>(j)] < 0)
+      {
+        mergeMap[static_cast<std::size_t>(j)] = i;
+      }
+    }
+  }
+}
+} // namespace
+
 //------------------------------------------------------------------------------
 int vtkOpenMeshClean::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -340,7 +392,7 @@ int vtkOpenMeshClean::RequestData(
     locator->SetDataSet(cloud);
     locator->BuildLocator();
     std::vector<vtkIdType> mergeMap(nFinite);
-    locator->MergePoints(tol, mergeMap.data());
+    MergePointsInOrder(locator, finitePts, tol, mergeMap);
     for (vtkIdType i = 0; i < nFinite; ++i)
     {
       weld[finiteIds[i]] = finiteIds[mergeMap[i]];
