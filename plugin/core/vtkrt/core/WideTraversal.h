@@ -210,9 +210,8 @@ VTKRT_ALWAYS_INLINE inline bool walkWide(
       {
         // The nearest hit child is walked next (one hit, the most common
         // case, is just that); the others go on the stack farthest first,
-        // their first loads started now (again below the top levels, where
-        // prefetchChildren fetched their first lines: skipping it there was
-        // no quicker).
+        // their first loads started now (below the top levels too, where
+        // prefetchChildren fetched only a leaf's first lines).
         int i = countTrailingZeros(static_cast<unsigned>(mask));
         mask &= mask - 1;
         Entry nearest{ cur.Nodes, w.child[i], w.count[i], tnear[i], cur.Depth + 1 };
