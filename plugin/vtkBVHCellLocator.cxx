@@ -2,28 +2,19 @@
 
 #include "vtkCell.h"
 #include "vtkCellArray.h"
-#include "vtkCellArrayIterator.h"
-#include "vtkCellType.h"
 #include "vtkDataSet.h"
-#include "vtkDoubleArray.h"
 #include "vtkGenericCell.h"
 #include "vtkIdList.h"
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkPointSet.h"
-#include "vtkPolygon.h"
-#include "vtkSMPTools.h"
-#include "vtkUnstructuredGrid.h"
 
 #include "vtkBVHCellLocatorInternals.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdint>
-#include <limits>
 #include <mutex>
 #include <vector>
 
@@ -50,78 +41,6 @@ namespace
 inline bool IsFinite3(const double p[3])
 {
   return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
-}
-
-// A vtkGenericCell for one query: the caller's when given, else a local one
-// created only when needed (non-triangle cells).
-class QueryCell
-{
-public:
-  explicit QueryCell(vtkGenericCell* given)
-    : Given(given)
-  {
-  }
-  ~QueryCell()
-  {
-    if (this->Own)
-    {
-      this->Own->Delete();
-    }
-  }
-  vtkGenericCell* Get()
-  {
-    if (this->Given)
-    {
-      return this->Given;
-    }
-    if (!this->Own)
-    {
-      this->Own = vtkGenericCell::New();
-    }
-    return this->Own;
-  }
-
-private:
-  vtkGenericCell* Given;
-  vtkGenericCell* Own = nullptr;
-};
-// What DataSet->GetCell(cellId, cell) gives for a triangle, from the point
-// ids kept with it and the coordinates the exact test read (the dataset's
-// double points in place, else the build's double copy): no cell lookup and
-// no virtual call a point. A cell that already holds three double points
-// (the previous pick's triangle, as in vtkCellPicker's loop) is overwritten
-// in place: resizing its arrays again was most of a hit's cost. As with
-// vtkPolyData::GetCell, nothing is marked modified.
-void FillTriangleCell(vtkGenericCell* cell, const std::uint32_t* ids, const double* coords)
-{
-  cell->SetCellTypeToTriangle();
-  if (cell->PointIds->GetNumberOfIds() != 3)
-  {
-    cell->PointIds->SetNumberOfIds(3);
-  }
-  vtkDoubleArray* cellCoords = vtkDoubleArray::FastDownCast(cell->Points->GetData());
-  if (!cellCoords || cellCoords->GetNumberOfComponents() != 3 || cellCoords->GetNumberOfTuples() != 3)
-  {
-    cell->Points->SetNumberOfPoints(3);
-    cellCoords = vtkDoubleArray::FastDownCast(cell->Points->GetData());
-  }
-  double* dst = cellCoords && cellCoords->GetNumberOfComponents() == 3 ? cellCoords->GetPointer(0) : nullptr;
-  for (int k = 0; k < 3; ++k)
-  {
-    const vtkIdType id = ids[k];
-    const double* p = coords + 3 * id;
-    cell->PointIds->SetId(k, id);
-    if (dst)
-    {
-      dst[3 * k] = p[0]; // not std::copy_n: a memcpy call for three doubles
-      dst[3 * k + 1] = p[1];
-      dst[3 * k + 2] = p[2];
-    }
-    else
-    {
-      cell->Points->SetPoint(k, p);
-    }
-  }
 }
 } // namespace
 
@@ -367,10 +286,8 @@ int vtkBVHCellLocator::IntersectWithLine(const double p1[3], const double p2[3],
   {
     return 0;
   }
-  QueryCell qc(cell);
   vtkrt::locator::LineHit hit;
-  const auto& data = this->Internals->Data;
-  if (!data.ClosestHit(p1, p2, std::abs(tol), this->DataSet, [&]() { return qc.Get(); }, hit))
+  if (!this->Internals->Data.IntersectWithLine(p1, p2, std::abs(tol), this->DataSet, cell, hit))
   {
     return 0;
   }
@@ -381,24 +298,6 @@ int vtkBVHCellLocator::IntersectWithLine(const double p1[3], const double p2[3],
   {
     x[i] = hit.X[i];
     pcoords[i] = hit.PCoords[i];
-  }
-  if (hit.NeedsEvaluate)
-  {
-    // Quad or polygon hit through its triangulation: parametric coordinates
-    // in the original cell.
-    vtkGenericCell* c = qc.Get();
-    this->DataSet->GetCell(cellId, c);
-    double closest[3], dist2;
-    std::vector<double> weights(static_cast<size_t>(std::max<vtkIdType>(c->GetNumberOfPoints(), 1)));
-    c->EvaluatePosition(x, closest, subId, pcoords, dist2, weights.data());
-  }
-  if (cell && hit.TrianglePointIds)
-  {
-    FillTriangleCell(cell, hit.TrianglePointIds, data.WorldCoords());
-  }
-  else if (cell)
-  {
-    this->DataSet->GetCell(cellId, cell);
   }
   return 1;
 }
@@ -441,10 +340,8 @@ int vtkBVHCellLocator::IntersectWithLine(const double p1[3], const double p2[3],
   {
     return 0;
   }
-  QueryCell qc(cell);
   std::vector<vtkrt::locator::LineHit> hits;
-  const auto& data = this->Internals->Data;
-  data.AllHits(p1, p2, std::abs(tol), this->DataSet, [&]() { return qc.Get(); }, hits);
+  this->Internals->Data.AllHits(p1, p2, std::abs(tol), this->DataSet, cell, hits);
   if (hits.empty())
   {
     return 0;
@@ -513,9 +410,8 @@ vtkIdType vtkBVHCellLocator::FindClosestPointWithinRadius(double x[3], double ra
   {
     return 0;
   }
-  QueryCell qc(cell);
   vtkrt::locator::PointHit hit;
-  if (!this->Internals->Data.ClosestPoint(x, radius, this->DataSet, [&]() { return qc.Get(); }, hit))
+  if (!this->Internals->Data.FindClosestPoint(x, radius, this->DataSet, cell, hit))
   {
     return 0;
   }
@@ -526,20 +422,6 @@ vtkIdType vtkBVHCellLocator::FindClosestPointWithinRadius(double x[3], double ra
   for (int i = 0; i < 3; ++i)
   {
     closestPoint[i] = hit.X[i];
-  }
-  if (hit.NeedsEvaluate)
-  {
-    // subId and inside as the original cell reports them.
-    vtkGenericCell* c = qc.Get();
-    this->DataSet->GetCell(cellId, c);
-    double cp[3], d2, pc[3];
-    std::vector<double> weights(static_cast<size_t>(std::max<vtkIdType>(c->GetNumberOfPoints(), 1)));
-    const int r = c->EvaluatePosition(x, cp, subId, pc, d2, weights.data());
-    inside = r == 1 ? 1 : 0;
-  }
-  if (cell)
-  {
-    this->DataSet->GetCell(cellId, cell);
   }
   return 1;
 }
@@ -587,7 +469,7 @@ vtkIdType vtkBVHCellLocator::FindCell(
   {
     return -1;
   }
-  QueryCell qc(cell);
+  vtkrt::locator::QueryCell qc(cell);
   std::vector<double> localWeights;
   if (!weights)
   {

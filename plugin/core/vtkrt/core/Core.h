@@ -35,6 +35,17 @@
 //   LocalFrame.h localOrigin, relativeFloatVertices (GPU upload helpers)
 //   TwoLevel.h   Instance (bottom BVH + double 4x4), TwoLevelBVH: closest and
 //                any hit through both levels; setTransform + refitTop
+//   ConservativeFloat.h  float pre-tests that never reject a double hit (and
+//                why): FloatRounding.h, ConservativeRay.h, simd/Packs.h,
+//                simd/QuantizedBox.h, simd/Sse.h or simd/Scalar.h, simd/Avx2.h;
+//                simd/Dispatch.h: VTKRT_CORE_SSE/AVX2, useAvx2(), VTKRT_NO_AVX2
+//   WideNode.h   the eight-wide picking node (quantized child boxes)
+//   WideBVH.h    LazyWideBVH: the wide tree built directly, mostly on demand
+//   WideCollapse.h collapseToWide(bvh, options): the wide view of a binary BVH
+//   WideTraversal.h closestHitWide: the float SIMD picking walk over a Scene
+//   SegmentQueries.h closestHitSegment / allHitsSegment (tolerance-grown
+//                boxes; double fallback over the binary tree)
+//   HugePageArray.h vectors without zero fill, on huge pages when large
 //
 // Typical use (locator):
 //   TriangleMesh<double> mesh(points, indices);
@@ -59,15 +70,21 @@
 #include "vtkrt/core/BVH.h"
 #include "vtkrt/core/BVHBuild.h"
 #include "vtkrt/core/BVHTraversal.h"
+#include "vtkrt/core/ConservativeFloat.h"
+#include "vtkrt/core/HugePageArray.h"
 #include "vtkrt/core/LocalFrame.h"
 #include "vtkrt/core/GpuLayout.h"
 #include "vtkrt/core/Math.h"
 #include "vtkrt/core/Mesh.h"
 #include "vtkrt/core/Plane.h"
 #include "vtkrt/core/Ray.h"
+#include "vtkrt/core/SegmentQueries.h"
 #include "vtkrt/core/Sphere.h"
 #include "vtkrt/core/Triangle.h"
 #include "vtkrt/core/TwoLevel.h"
 #include "vtkrt/core/WideBVH.h"
+#include "vtkrt/core/WideCollapse.h"
+#include "vtkrt/core/WideNode.h"
+#include "vtkrt/core/WideTraversal.h"
 
 #endif

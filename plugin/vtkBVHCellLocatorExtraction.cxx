@@ -1,0 +1,448 @@
+// vtkBVHCellLocator's primitives from a vtkDataSet: the points bound in
+// place (or copied to double), the local origin, surface cells triangulated
+// onto the fast path, every other cell a general primitive with its box.
+#include "vtkBVHCellLocatorInternals.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellType.h"
+#include "vtkDataSet.h"
+#include "vtkDoubleArray.h"
+#include "vtkIdList.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolygon.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace vtkrt
+{
+namespace locator
+{
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::Extract(vtkDataSet* ds)
+{
+  if (auto* pd = vtkPolyData::SafeDownCast(ds))
+  {
+    this->BindPoints(pd->GetPoints());
+    this->ExtractPolyData(pd);
+  }
+  else if (auto* ug = vtkUnstructuredGrid::SafeDownCast(ds))
+  {
+    this->BindPoints(ug->GetPoints());
+    this->ExtractUnstructuredGrid(ug);
+  }
+  else
+  {
+    this->ComputeOrigin(ds);
+    const vtkIdType n = ds->GetNumberOfCells();
+    for (vtkIdType c = 0; c < n; ++c)
+    {
+      this->GenCell.push_back(c);
+    }
+  }
+  this->ComputeGeneralBoxes(ds);
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::ComputeOrigin(vtkDataSet* ds)
+{
+  // Center of the finite points' bounds (NaN/inf points would poison it).
+  Box b;
+  const vtkIdType n = ds->GetNumberOfPoints();
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    ds->GetPoint(i, p);
+    const Vec3d v(p[0], p[1], p[2]);
+    if (core::isFinite(v))
+    {
+      b.extend(v);
+    }
+  }
+  this->Origin = b.isEmpty() ? Vec3d(0.0) : b.center();
+}
+
+//------------------------------------------------------------------------------
+/// The points: double coordinates read in place (else a double copy of
+/// them), the Origin at the center of their finite bounds (NaN/inf
+/// points would poison it).
+void BVHCellLocatorData::BindPoints(vtkPoints* pts)
+{
+  const vtkIdType n = pts ? pts->GetNumberOfPoints() : 0;
+  this->NumberOfPoints = n;
+  if (n == 0)
+  {
+    return;
+  }
+  auto* d = vtkDoubleArray::FastDownCast(pts->GetData());
+  if (d && d->GetNumberOfComponents() == 3)
+  {
+    this->DataSetCoordsArray = d;
+    this->DataSetCoords = d->GetPointer(0);
+  }
+  else
+  {
+    this->PointsCopy.resize(static_cast<size_t>(n));
+    vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
+      double p[3];
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        pts->GetPoint(i, p);
+        this->PointsCopy[i] = Vec3d(p[0], p[1], p[2]);
+      }
+    });
+  }
+  const Vec3d* src = reinterpret_cast<const Vec3d*>(this->WorldCoords());
+  // Bounds of the finite points, in fixed chunks (same result for any
+  // thread count).
+  constexpr vtkIdType kChunks = 64;
+  std::vector<Box> chunkBox(kChunks);
+  vtkSMPTools::For(0, kChunks, [&](vtkIdType cb, vtkIdType ce) {
+    for (vtkIdType c = cb; c < ce; ++c)
+    {
+      Box box;
+      for (vtkIdType i = c * n / kChunks, e = (c + 1) * n / kChunks; i < e; ++i)
+      {
+        if (core::isFinite(src[i]))
+        {
+          box.extend(src[i]);
+        }
+      }
+      chunkBox[c] = box;
+    }
+  });
+  Box b;
+  for (const Box& box : chunkBox)
+  {
+    b.extend(box);
+  }
+  this->Origin = b.isEmpty() ? Vec3d(0.0) : b.center();
+  const Vec3d o = this->Origin;
+  this->PointBounds = b.isEmpty() ? Box() : Box(b.min - o, b.max - o);
+}
+
+//------------------------------------------------------------------------------
+template <class IdT>
+bool BVHCellLocatorData::ExtractTriangles(const IdT* offsets, const IdT* conn, vtkIdType n, vtkIdType cellBase)
+{
+  const size_t first = this->TriCell.size();
+  this->TriVerts.resize(3 * (first + n));
+  this->TriCell.resize(first + n);
+  this->TriSub.resize(first + n);
+  this->TriFlags.resize(first + n);
+  const IdT nPoints = static_cast<IdT>(this->NumberOfPoints);
+  std::atomic<bool> ok{ true };
+  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
+    bool good = true;
+    for (vtkIdType i = b; i < e; ++i)
+    {
+      good = good && offsets[i] == static_cast<IdT>(3 * i);
+      for (int k = 0; k < 3; ++k)
+      {
+        const IdT id = conn[3 * i + k];
+        good = good && id >= 0 && id < nPoints && core::isFinite(this->LocalPoint(id));
+        this->TriVerts[3 * (first + i) + k] = static_cast<std::uint32_t>(good ? id : 0);
+      }
+      this->TriCell[first + i] = cellBase + i;
+      this->TriSub[first + i] = 0;
+      this->TriFlags[first + i] = WholeTriangle;
+    }
+    if (!good)
+    {
+      ok = false;
+    }
+  });
+  if (!ok)
+  {
+    this->TriVerts.resize(3 * first);
+    this->TriCell.resize(first);
+    this->TriSub.resize(first);
+    this->TriFlags.resize(first);
+  }
+  else if (first == 0)
+  {
+    this->UniformCellBase = cellBase; // until another triangle is added
+  }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+/// Polys that are all triangles, read straight from the connectivity in
+/// parallel (no per-cell iterator, no push_back). False, with nothing
+/// added, when a cell is not a triangle or has an out-of-range or
+/// non-finite point: the cell-by-cell path then handles the polys.
+bool BVHCellLocatorData::ExtractTrianglePolys(vtkCellArray* polys, vtkIdType cellBase)
+{
+  const vtkIdType n = polys ? polys->GetNumberOfCells() : 0;
+  if (n < 1 || polys->GetNumberOfConnectivityIds() != 3 * n ||
+    !this->PointsIndexable())
+  {
+    return false;
+  }
+  if (polys->IsStorage64Bit())
+  {
+    return this->ExtractTriangles(polys->GetOffsetsArray64()->GetPointer(0),
+      polys->GetConnectivityArray64()->GetPointer(0), n, cellBase);
+  }
+  return this->ExtractTriangles(polys->GetOffsetsArray32()->GetPointer(0),
+    polys->GetConnectivityArray32()->GetPointer(0), n, cellBase);
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cellId, int sub, std::uint8_t flags)
+{
+  this->TriVerts.push_back(static_cast<std::uint32_t>(a));
+  this->TriVerts.push_back(static_cast<std::uint32_t>(b));
+  this->TriVerts.push_back(static_cast<std::uint32_t>(c));
+  this->TriCell.push_back(cellId);
+  this->UniformCellBase = -1;
+  this->TriSub.push_back(sub);
+  this->TriFlags.push_back(flags);
+}
+
+//------------------------------------------------------------------------------
+/// Triangulates a surface cell onto the fast path; false when it must take
+/// the general path.
+bool BVHCellLocatorData::AddSurfaceCell(int type, vtkIdType npts, const vtkIdType* pts, vtkIdType cellId,
+  vtkPolygon* polygon, vtkIdList* tris)
+{
+  if (type != VTK_TRIANGLE && type != VTK_QUAD && type != VTK_POLYGON && type != VTK_TRIANGLE_STRIP)
+  {
+    return false;
+  }
+  const vtkIdType nPoints = this->NumberOfPoints;
+  for (vtkIdType i = 0; i < npts; ++i)
+  {
+    if (pts[i] < 0 || pts[i] >= nPoints)
+    {
+      return false; // let the general path (and VTK) deal with it
+    }
+  }
+  for (vtkIdType i = 0; i < npts; ++i)
+  {
+    if (!core::isFinite(this->LocalPoint(pts[i])))
+    {
+      ++this->NonFiniteCells; // a cell with a NaN/inf point is never hit
+      return true;
+    }
+  }
+  switch (type)
+  {
+    case VTK_TRIANGLE:
+      if (npts != 3)
+      {
+        return false;
+      }
+      this->AddTriangle(pts[0], pts[1], pts[2], cellId, 0, WholeTriangle);
+      return true;
+    case VTK_QUAD:
+      if (npts != 4)
+      {
+        return false;
+      }
+      this->AddQuad(pts, cellId);
+      return true;
+    case VTK_POLYGON:
+      if (npts < 3)
+      {
+        return false;
+      }
+      if (npts == 3)
+      {
+        this->AddTriangle(pts[0], pts[1], pts[2], cellId, 0, EvaluateInCell);
+        return true;
+      }
+      if (npts == 4)
+      {
+        this->AddQuad(pts, cellId);
+        return true;
+      }
+      this->AddPolygon(npts, pts, cellId, polygon, tris);
+      return true;
+    case VTK_TRIANGLE_STRIP:
+      if (npts < 3)
+      {
+        return false;
+      }
+      for (vtkIdType k = 0; k + 2 < npts; ++k)
+      {
+        // subId k and pcoords on (k, k+1, k+2), as vtkTriangleStrip's
+        // IntersectWithLine and EvaluatePosition report them.
+        this->AddTriangle(pts[k], pts[k + 1], pts[k + 2], cellId, static_cast<int>(k),
+          (k & 1) ? FlipOrientation : 0);
+      }
+      return true;
+    default:
+      return false;
+  }
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::AddQuad(const vtkIdType* pts, vtkIdType cellId)
+{
+  // Split along the shorter diagonal, as vtkQuad::IntersectWithLine does.
+  const Vec3d d02 = this->LocalPoint(pts[2]) - this->LocalPoint(pts[0]);
+  const Vec3d d13 = this->LocalPoint(pts[3]) - this->LocalPoint(pts[1]);
+  if (glm::dot(d02, d02) <= glm::dot(d13, d13))
+  {
+    this->AddTriangle(pts[0], pts[1], pts[2], cellId, 0, EvaluateInCell);
+    this->AddTriangle(pts[0], pts[2], pts[3], cellId, 0, EvaluateInCell);
+  }
+  else
+  {
+    this->AddTriangle(pts[0], pts[1], pts[3], cellId, 0, EvaluateInCell);
+    this->AddTriangle(pts[1], pts[2], pts[3], cellId, 0, EvaluateInCell);
+  }
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::AddPolygon(
+  vtkIdType npts, const vtkIdType* pts, vtkIdType cellId, vtkPolygon* polygon, vtkIdList* tris)
+{
+  polygon->GetPointIds()->SetNumberOfIds(npts);
+  polygon->GetPoints()->SetNumberOfPoints(npts);
+  for (vtkIdType i = 0; i < npts; ++i)
+  {
+    polygon->GetPointIds()->SetId(i, pts[i]);
+    const Vec3d p = this->LocalPoint(pts[i]);
+    polygon->GetPoints()->SetPoint(i, p.x, p.y, p.z);
+  }
+  tris->Reset();
+  if (polygon->Triangulate(tris) && tris->GetNumberOfIds() >= 3)
+  {
+    for (vtkIdType k = 0; k + 2 < tris->GetNumberOfIds(); k += 3)
+    {
+      this->AddTriangle(pts[tris->GetId(k)], pts[tris->GetId(k + 1)], pts[tris->GetId(k + 2)],
+        cellId, 0, EvaluateInCell);
+    }
+    return;
+  }
+  for (vtkIdType k = 1; k + 1 < npts; ++k) // fan for polygons ear-cutting rejects
+  {
+    this->AddTriangle(pts[0], pts[k], pts[k + 1], cellId, 0, EvaluateInCell);
+  }
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::ExtractPolyData(vtkPolyData* pd)
+{
+  vtkNew<vtkPolygon> polygon;
+  vtkNew<vtkIdList> tris;
+  const bool indexable = this->PointsIndexable();
+  vtkIdType cellId = 0;
+  vtkCellArray* arrays[4] = { pd->GetVerts(), pd->GetLines(), pd->GetPolys(), pd->GetStrips() };
+  this->ReserveTriangles(arrays[2], arrays[3]);
+  for (int a = 0; a < 4; ++a)
+  {
+    vtkCellArray* ca = arrays[a];
+    if (!ca || ca->GetNumberOfCells() == 0)
+    {
+      continue;
+    }
+    if (a == 2 && this->ExtractTrianglePolys(ca, cellId))
+    {
+      cellId += ca->GetNumberOfCells();
+      continue;
+    }
+    auto it = vtk::TakeSmartPointer(ca->NewIterator());
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cellId)
+    {
+      vtkIdType npts;
+      const vtkIdType* pts;
+      it->GetCurrentCell(npts, pts);
+      int type = -1;
+      if (a == 2)
+      {
+        type = npts == 3 ? VTK_TRIANGLE : (npts == 4 ? VTK_QUAD : VTK_POLYGON);
+      }
+      else if (a == 3)
+      {
+        type = VTK_TRIANGLE_STRIP;
+      }
+      if (!(indexable && type >= 0 && this->AddSurfaceCell(type, npts, pts, cellId, polygon, tris)))
+      {
+        this->GenCell.push_back(cellId);
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+/// Room for the triangles of polys (n-2 per polygon) and strips.
+void BVHCellLocatorData::ReserveTriangles(vtkCellArray* polys, vtkCellArray* strips)
+{
+  size_t tris = 0;
+  for (vtkCellArray* ca : { polys, strips })
+  {
+    if (ca)
+    {
+      const vtkIdType conn = ca->GetNumberOfConnectivityIds();
+      const vtkIdType cells = ca->GetNumberOfCells();
+      tris += static_cast<size_t>(std::max<vtkIdType>(conn - 2 * cells, 0));
+    }
+  }
+  this->TriVerts.reserve(3 * tris);
+  this->TriCell.reserve(tris);
+  this->TriSub.reserve(tris);
+  this->TriFlags.reserve(tris);
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::ExtractUnstructuredGrid(vtkUnstructuredGrid* ug)
+{
+  vtkNew<vtkPolygon> polygon;
+  vtkNew<vtkIdList> tris;
+  const bool indexable = this->PointsIndexable();
+  const vtkIdType n = ug->GetNumberOfCells();
+  for (vtkIdType c = 0; c < n; ++c)
+  {
+    vtkIdType npts;
+    const vtkIdType* pts;
+    const int type = ug->GetCellType(c);
+    ug->GetCellPoints(c, npts, pts);
+    if (!(indexable && this->AddSurfaceCell(type, npts, pts, c, polygon, tris)))
+    {
+      this->GenCell.push_back(c);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::ComputeGeneralBoxes(vtkDataSet* ds)
+{
+  this->GenBox.resize(this->GenCell.size());
+  constexpr double eps = 4.0 * std::numeric_limits<double>::epsilon();
+  vtkSMPTools::For(0, static_cast<vtkIdType>(this->GenCell.size()), [&](vtkIdType b, vtkIdType e) {
+    double cb[6];
+    for (vtkIdType i = b; i < e; ++i)
+    {
+      ds->GetCellBounds(this->GenCell[i], cb);
+      Box box(Vec3d(cb[0], cb[2], cb[4]), Vec3d(cb[1], cb[3], cb[5]));
+      if (!box.isFinite() || box.isEmpty())
+      {
+        this->GenBox[i] = Box();
+        continue;
+      }
+      // Cells are tested in world coordinates and the ray is walked in
+      // local ones: widen by the rounding of the shift.
+      Vec3d lo = box.min - this->Origin, hi = box.max - this->Origin;
+      const Vec3d slack = eps *
+        (glm::abs(box.min) + glm::abs(box.max) + glm::abs(this->Origin) * 2.0);
+      this->GenBox[i] = Box(lo - slack, hi + slack);
+    }
+  });
+}
+
+} // namespace locator
+} // namespace vtkrt

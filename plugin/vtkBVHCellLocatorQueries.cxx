@@ -1,0 +1,585 @@
+// vtkBVHCellLocator's queries: each over the core's walks
+// (core/SegmentQueries.h, core/BVHTraversal.h) with the locator's exact
+// tests (a triangle's watertight test, a general cell's own methods), and
+// the answer in VTK's terms (the cell's pcoords and subId, the caller's
+// vtkGenericCell filled).
+#include "vtkBVHCellLocatorInternals.h"
+
+#include "vtkDataSet.h"
+#include "vtkDoubleArray.h"
+#include "vtkGenericCell.h"
+#include "vtkIdList.h"
+#include "vtkPoints.h"
+
+#include "vtkrt/core/BVHTraversal.h"
+#include "vtkrt/core/Ray.h"
+#include "vtkrt/core/SegmentQueries.h"
+#include "vtkrt/core/Triangle.h"
+#include "vtkrt/core/WideTraversal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace vtkrt
+{
+namespace locator
+{
+namespace
+{
+
+/// A general cell's own IntersectWithLine on the segment p1 -> p2, kept
+/// only within the walk's current range [r.tmin, r.tmax].
+inline bool IntersectCell(vtkDataSet* ds, vtkIdType cellId, vtkGenericCell* cell,
+  const double p1[3], const double p2[3], double tol, const core::Ray<double>& r, double& t,
+  double x[3], double pc[3], int& sub)
+{
+  ds->GetCell(cellId, cell);
+  return cell->IntersectWithLine(p1, p2, tol, t, x, pc, sub) && t >= r.tmin && t <= r.tmax;
+}
+
+inline void Barycentric(
+  const Vec3d& x, const Vec3d& v0, const Vec3d& e1, const Vec3d& e2, double& u, double& v)
+{
+  const Vec3d w = x - v0;
+  const double d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
+  const double w1 = glm::dot(w, e1), w2 = glm::dot(w, e2);
+  const double det = d11 * d22 - d12 * d12;
+  if (det == 0.0)
+  {
+    u = v = 0.0;
+    return;
+  }
+  u = (d22 * w1 - d12 * w2) / det;
+  v = (d11 * w2 - d12 * w1) / det;
+}
+
+// What DataSet->GetCell(cellId, cell) gives for a triangle, from the point
+// ids kept with it and the coordinates the exact test read (the dataset's
+// double points in place, else the build's double copy): no cell lookup and
+// no virtual call a point. A cell that already holds three double points
+// (the previous pick's triangle, as in vtkCellPicker's loop) is overwritten
+// in place: resizing its arrays again was most of a hit's cost. As with
+// vtkPolyData::GetCell, nothing is marked modified.
+void FillTriangleCell(vtkGenericCell* cell, const std::uint32_t* ids, const double* coords)
+{
+  cell->SetCellTypeToTriangle();
+  if (cell->PointIds->GetNumberOfIds() != 3)
+  {
+    cell->PointIds->SetNumberOfIds(3);
+  }
+  vtkDoubleArray* cellCoords = vtkDoubleArray::FastDownCast(cell->Points->GetData());
+  if (!cellCoords || cellCoords->GetNumberOfComponents() != 3 || cellCoords->GetNumberOfTuples() != 3)
+  {
+    cell->Points->SetNumberOfPoints(3);
+    cellCoords = vtkDoubleArray::FastDownCast(cell->Points->GetData());
+  }
+  double* dst = cellCoords && cellCoords->GetNumberOfComponents() == 3 ? cellCoords->GetPointer(0) : nullptr;
+  for (int k = 0; k < 3; ++k)
+  {
+    const vtkIdType id = ids[k];
+    const double* p = coords + 3 * id;
+    cell->PointIds->SetId(k, id);
+    if (dst)
+    {
+      dst[3 * k] = p[0]; // not std::copy_n: a memcpy call for three doubles
+      dst[3 * k + 1] = p[1];
+      dst[3 * k + 2] = p[2];
+    }
+    else
+    {
+      cell->Points->SetPoint(k, p);
+    }
+  }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+/// The locator's arrays as the core's walks see them (core/WideTraversal.h,
+/// core/SegmentQueries.h): a pointer, copied into the walk, so that its
+/// loads are those of the data's own members.
+struct BVHCellLocatorData::PickingScene
+{
+  const BVHCellLocatorData* D;
+
+  const core::WideNode* pickingRoot() const { return this->D->PickingRoot(); }
+  std::uint32_t triangleCount() const { return static_cast<std::uint32_t>(this->D->TriCell.size()); }
+  std::size_t generalCount() const { return this->D->GenCell.size(); }
+  const std::uint32_t* slotPrimitives() const { return this->D->Tree.primIndex.data(); }
+  const float* floatTriangles() const { return this->D->TrianglesF.data(); }
+  double extent() const { return this->D->Extent; }
+  core::WideSubtree subtree(std::uint32_t k) const { return this->D->Lazy->subtree(k); }
+  const core::BVH& binaryTree() const
+  {
+    this->D->EnsureTree();
+    return this->D->Tree;
+  }
+#if VTKRT_CORE_SSE
+  /// The exact test of a leaf's triangles reads their point ids.
+  VTKRT_ALWAYS_INLINE void prefetchTriangles(std::uint32_t first, std::uint32_t end) const
+  {
+    core::detail::prefetchRange(this->D->TriIds.data() + 3 * static_cast<std::size_t>(first),
+      this->D->TriIds.data() + 3 * static_cast<std::size_t>(end));
+  }
+  /// The exact test reads the double points (which then fill the caller's
+  /// cell), a hit its cell id, subId and flags: for triangles t + lane of
+  /// each lane set in mask.
+  VTKRT_ALWAYS_INLINE void prefetchCandidates(std::size_t t, int mask) const
+  {
+    const BVHCellLocatorData* d = this->D;
+    const double* coords = d->WorldCoords();
+    for (int m = mask; m; m &= m - 1)
+    {
+      const std::size_t prim = t + static_cast<std::size_t>(core::detail::countTrailingZeros(static_cast<unsigned>(m)));
+      for (int k = 0; k < 3; ++k)
+      {
+        _mm_prefetch(reinterpret_cast<const char*>(coords + 3 * static_cast<std::size_t>(d->TriIds[3 * prim + k])), _MM_HINT_T0);
+      }
+      _mm_prefetch(reinterpret_cast<const char*>(&d->TriCell[prim]), _MM_HINT_T0);
+      if (d->UniformCellBase < 0) // else TriangleSubId / TriangleFlags read neither
+      {
+        _mm_prefetch(reinterpret_cast<const char*>(&d->TriSub[prim]), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(&d->TriFlags[prim]), _MM_HINT_T0);
+      }
+    }
+  }
+#endif
+};
+
+//------------------------------------------------------------------------------
+inline bool BVHCellLocatorData::MakeSegment(const double p1[3], const double p2[3], core::Ray<double>& ray) const
+{
+  if (!this->PickingRoot()) // every build with primitives makes the picking tree
+  {
+    return false;
+  }
+  const Vec3d dir(p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]);
+  // VTK cells never hit a zero-length segment either.
+  ray = core::Ray<double>(this->ToLocal(p1), dir, 0.0, 1.0);
+  return ray.isValid();
+}
+
+//------------------------------------------------------------------------------
+/// Watertight hit, or (tol > 0) VTK's rule: the crossing of the plane lies
+/// within tol of the triangle. u, v: VTK triangle pcoords of the hit.
+inline bool BVHCellLocatorData::IntersectTriangle(std::uint32_t prim, const core::RayTrianglePrecomputed<double>& pre,
+  const core::Ray<double>& ray, double tol, double& t, double& u, double& v) const
+{
+  const Vec3d v0 = this->Vertex(prim, 0);
+  const Vec3d v1 = this->Vertex(prim, 1);
+  const Vec3d v2 = this->Vertex(prim, 2);
+  core::TriangleHit<double> hit;
+  if (core::intersectRayTriangle(pre, v0, v1, v2, ray.tmin, ray.tmax, hit))
+  {
+    t = hit.t;
+    u = hit.u;
+    v = hit.v;
+    return true;
+  }
+  if (tol <= 0.0)
+  {
+    return false;
+  }
+  const Vec3d e1 = v1 - v0, e2 = v2 - v0;
+  const Vec3d n = glm::cross(e1, e2);
+  const double denom = glm::dot(n, ray.dir);
+  if (denom == 0.0)
+  {
+    return false;
+  }
+  const double tt = glm::dot(n, v0 - ray.org) / denom;
+  if (!(tt >= ray.tmin && tt <= ray.tmax))
+  {
+    return false;
+  }
+  const Vec3d x = ray.org + tt * ray.dir;
+  const Vec3d cp = core::closestPointOnTriangle(x, v0, v1, v2);
+  const Vec3d d = x - cp;
+  if (glm::dot(d, d) > tol * tol)
+  {
+    return false;
+  }
+  t = tt;
+  Barycentric(x, v0, e1, e2, u, v);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+/// Whether x projects into the triangle (vtkTriangle::EvaluatePosition == 1).
+inline bool BVHCellLocatorData::ProjectsInside(std::uint32_t prim, const Vec3d& x) const
+{
+  const Vec3d v0 = this->Vertex(prim, 0);
+  const Vec3d v1 = this->Vertex(prim, 1);
+  const Vec3d v2 = this->Vertex(prim, 2);
+  double u, v;
+  Barycentric(x, v0, v1 - v0, v2 - v0, u, v);
+  return u >= 0.0 && v >= 0.0 && u + v <= 1.0;
+}
+
+//------------------------------------------------------------------------------
+/// The walk's nearest triangle hit as a LineHit (world coordinates; VTK
+/// triangle pcoords, to be evaluated in the cell for quads and polygons).
+inline void BVHCellLocatorData::SetTriangleHit(
+  const core::Hit<double>& hit, const double p1[3], const core::Ray<double>& ray, LineHit& out) const
+{
+  const std::uint32_t prim = hit.prim;
+  out.T = hit.t;
+  out.CellId = this->TriCell[prim];
+  for (int k = 0; k < 3; ++k)
+  {
+    out.X[k] = p1[k] + hit.t * ray.dir[k];
+  }
+  const std::uint8_t flags = this->TriangleFlags(prim);
+  out.NeedsEvaluate = (flags & EvaluateInCell) != 0;
+  out.TrianglePointIds =
+    (flags & WholeTriangle) ? this->TriIds.data() + 3 * static_cast<std::size_t>(prim) : nullptr;
+  out.SubId = this->TriangleSubId(prim);
+  out.PCoords[0] = hit.u;
+  out.PCoords[1] = hit.v;
+  out.PCoords[2] = 0.0;
+}
+
+//------------------------------------------------------------------------------
+/// The nearest triangle or general cell the segment hits, then pcoords and
+/// subId as that cell reports them and the caller's cell filled.
+bool BVHCellLocatorData::IntersectWithLine(const double p1[3], const double p2[3], double tol,
+  vtkDataSet* ds, vtkGenericCell* given, LineHit& out) const
+{
+  QueryCell cell(given);
+  core::Ray<double> ray;
+  if (!this->MakeSegment(p1, p2, ray))
+  {
+    return false;
+  }
+  const core::RayTrianglePrecomputed<double> triPre(ray);
+  const vtkIdType nTri = this->NumberOfTriangles();
+  vtkIdType bestCell = -1;
+  bool generalBest = false; ///< out holds a general cell's hit (a triangle's is filled after the walk)
+
+  // Ties (same t) go to the lowest cell id, so the answer does not depend
+  // on the traversal order.
+  auto isect = [&](std::uint32_t prim, const core::Ray<double>& r, core::Hit<double>& hit) {
+    const bool haveBest = hit.found();
+    if (static_cast<vtkIdType>(prim) < nTri)
+    {
+      double t, u, v;
+      if (!this->IntersectTriangle(prim, triPre, r, tol, t, u, v))
+      {
+        return false;
+      }
+      const vtkIdType cellId = this->TriCell[prim];
+      if (haveBest && t == hit.t && cellId > bestCell)
+      {
+        return false;
+      }
+      hit.t = t;
+      hit.u = u;
+      hit.v = v;
+      bestCell = cellId;
+      generalBest = false;
+      return true;
+    }
+    const vtkIdType cellId = this->GenCell[prim - nTri];
+    double t, x[3], pc[3];
+    int sub;
+    if (!IntersectCell(ds, cellId, cell.Get(), p1, p2, tol, r, t, x, pc, sub))
+    {
+      return false;
+    }
+    if (haveBest && t == hit.t && cellId > bestCell)
+    {
+      return false;
+    }
+    hit.t = t;
+    bestCell = cellId;
+    generalBest = true;
+    out.T = t;
+    out.SubId = sub;
+    out.CellId = cellId;
+    for (int k = 0; k < 3; ++k)
+    {
+      out.X[k] = x[k];
+      out.PCoords[k] = pc[k];
+    }
+    out.NeedsEvaluate = false;
+    out.TrianglePointIds = nullptr;
+    return true;
+  };
+  core::Hit<double> hit;
+  if (!core::closestHitSegment(PickingScene{ this }, ray, triPre, tol, isect, hit))
+  {
+    return false;
+  }
+  if (!generalBest) // a general cell's hit is in `out` already
+  {
+    this->SetTriangleHit(hit, p1, ray, out);
+  }
+  if (out.NeedsEvaluate)
+  {
+    // Quad or polygon hit through its triangulation: parametric coordinates
+    // in the original cell.
+    vtkGenericCell* c = cell.Get();
+    ds->GetCell(out.CellId, c);
+    double closest[3], dist2;
+    std::vector<double> weights(static_cast<size_t>(std::max<vtkIdType>(c->GetNumberOfPoints(), 1)));
+    c->EvaluatePosition(out.X, closest, out.SubId, out.PCoords, dist2, weights.data());
+  }
+  if (given && out.TrianglePointIds)
+  {
+    FillTriangleCell(given, out.TrianglePointIds, this->WorldCoords());
+  }
+  else if (given)
+  {
+    ds->GetCell(out.CellId, given);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::AllHits(const double p1[3], const double p2[3], double tol, vtkDataSet* ds,
+  vtkGenericCell* given, std::vector<LineHit>& hits) const
+{
+  hits.clear();
+  QueryCell cell(given);
+  core::Ray<double> ray;
+  if (!this->MakeSegment(p1, p2, ray))
+  {
+    return;
+  }
+  const core::RayTrianglePrecomputed<double> triPre(ray);
+  const vtkIdType nTri = this->NumberOfTriangles();
+  auto isect = [&](std::uint32_t prim, const core::Ray<double>& r, core::Hit<double>&) {
+    LineHit h;
+    if (static_cast<vtkIdType>(prim) < nTri)
+    {
+      double t, u, v;
+      if (!this->IntersectTriangle(prim, triPre, r, tol, t, u, v))
+      {
+        return false;
+      }
+      h.T = t;
+      h.CellId = this->TriCell[prim];
+      for (int k = 0; k < 3; ++k)
+      {
+        h.X[k] = p1[k] + t * r.dir[k];
+      }
+      const Vec3d v0 = this->Vertex(prim, 0);
+      const Vec3d v1 = this->Vertex(prim, 1);
+      const Vec3d v2 = this->Vertex(prim, 2);
+      double side = glm::dot(core::triangleNormal(v0, v1, v2), r.dir);
+      if (this->TriangleFlags(prim) & FlipOrientation)
+      {
+        side = -side;
+      }
+      h.Leaving = side > 0.0;
+    }
+    else
+    {
+      const vtkIdType cellId = this->GenCell[prim - nTri];
+      double t, x[3], pc[3];
+      int sub;
+      if (!IntersectCell(ds, cellId, cell.Get(), p1, p2, tol, r, t, x, pc, sub))
+      {
+        return false;
+      }
+      h.T = t;
+      h.CellId = cellId;
+      for (int k = 0; k < 3; ++k)
+      {
+        h.X[k] = x[k];
+      }
+    }
+    hits.push_back(h);
+    return false; // collected here; nothing for the traversal to keep
+  };
+  core::allHitsSegment(PickingScene{ this }, ray, tol, isect);
+  // One hit per cell (its nearest), then along the segment.
+  std::sort(hits.begin(), hits.end(), [](const LineHit& a, const LineHit& b) {
+    return a.CellId != b.CellId ? a.CellId < b.CellId : a.T < b.T;
+  });
+  hits.erase(std::unique(hits.begin(), hits.end(),
+               [](const LineHit& a, const LineHit& b) { return a.CellId == b.CellId; }),
+    hits.end());
+  std::stable_sort(hits.begin(), hits.end(),
+    [](const LineHit& a, const LineHit& b) { return a.T < b.T; });
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::CellsAlongLine(
+  const double p1[3], const double p2[3], double tol, std::vector<vtkIdType>& cells) const
+{
+  cells.clear();
+  core::Ray<double> ray;
+  if (!this->MakeSegment(p1, p2, ray))
+  {
+    return;
+  }
+  const core::RayBoxPrecomputed<double> boxPre(ray);
+  auto isect = [&](std::uint32_t prim, const core::Ray<double>& r, core::Hit<double>&) {
+    const Box b = this->PrimitiveBox(prim);
+    double tnear;
+    if (core::intersectRayAABB(boxPre, b.min - Vec3d(tol), b.max + Vec3d(tol), r.tmin, r.tmax, tnear))
+    {
+      cells.push_back(this->PrimitiveCell(prim));
+    }
+    return false;
+  };
+  core::allHitsSegment(PickingScene{ this }, ray, tol, isect);
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::CellsInBox(const double bbox[6], std::vector<vtkIdType>& cells) const
+{
+  cells.clear();
+  const Box q(this->ToLocal(Vec3d(bbox[0], bbox[2], bbox[4])),
+    this->ToLocal(Vec3d(bbox[1], bbox[3], bbox[5])));
+  this->EnsureTree();
+  core::queryBox(this->Tree, q, [&](std::uint32_t prim) {
+    if (this->PrimitiveBox(prim).overlaps(q))
+    {
+      cells.push_back(this->PrimitiveCell(prim));
+    }
+  });
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+}
+
+//------------------------------------------------------------------------------
+/// The closest point of a triangle or general cell within radius of xw: a
+/// triangle's as its own test found it (NeedsEvaluate: subId and inside
+/// still to come from its cell), a general cell's as that cell reported it.
+bool BVHCellLocatorData::ClosestPoint(
+  const double xw[3], double radius, vtkDataSet* ds, QueryCell& cell, PointHit& out) const
+{
+  const Vec3d x = this->ToLocal(xw);
+  const vtkIdType nTri = this->NumberOfTriangles();
+  std::vector<double> weights(static_cast<size_t>(std::max(ds ? ds->GetMaxCellSize() : 1, 1)));
+  // Per general primitive, what EvaluatePosition said (read back for the winner).
+  PointHit general;
+  std::uint32_t generalPrim = core::kInvalidIndex;
+  auto fn = [&](std::uint32_t prim, const Vec3d& p, core::PointHit<double>& cand) {
+    if (static_cast<vtkIdType>(prim) < nTri)
+    {
+      const Vec3d v0 = this->Vertex(prim, 0);
+      const Vec3d v1 = this->Vertex(prim, 1);
+      const Vec3d v2 = this->Vertex(prim, 2);
+      cand.point = core::closestPointOnTriangle(p, v0, v1, v2);
+      const Vec3d d = p - cand.point;
+      cand.dist2 = glm::dot(d, d);
+      return true;
+    }
+    const vtkIdType cellId = this->GenCell[prim - nTri];
+    vtkGenericCell* c = cell.Get();
+    ds->GetCell(cellId, c);
+    double cp[3], pc[3], d2;
+    int sub;
+    double xx[3] = { xw[0], xw[1], xw[2] };
+    const int r = c->EvaluatePosition(xx, cp, sub, pc, d2, weights.data());
+    if (r < 0 || !std::isfinite(d2))
+    {
+      return false;
+    }
+    if (r == 1 && c->GetCellDimension() == 3)
+    {
+      std::copy(xx, xx + 3, cp); // inside a 3D cell: x itself
+    }
+    cand.point = this->ToLocal(cp);
+    cand.dist2 = d2;
+    // Keep the cell's own answer in case this candidate wins.
+    if (d2 < general.Dist2 || generalPrim == core::kInvalidIndex)
+    {
+      general.CellId = cellId;
+      general.SubId = sub;
+      general.Dist2 = d2;
+      general.Inside = r;
+      std::copy(cp, cp + 3, general.X);
+      generalPrim = prim;
+    }
+    return true;
+  };
+  core::PointHit<double> best;
+  this->EnsureTree();
+  if (!core::closestPoint(this->Tree, x, radius, fn, best))
+  {
+    return false;
+  }
+  if (best.prim == generalPrim)
+  {
+    out = general;
+    return true;
+  }
+  const std::uint32_t prim = best.prim;
+  out.CellId = this->TriCell[prim];
+  out.Dist2 = best.dist2;
+  for (int k = 0; k < 3; ++k)
+  {
+    out.X[k] = best.point[k] + this->Origin[k];
+  }
+  out.SubId = this->TriangleSubId(prim);
+  out.NeedsEvaluate = (this->TriangleFlags(prim) & EvaluateInCell) != 0;
+  out.Inside = this->ProjectsInside(prim, x) ? 1 : 0;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool BVHCellLocatorData::FindClosestPoint(
+  const double xw[3], double radius, vtkDataSet* ds, vtkGenericCell* cell, PointHit& hit) const
+{
+  QueryCell qc(cell);
+  if (!this->ClosestPoint(xw, radius, ds, qc, hit))
+  {
+    return false;
+  }
+  if (hit.NeedsEvaluate)
+  {
+    // subId and inside as the original cell reports them.
+    vtkGenericCell* c = qc.Get();
+    ds->GetCell(hit.CellId, c);
+    double cp[3], d2, pc[3];
+    std::vector<double> weights(static_cast<size_t>(std::max<vtkIdType>(c->GetNumberOfPoints(), 1)));
+    const int r = c->EvaluatePosition(xw, cp, hit.SubId, pc, d2, weights.data());
+    hit.Inside = r == 1 ? 1 : 0;
+  }
+  if (cell)
+  {
+    ds->GetCell(hit.CellId, cell);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType BVHCellLocatorData::FindCell(const double xw[3], double tol2, vtkDataSet* ds, vtkGenericCell* cell,
+  double pcoords[3], double* weights) const
+{
+  const Vec3d x = this->ToLocal(xw);
+  const Vec3d tol(std::sqrt(tol2));
+  const Box q(x - tol, x + tol);
+  std::vector<vtkIdType> candidates;
+  this->EnsureTree();
+  core::queryBox(this->Tree, q, [&](std::uint32_t prim) {
+    if (this->PrimitiveBox(prim).overlaps(q))
+    {
+      candidates.push_back(this->PrimitiveCell(prim));
+    }
+  });
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  double xx[3] = { xw[0], xw[1], xw[2] };
+  for (const vtkIdType cellId : candidates)
+  {
+    ds->GetCell(cellId, cell);
+    double cp[3], dist2;
+    int sub;
+    if (cell->EvaluatePosition(xx, cp, sub, pcoords, dist2, weights) == 1 && dist2 <= tol2)
+    {
+      return cellId;
+    }
+  }
+  return -1;
+}
+
+} // namespace locator
+} // namespace vtkrt
