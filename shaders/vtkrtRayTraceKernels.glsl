@@ -1,13 +1,15 @@
 // vtkrt GLSL kernels shared by every ray-traced scene: the robust ray/AABB
-// slab test and ray/plane clipping. Each function mirrors the core function
-// of the same name (plugin/core/vtkrt/core/Ray.h, Plane.h) operation for
-// operation, so the CPU (double) and the GPU (float) agree on what is hit.
+// slab test, ray/plane clipping and the BVH walk's steps. Each function has
+// a C++ twin of the same name and float operations in namespace
+// vtkrt::core::gpu (plugin/core/vtkrt/core/GpuKernels.h, GpuTraversal.h),
+// which is the core function where one exists (Ray.h, Plane.h) and which
+// TestCoreGpuTwins checks against the double core: change both together.
 
 // Ize 2013: the far distance is scaled by 1 + 2*gamma(3) so rounding never
 // culls a box the ray touches. gamma(3) = 3u/(1-3u), u = 2^-24.
 const float kFarScale = 1.0 + 2.0 * (3.0 * 5.9604645e-8) / (1.0 - 3.0 * 5.9604645e-8);
 
-// Mirrors core::RayBoxPrecomputed::safeInverse: a zero (or subnormal)
+// core::RayBoxPrecomputed::safeInverse: a zero (or subnormal)
 // direction component, whose inverse is not finite, maps to 0, which marks
 // the axis as parallel for clipSlab.
 float safeInverse(float d)
@@ -21,7 +23,7 @@ vec3 safeInverse(vec3 d)
   return vec3(safeInverse(d.x), safeInverse(d.y), safeInverse(d.z));
 }
 
-// Mirrors core::detail::clipSlab: one slab of the box. A parallel axis is
+// core::detail::clipSlab: one slab of the box. A parallel axis is
 // decided by the origin alone (closed interval), so no NaN can arise.
 bool clipSlab(float lo, float hi, float org, float invDir, inout float tmin, inout float tmax)
 {
@@ -43,8 +45,8 @@ bool clipSlab(float lo, float hi, float org, float invDir, inout float tmin, ino
   return true;
 }
 
-// Mirrors core::intersectRayAABB: on hit, tnear is the entry distance clamped
-// to [tmin, tmax].
+// core::intersectRayAABB: on hit, tnear is the entry distance clamped to
+// [tmin, tmax].
 bool intersectRayAABB(vec3 org, vec3 invDir, vec3 bmin, vec3 bmax, float tmin, float tmax,
   out float tnear)
 {
@@ -59,6 +61,12 @@ bool intersectRayAABB(vec3 org, vec3 invDir, vec3 bmin, vec3 bmax, float tmin, f
   return tmin <= tmax;
 }
 
+// The parallelBias of intersectRayBoxConservative for a ray's invDir.
+vec3 parallelAxisBias(vec3 invDir)
+{
+  return vec3(equal(invDir, vec3(0.0))) * 3.0e38;
+}
+
 // The slab test of core::intersectRayAABB without its per-axis branches
 // (llvmpipe runs both sides of every branch, masked): the same arithmetic on
 // every axis the ray is not parallel to, so the same result there; a
@@ -67,12 +75,6 @@ bool intersectRayAABB(vec3 org, vec3 invDir, vec3 bmin, vec3 bmax, float tmin, f
 // origin against the slab. Accepting more boxes than the core never changes
 // the hit, only how much is tested. Needs tmin >= 0 (a parallel axis
 // contributes tnear 0).
-// The parallelBias of intersectRayBoxConservative for a ray's invDir.
-vec3 parallelAxisBias(vec3 invDir)
-{
-  return vec3(equal(invDir, vec3(0.0))) * 3.0e38;
-}
-
 bool intersectRayBoxConservative(vec3 org, vec3 invDir, vec3 parallelBias, vec3 bmin, vec3 bmax,
   float tmin, float tmax, out float tnear)
 {
@@ -85,9 +87,10 @@ bool intersectRayBoxConservative(vec3 org, vec3 invDir, vec3 parallelBias, vec3 
   return tnear <= tfar;
 }
 
-// Mirrors core::intersectRayPlane for a plane n.p + d = 0, used to clip the
-// ray's [tmin, tmax] to the half-space n.p + d >= 0 (what VTK keeps).
-// Returns false when nothing of the interval survives.
+// core::clipRayByPlane (Plane.h): clips the ray's [tmin, tmax] to the
+// half-space n.p + d >= 0 of the plane (n, d) (what VTK keeps); a parallel
+// ray is kept or clipped whole by its origin's side. Returns false when
+// nothing of the interval survives.
 bool clipRayByPlane(vec3 org, vec3 dir, vec4 plane, inout float tmin, inout float tmax)
 {
   float denom = dot(plane.xyz, dir);

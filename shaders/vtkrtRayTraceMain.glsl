@@ -319,6 +319,10 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
 uniform usamplerBuffer uTopNodes;
 uniform vec3 uCameraToAnchor;
 
+// The walk is core's nearer-first walk (core::detail::OrderedWalk: descend,
+// pop) with the node at hand carried as its texels; its C++ twin is
+// core::gpu::traceTopLevel (core/GpuTraversal.h). The stack never overflows
+// (depth <= kMaxDepth < VTKRT_STACK_SIZE, core/BVH.h).
 void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int hitInstance,
   inout int hitPrimitive, inout vec2 hitUV, bool stopAtFirstHit)
 {
@@ -358,15 +362,13 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int
       float t0, t1;
       bool h0 = intersectRayAABB(anchorOrg, invDir, boxCorner(lo0), boxCorner(hi0), 0.0, tBest, t0);
       bool h1 = intersectRayAABB(anchorOrg, invDir, boxCorner(lo1), boxCorner(hi1), 0.0, tBest, t1);
+      // OrderedWalk::descend
       if (h0 && h1)
       {
         bool firstNear = t0 <= t1;
-        if (sp < VTKRT_STACK_SIZE)
-        {
-          stackNode[sp] = firstNear ? index + 1 : index;
-          stackNear[sp] = firstNear ? t1 : t0;
-          ++sp;
-        }
+        stackNode[sp] = firstNear ? index + 1 : index;
+        stackNear[sp] = firstNear ? t1 : t0;
+        ++sp;
         lo = firstNear ? lo0 : lo1;
         hi = firstNear ? hi0 : hi1;
         descended = true;
@@ -380,6 +382,7 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int
     }
     if (!descended)
     {
+      // OrderedWalk::pop
       bool found = false;
       int node = 0;
       while (sp > 0)

@@ -1,13 +1,20 @@
 // Analytic spheres: the stable ray/sphere test and closest-hit BVH
-// traversal. Included only in shaders of scenes that have spheres.
+// traversal. Included only in shaders of scenes that have spheres. The C++
+// twins (core/GpuKernels.h, core/GpuTraversal.h) have the same names.
 
 // Spheres in BVH leaf order, one texel each: (center, radius), center
 // relative to the sphere set's center.
 uniform usamplerBuffer uSpheres;
 
-// Mirrors core::raySphereRoots (Haines, Guenther & Akenine-Moeller, Ray
-// Tracing Gems ch. 7): discriminant a * (r^2 - |f - (b'/a) d|^2), roots
-// c / q and q / a. roots.x <= roots.y.
+// std::copysign: x's magnitude with y's sign bit (so -0 counts as negative).
+float copySign(float x, float y)
+{
+  return uintBitsToFloat((floatBitsToUint(x) & 0x7fffffffu) | (floatBitsToUint(y) & 0x80000000u));
+}
+
+// core::raySphereRoots (Haines, Guenther & Akenine-Moeller, Ray Tracing Gems
+// ch. 7), operation for operation: discriminant a * (r^2 - |f - (b'/a) d|^2),
+// roots c / q and q / a. roots.x <= roots.y.
 bool raySphereRoots(vec3 org, vec3 dir, vec3 center, float radius, out vec2 roots)
 {
   roots = vec2(0.0);
@@ -22,18 +29,18 @@ bool raySphereRoots(vec3 org, vec3 dir, vec3 center, float radius, out vec2 root
     return false;
   }
   float s = sqrt(disc);
-  float q = -(bPrime + (bPrime < 0.0 ? -s : s));
+  float q = -(bPrime + copySign(s, bPrime));
   if (q == 0.0)
   {
     return true;
   }
   float t0 = c / q;
   float t1 = q / a;
-  roots = vec2(min(t0, t1), max(t0, t1));
+  roots = t1 < t0 ? vec2(t1, t0) : vec2(t0, t1);
   return true;
 }
 
-// Mirrors core::intersectRaySphere: the nearest root within [tmin, tmax].
+// core::intersectRaySphere: the nearest root within [tmin, tmax].
 bool intersectRaySphere(vec3 org, vec3 dir, vec3 center, float radius, float tmin, float tmax,
   out float t)
 {

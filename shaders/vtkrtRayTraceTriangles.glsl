@@ -1,66 +1,61 @@
 // Triangle meshes: the watertight ray/triangle test and closest-hit BVH
-// traversal. Included only in shaders of scenes that have triangles.
+// traversal. Included only in shaders of scenes that have triangles. The C++
+// twins (core/GpuKernels.h, core/GpuTraversal.h) have the same names.
 
 // Triangles in BVH leaf order, three texels each: (v0, VTK cell id),
 // (v1, 0), (v2, 0); coordinates (as float bits) relative to the mesh's center.
 uniform usamplerBuffer uTriangles;
 
-// Per-ray data of the watertight test (core::RayTrianglePrecomputed). The
-// axis permutation and shear are stored as three rows so that
-// A[kx] - sx * A[kz] becomes dot(A, rowX) (the products by 0 and 1 are exact).
+// Per-ray data of the watertight test: the axis permutation and shear of
+// core::RayTrianglePrecomputed (its constructor is precomputeRayTriangle).
 struct RayTrianglePrecomputed
 {
   vec3 org;
-  vec3 rowX;
-  vec3 rowY;
-  vec3 rowZ;
+  int kx;
+  int ky;
+  int kz;
+  float sx;
+  float sy;
+  float sz;
 };
-
-vec3 unitAxis(int k)
-{
-  return vec3(k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0);
-}
 
 RayTrianglePrecomputed precomputeRayTriangle(vec3 org, vec3 dir)
 {
-  vec3 ad = abs(dir);
-  int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
-  int kx = kz + 1 == 3 ? 0 : kz + 1;
-  int ky = kx + 1 == 3 ? 0 : kx + 1;
-  float dz = dir[kz];
-  // Keep the winding independent of the direction sign.
-  if (dz < 0.0)
-  {
-    int tmp = kx;
-    kx = ky;
-    ky = tmp;
-  }
-  float sx = dir[kx] / dz;
-  float sy = dir[ky] / dz;
-  float sz = 1.0 / dz;
   RayTrianglePrecomputed r;
   r.org = org;
-  r.rowX = unitAxis(kx) - sx * unitAxis(kz);
-  r.rowY = unitAxis(ky) - sy * unitAxis(kz);
-  r.rowZ = sz * unitAxis(kz);
+  vec3 ad = abs(dir);
+  r.kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
+  r.kx = r.kz + 1 == 3 ? 0 : r.kz + 1;
+  r.ky = r.kx + 1 == 3 ? 0 : r.kx + 1;
+  // Keep the winding independent of the direction sign.
+  if (dir[r.kz] < 0.0)
+  {
+    int tmp = r.kx;
+    r.kx = r.ky;
+    r.ky = tmp;
+  }
+  r.sx = dir[r.kx] / dir[r.kz];
+  r.sy = dir[r.ky] / dir[r.kz];
+  r.sz = 1.0 / dir[r.kz];
   return r;
 }
 
-// Mirrors core::intersectRayTriangle (Woop, Benthin & Wald 2013). hit = (t,
-// u, v) with the hit point (1 - u - v) * v0 + u * v1 + v * v2. Both windings
-// hit; t must lie in [tmin, tmax]; degenerate triangles never hit.
+// core::intersectRayTriangle (Woop, Benthin & Wald 2013), operation for
+// operation. hit = (t, u, v) with the hit point (1 - u - v) * v0 + u * v1 +
+// v * v2. Both windings hit; t must lie in [tmin, tmax]; degenerate
+// triangles never hit.
 bool intersectRayTriangle(RayTrianglePrecomputed r, vec3 v0, vec3 v1, vec3 v2, float tmin,
   float tmax, out vec3 hit)
 {
   vec3 A = v0 - r.org;
   vec3 B = v1 - r.org;
   vec3 C = v2 - r.org;
-  float Ax = dot(A, r.rowX);
-  float Ay = dot(A, r.rowY);
-  float Bx = dot(B, r.rowX);
-  float By = dot(B, r.rowY);
-  float Cx = dot(C, r.rowX);
-  float Cy = dot(C, r.rowY);
+  float Ax = A[r.kx] - r.sx * A[r.kz];
+  float Ay = A[r.ky] - r.sy * A[r.kz];
+  float Bx = B[r.kx] - r.sx * B[r.kz];
+  float By = B[r.ky] - r.sy * B[r.kz];
+  float Cx = C[r.kx] - r.sx * C[r.kz];
+  float Cy = C[r.ky] - r.sy * C[r.kz];
   float U = Cx * By - Cy * Bx;
   float V = Ax * Cy - Ay * Cx;
   float W = Bx * Ay - By * Ax;
@@ -83,9 +78,9 @@ bool intersectRayTriangle(RayTrianglePrecomputed r, vec3 v0, vec3 v1, vec3 v2, f
   {
     return false;
   }
-  float Az = dot(A, r.rowZ);
-  float Bz = dot(B, r.rowZ);
-  float Cz = dot(C, r.rowZ);
+  float Az = r.sz * A[r.kz];
+  float Bz = r.sz * B[r.kz];
+  float Cz = r.sz * C[r.kz];
   float Tsc = U * Az + V * Bz + W * Cz;
   float rcpDet = 1.0 / det;
   float t = Tsc * rcpDet;

@@ -10,7 +10,8 @@
 //   Triangle.h   intersectRayTriangle (watertight, Woop et al. 2013; u, v are
 //                the weights of v1, v2 like VTK pcoords), closestPointOnTriangle
 //   Sphere.h     raySphereRoots / intersectRaySphere (Ray Tracing Gems ch. 7)
-//   Plane.h      intersectRayPlane -> Hit / Miss / Parallel
+//   Plane.h      intersectRayPlane -> Hit / Miss / Parallel; clipRayByPlane
+//                (an interval clipped to a PlaneEquation's kept side)
 //   BVH.h        the flattened layout (read its header comment: the GPU walks
 //                it as is), BVHNode, BVH{nodes, primIndex, stats},
 //                BuildQuality/BuildOptions/BuildStats, kMaxDepth, kMaxStackSize,
@@ -46,6 +47,10 @@
 //   SegmentQueries.h closestHitSegment / allHitsSegment (tolerance-grown
 //                boxes; double fallback over the binary tree)
 //   HugePageArray.h vectors without zero fill, on huge pages when large
+//   GpuKernels.h   namespace gpu: the shader's kernels, its names and float
+//                  operations (box test, slab, plane clip, triangle, sphere)
+//   GpuTraversal.h namespace gpu: the shader's walks over the packed arrays
+//                  (traverseTriangles, traverseSpheres, traceTopLevel)
 //
 // Typical use (locator):
 //   TriangleMesh<double> mesh(points, indices);
@@ -72,6 +77,8 @@
 #include "vtkrt/core/BVHTraversal.h"
 #include "vtkrt/core/ConservativeFloat.h"
 #include "vtkrt/core/HugePageArray.h"
+#include "vtkrt/core/GpuKernels.h"
+#include "vtkrt/core/GpuTraversal.h"
 #include "vtkrt/core/LocalFrame.h"
 #include "vtkrt/core/GpuLayout.h"
 #include "vtkrt/core/Math.h"

@@ -97,19 +97,27 @@ inline bool clipSlab(T lo, T hi, T org, T invDir, T& tmin, T& tmax)
 /// ray (finite origin) and a finite box no NaN arises: parallel axes are
 /// decided by the origin alone (closed interval, so a ray lying in a face
 /// plane of a flat box hits it). On hit, tnear gets the entry distance
-/// clamped to [tmin, tmax]. The GLSL traversal mirrors this function.
+/// clamped to [tmin, tmax]. invDir as RayBoxPrecomputed makes it. The GLSL
+/// intersectRayAABB is this function (its twin: core/GpuKernels.h).
 template <class T>
-inline bool intersectRayAABB(
-  const RayBoxPrecomputed<T>& r, const Vec3<T>& bmin, const Vec3<T>& bmax, T tmin, T tmax, T& tnear)
+inline bool intersectRayAABB(const Vec3<T>& org, const Vec3<T>& invDir, const Vec3<T>& bmin,
+  const Vec3<T>& bmax, T tmin, T tmax, T& tnear)
 {
-  if (!detail::clipSlab(bmin.x, bmax.x, r.org.x, r.invDir.x, tmin, tmax) ||
-    !detail::clipSlab(bmin.y, bmax.y, r.org.y, r.invDir.y, tmin, tmax) ||
-    !detail::clipSlab(bmin.z, bmax.z, r.org.z, r.invDir.z, tmin, tmax))
+  if (!detail::clipSlab(bmin.x, bmax.x, org.x, invDir.x, tmin, tmax) ||
+    !detail::clipSlab(bmin.y, bmax.y, org.y, invDir.y, tmin, tmax) ||
+    !detail::clipSlab(bmin.z, bmax.z, org.z, invDir.z, tmin, tmax))
   {
     return false;
   }
   tnear = tmin;
   return tmin <= tmax;
+}
+
+template <class T>
+inline bool intersectRayAABB(
+  const RayBoxPrecomputed<T>& r, const Vec3<T>& bmin, const Vec3<T>& bmax, T tmin, T tmax, T& tnear)
+{
+  return intersectRayAABB(r.org, r.invDir, bmin, bmax, tmin, tmax, tnear);
 }
 
 template <class T>
