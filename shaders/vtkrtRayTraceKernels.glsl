@@ -195,3 +195,39 @@ bool bvhPopAfterLeaf(float tmax, inout int sp, inout uint index, inout uint coun
   count = culled ? 0u : bvhStackCount[sp];
   return true;
 }
+
+// The interior part of the walk that traverseTriangles and traverseSpheres
+// share: from the node at hand, descends to the nearer child hit (pushing
+// the farther) and pops at dead ends, until the node at hand is a leaf.
+// Boxes grow by growBy (screen-sized spheres; 0 otherwise). Returns false
+// when the walk is over (nothing left, or the traversal step cap reached).
+bool bvhDescend(vec3 org, vec3 invDir, vec3 parallelBias, vec3 growBy, float tmin, float tmax,
+  inout int sp, inout int steps, inout uint index, inout uint count, inout bool culled)
+{
+  while (count == 0u)
+  {
+#if VTKRT_MAXIMUM_TRAVERSAL_STEPS > 0
+    // The traversal step cap (a speed/accuracy knob): what is not reached
+    // within the cap is missed.
+    if (++steps > VTKRT_MAXIMUM_TRAVERSAL_STEPS)
+    {
+      return false;
+    }
+#endif
+    int child = 2 * int(index);
+    uvec4 lo0 = texelFetch(uNodes, child);
+    uvec4 hi0 = texelFetch(uNodes, child + 1);
+    uvec4 lo1 = texelFetch(uNodes, child + 2);
+    uvec4 hi1 = texelFetch(uNodes, child + 3);
+    float t0, t1;
+    bool h0 = intersectRayBoxConservative(org, invDir, parallelBias, boxCorner(lo0) - growBy,
+                boxCorner(hi0) + growBy, tmin, tmax, t0) && !culled;
+    bool h1 = intersectRayBoxConservative(org, invDir, parallelBias, boxCorner(lo1) - growBy,
+                boxCorner(hi1) + growBy, tmin, tmax, t1) && !culled;
+    if (!bvhInteriorStep(lo0, hi0, h0, t0, lo1, hi1, h1, t1, tmax, sp, index, count, culled))
+    {
+      return false;
+    }
+  }
+  return true;
+}

@@ -123,39 +123,10 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
   uint index = rootLo.w;
   uint count = rootHi.w;
   bool culled = false;
-  bool done = false;
-  while (!done)
+  for (;;)
   {
-    // Interior nodes: descend to the nearer child hit, push the farther;
-    // at a dead end, pop.
-    while (count == 0u)
-    {
-#if VTKRT_MAXIMUM_TRAVERSAL_STEPS > 0
-      // The traversal step cap (a speed/accuracy knob): what is not reached
-      // within the cap is missed.
-      if (++steps > VTKRT_MAXIMUM_TRAVERSAL_STEPS)
-      {
-        done = true;
-        break;
-      }
-#endif
-      int child = 2 * int(index);
-      uvec4 lo0 = texelFetch(uNodes, child);
-      uvec4 hi0 = texelFetch(uNodes, child + 1);
-      uvec4 lo1 = texelFetch(uNodes, child + 2);
-      uvec4 hi1 = texelFetch(uNodes, child + 3);
-      float t0, t1;
-      bool h0 = intersectRayBoxConservative(
-        org, invDir, parallelBias, boxCorner(lo0), boxCorner(hi0), tmin, tmax, t0) && !culled;
-      bool h1 = intersectRayBoxConservative(
-        org, invDir, parallelBias, boxCorner(lo1), boxCorner(hi1), tmin, tmax, t1) && !culled;
-      if (!bvhInteriorStep(lo0, hi0, h0, t0, lo1, hi1, h1, t1, tmax, sp, index, count, culled))
-      {
-        done = true;
-        break;
-      }
-    }
-    if (done)
+    if (!bvhDescend(
+      org, invDir, parallelBias, vec3(0.0), tmin, tmax, sp, steps, index, count, culled))
     {
       break;
     }

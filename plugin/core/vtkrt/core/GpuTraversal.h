@@ -154,6 +154,36 @@ inline bool bvhPopAfterLeaf(
   return true;
 }
 
+/// The interior part of the walk (see the shader): descends from the node at
+/// hand to a leaf, boxes grown by growBy; false when the walk is over.
+inline bool bvhDescend(BvhStack& stack, const ShaderInputs& u, const vec3& org, const vec3& invDir,
+  const vec3& parallelBias, const vec3& growBy, float tmin, float tmax, int& sp, int& steps,
+  std::uint32_t& index, std::uint32_t& count, bool& culled)
+{
+  while (count == 0u)
+  {
+    if (u.maximumTraversalSteps > 0 && ++steps > u.maximumTraversalSteps)
+    {
+      return false;
+    }
+    const int child = 2 * static_cast<int>(index);
+    const uvec4 lo0 = texelFetch(u.uNodes, child);
+    const uvec4 hi0 = texelFetch(u.uNodes, child + 1);
+    const uvec4 lo1 = texelFetch(u.uNodes, child + 2);
+    const uvec4 hi1 = texelFetch(u.uNodes, child + 3);
+    float t0, t1;
+    const bool h0 = intersectRayBoxConservative(org, invDir, parallelBias, boxCorner(lo0) - growBy,
+                      boxCorner(hi0) + growBy, tmin, tmax, t0) && !culled;
+    const bool h1 = intersectRayBoxConservative(org, invDir, parallelBias, boxCorner(lo1) - growBy,
+                      boxCorner(hi1) + growBy, tmin, tmax, t1) && !culled;
+    if (!bvhInteriorStep(stack, lo0, hi0, h0, t0, lo1, hi1, h1, t1, tmax, sp, index, count, culled))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 namespace detail
 {
 /// The walk that traverseTriangles and traverseSpheres share (the shader
@@ -182,33 +212,10 @@ inline void whileWhileWalk(const ShaderInputs& u, int root, const vec3& org, con
   std::uint32_t index = rootLo.w;
   std::uint32_t count = rootHi.w;
   bool culled = false;
-  bool done = false;
-  while (!done)
+  for (;;)
   {
-    while (count == 0u)
-    {
-      if (u.maximumTraversalSteps > 0 && ++steps > u.maximumTraversalSteps)
-      {
-        done = true;
-        break;
-      }
-      const int child = 2 * static_cast<int>(index);
-      const uvec4 lo0 = texelFetch(u.uNodes, child);
-      const uvec4 hi0 = texelFetch(u.uNodes, child + 1);
-      const uvec4 lo1 = texelFetch(u.uNodes, child + 2);
-      const uvec4 hi1 = texelFetch(u.uNodes, child + 3);
-      float t0, t1;
-      const bool h0 =
-        intersectRayBoxConservative(org, invDir, parallelBias, lower(lo0), upper(hi0), tmin, tmax, t0) && !culled;
-      const bool h1 =
-        intersectRayBoxConservative(org, invDir, parallelBias, lower(lo1), upper(hi1), tmin, tmax, t1) && !culled;
-      if (!bvhInteriorStep(stack, lo0, hi0, h0, t0, lo1, hi1, h1, t1, tmax, sp, index, count, culled))
-      {
-        done = true;
-        break;
-      }
-    }
-    if (done)
+    if (!bvhDescend(stack, u, org, invDir, parallelBias, Grow ? growBy : vec3(0.0f), tmin, tmax, sp,
+      steps, index, count, culled))
     {
       break;
     }
