@@ -34,6 +34,7 @@
 #include <algorithm>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 using vtkrt::pass::FrameCounters;
@@ -330,11 +331,11 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
   std::string error;
   if (this->Scene.GeometryChanged() || !this->GeometryOnGpu || (!this->GeometryValid && limitChanged))
   {
-    const vtkrt::pass::PackedGeometry packed = vtkrt::pass::PackGeometry(this->Scene);
+    vtkrt::pass::PackedGeometry packed = vtkrt::pass::PackGeometry(this->Scene);
     this->Scene.MarkGeometryPacked();
     this->Counters.GeometryBytesUploaded +=
       this->Buffers.UploadGeometry(win, packed, limit, this->GeometryValid, error);
-    this->Places.GeometryPlaces = packed.Placements;
+    this->Places.GeometryPlaces = std::move(packed.Placements);
     this->GeometryOnGpu = true;
     if (!this->GeometryValid)
     {
@@ -343,11 +344,11 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
   }
   if (this->Scene.ColorsChanged() || !this->ColorsOnGpu || (!this->ColorsValid && limitChanged))
   {
-    const vtkrt::pass::PackedColors packed = vtkrt::pass::PackColors(this->Scene);
+    vtkrt::pass::PackedColors packed = vtkrt::pass::PackColors(this->Scene);
     this->Scene.MarkColorsPacked();
     this->Counters.GeometryBytesUploaded +=
       this->Buffers.UploadColors(win, packed, limit, this->ColorsValid, error);
-    this->Places.ColorBases = packed.Bases;
+    this->Places.ColorBases = std::move(packed.Bases);
     this->ColorsOnGpu = true;
     if (!this->ColorsValid)
     {

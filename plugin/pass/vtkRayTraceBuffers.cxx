@@ -40,7 +40,7 @@ std::size_t TextureBuffer::Upload(vtkOpenGLRenderWindow* win, const void* data, 
   this->Texture->SetInternalFormat(GL_RGBA32UI);
   this->Texture->CreateTextureBuffer(static_cast<unsigned int>(n), 4, VTK_UNSIGNED_INT, this->Buffer);
   this->Texels = n;
-  return 16 * n;
+  return core::gpu::kTexelBytes * n;
 }
 
 void TextureBuffer::Release(vtkWindow* w)
@@ -55,7 +55,7 @@ namespace
 template <class Record>
 std::size_t texelsIn(const std::vector<Record>& records)
 {
-  return records.size() * sizeof(Record) / 16;
+  return records.size() * sizeof(Record) / core::gpu::kTexelBytes;
 }
 } // namespace
 

@@ -6,6 +6,8 @@
 
 #include "vtkNew.h"
 
+#include "vtkrt/core/GpuLayout.h"
+
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -38,7 +40,7 @@ public:
   template <class Record>
   std::size_t Upload(vtkOpenGLRenderWindow* win, const std::vector<Record>& records)
   {
-    return this->Upload(win, records.data(), records.size() * sizeof(Record) / 16);
+    return this->Upload(win, records.data(), records.size() * sizeof(Record) / core::gpu::kTexelBytes);
   }
   void Release(vtkWindow* w);
   std::size_t GetTexels() const { return this->Texels; }

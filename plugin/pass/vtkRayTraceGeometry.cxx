@@ -267,7 +267,7 @@ std::unique_ptr<Geometry> BuildEllipsoids(const std::vector<std::array<double, 1
       e.rows[r][3] = static_cast<float>(m[4 * r + 3] + m[4 * r + 0] * origin.x +
         m[4 * r + 1] * origin.y + m[4 * r + 2] * origin.z);
       // The shader reads an ellipsoid's id at any of its texels.
-      g->SphereIds[core::gpu::kEllipsoidTexels * k + r] = bvh.primIndex.empty() ? 0 : ids[bvh.primIndex[k]];
+      g->SphereIds[core::gpu::kEllipsoidTexels * k + r] = ids[bvh.primIndex[k]];
     }
   }
   return g;

@@ -39,32 +39,28 @@ std::string AssembleShader(const Features& f)
   std::ostringstream s;
   s << (f.Fp64 ? "#version 400 core\n#define VTKRT_HAS_FP64\n" : "#version 330 core\n");
   s << "// vtkrt feature key " << f.Key() << "\n";
-  const std::pair<bool, const char*> switches[] = { { f.Triangles, "VTKRT_HAS_TRIANGLES" },
-    { f.Spheres, "VTKRT_HAS_SPHERES" }, { f.VertexNormals, "VTKRT_HAS_VERTEX_NORMALS" },
-    { f.Colors, "VTKRT_HAS_COLORS" }, { f.ColorTexture, "VTKRT_HAS_COLOR_TEXTURE" },
-    { f.Triangles && (f.VertexNormals || f.Colors), "VTKRT_HAS_TRIANGLE_VERTICES" },
-    { f.IdMode, "VTKRT_ID_MODE" }, { f.TopLevel, "VTKRT_HAS_TOP_LEVEL" } };
-  for (const auto& sw : switches)
-  {
-    if (sw.first)
+  auto define = [&s](bool on, const char* name) {
+    if (on)
     {
-      s << "#define " << sw.second << "\n";
+      s << "#define " << name << "\n";
     }
-  }
+  };
+  define(f.Triangles, "VTKRT_HAS_TRIANGLES");
+  define(f.Spheres, "VTKRT_HAS_SPHERES");
+  define(f.VertexNormals, "VTKRT_HAS_VERTEX_NORMALS");
+  define(f.Colors, "VTKRT_HAS_COLORS");
+  define(f.ColorTexture, "VTKRT_HAS_COLOR_TEXTURE");
+  define(f.Triangles && (f.VertexNormals || f.Colors), "VTKRT_HAS_TRIANGLE_VERTICES");
+  define(f.IdMode, "VTKRT_ID_MODE");
+  define(f.TopLevel, "VTKRT_HAS_TOP_LEVEL");
   if (f.SamplesPerPixel > 0)
   {
     s << "#define VTKRT_SAMPLES_PER_PIXEL " << f.SamplesPerPixel << "\n";
   }
-  const std::pair<bool, const char*> more[] = { { f.Shadows, "VTKRT_SHADOWS" },
-    { f.WorldCoordinates, "VTKRT_WORLD_COORDINATES" }, { f.ScreenSpheres, "VTKRT_SCREEN_SPHERES" },
-    { f.Ellipsoids, "VTKRT_HAS_ELLIPSOIDS" } };
-  for (const auto& sw : more)
-  {
-    if (sw.first)
-    {
-      s << "#define " << sw.second << "\n";
-    }
-  }
+  define(f.Shadows, "VTKRT_SHADOWS");
+  define(f.WorldCoordinates, "VTKRT_WORLD_COORDINATES");
+  define(f.ScreenSpheres, "VTKRT_SCREEN_SPHERES");
+  define(f.Ellipsoids, "VTKRT_HAS_ELLIPSOIDS");
   s << "#define VTKRT_AMBIENT_OCCLUSION_SAMPLES " << f.AmbientOcclusionSamples << "\n";
   s << "#define VTKRT_MAXIMUM_TRAVERSAL_STEPS " << f.MaximumTraversalSteps << "\n";
   s << "#define VTKRT_NUMBER_OF_CLIP_PLANES " << f.ClipPlanes << "\n";

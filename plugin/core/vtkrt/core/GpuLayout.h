@@ -7,6 +7,7 @@
 #ifndef vtkrt_core_GpuLayout_h
 #define vtkrt_core_GpuLayout_h
 
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <sstream>
@@ -225,6 +226,7 @@ inline std::string glslLayout()
   for (const detail::GlslField& f : fields)
   {
     const std::size_t texel = f.offset / kTexelBytes;
+    assert(f.offset % kTexelBytes + f.bytes <= kTexelBytes && "a field must lie in one texel");
     s << f.type << " instance" << f.name << "(int i)\n{\n  return ";
     const char* sw = detail::swizzle(f.offset, f.bytes);
     if (f.isUint)
