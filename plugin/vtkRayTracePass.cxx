@@ -6,9 +6,13 @@
 #include "pass/vtkRayTracePacker.h"
 #include "pass/vtkRayTraceRecords.h"
 #include "pass/vtkRayTraceScene.h"
+#include "pass/vtkRayTraceSelection.h"
 #include "pass/vtkRayTraceShader.h"
 #include "pass/vtkRayTraceTopLevel.h"
 
+#include "vtkActor.h"
+#include "vtkDataObject.h"
+#include "vtkHardwareSelector.h"
 #include "vtkLightsPass.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
@@ -91,10 +95,24 @@ struct vtkRayTracePass::Internals
   vtkrt::pass::ScenePlacements Places;
   vtkrt::pass::TopLevel Top;
   vtkrt::pass::Accumulation Accumulated;
+  vtkrt::pass::Selection Selecting;
+
+  /// A frame ready to trace: what Prepare made for the tracer.
+  struct Prepared
+  {
+    vtkrt::pass::CameraFrame Camera;
+    vtkrt::pass::FrameRecords Frame;
+    std::vector<vtkrt::core::gpu::Light> Lights;
+    Features F;
+    double OcclusionRadius = 0.0;
+    std::vector<vtkTextureObject*> Active; ///< bound samplers
+    vtkOpenGLQuadHelper* Tracer = nullptr;
+  };
 
   void ReleaseGL(vtkWindow* w)
   {
     this->Accumulated.Release(w);
+    this->Selecting.Release(w);
     this->Programs.Release(w);
     this->Buffers.Release(w);
     this->GeometryOnGpu = false;
@@ -106,9 +124,18 @@ struct vtkRayTracePass::Internals
   void Extract(const vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren);
   /// Packs and uploads the geometry and colors that changed.
   void Upload(const vtkRayTracePass& pass, vtkOpenGLRenderWindow* win);
-  /// Records, lights, shader, then the trace (straight or accumulated).
+  /// Records (of the props `traced` says, all when null), top level,
+  /// lights and shader (the selection ids variant when `selectIds`): the
+  /// tracer ready, its uniforms set, its samplers bound; false when it
+  /// cannot trace.
+  bool Prepare(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren, vtkOpenGLRenderWindow* win,
+    vtkOpenGLCamera* cam, const std::vector<bool>* traced, bool selectIds, Prepared& p);
+  /// Prepare, then the trace (straight or accumulated).
   void Trace(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren, vtkOpenGLRenderWindow* win,
     vtkOpenGLCamera* cam, int framesBefore);
+  /// One pass of the renderer's vtkHardwareSelector instead of a frame.
+  void Select(vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren,
+    vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam, vtkHardwareSelector* selector);
   /// What the frame needs from the shader.
   Features FrameFeatures(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren,
     const vtkrt::pass::FrameRecords& frame, std::size_t lights, bool topLevel) const;
@@ -428,19 +455,27 @@ void vtkRayTracePass::Internals::SetUniforms(vtkShaderProgram* program, const Fe
   vtkrt::pass::SetLightUniforms(program, lights);
 }
 
-void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren,
-  vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam, int framesBefore)
+bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren,
+  vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam, const std::vector<bool>* traced, bool selectIds,
+  Prepared& p)
 {
   const std::vector<Instance>& instances = this->Scene.GetInstances();
-  vtkrt::pass::CameraFrame camera;
-  camera.Set(ren, cam, pass.PrecisionMode == WORLD);
-  vtkrt::pass::FrameRecords frame;
-  if (!vtkrt::pass::MakeFrameRecords(instances, this->Places, camera, ren, frame))
+  p.Camera.Set(ren, cam, pass.PrecisionMode == WORLD);
+  vtkrt::pass::FrameRecords& frame = p.Frame;
+  if (!vtkrt::pass::MakeFrameRecords(instances, this->Places, p.Camera, ren, frame))
   {
     vtkErrorWithObjectMacro(&pass, "vtkRayTracePass: a traced instance has no uploaded geometry.");
-    return;
+    return false;
   }
-  const bool topLevel = vtkrt::pass::TopLevel::IsNeeded(instances.size());
+  if (traced)
+  {
+    vtkrt::pass::KeepTracedProps(*traced, frame);
+  }
+  if (frame.Records.empty())
+  {
+    return false;
+  }
+  const bool topLevel = vtkrt::pass::TopLevel::IsNeeded(frame.Records.size());
   if (topLevel)
   {
     this->Top.Update(win, frame.WorldBoxes, this->Buffers.TopNodes, this->Counters);
@@ -455,26 +490,48 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRen
     this->Counters.FrameBytesUploaded += this->Buffers.Instances.Upload(win, frame.Records);
     this->LastRecords = frame.Records;
   }
-  const std::vector<vtkrt::core::gpu::Light> lights = vtkrt::pass::CollectLights(ren, camera.Origin);
-  const Features f = this->FrameFeatures(pass, ren, frame, lights.size(), topLevel);
-  const double occlusionRadius =
+  p.Lights = vtkrt::pass::CollectLights(ren, p.Camera.Origin);
+  p.F = this->FrameFeatures(pass, ren, frame, p.Lights.size(), topLevel);
+  if (selectIds)
+  {
+    // Ids only: one centered ray a pixel, nothing shaded.
+    p.F.SelectIds = true;
+    p.F.IdMode = false;
+    p.F.SamplesPerPixel = 0;
+    p.F.Shadows = false;
+    p.F.AmbientOcclusionSamples = 0;
+    p.F.Lights = 0;
+    p.F.LightComplexity = 0;
+    p.Lights.clear();
+  }
+  p.OcclusionRadius =
     pass.AmbientOcclusionRadius > 0.0 ? pass.AmbientOcclusionRadius : frame.DefaultOcclusionRadius();
 
   const int compilesBefore = this->Counters.ShaderCompiles;
-  vtkOpenGLQuadHelper* tracer = this->Programs.Ready(win, f, this->Counters);
-  if (!tracer)
+  p.Tracer = this->Programs.Ready(win, p.F, this->Counters);
+  if (!p.Tracer)
   {
     if (this->Counters.ShaderCompiles > compilesBefore)
     {
       vtkErrorWithObjectMacro(&pass, "vtkRayTracePass: the ray tracing shader (features "
           << this->Programs.GetLastKey() << ") failed to compile.");
     }
+    return false;
+  }
+  this->SetUniforms(p.Tracer->Program, p.F, p.Camera, frame, p.Lights, p.OcclusionRadius);
+  p.Active = this->Buffers.Bind(p.Tracer->Program);
+  return true;
+}
+
+void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren,
+  vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam, int framesBefore)
+{
+  Prepared p;
+  if (!this->Prepare(pass, ren, win, cam, nullptr, false, p))
+  {
     return;
   }
-  vtkShaderProgram* program = tracer->Program;
-  this->SetUniforms(program, f, camera, frame, lights, occlusionRadius);
-  std::vector<vtkTextureObject*> active = this->Buffers.Bind(program);
-
+  vtkOpenGLQuadHelper* tracer = p.Tracer;
   vtkOpenGLState* ostate = win->GetState();
   vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
   vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
@@ -484,7 +541,7 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRen
   ostate->vtkglDepthFunc(GL_ALWAYS);
   ostate->vtkglDepthMask(GL_TRUE);
   ostate->vtkglDisable(GL_BLEND);
-  if (f.SamplesPerPixel == 0)
+  if (p.F.SamplesPerPixel == 0)
   {
     tracer->Render();
   }
@@ -492,32 +549,75 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRen
   {
     // What the image is traced from: any change restarts accumulating.
     std::vector<float> signature(32);
-    toGLSL(camera.ClipToCamera, signature.data());
-    toGLSL(camera.CameraToClip, signature.data() + 16);
-    appendAsFloats(signature, frame.Records);
-    appendAsFloats(signature, frame.ClipPlanes);
-    appendAsFloats(signature, lights);
-    signature.push_back(static_cast<float>(occlusionRadius));
+    toGLSL(p.Camera.ClipToCamera, signature.data());
+    toGLSL(p.Camera.CameraToClip, signature.data() + 16);
+    appendAsFloats(signature, p.Frame.Records);
+    appendAsFloats(signature, p.Frame.ClipPlanes);
+    appendAsFloats(signature, p.Lights);
+    signature.push_back(static_cast<float>(p.OcclusionRadius));
     const std::string& key = this->Programs.GetLastKey();
     signature.insert(signature.end(), key.begin(), key.end());
     const bool restart = !pass.ProgressiveAccumulation || this->Counters.GeometryBytesUploaded > 0 ||
       this->Counters.ShaderCompiles > 0;
     this->Accumulated.Trace(
       win, ren, tracer, std::move(signature), restart, framesBefore, pass.SamplesPerPixel);
-    for (vtkTextureObject* t : active)
+    for (vtkTextureObject* t : p.Active)
     {
       t->Deactivate();
     }
-    active.clear();
+    p.Active.clear();
     if (!this->Accumulated.Resolve(win, pass.SamplesPerPixel, this->Counters))
     {
       vtkErrorWithObjectMacro(&pass, "vtkRayTracePass: the accumulation resolve shader failed to compile.");
     }
   }
-  for (vtkTextureObject* t : active)
+  for (vtkTextureObject* t : p.Active)
   {
     t->Deactivate();
   }
+}
+
+void vtkRayTracePass::Internals::Select(vtkRayTracePass& pass, const vtkRenderState* s,
+  vtkOpenGLRenderer* ren, vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam,
+  vtkHardwareSelector* selector)
+{
+  std::vector<vtkProp*> props =
+    vtkrt::pass::SelectionProps(ren, s->GetPropArray(), s->GetPropArrayCount());
+  if (selector->GetFieldAssociation() == vtkDataObject::FIELD_ASSOCIATION_POINTS)
+  {
+    // Points: every prop draws its points as raster does, depth-tested
+    // against the depth of the traced frame the selector rendered first.
+    pass.NumberOfRenderedProps =
+      selector->Render(ren, props.data(), static_cast<int>(props.size()));
+    return;
+  }
+  // Traced prop i is drawn by stand-in i; only the pickable ones in the
+  // selection's props are traced, so that the others hide nothing.
+  std::vector<vtkrt::pass::SelectableProp> selectable(this->Traced.size());
+  std::vector<bool> traced(this->Traced.size(), false);
+  for (std::size_t i = 0; i < this->Traced.size(); ++i)
+  {
+    selectable[i].Actor = vtkActor::SafeDownCast(this->Traced[i]);
+    traced[i] = this->Traced[i]->GetPickable() &&
+      std::find(props.begin(), props.end(), this->Traced[i]) != props.end();
+  }
+  for (const Instance& inst : this->Scene.GetInstances())
+  {
+    std::uint32_t& maximum = selectable[static_cast<std::size_t>(inst.PropIndex)].MaximumId;
+    maximum = std::max(maximum, inst.Geom->MaximumId);
+  }
+  Prepared p;
+  if (!this->Scene.GetInstances().empty() && this->GeometryValid && this->ColorsValid &&
+    this->Prepare(pass, ren, win, cam, &traced, true, p))
+  {
+    this->Selecting.TraceIds(win, ren, p.Tracer);
+    for (vtkTextureObject* t : p.Active)
+    {
+      t->Deactivate();
+    }
+  }
+  pass.NumberOfRenderedProps =
+    this->Selecting.RenderPass(win, ren, selector, props, selectable, this->Counters);
 }
 
 void vtkRayTracePass::Internals::RenderOthers(
@@ -579,6 +679,13 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   }
   in.Upload(*this, win);
+  vtkHardwareSelector* selector = ren->GetSelector();
+  if (selector && !this->IdMode)
+  {
+    in.Select(*this, s, ren, win, cam, selector);
+    vtkOpenGLCheckErrorMacro("failed after vtkRayTracePass::Render (selection)");
+    return;
+  }
   if (!in.Scene.GetInstances().empty() && in.GeometryValid && in.ColorsValid)
   {
     in.Trace(*this, ren, win, cam, framesBefore);

@@ -570,7 +570,12 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
   }
 #endif
 
-#ifdef VTKRT_ID_MODE
+#if defined(VTKRT_SELECT_IDS)
+  // Hardware selection (floats, exact below 2^24): prop index + 1, the VTK
+  // cell (or point, for spheres) id's low 24 and high bits, composite index.
+  outColor = vec4(float(instancePropIndex(hitInstance) + 1u), float(vtkId & 0xFFFFFFu),
+    float(vtkId >> 24u), float(instanceCompositeIndex(hitInstance)));
+#elif defined(VTKRT_ID_MODE)
   // RGB: the VTK cell (or point, for spheres) id, 24 bits; A: prop index + 1.
   uint prop = instancePropIndex(hitInstance) + 1u;
   outColor = vec4(float(vtkId & 255u), float((vtkId >> 8) & 255u),

@@ -11,6 +11,7 @@
 #include "vtkrt/core/LocalFrame.h"
 #include "vtkrt/core/Mesh.h"
 
+#include <algorithm>
 #include <limits>
 #include <optional>
 
@@ -142,6 +143,7 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
       g->TriangleVertices[k].ids[v] = vi;
     }
     t.cellId = cellIds[tri];
+    g->MaximumId = std::max(g->MaximumId, t.cellId);
     t.unused1 = t.unused2 = 0.0f;
     g->TriangleVertices[k].unused = 0;
   }
@@ -174,6 +176,7 @@ std::unique_ptr<Geometry> BuildSpheres(const std::vector<Vec3<double>>& centers,
     g->SphereRecords[k] = { { static_cast<float>(c.x), static_cast<float>(c.y), static_cast<float>(c.z) },
       static_cast<float>(radii[s]) };
     g->SphereIds[k] = ids[s];
+    g->MaximumId = std::max(g->MaximumId, ids[s]);
   }
   return g;
 }
@@ -269,6 +272,7 @@ std::unique_ptr<Geometry> BuildEllipsoids(const std::vector<std::array<double, 1
       // The shader reads an ellipsoid's id at any of its texels.
       g->SphereIds[core::gpu::kEllipsoidTexels * k + r] = ids[bvh.primIndex[k]];
     }
+    g->MaximumId = std::max(g->MaximumId, ids[bvh.primIndex[k]]);
   }
   return g;
 }

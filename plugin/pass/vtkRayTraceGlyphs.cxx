@@ -433,6 +433,7 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
       }
       GlyphSet set;
       set.Data = data;
+      set.FlatIndex = it->GetCurrentFlatIndex();
       if (attributes && attributes->HasBlockColor(leaf))
       {
         set.HasBlockColor = true;
@@ -456,7 +457,12 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
   }
   for (const GlyphSet& set : sets)
   {
+    const std::size_t first = this->Instances.size();
     this->AddGlyphSet(actor, mapper, sphere, set, propIndex, counters);
+    for (std::size_t i = first; i < this->Instances.size(); ++i)
+    {
+      this->Instances[i].CompositeIndex = set.FlatIndex;
+    }
   }
   return true;
 }

@@ -40,6 +40,7 @@ struct GlyphSet
   vtkDataArray* Orientation = nullptr;
   bool HasBlockColor = false; ///< the leaf's block color replaces the property's colors
   std::array<double, 3> BlockColor{ { 0, 0, 0 } };
+  unsigned int FlatIndex = 1; ///< the composite index selection reports (leaf flat index)
 };
 
 /// The glyphs of one set, ready to build: spheres (centers and radii) or,

@@ -261,6 +261,7 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     rec.firstClipPlane = static_cast<std::uint32_t>(out.ClipPlanes.size() / 4);
     rec.clipPlaneCount = static_cast<std::uint32_t>(inst.ClipPlanes.size());
     rec.propIndex = static_cast<std::uint32_t>(inst.PropIndex);
+    rec.compositeIndex = inst.CompositeIndex;
     rec.ambientIntensity = inst.AmbientIntensity;
     rec.diffuseIntensity = inst.DiffuseIntensity;
     rec.sphereGrow = static_cast<float>(screen.MaxLocal);
@@ -277,6 +278,23 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     }
   }
   return true;
+}
+
+void KeepTracedProps(const std::vector<bool>& traced, FrameRecords& frame)
+{
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < frame.Records.size(); ++i)
+  {
+    const std::uint32_t prop = frame.Records[i].propIndex;
+    if (prop < traced.size() && traced[prop])
+    {
+      frame.Records[kept] = frame.Records[i];
+      frame.WorldBoxes[kept] = frame.WorldBoxes[i];
+      ++kept;
+    }
+  }
+  frame.Records.resize(kept);
+  frame.WorldBoxes.resize(kept);
 }
 
 } // namespace pass

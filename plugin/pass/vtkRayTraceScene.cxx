@@ -7,6 +7,7 @@
 #include "vtkCompositeDataSet.h"
 #include "vtkCompositePolyDataMapper.h"
 #include "vtkCompositePolyDataMapper2.h"
+#include "vtkDataObjectTreeRange.h"
 #include "vtkDataObject.h"
 #include "vtkDataObjectTree.h"
 #include "vtkDataObjectTreeIterator.h"
@@ -81,15 +82,18 @@ struct Piece
   vtkPolyData* Poly;
   bool HasColor;
   std::array<double, 3> Color;
+  unsigned int FlatIndex; ///< the composite index hardware selection reports
 };
 
 /// Walks a composite dataset as vtkCompositePolyDataMapper2 does: block
 /// visibility, color and opacity apply to the block and everything below
-/// it. Returns false when something cannot be traced (a translucent block,
-/// a non-polydata leaf).
+/// it, and blocks are numbered in its order (flatIndex: the next block's
+/// number; an empty child takes one too). Returns false when something
+/// cannot be traced (a translucent block, a non-polydata leaf).
 bool collectPieces(vtkDataObject* object, vtkCompositeDataDisplayAttributes* attributes,
-  bool visible, double opacity, Piece inherited, std::vector<Piece>& pieces)
+  bool visible, double opacity, Piece inherited, unsigned int& flatIndex, std::vector<Piece>& pieces)
 {
+  inherited.FlatIndex = flatIndex++;
   if (!object)
   {
     return true;
@@ -126,13 +130,10 @@ bool collectPieces(vtkDataObject* object, vtkCompositeDataDisplayAttributes* att
   }
   if (auto* tree = vtkDataObjectTree::SafeDownCast(object))
   {
-    auto it = vtk::TakeSmartPointer(tree->NewTreeIterator());
-    it->TraverseSubTreeOff();
-    it->VisitOnlyLeavesOff();
     bool ok = true;
-    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    for (vtkDataObject* child : vtk::Range(tree, vtk::DataObjectTreeOptions::None))
     {
-      ok = collectPieces(it->GetCurrentDataObject(), attributes, visible, opacity, inherited, pieces) && ok;
+      ok = collectPieces(child, attributes, visible, opacity, inherited, flatIndex, pieces) && ok;
     }
     return ok;
   }
@@ -262,7 +263,7 @@ bool Scene::AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& cou
   bool ok = true;
   if (auto* poly = vtkPolyData::SafeDownCast(input))
   {
-    pieces.push_back({ poly, false, { { 0, 0, 0 } } });
+    pieces.push_back({ poly, false, { { 0, 0, 0 } }, 1u });
   }
   else if (vtkCompositeDataSet::SafeDownCast(input))
   {
@@ -271,8 +272,9 @@ bool Scene::AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& cou
     {
       attributes = m2->GetCompositeDataDisplayAttributes();
     }
-    Piece root{ nullptr, false, { { 0, 0, 0 } } };
-    ok = collectPieces(input, attributes, true, 1.0, root, pieces);
+    Piece root{ nullptr, false, { { 0, 0, 0 } }, 0u };
+    unsigned int flatIndex = 0;
+    ok = collectPieces(input, attributes, true, 1.0, root, flatIndex, pieces);
   }
   else if (input)
   {
@@ -286,8 +288,13 @@ bool Scene::AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& cou
   {
     for (const Piece& piece : pieces)
     {
+      const std::size_t first = this->Instances.size();
       this->AddPolyData(actor, mapper, piece.Poly, propIndex, counters,
         piece.HasColor ? piece.Color.data() : nullptr);
+      for (std::size_t i = first; i < this->Instances.size(); ++i)
+      {
+        this->Instances[i].CompositeIndex = piece.FlatIndex;
+      }
     }
   }
   return ok;

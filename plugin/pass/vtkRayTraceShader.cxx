@@ -8,6 +8,7 @@
 #include "vtkrtRayTraceKernels.h"
 #include "vtkrtRayTraceMain.h"
 #include "vtkrtRayTraceResolve.h"
+#include "vtkrtRayTraceSelect.h"
 #include "vtkrtRayTraceSpheres.h"
 #include "vtkrtRayTraceTriangles.h"
 
@@ -30,7 +31,7 @@ std::string Features::Key() const
     << this->TopLevel << "A" << this->SamplesPerPixel << "H" << this->Shadows << "O"
     << this->AmbientOcclusionSamples << "M" << this->MaximumTraversalSteps << "W"
     << this->WorldCoordinates << "Q" << this->ScreenSpheres << "E" << this->Ellipsoids << "X"
-    << this->ColorTexture;
+    << this->ColorTexture << "K" << this->SelectIds;
   return s.str();
 }
 
@@ -52,6 +53,7 @@ std::string AssembleShader(const Features& f)
   define(f.ColorTexture, "VTKRT_HAS_COLOR_TEXTURE");
   define(f.Triangles && (f.VertexNormals || f.Colors), "VTKRT_HAS_TRIANGLE_VERTICES");
   define(f.IdMode, "VTKRT_ID_MODE");
+  define(f.SelectIds, "VTKRT_SELECT_IDS");
   define(f.TopLevel, "VTKRT_HAS_TOP_LEVEL");
   if (f.SamplesPerPixel > 0)
   {
@@ -84,6 +86,11 @@ std::string AssembleShader(const Features& f)
 std::string ResolveShaderSource()
 {
   return std::string("#version 330 core\n") + vtkrtRayTraceResolve;
+}
+
+std::string SelectShaderSource()
+{
+  return std::string("#version 330 core\n") + vtkrtRayTraceSelect;
 }
 
 bool ReadyQuadProgram(vtkOpenGLRenderWindow* win, std::unique_ptr<vtkOpenGLQuadHelper>& helper,

@@ -26,6 +26,9 @@ std::string AssembleShader(const Features& f);
 /// The resolve shader of the accumulation buffer.
 std::string ResolveShaderSource();
 
+/// The shader that draws a traced prop's pixels for a selector pass.
+std::string SelectShaderSource();
+
 /// Full-screen-quad programs by feature key.
 class ProgramCache
 {

@@ -43,6 +43,7 @@ struct Geometry
   std::vector<std::uint32_t> SphereIds; ///< VTK point id per sphere texel (leaf order)
   std::vector<core::gpu::Normal> Normals; ///< per vertex, empty if none
   std::size_t PrimitiveCount = 0;
+  std::uint32_t MaximumId = 0; ///< the largest VTK cell (triangles) or point (spheres) id
   std::size_t VertexCount = 0;
   std::size_t SkippedPrimitives = 0; ///< NaN or degenerate, never traced
   bool Used = false;
@@ -78,6 +79,9 @@ struct Instance
   Geometry* Geom = nullptr;
   Colors* Color = nullptr;
   int PropIndex = 0;
+  /// What vtkHardwareSelector's composite index pass reports for it: the
+  /// block's flat index under a composite mapper, 1 under a plain one.
+  unsigned int CompositeIndex = 1;
   std::array<double, 16> Matrix; ///< model to world, row-major (actor matrix)
   std::array<float, 3> Ambient{ { 0, 0, 0 } };
   std::array<float, 3> Diffuse{ { 0, 0, 0 } };
@@ -103,6 +107,7 @@ struct Features
   int Lights = 0;
   int LightComplexity = 0;
   bool IdMode = false;
+  bool SelectIds = false; ///< prop, VTK id and composite index per pixel (hardware selection)
   bool Fp64 = false;
   bool TopLevel = false;
   int SamplesPerPixel = 0; ///< 0: one centered ray straight to the framebuffer

@@ -99,7 +99,7 @@ struct InstanceRecord
   std::uint32_t firstClipPlane;
   std::uint32_t clipPlaneCount;
   std::uint32_t propIndex;
-  std::uint32_t unused8;
+  std::uint32_t compositeIndex; ///< what hardware selection's composite pass reports
   float ambientIntensity;
   float diffuseIntensity;
   float sphereGrow;
@@ -208,6 +208,7 @@ inline std::string glslLayout()
     VTKRT_GPU_FIELD("FirstClipPlane", firstClipPlane, "uint", true),
     VTKRT_GPU_FIELD("ClipPlaneCount", clipPlaneCount, "uint", true),
     VTKRT_GPU_FIELD("PropIndex", propIndex, "uint", true),
+    VTKRT_GPU_FIELD("CompositeIndex", compositeIndex, "uint", true),
     VTKRT_GPU_FIELD("AmbientIntensity", ambientIntensity, "float", false),
     VTKRT_GPU_FIELD("DiffuseIntensity", diffuseIntensity, "float", false),
     VTKRT_GPU_FIELD("SphereGrow", sphereGrow, "float", false),

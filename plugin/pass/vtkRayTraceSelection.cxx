@@ -1,0 +1,205 @@
+#include "vtkRayTraceSelection.h"
+
+#include "vtkRayTraceSelectionMapper.h"
+#include "vtkRayTraceShader.h"
+
+#include "vtkActor.h"
+#include "vtkHardwareSelector.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkPropCollection.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+
+namespace vtkrt
+{
+namespace pass
+{
+
+namespace
+{
+/// Which value of the id buffer a selector pass writes (see the shader).
+int componentOf(int currentPass)
+{
+  switch (currentPass)
+  {
+    case vtkHardwareSelector::POINT_ID_LOW24:
+    case vtkHardwareSelector::CELL_ID_LOW24:
+      return 1;
+    case vtkHardwareSelector::POINT_ID_HIGH24:
+    case vtkHardwareSelector::CELL_ID_HIGH24:
+      return 2;
+    case vtkHardwareSelector::COMPOSITE_INDEX_PASS:
+      return 3;
+    default: // actor and process passes: the selector's prop color
+      return 0;
+  }
+}
+/// VTK 9.1 keeps the pick list of vtkRenderer::PickPropFrom protected with
+/// no accessor; vtkOpenGLRenderer::UpdateGeometry reads it, and so must we.
+struct ViewportPickList : vtkViewport
+{
+  static vtkPropCollection* Of(vtkViewport* viewport)
+  {
+    return viewport->*(&ViewportPickList::PickFromProps);
+  }
+};
+} // namespace
+
+std::vector<vtkProp*> SelectionProps(vtkRenderer* ren, vtkProp** props, int count)
+{
+  vtkPropCollection* pickFrom = ViewportPickList::Of(ren);
+  if (!pickFrom)
+  {
+    return std::vector<vtkProp*>(props, props + count);
+  }
+  std::vector<vtkProp*> picked;
+  vtkCollectionSimpleIterator it;
+  pickFrom->InitTraversal(it);
+  while (vtkProp* prop = pickFrom->GetNextProp(it))
+  {
+    if (prop->GetVisibility())
+    {
+      picked.push_back(prop);
+    }
+  }
+  return picked;
+}
+
+Selection::Selection() = default;
+Selection::~Selection() = default;
+
+void Selection::Allocate(vtkOpenGLRenderWindow* win, int width, int height)
+{
+  vtkOpenGLState* ostate = win->GetState();
+  this->Ids->SetContext(win);
+  this->Ids->SetMinificationFilter(vtkTextureObject::Nearest);
+  this->Ids->SetMagnificationFilter(vtkTextureObject::Nearest);
+  this->Ids->Allocate2D(width, height, 4, VTK_FLOAT);
+  this->Depth->SetContext(win);
+  this->Depth->AllocateDepth(width, height, vtkTextureObject::Float32);
+  this->FBO->SetContext(win);
+  ostate->PushFramebufferBindings();
+  this->FBO->Bind();
+  this->FBO->AddColorAttachment(0, this->Ids);
+  this->FBO->AddDepthAttachment(this->Depth);
+  ostate->PopFramebufferBindings();
+  this->Size[0] = width;
+  this->Size[1] = height;
+}
+
+void Selection::TraceIds(vtkOpenGLRenderWindow* win, vtkRenderer* ren, vtkOpenGLQuadHelper* tracer)
+{
+  vtkOpenGLState* ostate = win->GetState();
+  int width = 0, height = 0, originX = 0, originY = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);
+  width = std::max(width, 1);
+  height = std::max(height, 1);
+  if (width != this->Size[0] || height != this->Size[1])
+  {
+    this->Allocate(win, width, height);
+  }
+  ostate->PushFramebufferBindings();
+  this->FBO->Bind();
+  this->FBO->ActivateDrawBuffers(1);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglClearColor clearColor(ostate);
+  vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_ALWAYS);
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglViewport(0, 0, width, height);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
+  ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  tracer->Render();
+  ostate->PopFramebufferBindings();
+  this->Traced = true;
+}
+
+int Selection::RenderPass(vtkOpenGLRenderWindow* win, vtkRenderer* ren,
+  vtkHardwareSelector* selector, const std::vector<vtkProp*>& props,
+  const std::vector<SelectableProp>& traced, FrameCounters& counters)
+{
+  this->Window = win;
+  this->Counters = &counters;
+  while (this->StandIns.size() < traced.size())
+  {
+    this->StandIns.push_back(vtkSmartPointer<vtkRayTraceSelectionMapper>::New());
+  }
+  // The actors keep their own mappers except for this one call.
+  std::vector<vtkSmartPointer<vtkMapper>> originals(traced.size());
+  for (std::size_t i = 0; i < traced.size(); ++i)
+  {
+    vtkActor* actor = traced[i].Actor;
+    originals[i] = actor->GetMapper();
+    this->StandIns[i]->SetStandIn(this, static_cast<int>(i), traced[i].MaximumId, originals[i]);
+    actor->SetMapper(this->StandIns[i]);
+  }
+  std::vector<vtkProp*> list = props;
+  const int rendered = selector->Render(ren, list.data(), static_cast<int>(list.size()));
+  for (std::size_t i = 0; i < traced.size(); ++i)
+  {
+    traced[i].Actor->SetMapper(originals[i]);
+    this->StandIns[i]->SetStandIn(nullptr, 0, 0, nullptr);
+  }
+  this->Window = nullptr;
+  this->Counters = nullptr;
+  this->Traced = false;
+  return rendered;
+}
+
+void Selection::DrawProp(vtkHardwareSelector* selector, int index)
+{
+  if (!this->Window || !this->Traced ||
+    !ReadyQuadProgram(this->Window, this->DrawProgram, SelectShaderSource(), *this->Counters))
+  {
+    return;
+  }
+  vtkOpenGLState* ostate = this->Window->GetState();
+  vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_LEQUAL);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglDisable(GL_BLEND);
+  vtkShaderProgram* program = this->DrawProgram->Program;
+  this->Ids->Activate();
+  this->Depth->Activate();
+  program->SetUniformi("uSelectIds", this->Ids->GetTextureUnit());
+  program->SetUniformi("uSelectDepth", this->Depth->GetTextureUnit());
+  program->SetUniformf("uProp", static_cast<float>(index + 1));
+  program->SetUniformi("uComponent", componentOf(selector->GetCurrentPass()));
+  program->SetUniform3f("uPropColor", selector->GetPropColorValue());
+  this->DrawProgram->Render();
+  this->Ids->Deactivate();
+  this->Depth->Deactivate();
+}
+
+void Selection::Release(vtkWindow* w)
+{
+  if (this->DrawProgram)
+  {
+    this->DrawProgram->ReleaseGraphicsResources(w);
+    this->DrawProgram.reset();
+  }
+  this->FBO->ReleaseGraphicsResources(w);
+  this->Ids->ReleaseGraphicsResources(w);
+  this->Depth->ReleaseGraphicsResources(w);
+  this->Size[0] = this->Size[1] = 0;
+  this->Traced = false;
+}
+
+} // namespace pass
+} // namespace vtkrt

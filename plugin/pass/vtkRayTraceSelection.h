@@ -1,0 +1,89 @@
+// Private to vtkRayTracePass: vtkHardwareSelector passes answered from the
+// pass's own rays. For each selector pass the pass traces, per pixel, the
+// hit prop, VTK id and composite index into a float buffer; then the
+// selector renders the props as it does for raster (its prop ids, its
+// colors, its pixel bookkeeping), the traced ones through stand-in mappers
+// (vtkRayTraceSelectionMapper) that copy their own pixels out of that
+// buffer in the encoding of the selector's current pass, with the traced
+// depth, so raster props composite with them by depth.
+#ifndef vtkRayTraceSelection_h
+#define vtkRayTraceSelection_h
+
+#include "vtkRayTraceTypes.h"
+
+#include "vtkNew.h"
+#include "vtkSmartPointer.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+class vtkActor;
+class vtkHardwareSelector;
+class vtkOpenGLFramebufferObject;
+class vtkOpenGLQuadHelper;
+class vtkOpenGLRenderWindow;
+class vtkProp;
+class vtkRayTraceSelectionMapper;
+class vtkRenderer;
+class vtkTextureObject;
+class vtkWindow;
+
+namespace vtkrt
+{
+namespace pass
+{
+
+/// A traced prop as the selector sees it.
+struct SelectableProp
+{
+  vtkActor* Actor = nullptr;
+  std::uint32_t MaximumId = 0; ///< the largest VTK id its pixels can carry
+};
+
+/// The props a selector pass renders, as vtkOpenGLRenderer::UpdateGeometry
+/// hands them to vtkHardwareSelector::Render: the renderer's pick list
+/// (its visible props) when it has one, else the render state's props.
+std::vector<vtkProp*> SelectionProps(vtkRenderer* ren, vtkProp** props, int count);
+
+class Selection
+{
+public:
+  Selection();
+  ~Selection();
+
+  /// Traces the id buffer over the renderer's viewport with `tracer` (built
+  /// with Features::SelectIds, current, its samplers bound).
+  void TraceIds(vtkOpenGLRenderWindow* win, vtkRenderer* ren, vtkOpenGLQuadHelper* tracer);
+
+  /// Renders the selector's current pass over `props` through
+  /// vtkHardwareSelector::Render, traced prop i (traced[i]) drawn from the
+  /// id buffer by a stand-in mapper; returns the props rendered.
+  int RenderPass(vtkOpenGLRenderWindow* win, vtkRenderer* ren, vtkHardwareSelector* selector,
+    const std::vector<vtkProp*>& props, const std::vector<SelectableProp>& traced,
+    FrameCounters& counters);
+
+  /// Draws traced prop `index`'s pixels in the encoding of the selector's
+  /// current pass (what its stand-in mapper renders).
+  void DrawProp(vtkHardwareSelector* selector, int index);
+
+  void Release(vtkWindow* w);
+
+private:
+  void Allocate(vtkOpenGLRenderWindow* win, int width, int height);
+
+  vtkNew<vtkOpenGLFramebufferObject> FBO;
+  vtkNew<vtkTextureObject> Ids;
+  vtkNew<vtkTextureObject> Depth;
+  std::unique_ptr<vtkOpenGLQuadHelper> DrawProgram;
+  std::vector<vtkSmartPointer<vtkRayTraceSelectionMapper>> StandIns;
+  vtkOpenGLRenderWindow* Window = nullptr; ///< during RenderPass
+  FrameCounters* Counters = nullptr;       ///< during RenderPass
+  bool Traced = false;                     ///< the id buffer holds this pass's trace
+  int Size[2] = { 0, 0 };
+};
+
+} // namespace pass
+} // namespace vtkrt
+
+#endif

@@ -1,0 +1,393 @@
+// vtkHardwareSelector, vtkPropPicker, vtkRenderer::PickProp and
+// vtkWorldPointPicker with the pass on answer as they do with raster: each
+// case builds the same scene twice, one renderer rasterized, one traced, and
+// compares what VTK's own selection classes return.
+#include "vtkrtPassTestUtils.h"
+
+#include "vtkAssemblyNode.h"
+#include "vtkAssemblyPath.h"
+#include "vtkCompositePolyDataMapper2.h"
+#include "vtkCubeSource.h"
+#include "vtkDataObject.h"
+#include "vtkHardwareSelector.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkPropPicker.h"
+#include "vtkSelection.h"
+#include "vtkSelectionNode.h"
+#include "vtkWorldPointPicker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <vector>
+
+using namespace vtkrtPassTest;
+
+namespace
+{
+constexpr int W = 300;
+constexpr int H = 200;
+
+/// A scene in one window: a fine sphere mesh, a cube, sphere glyphs (each
+/// its own actor), optionally behind a wireframe box that raster draws.
+struct Scene
+{
+  vtkSmartPointer<vtkEGLHeadlessRenderWindow> Window = MakeWindow(W, H);
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkRayTracePass> Pass;
+  std::vector<vtkSmartPointer<vtkActor>> Actors; ///< in a fixed order: mesh, cube, glyphs[, box]
+  std::vector<vtkSmartPointer<vtkObject>> Keep;
+
+  Scene(bool traced, bool rasterBox)
+  {
+    this->Window->AddRenderer(this->Renderer);
+    vtkNew<vtkSphereSource> sphere;
+    sphere->SetThetaResolution(64);
+    sphere->SetPhiResolution(32);
+    this->Add(sphere->GetOutputPort());
+    vtkNew<vtkCubeSource> cube;
+    cube->SetCenter(2.5, 0.3, 0.0);
+    this->Add(cube->GetOutputPort());
+    vtkNew<vtkPlaneSource> plane;
+    plane->SetOrigin(-3, -2, 0);
+    plane->SetPoint1(-1, -2, 0);
+    plane->SetPoint2(-3, 2, 0);
+    plane->SetResolution(3, 4);
+    vtkNew<vtkSphereSource> glyph;
+    glyph->SetRadius(0.2);
+    glyph->SetThetaResolution(24);
+    glyph->SetPhiResolution(24);
+    vtkNew<vtkGlyph3DMapper> glyphs;
+    glyphs->SetInputConnection(plane->GetOutputPort());
+    glyphs->SetSourceConnection(glyph->GetOutputPort());
+    glyphs->ScalingOff();
+    this->AddMapper(glyphs);
+    this->Keep.insert(this->Keep.end(), { sphere.Get(), cube.Get(), plane.Get(), glyph.Get() });
+    if (rasterBox)
+    {
+      // Wireframe: left to raster, composited with the traced ids by depth.
+      vtkNew<vtkCubeSource> box;
+      box->SetBounds(-0.5, 0.5, -0.5, 0.5, 0.8, 1.6);
+      this->Add(box->GetOutputPort());
+      this->Actors.back()->GetProperty()->SetRepresentationToWireframe();
+      this->Actors.back()->GetProperty()->SetLineWidth(3);
+      this->Keep.push_back(box.Get());
+    }
+    this->Renderer->ResetCamera();
+    if (traced)
+    {
+      this->Renderer->SetPass(this->Pass);
+    }
+    this->Window->Render();
+  }
+
+  void Add(vtkAlgorithmOutput* port)
+  {
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(port);
+    this->AddMapper(mapper);
+  }
+
+  void AddMapper(vtkMapper* mapper)
+  {
+    auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(mapper);
+    this->Renderer->AddActor(actor);
+    this->Actors.push_back(actor);
+  }
+
+  int IndexOf(vtkObjectBase* prop) const
+  {
+    for (std::size_t i = 0; i < this->Actors.size(); ++i)
+    {
+      if (this->Actors[i] == prop)
+      {
+        return static_cast<int>(i);
+      }
+    }
+    return -1;
+  }
+
+  /// Display coordinates of a world point.
+  std::array<int, 2> Project(const double p[3])
+  {
+    this->Renderer->SetWorldPoint(p[0], p[1], p[2], 1.0);
+    this->Renderer->WorldToDisplay();
+    const double* d = this->Renderer->GetDisplayPoint();
+    return { { static_cast<int>(std::floor(d[0])), static_cast<int>(std::floor(d[1])) } };
+  }
+};
+
+/// One selection node as a test compares it.
+struct Selected
+{
+  unsigned int Composite = 0;
+  std::set<vtkIdType> Ids;
+};
+
+std::map<int, Selected> Select(Scene& scene, const unsigned int area[4], int association)
+{
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(scene.Renderer);
+  selector->SetArea(area[0], area[1], area[2], area[3]);
+  selector->SetFieldAssociation(association);
+  vtkSmartPointer<vtkSelection> result = vtk::TakeSmartPointer(selector->Select());
+  std::map<int, Selected> out;
+  for (unsigned int n = 0; result && n < result->GetNumberOfNodes(); ++n)
+  {
+    vtkSelectionNode* node = result->GetNode(n);
+    Selected& s = out[scene.IndexOf(node->GetProperties()->Get(vtkSelectionNode::PROP()))];
+    s.Composite = static_cast<unsigned int>(node->GetProperties()->Get(vtkSelectionNode::COMPOSITE_INDEX()));
+    vtkIdTypeArray* ids = vtkIdTypeArray::SafeDownCast(node->GetSelectionList());
+    for (vtkIdType k = 0; ids && k < ids->GetNumberOfTuples(); ++k)
+    {
+      s.Ids.insert(ids->GetValue(k));
+    }
+  }
+  return out;
+}
+
+/// |a and b| / |a or b|.
+double Overlap(const std::set<vtkIdType>& a, const std::set<vtkIdType>& b)
+{
+  std::vector<vtkIdType> both;
+  std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(both));
+  const std::size_t either = a.size() + b.size() - both.size();
+  return either ? static_cast<double>(both.size()) / static_cast<double>(either) : 1.0;
+}
+
+/// Raster's and the pass's selections agree: the same props and composite
+/// indices; the same ids, up to silhouette pixels for the fine mesh (prop 0:
+/// a pixel center on a shared edge may go to either neighbour).
+void CompareSelections(const std::string& label, const std::map<int, Selected>& raster,
+  const std::map<int, Selected>& traced)
+{
+  std::ostringstream props;
+  for (const auto& r : raster)
+  {
+    props << r.first << " ";
+  }
+  Check(!raster.empty(), label + ": raster selects something (props " + props.str() + ")");
+  Check(raster.size() == traced.size(), label + ": as many selected props as raster");
+  for (const auto& r : raster)
+  {
+    const auto t = traced.find(r.first);
+    const std::string what = label + ", prop " + std::to_string(r.first);
+    Check(t != traced.end(), what + ": selected with the pass too");
+    if (t == traced.end())
+    {
+      continue;
+    }
+    // VTK 9.1's glyph mapper gives a plain input no composite index (the
+    // pixel keeps whatever the previous prop set): only the others compare.
+    Check(r.first == 2 || r.second.Composite == t->second.Composite, what + ": same composite index");
+    const double overlap = Overlap(r.second.Ids, t->second.Ids);
+    const double needed = r.first == 0 ? 0.98 : 1.0;
+    Check(overlap >= needed, what + ": ids overlap " + std::to_string(overlap) + " (" +
+        std::to_string(r.second.Ids.size()) + " raster, " + std::to_string(t->second.Ids.size()) +
+        " traced)");
+  }
+}
+
+void CompareAreas(int association, bool rasterBox)
+{
+  Scene raster(false, rasterBox);
+  Scene traced(true, rasterBox);
+  Check(traced.Pass->GetNumberOfTracedProps() == 3, "mesh, cube and glyphs are traced");
+  auto before = Grab(traced.Window);
+  const unsigned int areas[][4] = { { 0, 0, W - 1, H - 1 }, { 100, 50, 200, 150 },
+    { 20, 20, 90, 110 }, { 140, 90, 150, 100 } };
+  for (const auto& area : areas)
+  {
+    std::ostringstream label;
+    label << (association == vtkDataObject::FIELD_ASSOCIATION_CELLS ? "cells" : "points")
+          << (rasterBox ? " with a raster box" : "") << ", area " << area[0] << "," << area[1]
+          << "-" << area[2] << "," << area[3];
+    CompareSelections(label.str(), Select(raster, area, association), Select(traced, area, association));
+  }
+  // Selecting changes nothing: each actor has its own mapper back and the
+  // next frame is the same picture.
+  Check(vtkGlyph3DMapper::SafeDownCast(traced.Actors[2]->GetMapper()) != nullptr,
+    "the glyph actor has its own mapper back");
+  traced.Window->Render();
+  Check(CountDifferingPixels(before, Grab(traced.Window), 0) == 0, "the frame after selecting is unchanged");
+  NoVTKOutput("selection");
+}
+
+void TestCells()
+{
+  CompareAreas(vtkDataObject::FIELD_ASSOCIATION_CELLS, false);
+  CompareAreas(vtkDataObject::FIELD_ASSOCIATION_CELLS, true);
+}
+
+void TestPoints()
+{
+  CompareAreas(vtkDataObject::FIELD_ASSOCIATION_POINTS, false);
+}
+
+/// vtkCompositePolyDataMapper2: each block reports its flat index.
+void TestComposite()
+{
+  auto build = [](bool traced, Scene*& out) {
+    out = new Scene(traced, false);
+    vtkNew<vtkMultiBlockDataSet> blocks;
+    const double centers[3][3] = { { -1.0, 2.5, 0.0 }, { 0.5, 2.5, 0.0 }, { 2.0, 2.5, 0.0 } };
+    for (int b = 0; b < 3; ++b)
+    {
+      vtkNew<vtkSphereSource> s;
+      s->SetCenter(centers[b][0], centers[b][1], centers[b][2]);
+      s->SetRadius(0.6);
+      s->Update();
+      // Block 1 stays empty: an empty child takes a flat index too.
+      blocks->SetBlock(b == 1 ? 3 : b, s->GetOutput());
+    }
+    vtkNew<vtkCompositePolyDataMapper2> mapper;
+    mapper->SetInputDataObject(blocks);
+    out->AddMapper(mapper);
+    out->Renderer->ResetCamera();
+    out->Window->Render();
+  };
+  Scene* raster = nullptr;
+  Scene* traced = nullptr;
+  build(false, raster);
+  build(true, traced);
+  Check(traced->Pass->GetNumberOfTracedProps() == 4, "the composite actor is traced too");
+  const unsigned int area[4] = { 0, 0, W - 1, H - 1 };
+  const int cells = vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  auto r = Select(*raster, area, cells);
+  auto t = Select(*traced, area, cells);
+  std::set<unsigned int> rasterComposites, tracedComposites;
+  Check(r.count(3) == 1 && t.count(3) == 1, "the composite actor is selected");
+  // Nodes of one prop with several composite indices: compare them all.
+  for (Scene* s : { raster, traced })
+  {
+    vtkNew<vtkHardwareSelector> sel;
+    sel->SetRenderer(s->Renderer);
+    sel->SetArea(0, 0, W - 1, H - 1);
+    vtkSmartPointer<vtkSelection> result = vtk::TakeSmartPointer(sel->Select());
+    std::set<unsigned int>& composites = s == raster ? rasterComposites : tracedComposites;
+    for (unsigned int n = 0; result && n < result->GetNumberOfNodes(); ++n)
+    {
+      vtkInformation* p = result->GetNode(n)->GetProperties();
+      if (s->IndexOf(p->Get(vtkSelectionNode::PROP())) == 3)
+      {
+        composites.insert(static_cast<unsigned int>(p->Get(vtkSelectionNode::COMPOSITE_INDEX())));
+      }
+    }
+  }
+  std::ostringstream seen;
+  for (unsigned int c : rasterComposites)
+  {
+    seen << c << " ";
+  }
+  Check(rasterComposites.size() == 3 && rasterComposites == tracedComposites,
+    "the blocks' composite indices are raster's (" + seen.str() + ")");
+  delete raster;
+  delete traced;
+  NoVTKOutput("composite");
+}
+
+/// vtkPropPicker, vtkRenderer::PickProp and vtkWorldPointPicker.
+void TestPropPicking()
+{
+  Scene raster(false, false);
+  Scene traced(true, false);
+  const double centers[][3] = { { 0, 0, 1 }, { 2.5, 0.3, 0.5 }, { -1.666, 0, 0.2 }, { 0, 1.9, 0 } };
+  const char* names[] = { "the mesh", "the cube", "a glyph", "an empty pixel" };
+  for (int c = 0; c < 4; ++c)
+  {
+    const std::array<int, 2> xy = raster.Project(centers[c]);
+    vtkNew<vtkPropPicker> r, t;
+    r->Pick(xy[0], xy[1], 0, raster.Renderer);
+    t->Pick(xy[0], xy[1], 0, traced.Renderer);
+    const int expected = c < 3 ? c : -1;
+    Check(raster.IndexOf(r->GetActor()) == expected, std::string("raster's vtkPropPicker finds ") + names[c]);
+    Check(traced.IndexOf(t->GetActor()) == expected, std::string("the pass's vtkPropPicker finds ") + names[c]);
+    if (c < 3)
+    {
+      const double* pr = r->GetPickPosition();
+      const double* pt = t->GetPickPosition();
+      Check(std::hypot(pr[0] - pt[0], pr[1] - pt[1], pr[2] - pt[2]) < 0.02,
+        std::string("vtkPropPicker's world point on ") + names[c] + " is raster's");
+    }
+    vtkAssemblyPath* ar = raster.Renderer->PickProp(xy[0], xy[1]);
+    vtkAssemblyPath* at = traced.Renderer->PickProp(xy[0], xy[1]);
+    const int ir = ar ? raster.IndexOf(ar->GetFirstNode()->GetViewProp()) : -1;
+    const int it = at ? traced.IndexOf(at->GetFirstNode()->GetViewProp()) : -1;
+    Check(ir == expected && it == ir, std::string("PickProp(x, y) at ") + names[c] + " is raster's");
+  }
+  // An area over everything: the same picked props.
+  auto pickedIn = [](Scene& s) {
+    std::set<int> picked;
+    s.Renderer->PickProp(0, 0, W - 1, H - 1);
+    vtkPropCollection* props = s.Renderer->GetPickResultProps();
+    vtkCollectionSimpleIterator it;
+    props->InitTraversal(it);
+    while (vtkProp* p = props->GetNextProp(it))
+    {
+      picked.insert(s.IndexOf(p));
+    }
+    return picked;
+  };
+  Check(pickedIn(raster) == pickedIn(traced) && pickedIn(traced).size() == 3,
+    "PickProp(x0, y0, x1, y1) over the window picks the three props, as raster");
+  // The z-buffer picker reads the traced depth.
+  const std::array<int, 2> xy = raster.Project(centers[0]);
+  vtkNew<vtkWorldPointPicker> r, t;
+  r->Pick(xy[0], xy[1], 0, raster.Renderer);
+  t->Pick(xy[0], xy[1], 0, traced.Renderer);
+  const double* pr = r->GetPickPosition();
+  const double* pt = t->GetPickPosition();
+  Check(std::hypot(pr[0] - pt[0], pr[1] - pt[1], pr[2] - pt[2]) < 0.02,
+    "vtkWorldPointPicker's point is raster's");
+  NoVTKOutput("prop picking");
+}
+
+/// An area outside the window, an empty scene, a selector with no renderer.
+void TestBadInput()
+{
+  Scene raster(false, false);
+  Scene traced(true, false);
+  // VTK's selector reads the pixels of the area as they come (outside the
+  // window they are undefined, for raster too): it must not crash.
+  const unsigned int outside[4] = { W - 20, H - 20, W + 50, H + 50 };
+  const int cells = vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  auto before = Grab(traced.Window);
+  Select(raster, outside, cells);
+  Select(traced, outside, cells);
+  traced.Window->Render();
+  Check(CountDifferingPixels(before, Grab(traced.Window), 0) == 0,
+    "an area partly outside the window: no crash, the next frame unchanged");
+  Output->Clear();
+
+  auto win = MakeWindow(64, 64);
+  vtkNew<vtkRenderer> empty;
+  vtkNew<vtkRayTracePass> pass;
+  empty->SetPass(pass);
+  win->AddRenderer(empty);
+  win->Render();
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(empty);
+  selector->SetArea(0, 0, 63, 63);
+  vtkSmartPointer<vtkSelection> none = vtk::TakeSmartPointer(selector->Select());
+  Check(none && none->GetNumberOfNodes() == 0, "an empty scene selects nothing");
+  NoVTKOutput("empty scene");
+
+  vtkNew<vtkHardwareSelector> orphan;
+  vtkSelection* nothing = orphan->Select();
+  Check(nothing == nullptr && Output->GetNumberOfErrors() == 1,
+    "a selector with no renderer: VTK's error, no selection");
+  Output->Clear();
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Output = vtkrtTestOutputWindow::Install();
+  return RunCase(argc, argv,
+    { { "Cells", TestCells }, { "Points", TestPoints }, { "Composite", TestComposite },
+      { "PropPicking", TestPropPicking }, { "BadInput", TestBadInput } });
+}
