@@ -81,6 +81,83 @@ void AddCountsToFieldData(vtkOpenMeshClean* self, vtkFieldData* fd, vtkFieldData
   vtkrt_filters::AddFieldCount(fd, "IsClosedManifold", self->IsClosedManifold() ? 1 : 0);
   vtkrt_filters::AddFieldStrings(fd, "DroppedArrays", dropped);
 }
+
+// How many faces each classification drops.
+struct DroppedFaces
+{
+  vtkIdType NonFinite = 0;
+  vtkIdType Degenerate = 0;
+  vtkIdType Duplicate = 0;
+};
+
+// Classifies the welded triangles (non-finite, degenerate, and duplicated when
+// `removeDuplicates`: same point set, whatever the order) and returns the soup
+// indices of the kept ones, in order; the others are counted.
+std::vector<vtkIdType> KeptFaces(vtkPoints* inPts, const std::vector<vtkIdType>& weld,
+  bool removeDuplicates, std::vector<vtkrt_filters::Triangle>& triangles, DroppedFaces& dropped)
+{
+  namespace clean = vtkrt_filters::clean;
+  std::vector<unsigned char> status;
+  clean::ClassifyFaces(inPts, weld, triangles, status);
+  if (removeDuplicates)
+  {
+    clean::MarkDuplicateFaces(triangles, status);
+  }
+  const vtkIdType numTris = static_cast<vtkIdType>(status.size());
+  std::vector<vtkIdType> kept;
+  kept.reserve(numTris);
+  for (vtkIdType t = 0; t < numTris; ++t)
+  {
+    switch (status[t])
+    {
+      case clean::FaceKept:
+        kept.push_back(t);
+        break;
+      case clean::FaceNonFinite:
+        ++dropped.NonFinite;
+        break;
+      case clean::FaceDegenerate:
+        ++dropped.Degenerate;
+        break;
+      default:
+        ++dropped.Duplicate;
+        break;
+    }
+  }
+  return kept;
+}
+
+// Orients the kept faces breadth-first over manifold edges, one patch at a
+// time (consistently when `consistent`), then turns closed patches outward
+// when `outward` too.
+vtkrt_filters::clean::Patches OrientFaces(const vtkrt_filters::clean::EdgeTable& edges,
+  vtkPoints* inPts, const std::vector<vtkrt_filters::Triangle>& triangles,
+  const std::vector<vtkIdType>& kept, bool consistent, bool outward)
+{
+  namespace clean = vtkrt_filters::clean;
+  clean::Patches patches;
+  clean::OrientPatches(edges, static_cast<vtkIdType>(kept.size()), consistent, patches);
+  if (consistent && outward)
+  {
+    clean::OrientClosedPatches(inPts, triangles, kept, patches);
+  }
+  return patches;
+}
+
+// The kept triangles, oriented, as the output's polys; returns their
+// connectivity.
+vtkSmartPointer<vtkIdTypeArray> SetOutputTriangles(const vtkrt_filters::TriangleSoup& soup,
+  const std::vector<vtkIdType>& kept, const std::vector<vtkIdType>& newId,
+  const std::vector<unsigned char>& flip, vtkPolyData* output)
+{
+  vtkNew<vtkIdTypeArray> offsets;
+  auto connectivity = vtkSmartPointer<vtkIdTypeArray>::New();
+  vtkrt_filters::clean::BuildTriangles(soup.Triangles, kept, newId, flip, offsets, connectivity);
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(offsets, connectivity);
+  output->SetPolys(polys);
+  return connectivity;
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -123,35 +200,13 @@ int vtkOpenMeshClean::RequestData(
     clean::WeldPoints(
       inPts, this->ToleranceIsAbsolute, this->AbsoluteTolerance, this->Tolerance, weld);
 
-  // 3. Classify faces: non-finite, degenerate (after the weld), kept.
-  std::vector<unsigned char> status;
-  clean::ClassifyFaces(inPts, weld, soup.Triangles, status);
-
-  // 4. Duplicated faces: same point set, whatever the order.
-  if (this->RemoveDuplicateFaces)
-  {
-    clean::MarkDuplicateFaces(soup.Triangles, status);
-  }
-  std::vector<vtkIdType> kept; // kept triangle -> soup index
-  kept.reserve(numTris);
-  for (vtkIdType t = 0; t < numTris; ++t)
-  {
-    switch (status[t])
-    {
-      case clean::FaceKept:
-        kept.push_back(t);
-        break;
-      case clean::FaceNonFinite:
-        ++this->NumberOfNonFiniteFaces;
-        break;
-      case clean::FaceDegenerate:
-        ++this->NumberOfDegenerateFaces;
-        break;
-      default:
-        ++this->NumberOfDuplicateFaces;
-        break;
-    }
-  }
+  // 3. Classify faces: non-finite, degenerate (after the weld), duplicated, kept.
+  DroppedFaces droppedFaces;
+  const std::vector<vtkIdType> kept = // kept triangle -> soup index
+    KeptFaces(inPts, weld, this->RemoveDuplicateFaces, soup.Triangles, droppedFaces);
+  this->NumberOfNonFiniteFaces = droppedFaces.NonFinite;
+  this->NumberOfDegenerateFaces = droppedFaces.Degenerate;
+  this->NumberOfDuplicateFaces = droppedFaces.Duplicate;
   const vtkIdType numFaces = static_cast<vtkIdType>(kept.size());
   if (numFaces == 0)
   {
@@ -162,25 +217,21 @@ int vtkOpenMeshClean::RequestData(
     return 1;
   }
 
-  // 5. Edge table: sorting the 3 uses of every face groups each edge's faces.
+  // 4. Edge table: sorting the 3 uses of every face groups each edge's faces.
   clean::EdgeTable edges;
   clean::BuildEdgeTable(soup.Triangles, kept, edges);
 
-  // 6. Orientation: breadth-first over manifold edges, one patch at a time.
-  clean::Patches patches;
-  clean::OrientPatches(edges, numFaces, this->ConsistentOrientation, patches);
+  // 5. Orientation, patch by patch.
+  const clean::Patches patches = OrientFaces(edges, inPts, soup.Triangles, kept,
+    this->ConsistentOrientation, this->OrientClosedSurfacesOutward);
   this->NumberOfComponents = patches.Count;
-  if (this->ConsistentOrientation && this->OrientClosedSurfacesOutward)
-  {
-    clean::OrientClosedPatches(inPts, soup.Triangles, kept, patches);
-  }
   const std::vector<unsigned char>& flip = patches.Flip;
   for (vtkIdType f = 0; f < numFaces; ++f)
   {
     this->NumberOfFlippedFaces += flip[f];
   }
 
-  // 7. Edge and vertex report on the oriented faces.
+  // 6. Edge and vertex report on the oriented faces.
   std::vector<clean::ProblemEdge> problemEdges;
   const clean::EdgeCounts edgeCounts =
     clean::ClassifyEdges(edges, flip, this->GenerateProblemEdges, problemEdges);
@@ -190,7 +241,7 @@ int vtkOpenMeshClean::RequestData(
   this->NumberOfNonManifoldVertices =
     clean::CountNonManifoldVertices(edges, soup.Triangles, kept, numInPoints);
 
-  // 8. Output points: the representatives the kept faces use, in input order.
+  // 7. Output points: the representatives the kept faces use, in input order.
   std::vector<vtkIdType> newId(numInPoints, -1);
   const vtkIdType numOutPoints = clean::NumberOutputPoints(soup.Triangles, kept, newId);
   this->NumberOfMergedPoints = clean::CountMergedPoints(weld);
@@ -198,20 +249,16 @@ int vtkOpenMeshClean::RequestData(
   vtkSmartPointer<vtkPoints> outPts = clean::GatherOutputPoints(
     input, this->OutputPointsPrecision, newId, numOutPoints, output, dropped);
 
-  // 9. Output triangles, oriented, with their cells' data.
-  vtkNew<vtkIdTypeArray> offsets;
-  vtkNew<vtkIdTypeArray> connectivity;
-  clean::BuildTriangles(soup.Triangles, kept, newId, flip, offsets, connectivity);
-  vtkNew<vtkCellArray> polys;
-  polys->SetData(offsets, connectivity);
-  output->SetPolys(polys);
+  // 8. Output triangles, oriented, with their cells' data.
+  vtkSmartPointer<vtkIdTypeArray> connectivity =
+    SetOutputTriangles(soup, kept, newId, flip, output);
   clean::CopyCellData(input, soup, kept, flip, this->GenerateOriginalCellIds, output, dropped);
 
-  // 10. OpenMesh's view of the result.
+  // 9. OpenMesh's view of the result.
   clean::CountOpenMeshRejects(outPts, connectivity->GetPointer(0), numFaces,
     this->NumberOfRejectedFaces, this->NumberOfBoundaryLoops);
 
-  // 11. Report.
+  // 10. Report.
   AddCountsToFieldData(this, output->GetFieldData(), input->GetFieldData(), dropped);
   if (this->GenerateProblemEdges && !problemEdges.empty())
   {

@@ -182,6 +182,9 @@ protected:
   vtkIdType NumberOfLockedVertices = 0;
 
 private:
+  // The target, in triangles of the whole output, of TargetMode.
+  vtkIdType TargetTriangles() const;
+
   vtkOpenMeshDecimation(const vtkOpenMeshDecimation&) = delete;
   void operator=(const vtkOpenMeshDecimation&) = delete;
 };

@@ -1,0 +1,69 @@
+#include "RenderReport.h"
+
+#include "RenderErrors.h"
+#include "RenderOptions.h"
+#include "RenderScene.h"
+
+#include "vtkEGLHeadlessRenderWindow.h"
+#include "vtkNew.h"
+#include "vtkPNGWriter.h"
+#include "vtkWindowToImageFilter.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <iomanip>
+#include <iostream>
+
+namespace vtkrtRender
+{
+void WriteImage(
+  vtkEGLHeadlessRenderWindow* window, const std::string& path, CapturingOutputWindow* output)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOn();
+  grab->ShouldRerenderOff();
+  grab->Update();
+  output->StartCapture();
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputConnection(grab->GetOutputPort());
+  writer->SetFileName(path.c_str());
+  writer->Write();
+  output->StopCapture();
+  if (!output->Captured.empty() || !vtksys::SystemTools::FileExists(path, true))
+  {
+    throw Failure{ "cannot write '" + path + "'" +
+        (output->Captured.empty() ? std::string() : ": " + MessageOf(output->Captured.front())),
+      ExitRuntimeError };
+  }
+}
+
+void PrintReport(const Options& opt, const Scene& scene, vtkEGLHeadlessRenderWindow* window,
+  const Timings& timings, const std::string& pick)
+{
+  std::cout << std::fixed << std::setprecision(1);
+  std::cout << "vtkrt-render: " << opt.Mode << " " << opt.Width << "x" << opt.Height
+            << ", MultiSamples " << window->GetMultiSamples() << "\n"
+            << "  scene:        " << scene.Description << "\n"
+            << "  triangles:    " << scene.Triangles << "\n"
+            << "  spheres:      " << scene.Spheres << "\n"
+            << "  device:       " << window->GetGLRenderer() << " (" << window->GetGLVersion()
+            << "; " << window->GetDeviceDescription() << ")\n"
+            << "  scene build:  " << timings.SceneBuild << " ms (read + set up)\n"
+            << "  first frame:  " << timings.FirstFrame << " ms (context, upload, build)\n";
+  if (opt.Frames > 0)
+  {
+    std::cout << "  steady frame: " << timings.SteadyFrame << " ms (mean of " << opt.Frames
+              << " orbit steps)\n";
+  }
+  if (opt.Mode == "raytrace" && opt.Samples > 0)
+  {
+    std::cout << "  note:         --samples applies to raster mode (MSAA); ignored\n";
+  }
+  if (opt.Pick)
+  {
+    std::cout << "  " << pick << "\n";
+  }
+  std::cout << "  wrote " << opt.Output << "\n";
+}
+} // namespace vtkrtRender

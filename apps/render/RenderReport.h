@@ -1,0 +1,43 @@
+// What vtkrt-render hands back: the clock of its timings, the PNG of the
+// window, and the report on stdout.
+#ifndef vtkrtRenderReport_h
+#define vtkrtRenderReport_h
+
+#include <chrono>
+#include <string>
+
+class vtkEGLHeadlessRenderWindow;
+
+namespace vtkrtRender
+{
+class CapturingOutputWindow;
+struct Options;
+struct Scene;
+
+using Clock = std::chrono::steady_clock;
+
+inline double Milliseconds(Clock::time_point a, Clock::time_point b)
+{
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// Milliseconds of the three phases the report shows.
+struct Timings
+{
+  double SceneBuild = 0.0;  // read + set up
+  double FirstFrame = 0.0;  // context, upload, build
+  double SteadyFrame = 0.0; // mean of the orbit steps; 0 without them
+};
+
+// Writes the window's front buffer to `path` as a PNG; VTK's writer errors
+// are caught through `output`. Throws Failure.
+void WriteImage(vtkEGLHeadlessRenderWindow* window, const std::string& path,
+  CapturingOutputWindow* output);
+
+// The report on stdout: mode, scene, device, timings, the pick (`pick`,
+// empty without --pick) and the file written.
+void PrintReport(const Options& opt, const Scene& scene, vtkEGLHeadlessRenderWindow* window,
+  const Timings& timings, const std::string& pick);
+} // namespace vtkrtRender
+
+#endif
