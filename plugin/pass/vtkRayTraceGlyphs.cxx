@@ -31,18 +31,12 @@ namespace pass
 
 using core::Vec3;
 
-/// Whether a glyph source is a closed sphere: every point within a small
-/// relative tolerance of one distance from its bounds' center, and every
-/// polygon edge shared by exactly two polygons (a cap, a wedge or an
-/// ellipsoid is not one).
-bool SphereOfPolyData(vtkPolyData* poly, double center[3], double& radius)
+namespace
 {
-  const vtkIdType n = poly->GetNumberOfPoints();
-  if (n < 4 || poly->GetNumberOfPolys() == 0 || poly->GetNumberOfStrips() > 0 ||
-    poly->GetNumberOfLines() > 0 || poly->GetNumberOfVerts() > 0)
-  {
-    return false;
-  }
+/// Whether the n points of poly lie within a small relative tolerance of
+/// one distance (radius) from their bounds' center.
+bool PointsOnSphere(vtkPolyData* poly, vtkIdType n, double center[3], double& radius)
+{
   double b[6];
   poly->GetBounds(b);
   for (int k = 0; k < 3; ++k)
@@ -65,14 +59,15 @@ bool SphereOfPolyData(vtkPolyData* poly, double center[3], double& radius)
   }
   radius = 0.5 * (lo + hi);
   constexpr double relativeTolerance = 1e-4; // float coordinates of a double sphere
-  if (!(radius > 0.0) || hi - lo > relativeTolerance * radius)
-  {
-    return false;
-  }
-  // Closedness by position: points at the same place count as one (seams
-  // of textured spheres), and polygons collapsed to an edge are skipped.
-  // Positions are compared on a grid of radius * 1e-6 (seam points computed
-  // as cos(2 pi) vs cos(0) differ in their last bits).
+  return radius > 0.0 && !(hi - lo > relativeTolerance * radius);
+}
+
+/// Each point's id, or that of the first point at the same place: points
+/// are compared on a grid of radius * 1e-6 (seam points computed as
+/// cos(2 pi) vs cos(0) differ in their last bits).
+std::vector<vtkIdType> MergedPointIds(
+  vtkPolyData* poly, vtkIdType n, const double center[3], double radius)
+{
   const double cellSize = radius * 1e-6;
   std::map<std::array<long long, 3>, vtkIdType> byPosition;
   std::vector<vtkIdType> merged(static_cast<std::size_t>(n));
@@ -84,6 +79,15 @@ bool SphereOfPolyData(vtkPolyData* poly, double center[3], double& radius)
       std::llround((p[1] - center[1]) / cellSize), std::llround((p[2] - center[2]) / cellSize) } };
     merged[static_cast<std::size_t>(i)] = byPosition.emplace(key, i).first->second;
   }
+  return merged;
+}
+
+/// Whether the polygons of poly (points merged by position, degenerate
+/// polygons skipped) stay near the sphere and close it: every edge shared
+/// by exactly two of them.
+bool PolygonsCloseSphere(vtkPolyData* poly, const std::vector<vtkIdType>& merged,
+  const double center[3], double radius)
+{
   std::map<std::pair<vtkIdType, vtkIdType>, int> edges;
   vtkCellArray* polys = poly->GetPolys();
   vtkIdType count = 0;
@@ -138,6 +142,29 @@ bool SphereOfPolyData(vtkPolyData* poly, double center[3], double& radius)
   }
   return std::all_of(edges.begin(), edges.end(),
     [](const std::pair<const std::pair<vtkIdType, vtkIdType>, int>& e) { return e.second == 2; });
+}
+} // namespace
+
+/// Whether a glyph source is a closed sphere: every point within a small
+/// relative tolerance of one distance from its bounds' center, and every
+/// polygon edge shared by exactly two polygons (a cap, a wedge or an
+/// ellipsoid is not one).
+bool SphereOfPolyData(vtkPolyData* poly, double center[3], double& radius)
+{
+  const vtkIdType n = poly->GetNumberOfPoints();
+  if (n < 4 || poly->GetNumberOfPolys() == 0 || poly->GetNumberOfStrips() > 0 ||
+    poly->GetNumberOfLines() > 0 || poly->GetNumberOfVerts() > 0)
+  {
+    return false;
+  }
+  if (!PointsOnSphere(poly, n, center, radius))
+  {
+    return false;
+  }
+  // Closedness by position: points at the same place count as one (seams
+  // of textured spheres), and polygons collapsed to an edge are skipped.
+  const std::vector<vtkIdType> merged = MergedPointIds(poly, n, center, radius);
+  return PolygonsCloseSphere(poly, merged, center, radius);
 }
 
 namespace
@@ -227,6 +254,79 @@ bool FindGlyphArrays(vtkGlyph3DMapper* mapper, GlyphSet& set)
   return !set.Orientation || set.Orientation->GetNumberOfComponents() == components;
 }
 
+namespace
+{
+/// Room in out for n glyphs: spheres, or ellipsoids when scaled per component.
+void ReserveGlyphPrimitives(GlyphPrimitives& out, bool perComponent, vtkIdType n)
+{
+  if (perComponent)
+  {
+    out.UnitMaps.reserve(static_cast<std::size_t>(n));
+    out.Boxes.reserve(static_cast<std::size_t>(n));
+  }
+  else
+  {
+    out.Centers.reserve(static_cast<std::size_t>(n));
+    out.Radii.reserve(static_cast<std::size_t>(n));
+  }
+  out.Ids.reserve(static_cast<std::size_t>(n));
+}
+
+/// Glyph i's scale from the data (sc left as it is without a scale array or
+/// with NO_DATA_SCALING): its tuple's magnitude or components, clamped to
+/// the mapper's range when it clamps.
+void GlyphDataScale(vtkGlyph3DMapper* mapper, vtkDataArray* scale, int scaleMode,
+  bool perComponent, const double* range, double den, vtkIdType i, std::vector<double>& tuple,
+  double sc[3])
+{
+  if (scale && scaleMode != vtkGlyph3DMapper::NO_DATA_SCALING)
+  {
+    scale->GetTuple(i, tuple.data());
+    for (int k = 0; k < 3; ++k)
+    {
+      sc[k] = scaleMode == vtkGlyph3DMapper::SCALE_BY_MAGNITUDE
+        ? vtkMath::Norm(tuple.data(), static_cast<int>(tuple.size()))
+        : tuple[perComponent ? k : 0];
+      if (mapper->GetClamping())
+      {
+        sc[k] = (std::min(std::max(sc[k], range[0]), range[1]) - range[0]) / den;
+      }
+    }
+  }
+}
+
+/// The ellipsoid image of the unit sphere under l = m * r0 around center:
+/// its bounding box and the map from world to unit-sphere coordinates (rows
+/// of inverse(l), then the translation). False when anything is not finite.
+bool GlyphEllipsoid(const double m[3][3], double r0, const Vec3<double>& center,
+  std::array<double, 12>& map, core::AABB<double>& box)
+{
+  double l[3][3];
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      l[r][c] = m[r][c] * r0;
+    }
+  }
+  double a[3][3];
+  vtkMath::Invert3x3(l, a);
+  bool finite = std::isfinite(center.x) && std::isfinite(center.y) && std::isfinite(center.z);
+  for (int r = 0; r < 3; ++r)
+  {
+    const double half = std::sqrt(l[r][0] * l[r][0] + l[r][1] * l[r][1] + l[r][2] * l[r][2]);
+    box.min[r] = center[r] - half;
+    box.max[r] = center[r] + half;
+    map[4 * r + 0] = a[r][0];
+    map[4 * r + 1] = a[r][1];
+    map[4 * r + 2] = a[r][2];
+    map[4 * r + 3] = -(a[r][0] * center.x + a[r][1] * center.y + a[r][2] * center.z);
+    finite = finite && std::isfinite(half) && half > 0.0 && std::isfinite(map[4 * r]) &&
+      std::isfinite(map[4 * r + 1]) && std::isfinite(map[4 * r + 2]);
+  }
+  return finite;
+}
+} // namespace
 
 GlyphPrimitives CollectGlyphPrimitives(
   vtkGlyph3DMapper* mapper, const GlyphSphere& sphere, const GlyphSet& set)
@@ -248,17 +348,7 @@ GlyphPrimitives CollectGlyphPrimitives(
     den = 1.0;
   }
   const vtkIdType n = input->GetNumberOfPoints();
-  if (perComponent)
-  {
-    out.UnitMaps.reserve(static_cast<std::size_t>(n));
-    out.Boxes.reserve(static_cast<std::size_t>(n));
-  }
-  else
-  {
-    out.Centers.reserve(static_cast<std::size_t>(n));
-    out.Radii.reserve(static_cast<std::size_t>(n));
-  }
-  out.Ids.reserve(static_cast<std::size_t>(n));
+  ReserveGlyphPrimitives(out, perComponent, n);
   std::vector<double> tuple(scale ? scale->GetNumberOfComponents() : 1);
   double orient[4] = { 0, 0, 0, 0 };
   // Scaling off: VTK ignores the scale factor too.
@@ -270,20 +360,7 @@ GlyphPrimitives CollectGlyphPrimitives(
       continue;
     }
     double sc[3] = { 1.0, 1.0, 1.0 };
-    if (scale && scaleMode != vtkGlyph3DMapper::NO_DATA_SCALING)
-    {
-      scale->GetTuple(i, tuple.data());
-      for (int k = 0; k < 3; ++k)
-      {
-        sc[k] = scaleMode == vtkGlyph3DMapper::SCALE_BY_MAGNITUDE
-          ? vtkMath::Norm(tuple.data(), static_cast<int>(tuple.size()))
-          : tuple[perComponent ? k : 0];
-        if (mapper->GetClamping())
-        {
-          sc[k] = (std::min(std::max(sc[k], range[0]), range[1]) - range[0]) / den;
-        }
-      }
-    }
+    GlyphDataScale(mapper, scale, scaleMode, perComponent, range, den, i, tuple, sc);
     // VTK makes a zero scale 1e-10: an ellipsoid with such an axis is a
     // visible flat disk, a sphere with it invisible (skipped here as
     // degenerate).
@@ -321,31 +398,9 @@ GlyphPrimitives CollectGlyphPrimitives(
       continue;
     }
     // Ellipsoid: the image of the unit sphere under l = m * r0.
-    double l[3][3];
-    for (int r = 0; r < 3; ++r)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        l[r][c] = m[r][c] * r0;
-      }
-    }
-    double a[3][3];
-    vtkMath::Invert3x3(l, a);
     std::array<double, 12> map;
     core::AABB<double> box;
-    bool finite = std::isfinite(center.x) && std::isfinite(center.y) && std::isfinite(center.z);
-    for (int r = 0; r < 3; ++r)
-    {
-      const double half = std::sqrt(l[r][0] * l[r][0] + l[r][1] * l[r][1] + l[r][2] * l[r][2]);
-      box.min[r] = center[r] - half;
-      box.max[r] = center[r] + half;
-      map[4 * r + 0] = a[r][0];
-      map[4 * r + 1] = a[r][1];
-      map[4 * r + 2] = a[r][2];
-      map[4 * r + 3] = -(a[r][0] * center.x + a[r][1] * center.y + a[r][2] * center.z);
-      finite = finite && std::isfinite(half) && half > 0.0 && std::isfinite(map[4 * r]) &&
-        std::isfinite(map[4 * r + 1]) && std::isfinite(map[4 * r + 2]);
-    }
+    const bool finite = GlyphEllipsoid(m, r0, center, map, box);
     if (!finite || !(r0 > 0.0))
     {
       continue;

@@ -1,6 +1,7 @@
 // Shared helpers for the locator tests: check macros, mesh generators, ray
-// sets, brute-force references built from VTK's own cell tests, and error
-// capture so that provoked VTK errors do not reach the output.
+// sets, brute-force references built from VTK's own cell tests, error
+// capture so that provoked VTK errors do not reach the output, and the
+// oracle checks of each query kind (defined in LocatorTestUtils.cxx).
 #ifndef LocatorTestUtils_h
 #define LocatorTestUtils_h
 
@@ -35,6 +36,12 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+class vtkAbstractCellLocator;
+class vtkBVHCellLocator;
+class vtkCellLocator;
+class vtkModifiedBSPTree;
+class vtkStaticCellLocator;
 
 namespace locatortest
 {
@@ -494,6 +501,28 @@ inline bool IsSubset(std::vector<vtkIdType> a, std::vector<vtkIdType> b)
   std::sort(b.begin(), b.end());
   return std::includes(b.begin(), b.end(), a.begin(), a.end());
 }
+
+/// Nearest-hit queries: ours must agree with the brute-force reference on
+/// every segment (including segments aimed exactly at shared vertices and
+/// edges); VTK's locators are counted, not asserted.
+void CheckIntersectWithLine(vtkDataSet* ds, vtkBVHCellLocator* bvh,
+  std::vector<vtkAbstractCellLocator*> peers, const std::vector<Segment>& segments,
+  double refTol, const char* name);
+
+/// Closest point (all overloads) against brute force (or, on big meshes,
+/// vtkStaticCellLocator) and vtkCellLocator.
+void CheckClosestPoint(vtkDataSet* ds, vtkBVHCellLocator* bvh, vtkStaticCellLocator* st,
+  vtkCellLocator* cl, int count, bool bruteForce, const char* name);
+
+/// Cells within random boxes and along random segments: equal to brute force
+/// when cell boxes are the primitives' boxes (else a subset), and a subset of
+/// vtkStaticCellLocator's lists.
+void CheckBoxAndLineLists(vtkDataSet* ds, vtkBVHCellLocator* bvh, vtkStaticCellLocator* st,
+  bool cellBoxesArePrimitiveBoxes, const char* name);
+
+/// All hits along a segment: same cells as brute force, sorted along it.
+void CheckAllHits(vtkDataSet* ds, vtkBVHCellLocator* bvh, vtkModifiedBSPTree* bsp, double refTol,
+  const char* name);
 
 inline int Finish(const char* name)
 {

@@ -1,5 +1,5 @@
-// Helpers shared by the pass tests: headless windows, image capture and
-// raster-vs-ray-traced comparison.
+// Helpers shared by the pass tests: headless windows, image capture,
+// raster-vs-ray-traced comparison, common scene actors and GL error checks.
 #ifndef vtkrtPassTestUtils_h
 #define vtkrtPassTestUtils_h
 
@@ -29,6 +29,7 @@
 #include "vtkSphereSource.h"
 #include "vtkWindowToImageFilter.h"
 #include "vtkXMLPolyDataReader.h"
+#include "vtk_glew.h"
 
 #include <cstddef>
 #include <cstdlib>
@@ -302,6 +303,51 @@ inline vtkSmartPointer<vtkPolyData> Shifted(vtkPolyData* poly, const double offs
   out->ShallowCopy(poly);
   out->SetPoints(points);
   return out;
+}
+
+/// Checks that the window's context has no pending GL error (and clears
+/// any, so that the next check starts clean).
+inline void NoGLError(vtkRenderWindow* win, const std::string& label)
+{
+  win->MakeCurrent();
+  GLenum error = glGetError();
+  Check(error == GL_NO_ERROR, label + ": no GL error");
+  while (error != GL_NO_ERROR)
+  {
+    error = glGetError();
+  }
+}
+
+/// A mesh actor with a fixed specular material and no scalar colors.
+inline vtkSmartPointer<vtkActor> MeshActor(vtkPolyData* poly)
+{
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(poly);
+  mapper->ScalarVisibilityOff();
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(0.9, 0.7, 0.5);
+  actor->GetProperty()->SetSpecular(0.4);
+  actor->GetProperty()->SetSpecularPower(20);
+  return actor;
+}
+
+/// Sphere glyphs of `points` scaled by their "radius" array (x2) and
+/// colored by their "scalar" array, as in data/demo-spheres.vtp.
+inline vtkSmartPointer<vtkActor> GlyphActor(vtkPolyData* points)
+{
+  points->GetPointData()->SetActiveScalars("scalar");
+  vtkNew<vtkSphereSource> sphere;
+  vtkNew<vtkGlyph3DMapper> mapper;
+  mapper->SetInputData(points);
+  mapper->SetSourceConnection(sphere->GetOutputPort());
+  mapper->SetScaleArray("radius");
+  mapper->SetScaleModeToScaleByMagnitude();
+  mapper->SetScaleFactor(2.0);
+  mapper->SetScalarRange(0.0, 1.0);
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  return actor;
 }
 
 /// One frame rendered in raster, then the same frame ray traced by a new

@@ -85,6 +85,43 @@ VTKRT_ALWAYS_INLINE inline void prefetchRange(const T* begin, const T* end)
 }
 #endif
 
+/// Triangles [first, end) in leaf order, Kernels::kTriangleLanes at a time,
+/// each survivor of the float pre-test (or every one, without it) through
+/// test. Inlined, so that in the AVX2 walk it is compiled for AVX2 too.
+template <class Kernels, class Scene, class Test>
+VTKRT_ALWAYS_INLINE inline void testWideTriangles(const Scene& scene, const ConservativeRay4& fray,
+  bool preTest, std::uint32_t first, std::uint32_t end, Test& test)
+{
+  if (!preTest)
+  {
+    for (std::uint32_t prim = first; prim < end; ++prim)
+    {
+      test(prim);
+    }
+    return;
+  }
+#if VTKRT_CORE_SSE
+  // A survivor's exact test reads what the adapter keeps beside the float
+  // triangles: fetched now, not after the float test.
+  scene.prefetchTriangles(first, end);
+#endif
+  for (std::uint32_t t = first; t < end; t += Kernels::kTriangleLanes)
+  {
+    const int n = static_cast<int>(std::min<std::uint32_t>(Kernels::kTriangleLanes, end - t));
+    int mask = Kernels::triangles(fray, scene.floatTriangles() + 9 * static_cast<std::size_t>(t), n) & ((1 << n) - 1);
+#if VTKRT_CORE_SSE
+    // Every survivor's loads start before the first exact test.
+    scene.prefetchCandidates(t, mask);
+#endif
+    while (mask)
+    {
+      const int lane = countTrailingZeros(static_cast<unsigned>(mask));
+      mask &= mask - 1;
+      test(t + static_cast<std::uint32_t>(lane));
+    }
+  }
+}
+
 /// The walk with the float constants of the ray set, its pre-tests from
 /// Kernels; inlined into its (SSE or AVX2) caller with the caller's exact
 /// test.
@@ -133,37 +170,8 @@ VTKRT_ALWAYS_INLINE inline bool walkWide(
       tmaxF = ConservativeRay4::scaledTmax(ray.tmax);
     }
   };
-  // Triangles [first, end) in leaf order, Kernels::kTriangleLanes at a time.
-  // Inlined, so that in the AVX2 walk they are compiled for AVX2 too.
   auto testTriangles = [&](std::uint32_t first, std::uint32_t end) VTKRT_ALWAYS_INLINE {
-    if (!preTest)
-    {
-      for (std::uint32_t prim = first; prim < end; ++prim)
-      {
-        test(prim);
-      }
-      return;
-    }
-#if VTKRT_CORE_SSE
-    // A survivor's exact test reads what the adapter keeps beside the float
-    // triangles: fetched now, not after the float test.
-    scene.prefetchTriangles(first, end);
-#endif
-    for (std::uint32_t t = first; t < end; t += Kernels::kTriangleLanes)
-    {
-      const int n = static_cast<int>(std::min<std::uint32_t>(Kernels::kTriangleLanes, end - t));
-      int mask = Kernels::triangles(fray, scene.floatTriangles() + 9 * static_cast<std::size_t>(t), n) & ((1 << n) - 1);
-#if VTKRT_CORE_SSE
-      // Every survivor's loads start before the first exact test.
-      scene.prefetchCandidates(t, mask);
-#endif
-      while (mask)
-      {
-        const int lane = countTrailingZeros(static_cast<unsigned>(mask));
-        mask &= mask - 1;
-        test(t + static_cast<std::uint32_t>(lane));
-      }
-    }
+    testWideTriangles<Kernels>(scene, fray, preTest, first, end, test);
   };
   // A child that waits on the stack: its node's lines, or a leaf's float
   // triangles (what the float test reads), fetched meanwhile.

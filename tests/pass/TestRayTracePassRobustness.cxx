@@ -1,0 +1,235 @@
+// vtkRayTracePass on scenes at the edge of what it can trace:
+//   FarFromOrigin     a scene translated by 1e8 renders like the same scene
+//                     at the origin
+//   Degenerate        empty renderer, empty polydata, NaN points: clean image,
+//                     no GL error, no VTK error
+//   TooLarge          buffers over the texture-buffer limit: a clear error
+//                     and nothing traced (never garbage)
+// TestRayTracePassRobustness <Case>.
+#include "vtkrtPassTestUtils.h"
+#include "vtkrtTestOutputWindow.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkGlyph3DMapper.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkRenderer.h"
+#include "vtkSphereSource.h"
+
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <string>
+
+using namespace vtkrtPassTest;
+
+namespace
+{
+void TestFarFromOrigin()
+{
+  const double offset[3] = { 1e8, -1e8, 1e8 };
+  auto bunny = ReadPolyData("bunny.vtp");
+  auto spheres = ReadPolyData("demo-spheres.vtp");
+  vtkSmartPointer<vtkImageData> images[3];
+  double clipping[2] = { 0, 0 };
+  double position[3], focal[3], up[3];
+  for (int pass = 0; pass < 3; ++pass)
+  {
+    // 0: traced at the origin; 1: traced at 1e8 (data and actor offsets);
+    // 2: raster at 1e8 (for information only).
+    const bool far = pass > 0;
+    const double zero[3] = { 0, 0, 0 };
+    const double half[3] = { offset[0] / 2, offset[1] / 2, offset[2] / 2 };
+    auto win = MakeWindow(300, 300);
+    vtkNew<vtkRenderer> ren;
+    win->AddRenderer(ren);
+    ren->SetBackground(0.1, 0.2, 0.3);
+    // Bunny: offset in its (double) points; glyphs: half in the points,
+    // half in the actor matrix.
+    ren->AddActor(MeshActor(Shifted(bunny, far ? offset : zero)));
+    auto glyphs = GlyphActor(Shifted(spheres, far ? half : zero));
+    if (far)
+    {
+      glyphs->SetPosition(half[0], half[1], half[2]);
+    }
+    ren->AddActor(glyphs);
+    vtkCamera* cam = ren->GetActiveCamera();
+    if (pass == 0)
+    {
+      ren->ResetCamera();
+      cam->Azimuth(30);
+      cam->Elevation(10);
+      ren->ResetCameraClippingRange();
+      cam->GetClippingRange(clipping);
+      cam->GetPosition(position);
+      cam->GetFocalPoint(focal);
+      cam->GetViewUp(up);
+    }
+    else
+    {
+      cam->SetPosition(position[0] + offset[0], position[1] + offset[1], position[2] + offset[2]);
+      cam->SetFocalPoint(focal[0] + offset[0], focal[1] + offset[1], focal[2] + offset[2]);
+      cam->SetViewUp(up);
+      cam->SetClippingRange(clipping);
+    }
+    vtkNew<vtkRayTracePass> rt;
+    if (pass < 2)
+    {
+      ren->SetPass(rt);
+    }
+    win->Render();
+    images[pass] = Grab(win);
+    NoGLError(win, "far from origin");
+  }
+  const double error = Difference(images[1], images[0]);
+  const long differing = CountDifferingPixels(images[1], images[0], 24);
+  std::ostringstream s;
+  s << "traced at 1e8 vs traced at the origin: error " << error << " <= 5, " << differing
+    << " pixels differ (<= 0.2%)";
+  Check(error <= 5.0 && differing >= 0 && differing <= 300 * 300 / 500, s.str());
+  std::cout << "info: raster at 1e8 vs traced at the origin: error "
+            << Difference(images[2], images[0]) << " ("
+            << CountDifferingPixels(images[2], images[0], 24) << " pixels differ)\n";
+  if (error > 5.0)
+  {
+    WritePNG(images[0], std::string(VTKRT_TEMP_DIR) + "/pass_far_origin.png");
+    WritePNG(images[1], std::string(VTKRT_TEMP_DIR) + "/pass_far_1e8.png");
+  }
+  NoVTKOutput("far from origin");
+}
+
+void TestDegenerate()
+{
+  const double background[3] = { 0.25, 0.5, 0.75 };
+  auto expectBackground = [&](vtkRenderWindow* win, const std::string& what, bool empty) {
+    auto image = Grab(win);
+    const long fg = CountForegroundPixels(image, background);
+    Check(empty ? fg == 0 : fg > 0, what + (empty ? ": background only" : ": something drawn"));
+    NoGLError(win, what);
+    NoVTKOutput(what);
+  };
+  auto win = MakeWindow(120, 100);
+  vtkNew<vtkRenderer> ren;
+  ren->SetBackground(background[0], background[1], background[2]);
+  win->AddRenderer(ren);
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+  win->Render();
+  expectBackground(win, "empty renderer", true);
+
+  vtkNew<vtkPolyData> empty;
+  vtkNew<vtkPolyDataMapper> emptyMapper;
+  emptyMapper->SetInputData(empty);
+  vtkNew<vtkActor> emptyActor;
+  emptyActor->SetMapper(emptyMapper);
+  ren->AddActor(emptyActor);
+  win->Render();
+  expectBackground(win, "actor with empty polydata", true);
+
+  // Triangles with NaN points: those triangles are skipped, the rest drawn.
+  vtkNew<vtkPoints> points;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double coords[6][3] = { { -1, -1, 0 }, { 1, -1, 0 }, { 1, 1, 0 }, { -1, 1, 0 },
+    { nan, 0, 0 }, { 0, nan, nan } };
+  for (const auto& c : coords)
+  {
+    points->InsertNextPoint(c);
+  }
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType tris[4][3] = { { 0, 1, 2 }, { 0, 2, 3 }, { 0, 1, 4 }, { 4, 5, 2 } };
+  for (const auto& t : tris)
+  {
+    polys->InsertNextCell(3, t);
+  }
+  vtkNew<vtkPolyData> withNaN;
+  withNaN->SetPoints(points);
+  withNaN->SetPolys(polys);
+  vtkNew<vtkPolyDataMapper> nanMapper;
+  nanMapper->SetInputData(withNaN);
+  vtkNew<vtkActor> nanActor;
+  nanActor->SetMapper(nanMapper);
+  ren->AddActor(nanActor);
+  // Glyphs with a NaN center and a zero radius among valid ones.
+  vtkNew<vtkPolyData> centers;
+  vtkNew<vtkPoints> centerPoints;
+  centerPoints->InsertNextPoint(0, 0, 0.5);
+  centerPoints->InsertNextPoint(nan, 0, 0);
+  centerPoints->InsertNextPoint(0.5, 0.5, 0.5);
+  centers->SetPoints(centerPoints);
+  vtkNew<vtkDoubleArray> radius;
+  radius->SetName("radius");
+  radius->InsertNextValue(0.2);
+  radius->InsertNextValue(0.2);
+  radius->InsertNextValue(0.0);
+  centers->GetPointData()->AddArray(radius);
+  vtkNew<vtkSphereSource> sphere;
+  vtkNew<vtkGlyph3DMapper> glyphMapper;
+  glyphMapper->SetInputData(centers);
+  glyphMapper->SetSourceConnection(sphere->GetOutputPort());
+  glyphMapper->SetScaleArray("radius");
+  glyphMapper->SetScaleModeToScaleByMagnitude();
+  glyphMapper->ScalarVisibilityOff();
+  vtkNew<vtkActor> glyphActor;
+  glyphActor->SetMapper(glyphMapper);
+  ren->AddActor(glyphActor);
+  vtkCamera* cam = ren->GetActiveCamera();
+  cam->SetPosition(0, 0, 5);
+  cam->SetFocalPoint(0, 0, 0);
+  cam->SetClippingRange(1, 10);
+  win->Render();
+  expectBackground(win, "NaN points and zero radii", false);
+  Check(pass->GetLastTracedInstances() == 2, "NaN scene: the mesh and the glyphs are traced");
+  Check(pass->GetLastTracedPrimitives() == 2 + 1,
+    "NaN scene: 2 valid triangles and 1 valid sphere traced (traced " +
+      std::to_string(pass->GetLastTracedPrimitives()) + ")");
+}
+
+void TestTooLarge()
+{
+  auto win = MakeWindow(100, 100);
+  vtkNew<vtkRenderer> ren;
+  const double background[3] = { 0, 0, 0 };
+  win->AddRenderer(ren);
+  ren->AddActor(MeshActor(ReadPolyData("bunny.vtp")));
+  ren->ResetCamera();
+  vtkNew<vtkRayTracePass> pass;
+  pass->SetMaximumTextureBufferTexels(10000);
+  ren->SetPass(pass);
+  Output->SetEcho(false);
+  win->Render();
+  Output->SetEcho(true);
+  Check(Output->HasErrorContaining("more than the limit"), "too large: a clear error message");
+  Output->Clear();
+  Check(CountForegroundPixels(Grab(win), background) == 0, "too large: nothing traced, no garbage");
+  NoGLError(win, "too large");
+  // The same frame again: no repeated error, still nothing traced.
+  win->Render();
+  Check(Output->GetNumberOfErrors() == 0, "too large: the error is not repeated every frame");
+  Check(CountForegroundPixels(Grab(win), background) == 0, "too large: still nothing traced");
+  // The limit lifted, the same pass renders (nothing changed but the limit).
+  pass->SetMaximumTextureBufferTexels(0);
+  win->Render();
+  Check(CountForegroundPixels(Grab(win), background) > 0, "limit lifted: the scene renders");
+  NoVTKOutput("too large");
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Output = vtkrtTestOutputWindow::Install();
+  const std::map<std::string, std::function<void()>> cases = {
+    { "FarFromOrigin", TestFarFromOrigin },
+    { "Degenerate", TestDegenerate },
+    { "TooLarge", TestTooLarge },
+  };
+  return RunCase(argc, argv, cases);
+}
