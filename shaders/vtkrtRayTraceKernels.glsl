@@ -115,18 +115,14 @@ bool clipRayByPlane(vec3 org, vec3 dir, vec4 plane, inout float tmin, inout floa
 // Every scene buffer is an RGBA32UI texture buffer read through a
 // usamplerBuffer: integer fields (indices, counts, ids, packed colors) come
 // back bit exact (a float view may flush the denormal floats that small
-// integers are), float fields are uintBitsToFloat of their bits.
+// integers are), float fields are uintBitsToFloat of their bits. Records
+// are read by the generated readers (fetchNode ...) into structs of the
+// core's layout (vtkrt/core/GpuLayout.h).
 
-// Node i of the flattened BVH: two texels, lo = (min, index), hi = (max,
-// count) (the core's layout: floats stored as bits); count == 0: interior
+// The Nodes of every bottom-level BVH (fetchNode): count == 0: interior
 // with children index and index + 1; count > 0: leaf over primitives
 // [index, index + count).
 uniform usamplerBuffer uNodes;
-
-vec3 boxCorner(uvec4 texel)
-{
-  return uintBitsToFloat(texel.xyz);
-}
 
 // Four 32-bit values packed per texel (ids and RGBA8 colors).
 uint fetchPacked(usamplerBuffer buffer, int i)
@@ -148,21 +144,21 @@ uint bvhStackIndex[VTKRT_STACK_SIZE];
 uint bvhStackCount[VTKRT_STACK_SIZE];
 float bvhStackNear[VTKRT_STACK_SIZE];
 
-// One interior step: the children of the node at hand are (lo0, hi0) and
-// (lo1, hi1), h0/h1 say whether the ray meets their boxes (false for both
-// when the node is culled), t0/t1 where. index/count become the next node.
+// One interior step: the children of the node at hand are n0 and n1, h0/h1
+// say whether the ray meets their boxes (false for both when the node is
+// culled), t0/t1 where. index/count become the next node.
 // Returns false when the walk is over (a dead end, nothing on the stack).
 // Branch free (llvmpipe would run every branch, masked): the farther child
 // is written above the stack top every step and kept only when both
 // children are hit; the top entry is read every step and used only at a
 // dead end. sp never exceeds the depth of the node at hand, below kMaxDepth
 // <= VTKRT_STACK_SIZE (core/BVH.h): no bound check.
-bool bvhInteriorStep(uvec4 lo0, uvec4 hi0, bool h0, float t0, uvec4 lo1, uvec4 hi1, bool h1,
-  float t1, float tmax, inout int sp, inout uint index, inout uint count, inout bool culled)
+bool bvhInteriorStep(Node n0, bool h0, float t0, Node n1, bool h1, float t1, float tmax,
+  inout int sp, inout uint index, inout uint count, inout bool culled)
 {
   bool nearIs1 = h1 && (!h0 || t1 < t0);
-  bvhStackIndex[sp] = nearIs1 ? lo0.w : lo1.w;
-  bvhStackCount[sp] = nearIs1 ? hi0.w : hi1.w;
+  bvhStackIndex[sp] = nearIs1 ? n0.index : n1.index;
+  bvhStackCount[sp] = nearIs1 ? n0.count : n1.count;
   bvhStackNear[sp] = nearIs1 ? t0 : t1;
   bool anyHit = h0 || h1;
   if (!anyHit && sp == 0)
@@ -175,8 +171,8 @@ bool bvhInteriorStep(uvec4 lo0, uvec4 hi0, bool h0, float t0, uvec4 lo1, uvec4 h
   uint popIndex = bvhStackIndex[top];
   uint popCount = bvhStackCount[top];
   sp = top;
-  index = anyHit ? (nearIs1 ? lo1.w : lo0.w) : (culled ? 0u : popIndex);
-  count = anyHit ? (nearIs1 ? hi1.w : hi0.w) : (culled ? 0u : popCount);
+  index = anyHit ? (nearIs1 ? n1.index : n0.index) : (culled ? 0u : popIndex);
+  count = anyHit ? (nearIs1 ? n1.count : n0.count) : (culled ? 0u : popCount);
   return true;
 }
 
@@ -214,17 +210,14 @@ bool bvhDescend(vec3 org, vec3 invDir, vec3 parallelBias, vec3 growBy, float tmi
       return false;
     }
 #endif
-    int child = 2 * int(index);
-    uvec4 lo0 = texelFetch(uNodes, child);
-    uvec4 hi0 = texelFetch(uNodes, child + 1);
-    uvec4 lo1 = texelFetch(uNodes, child + 2);
-    uvec4 hi1 = texelFetch(uNodes, child + 3);
+    Node n0 = fetchNode(uNodes, int(index));
+    Node n1 = fetchNode(uNodes, int(index) + 1);
     float t0, t1;
-    bool h0 = intersectRayBoxConservative(org, invDir, parallelBias, boxCorner(lo0) - growBy,
-                boxCorner(hi0) + growBy, tmin, tmax, t0) && !culled;
-    bool h1 = intersectRayBoxConservative(org, invDir, parallelBias, boxCorner(lo1) - growBy,
-                boxCorner(hi1) + growBy, tmin, tmax, t1) && !culled;
-    if (!bvhInteriorStep(lo0, hi0, h0, t0, lo1, hi1, h1, t1, tmax, sp, index, count, culled))
+    bool h0 = intersectRayBoxConservative(org, invDir, parallelBias, n0.lo - growBy, n0.hi + growBy,
+                tmin, tmax, t0) && !culled;
+    bool h1 = intersectRayBoxConservative(org, invDir, parallelBias, n1.lo - growBy, n1.hi + growBy,
+                tmin, tmax, t1) && !culled;
+    if (!bvhInteriorStep(n0, h0, t0, n1, h1, t1, tmax, sp, index, count, culled))
     {
       return false;
     }

@@ -26,18 +26,18 @@ const vec3 uEye = vec3(0.0);
 #endif
 
 // Per-instance records (core::gpu::InstanceRecord), rewritten every frame
-// because their matrices are camera-relative; read through the accessors
-// instance<Field>(i) and flags kInstance<Name> that the pass generates from
-// vtkrt/core/GpuLayout.h.
+// because their matrices are camera-relative; read a field at a time through
+// the accessors instance<Field>(i) and flags kInstance<Name> that the pass
+// generates from vtkrt/core/GpuLayout.h.
 
 #ifdef VTKRT_HAS_COLORS
 uniform usamplerBuffer uColors; // packed RGBA8, four per texel
 #endif
 #ifdef VTKRT_HAS_VERTEX_NORMALS
-uniform usamplerBuffer uNormals; // one texel per vertex (xyz)
+uniform usamplerBuffer uNormals; // a Normal per vertex
 #endif
 #ifdef VTKRT_HAS_TRIANGLE_VERTICES
-uniform usamplerBuffer uTriangleVertices; // bits(i0, i1, i2, 0) per triangle
+uniform usamplerBuffer uTriangleVertices; // TriangleVertices per triangle
 #endif
 #ifdef VTKRT_HAS_SPHERES
 uniform usamplerBuffer uSphereIds; // VTK point id per sphere, four per texel
@@ -275,9 +275,9 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
   {
     return;
   }
-  vec4 r0 = instanceCameraToLocalRow0(instance);
-  vec4 r1 = instanceCameraToLocalRow1(instance);
-  vec4 r2 = instanceCameraToLocalRow2(instance);
+  vec4 r0 = instanceCameraToLocal(instance, 0);
+  vec4 r1 = instanceCameraToLocal(instance, 1);
+  vec4 r2 = instanceCameraToLocal(instance, 2);
   vec3 localOrg = vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
   vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
   int root = int(instanceRoot(instance));
@@ -313,14 +313,14 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
 }
 
 #ifdef VTKRT_HAS_TOP_LEVEL
-// Top-level BVH over the instances (same layout as every BVH; leaves index
+// Top-level BVH over the instances (Nodes, as every BVH; leaves index
 // instance records), boxes relative to an anchor: uCameraToAnchor moves the
 // camera-relative ray origin there.
 uniform usamplerBuffer uTopNodes;
 uniform vec3 uCameraToAnchor;
 
 // The walk is core's nearer-first walk (core::detail::OrderedWalk: descend,
-// pop) with the node at hand carried as its texels; its C++ twin is
+// pop) with the node at hand carried as its Node; its C++ twin is
 // core::gpu::traceTopLevel (core/GpuTraversal.h). The stack never overflows
 // (depth <= kMaxDepth < VTKRT_STACK_SIZE, core/BVH.h).
 void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int hitInstance,
@@ -328,9 +328,8 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int
 {
   vec3 anchorOrg = org + uCameraToAnchor;
   float tnear;
-  uvec4 lo = texelFetch(uTopNodes, 0);
-  uvec4 hi = texelFetch(uTopNodes, 1);
-  if (!intersectRayAABB(anchorOrg, invDir, boxCorner(lo), boxCorner(hi), 0.0, tBest, tnear))
+  Node node = fetchNode(uTopNodes, 0);
+  if (!intersectRayAABB(anchorOrg, invDir, node.lo, node.hi, 0.0, tBest, tnear))
   {
     return;
   }
@@ -339,8 +338,8 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int
   int sp = 0;
   for (;;)
   {
-    int index = int(lo.w);
-    int count = int(hi.w);
+    int index = int(node.index);
+    int count = int(node.count);
     bool descended = false;
     if (count > 0)
     {
@@ -355,13 +354,11 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int
     }
     else
     {
-      uvec4 lo0 = texelFetch(uTopNodes, 2 * index);
-      uvec4 hi0 = texelFetch(uTopNodes, 2 * index + 1);
-      uvec4 lo1 = texelFetch(uTopNodes, 2 * index + 2);
-      uvec4 hi1 = texelFetch(uTopNodes, 2 * index + 3);
+      Node n0 = fetchNode(uTopNodes, index);
+      Node n1 = fetchNode(uTopNodes, index + 1);
       float t0, t1;
-      bool h0 = intersectRayAABB(anchorOrg, invDir, boxCorner(lo0), boxCorner(hi0), 0.0, tBest, t0);
-      bool h1 = intersectRayAABB(anchorOrg, invDir, boxCorner(lo1), boxCorner(hi1), 0.0, tBest, t1);
+      bool h0 = intersectRayAABB(anchorOrg, invDir, n0.lo, n0.hi, 0.0, tBest, t0);
+      bool h1 = intersectRayAABB(anchorOrg, invDir, n1.lo, n1.hi, 0.0, tBest, t1);
       // OrderedWalk::descend
       if (h0 && h1)
       {
@@ -369,14 +366,12 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int
         stackNode[sp] = firstNear ? index + 1 : index;
         stackNear[sp] = firstNear ? t1 : t0;
         ++sp;
-        lo = firstNear ? lo0 : lo1;
-        hi = firstNear ? hi0 : hi1;
+        node = firstNear ? n0 : n1;
         descended = true;
       }
       else if (h0 || h1)
       {
-        lo = h0 ? lo0 : lo1;
-        hi = h0 ? hi0 : hi1;
+        node = h0 ? n0 : n1;
         descended = true;
       }
     }
@@ -384,13 +379,13 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int
     {
       // OrderedWalk::pop
       bool found = false;
-      int node = 0;
+      int next = 0;
       while (sp > 0)
       {
         --sp;
         if (stackNear[sp] <= tBest)
         {
-          node = stackNode[sp];
+          next = stackNode[sp];
           found = true;
           break;
         }
@@ -399,8 +394,7 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int
       {
         break;
       }
-      lo = texelFetch(uTopNodes, 2 * node);
-      hi = texelFetch(uTopNodes, 2 * node + 1);
+      node = fetchNode(uTopNodes, next);
     }
   }
 }
@@ -461,9 +455,9 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
   vec4 clip = uCameraToClip * vec4(p, 1.0);
   outDepth = clamp(0.5 * (clip.z / clip.w) + 0.5, 0.0, 1.0);
 
-  vec4 r0 = instanceCameraToLocalRow0(hitInstance);
-  vec4 r1 = instanceCameraToLocalRow1(hitInstance);
-  vec4 r2 = instanceCameraToLocalRow2(hitInstance);
+  vec4 r0 = instanceCameraToLocal(hitInstance, 0);
+  vec4 r1 = instanceCameraToLocal(hitInstance, 1);
+  vec4 r2 = instanceCameraToLocal(hitInstance, 2);
   uint flags = instanceFlags(hitInstance);
 
   // Local normals map to camera space by the transpose of the camera-to-local
@@ -478,18 +472,20 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
   {
     vec3 localOrg = vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
     vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
-    vec4 s = uintBitsToFloat(texelFetch(uSpheres, hitPrimitive));
-    localNormal = localOrg + tBest * localDir - s.xyz;
+    localNormal = localOrg + tBest * localDir - fetchSphere(uSpheres, hitPrimitive).center;
 #ifdef VTKRT_HAS_ELLIPSOIDS
     if ((flags & kInstanceEllipsoids) != 0u)
     {
-      // The gradient of |A p + b|^2: A^T (A p + b), rows of [A | b] in texels.
-      vec4 e1 = uintBitsToFloat(texelFetch(uSpheres, hitPrimitive + 1));
-      vec4 e2 = uintBitsToFloat(texelFetch(uSpheres, hitPrimitive + 2));
+      // The gradient of |A p + b|^2: A^T (A p + b), rows of [A | b] (the
+      // first row's texel is the one read as a sphere above).
+      Ellipsoid e = fetchEllipsoid(uSpheres, hitPrimitive);
+      vec4 e0 = e.rows[0];
+      vec4 e1 = e.rows[1];
+      vec4 e2 = e.rows[2];
       vec3 hitLocal = localOrg + tBest * localDir;
-      vec3 u = vec3(dot(s.xyz, hitLocal) + s.w, dot(e1.xyz, hitLocal) + e1.w,
+      vec3 u = vec3(dot(e0.xyz, hitLocal) + e0.w, dot(e1.xyz, hitLocal) + e1.w,
         dot(e2.xyz, hitLocal) + e2.w);
-      localNormal = u.x * s.xyz + u.y * e1.xyz + u.z * e2.xyz;
+      localNormal = u.x * e0.xyz + u.y * e1.xyz + u.z * e2.xyz;
     }
 #endif
     geometricNormal = localNormal;
@@ -516,28 +512,25 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 #ifdef VTKRT_HAS_TRIANGLES
   if ((flags & kInstanceSpheres) == 0u)
   {
-    uvec4 aBits = texelFetch(uTriangles, 3 * hitPrimitive);
-    vec4 a = vec4(uintBitsToFloat(aBits.xyz), 0.0);
-    vec3 b = uintBitsToFloat(texelFetch(uTriangles, 3 * hitPrimitive + 1).xyz);
-    vec3 c = uintBitsToFloat(texelFetch(uTriangles, 3 * hitPrimitive + 2).xyz);
-    geometricNormal = cross(b - a.xyz, c - a.xyz);
+    Triangle triangle = fetchTriangle(uTriangles, hitPrimitive);
+    geometricNormal = cross(triangle.v1 - triangle.v0, triangle.v2 - triangle.v0);
     localNormal = geometricNormal;
-    vtkId = aBits.w;
+    vtkId = triangle.cellId;
     float w0 = 1.0 - hitUV.x - hitUV.y;
 #ifdef VTKRT_HAS_TRIANGLE_VERTICES
     if ((flags & (kInstanceVertexNormals | kInstancePointColors)) != 0u)
     {
-      uvec4 iv = texelFetch(uTriangleVertices, hitPrimitive);
-      int i0 = int(iv.x);
-      int i1 = int(iv.y);
-      int i2 = int(iv.z);
+      uvec3 ids = fetchTriangleVertices(uTriangleVertices, hitPrimitive).ids;
+      int i0 = int(ids.x);
+      int i1 = int(ids.y);
+      int i2 = int(ids.z);
 #ifdef VTKRT_HAS_VERTEX_NORMALS
       if ((flags & kInstanceVertexNormals) != 0u)
       {
         int nb = int(instanceNormalBase(hitInstance));
-        localNormal = w0 * uintBitsToFloat(texelFetch(uNormals, nb + i0).xyz) +
-          hitUV.x * uintBitsToFloat(texelFetch(uNormals, nb + i1).xyz) +
-          hitUV.y * uintBitsToFloat(texelFetch(uNormals, nb + i2).xyz);
+        localNormal = w0 * fetchNormal(uNormals, nb + i0).direction +
+          hitUV.x * fetchNormal(uNormals, nb + i1).direction +
+          hitUV.y * fetchNormal(uNormals, nb + i2).direction;
       }
 #endif
 #ifdef VTKRT_HAS_COLORS

@@ -2,8 +2,9 @@
 // traversal. Included only in shaders of scenes that have spheres. The C++
 // twins (core/GpuKernels.h, core/GpuTraversal.h) have the same names.
 
-// Spheres in BVH leaf order, one texel each: (center, radius), center
-// relative to the sphere set's center.
+// Spheres in BVH leaf order (fetchSphere), centers relative to the sphere
+// set's center; or Ellipsoids (fetchEllipsoid), each read at its first
+// texel, as their leaves count texels.
 uniform usamplerBuffer uSpheres;
 
 // std::copysign: x's magnitude with y's sign bit (so -0 counts as negative).
@@ -85,17 +86,15 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
   vec3 parallelBias = parallelAxisBias(invDir);
   vec3 growBy = vec3(grow);
   float tnear;
-  uvec4 rootLo = texelFetch(uNodes, 2 * root);
-  uvec4 rootHi = texelFetch(uNodes, 2 * root + 1);
-  if (!intersectRayAABB(org, invDir, boxCorner(rootLo) - growBy, boxCorner(rootHi) + growBy, tmin,
-        tmax, tnear))
+  Node rootNode = fetchNode(uNodes, root);
+  if (!intersectRayAABB(org, invDir, rootNode.lo - growBy, rootNode.hi + growBy, tmin, tmax, tnear))
   {
     return false;
   }
   int sp = 0;
   int steps = 0;
-  uint index = rootLo.w;
-  uint count = rootHi.w;
+  uint index = rootNode.index;
+  uint count = rootNode.count;
   bool culled = false;
   for (;;)
   {
@@ -114,12 +113,13 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
 #ifdef VTKRT_HAS_ELLIPSOIDS
     if (ellipsoids)
     {
-      int last = first + 3 * int(count);
-      for (int i = first; i < last; i += 3)
+      int last = first + VTKRT_ELLIPSOID_TEXELS * int(count);
+      for (int i = first; i < last; i += VTKRT_ELLIPSOID_TEXELS)
       {
-        vec4 r0 = uintBitsToFloat(texelFetch(uSpheres, i));
-        vec4 r1 = uintBitsToFloat(texelFetch(uSpheres, i + 1));
-        vec4 r2 = uintBitsToFloat(texelFetch(uSpheres, i + 2));
+        Ellipsoid e = fetchEllipsoid(uSpheres, i);
+        vec4 r0 = e.rows[0];
+        vec4 r1 = e.rows[1];
+        vec4 r2 = e.rows[2];
         vec3 unitOrg =
           vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
         vec3 unitDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
@@ -137,12 +137,12 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
 #endif
     for (int i = first; i < end; ++i)
     {
-      vec4 s = uintBitsToFloat(texelFetch(uSpheres, i));
+      Sphere s = fetchSphere(uSpheres, i);
 #ifdef VTKRT_SCREEN_SPHERES
-      s.w += max(0.0, dot(radiusPlane.xyz, s.xyz) + radiusPlane.w);
+      s.radius += max(0.0, dot(radiusPlane.xyz, s.center) + radiusPlane.w);
 #endif
       float t;
-      if (intersectRaySphere(org, dir, s.xyz, s.w, tmin, tmax, t))
+      if (intersectRaySphere(org, dir, s.center, s.radius, tmin, tmax, t))
       {
         tmax = t;
         sphere = i;

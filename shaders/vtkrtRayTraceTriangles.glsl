@@ -2,8 +2,8 @@
 // traversal. Included only in shaders of scenes that have triangles. The C++
 // twins (core/GpuKernels.h, core/GpuTraversal.h) have the same names.
 
-// Triangles in BVH leaf order, three texels each: (v0, VTK cell id),
-// (v1, 0), (v2, 0); coordinates (as float bits) relative to the mesh's center.
+// Triangles in BVH leaf order (fetchTriangle): vertices relative to the
+// mesh's center, and the VTK cell id.
 uniform usamplerBuffer uTriangles;
 
 // Per-ray data of the watertight test: the axis permutation and shear of
@@ -111,17 +111,16 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
   vec3 invDir = safeInverse(dir);
   vec3 parallelBias = parallelAxisBias(invDir);
   float tnear;
-  uvec4 rootLo = texelFetch(uNodes, 2 * root);
-  uvec4 rootHi = texelFetch(uNodes, 2 * root + 1);
-  if (!intersectRayAABB(org, invDir, boxCorner(rootLo), boxCorner(rootHi), tmin, tmax, tnear))
+  Node rootNode = fetchNode(uNodes, root);
+  if (!intersectRayAABB(org, invDir, rootNode.lo, rootNode.hi, tmin, tmax, tnear))
   {
     return false;
   }
   RayTrianglePrecomputed pre = precomputeRayTriangle(org, dir);
   int sp = 0;
   int steps = 0;
-  uint index = rootLo.w;
-  uint count = rootHi.w;
+  uint index = rootNode.index;
+  uint count = rootNode.count;
   bool culled = false;
   for (;;)
   {
@@ -141,11 +140,9 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
     int end = first + int(count);
     for (int i = first; i < end; ++i)
     {
-      vec3 v0 = uintBitsToFloat(texelFetch(uTriangles, 3 * i).xyz);
-      vec3 v1 = uintBitsToFloat(texelFetch(uTriangles, 3 * i + 1).xyz);
-      vec3 v2 = uintBitsToFloat(texelFetch(uTriangles, 3 * i + 2).xyz);
+      Triangle triangle = fetchTriangle(uTriangles, i);
       vec3 h;
-      if (intersectRayTriangle(pre, v0, v1, v2, tmin, tmax, h))
+      if (intersectRayTriangle(pre, triangle.v0, triangle.v1, triangle.v2, tmin, tmax, h))
       {
         tmax = h.x;
         tri = i;

@@ -133,13 +133,11 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
   {
     const std::uint32_t tri = bvh.primIndex[k];
     core::gpu::Triangle& t = g->Triangles[k];
-    float* corners[3] = { t.v0, t.v1, t.v2 };
+    core::gpu::vec3* corners[3] = { &t.v0, &t.v1, &t.v2 };
     for (int v = 0; v < 3; ++v)
     {
       const std::uint32_t vi = indices[3 * tri + v];
-      corners[v][0] = rel[vi].x;
-      corners[v][1] = rel[vi].y;
-      corners[v][2] = rel[vi].z;
+      *corners[v] = rel[vi];
       g->TriangleVertices[k].ids[v] = vi;
     }
     t.cellId = cellIds[tri];

@@ -562,6 +562,10 @@ void checkEllipsoidWalk(int count, int rayCount, std::uint64_t seed)
     const std::uint32_t e = rng.index(count);
     return centers[e] + (edge ? 1.0 : 0.9) * (boxes[e].max - centers[e]) * rng.unitVector();
   });
+  // An ellipsoid's row as the floats written, not through the twin's reader.
+  const auto row = [&](int t) {
+    return vec4(texels[4 * t], texels[4 * t + 1], texels[4 * t + 2], texels[4 * t + 3]);
+  };
   int hits = 0;
   for (const Ray<double>& ray : rays)
   {
@@ -575,9 +579,9 @@ void checkEllipsoidWalk(int count, int rayCount, std::uint64_t seed)
     int bestTexel = -1;
     for (int i = 0; i < 3 * count; i += 3)
     {
-      const vec4 r0 = gpu::uintBitsToFloat(gpu::texelFetch(u.uSpheres, i));
-      const vec4 r1 = gpu::uintBitsToFloat(gpu::texelFetch(u.uSpheres, i + 1));
-      const vec4 r2 = gpu::uintBitsToFloat(gpu::texelFetch(u.uSpheres, i + 2));
+      const vec4 r0 = row(i);
+      const vec4 r1 = row(i + 1);
+      const vec4 r2 = row(i + 2);
       const vec3 unitOrg(glm::dot(vec3(r0), org) + r0.w, glm::dot(vec3(r1), org) + r1.w, glm::dot(vec3(r2), org) + r2.w);
       const vec3 unitDir(glm::dot(vec3(r0), dir), glm::dot(vec3(r1), dir), glm::dot(vec3(r2), dir));
       float t;

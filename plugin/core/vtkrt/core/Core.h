@@ -19,7 +19,8 @@
 //                (packNodesForGpu: the same as 8 floats per node)
 //   GpuLayout.h  the records the GPU reads (gpu::Node, Triangle, Sphere,
 //                Ellipsoid, InstanceRecord, Light, flags) and glslLayout(),
-//                the GLSL generated from them
+//                the GLSL generated from them (a struct and a reader
+//                fetch<Record> per record)
 //   BVHBuild.h   buildBVH(vector<AABB<double>>, options): generic builder
 //                (Fast = LBVH, Medium = binned SAH, High = sweep SAH);
 //                refit(bvh, boundsOf) after primitives moved
@@ -50,7 +51,8 @@
 //   GpuKernels.h   namespace gpu: the shader's kernels, its names and float
 //                  operations (box test, slab, plane clip, triangle, sphere)
 //   GpuTraversal.h namespace gpu: the shader's walks over the packed arrays
-//                  (traverseTriangles, traverseSpheres, traceTopLevel)
+//                  (traverseTriangles, traverseSpheres, traceTopLevel), read
+//                  by the shader's record readers (fetchNode ...)
 //
 // Typical use (locator):
 //   TriangleMesh<double> mesh(points, indices);

@@ -11,6 +11,7 @@
 #ifndef vtkrt_core_GpuKernels_h
 #define vtkrt_core_GpuKernels_h
 
+#include "vtkrt/core/GpuLayout.h"
 #include "vtkrt/core/Plane.h"
 #include "vtkrt/core/Ray.h"
 #include "vtkrt/core/Sphere.h"
@@ -18,11 +19,6 @@
 
 namespace vtkrt::core::gpu
 {
-
-using vec2 = glm::vec2;
-using vec3 = glm::vec3;
-using vec4 = glm::vec4;
-using uvec4 = glm::uvec4;
 
 /// The far-distance scale of the conservative slab test (Ize 2013).
 constexpr float kFarScale = 1.0f + 2.0f * gammaBound<float>(3);

@@ -1,21 +1,35 @@
 // The records the GPU tracer reads, as C++ structs: every scene buffer is an
 // RGBA32UI texture buffer (16-byte texels; floats stored as their bits,
 // integers bit exact), and each struct below is a whole number of texels.
-// The C++ writes the fields by name; the GLSL's texel offsets, swizzles and
-// flag values are generated from these structs (glslLayout()), so the two
-// cannot drift apart.
+// The C++ writes the fields by name; the shader reads them by the same names:
+// glslLayout() generates, from offsetof and sizeof of these structs, a GLSL
+// struct of the same name and fields per record and its reader (fetchNode
+// ...), so the two cannot drift apart. The C++ twins of the shader's walks
+// read the records through readers of the same names (GpuTraversal.h).
 #ifndef vtkrt_core_GpuLayout_h
 #define vtkrt_core_GpuLayout_h
 
+#include <glm/glm.hpp>
+
 #include <cassert>
+#include <cctype>
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 #include <sstream>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 namespace vtkrt::core::gpu
 {
+
+// The shader's vector types: the records' fields and the twins' values.
+using vec2 = glm::vec2;
+using vec3 = glm::vec3;
+using vec4 = glm::vec4;
+using uvec3 = glm::uvec3;
+using uvec4 = glm::uvec4;
 
 /// Bytes of one texel of an RGBA32UI texture buffer.
 constexpr std::size_t kTexelBytes = 16;
@@ -26,57 +40,73 @@ struct Texel
   std::uint32_t v[4];
 };
 
+// Each record's fields are listed once, in order, by a macro next to it:
+// FIELD(record, member) for what the shader reads, PAD(record, member) for
+// padding (no GLSL member). VTKRT_GPU_RECORDS below checks that a list
+// covers its struct.
+
 /// Node of a flattened BVH: count == 0 is an interior node whose children
 /// are nodes index and index + 1; count > 0 a leaf over primitives
 /// [index, index + count). Boxes are float, rounded outward.
 struct Node
 {
-  float lo[3];
+  vec3 lo;
   std::uint32_t index;
-  float hi[3];
+  vec3 hi;
   std::uint32_t count;
 };
+#define VTKRT_GPU_NODE_FIELDS(FIELD, PAD)                                                          \
+  FIELD(Node, lo) FIELD(Node, index) FIELD(Node, hi) FIELD(Node, count)
 
 /// A triangle's vertices relative to its geometry's origin, and its VTK cell id.
 struct Triangle
 {
-  float v0[3];
+  vec3 v0;
   std::uint32_t cellId;
-  float v1[3];
+  vec3 v1;
   float unused1;
-  float v2[3];
+  vec3 v2;
   float unused2;
 };
+#define VTKRT_GPU_TRIANGLE_FIELDS(FIELD, PAD)                                                      \
+  FIELD(Triangle, v0) FIELD(Triangle, cellId) FIELD(Triangle, v1) PAD(Triangle, unused1)           \
+    FIELD(Triangle, v2) PAD(Triangle, unused2)
 
 /// The point ids of a triangle's vertices (for normals and point colors).
 struct TriangleVertices
 {
-  std::uint32_t ids[3];
+  uvec3 ids;
   std::uint32_t unused;
 };
+#define VTKRT_GPU_TRIANGLE_VERTICES_FIELDS(FIELD, PAD)                                             \
+  FIELD(TriangleVertices, ids) PAD(TriangleVertices, unused)
 
 /// A sphere relative to its geometry's origin (radius 0: sized per frame).
 struct Sphere
 {
-  float center[3];
+  vec3 center;
   float radius;
 };
+#define VTKRT_GPU_SPHERE_FIELDS(FIELD, PAD) FIELD(Sphere, center) FIELD(Sphere, radius)
 
 /// An ellipsoid: the rows of the affine map [A | b] of its geometry's local
-/// space onto its unit sphere. Its leaf indices count texels, so one
-/// ellipsoid takes three primitive slots.
+/// space onto its unit sphere. It shares the sphere buffer, whose leaf
+/// indices count texels: one ellipsoid takes three primitive slots and is
+/// read at its first texel.
 struct Ellipsoid
 {
-  float rows[3][4];
+  vec4 rows[3];
 };
+#define VTKRT_GPU_ELLIPSOID_FIELDS(FIELD, PAD) FIELD(Ellipsoid, rows)
 constexpr std::uint32_t kEllipsoidTexels = 3;
 
 /// A vertex normal.
 struct Normal
 {
-  float xyz[3];
+  vec3 direction;
   float unused;
 };
+#define VTKRT_GPU_NORMAL_FIELDS(FIELD, PAD) FIELD(Normal, direction) PAD(Normal, unused)
 
 /// The per-instance record, rewritten every frame (its matrix and box are
 /// camera-relative). Scalar colors replace the ambient and diffuse colors,
@@ -85,16 +115,16 @@ struct Normal
 /// and their BVH boxes grow by sphereGrow local units.
 struct InstanceRecord
 {
-  float cameraToLocal[3][4]; ///< rows of the camera-to-local affine matrix
-  float boxMin[3];           ///< camera-space box, padded for float rounding
+  vec4 cameraToLocal[3];     ///< rows of the camera-to-local affine matrix
+  vec3 boxMin;               ///< camera-space box, padded for float rounding
   std::uint32_t root;        ///< the bottom-level BVH's root node
-  float boxMax[3];
+  vec3 boxMax;
   std::uint32_t flags;       ///< InstanceFlags
-  float ambient[3];          ///< colors weighted by their intensities
+  vec3 ambient;              ///< colors weighted by their intensities
   float specularPower;
-  float diffuse[3];
+  vec3 diffuse;
   std::uint32_t colorBase;   ///< first packed color (or color texture header)
-  float specular[3];
+  vec3 specular;
   std::uint32_t normalBase;  ///< first vertex normal
   std::uint32_t firstClipPlane;
   std::uint32_t clipPlaneCount;
@@ -104,8 +134,42 @@ struct InstanceRecord
   float diffuseIntensity;
   float sphereGrow;
   float unused9;
-  float screenRadiusPlane[4];
+  vec4 screenRadiusPlane;
 };
+#define VTKRT_GPU_INSTANCE_FIELDS(FIELD, PAD)                                                      \
+  FIELD(InstanceRecord, cameraToLocal) FIELD(InstanceRecord, boxMin) FIELD(InstanceRecord, root)   \
+    FIELD(InstanceRecord, boxMax) FIELD(InstanceRecord, flags) FIELD(InstanceRecord, ambient)      \
+      FIELD(InstanceRecord, specularPower) FIELD(InstanceRecord, diffuse)                          \
+        FIELD(InstanceRecord, colorBase) FIELD(InstanceRecord, specular)                           \
+          FIELD(InstanceRecord, normalBase) FIELD(InstanceRecord, firstClipPlane)                  \
+            FIELD(InstanceRecord, clipPlaneCount) FIELD(InstanceRecord, propIndex)                 \
+              FIELD(InstanceRecord, compositeIndex) FIELD(InstanceRecord, ambientIntensity)          \
+                FIELD(InstanceRecord, diffuseIntensity) FIELD(InstanceRecord, sphereGrow)          \
+                  PAD(InstanceRecord, unused9) FIELD(InstanceRecord, screenRadiusPlane)
+
+/// How the shader indexes a record's buffer: record i is texels
+/// i * texels + k (ByRecord), or starts at texel i (ByTexel: ellipsoids,
+/// whose buffer also holds one-texel spheres).
+enum class Indexing
+{
+  ByRecord,
+  ByTexel
+};
+
+/// Every record: RECORD(type, NAME, indexing, fields), NAME naming the
+/// GLSL's VTKRT_<NAME>_TEXELS, fields the record's field list.
+#define VTKRT_GPU_RECORDS(RECORD, FIELD, PAD)                                                      \
+  RECORD(Node, NODE, ByRecord, VTKRT_GPU_NODE_FIELDS(FIELD, PAD))                                  \
+  RECORD(Triangle, TRIANGLE, ByRecord, VTKRT_GPU_TRIANGLE_FIELDS(FIELD, PAD))                      \
+  RECORD(TriangleVertices, TRIANGLE_VERTICES, ByRecord,                                            \
+    VTKRT_GPU_TRIANGLE_VERTICES_FIELDS(FIELD, PAD))                                                \
+  RECORD(Sphere, SPHERE, ByRecord, VTKRT_GPU_SPHERE_FIELDS(FIELD, PAD))                            \
+  RECORD(Ellipsoid, ELLIPSOID, ByTexel, VTKRT_GPU_ELLIPSOID_FIELDS(FIELD, PAD))                    \
+  RECORD(Normal, NORMAL, ByRecord, VTKRT_GPU_NORMAL_FIELDS(FIELD, PAD))                            \
+  RECORD(InstanceRecord, INSTANCE, ByRecord, VTKRT_GPU_INSTANCE_FIELDS(FIELD, PAD))
+
+/// A field list entry that expands to nothing.
+#define VTKRT_GPU_NO_FIELD(record, member)
 
 /// Flags of InstanceRecord::flags. X(name, bit) lists them once: the enum
 /// and the GLSL constants kInstance<name> come from the same list.
@@ -143,108 +207,221 @@ constexpr std::uint32_t texelsOf()
   return static_cast<std::uint32_t>(sizeof(T) / kTexelBytes);
 }
 
-static_assert(sizeof(Texel) == kTexelBytes, "Texel: 16 bytes");
-static_assert(sizeof(Node) == 2 * kTexelBytes && offsetof(Node, hi) == kTexelBytes, "Node: 2 texels");
-static_assert(sizeof(Triangle) == 3 * kTexelBytes && offsetof(Triangle, v1) == kTexelBytes &&
-    offsetof(Triangle, v2) == 2 * kTexelBytes, "Triangle: 3 texels, a vertex each");
-static_assert(sizeof(TriangleVertices) == kTexelBytes, "TriangleVertices: 1 texel");
-static_assert(sizeof(Sphere) == kTexelBytes, "Sphere: 1 texel");
-static_assert(sizeof(Ellipsoid) == kEllipsoidTexels * kTexelBytes, "Ellipsoid: 3 texels");
-static_assert(sizeof(Normal) == kTexelBytes, "Normal: 1 texel");
-static_assert(sizeof(InstanceRecord) == 11 * kTexelBytes, "InstanceRecord: 11 texels");
-static_assert(offsetof(InstanceRecord, boxMin) == 3 * kTexelBytes &&
-    offsetof(InstanceRecord, root) == 3 * kTexelBytes + 12 &&
-    offsetof(InstanceRecord, firstClipPlane) == 8 * kTexelBytes &&
-    offsetof(InstanceRecord, screenRadiusPlane) == 10 * kTexelBytes,
-  "InstanceRecord fields keep their texels (a field must not straddle two)");
-static_assert(std::is_trivially_copyable_v<InstanceRecord> && std::is_standard_layout_v<InstanceRecord>,
-  "records are uploaded as bytes");
+/// The first texel of record i of a buffer of Records.
+template <class Record>
+constexpr int firstTexel(Indexing indexing, int i)
+{
+  return indexing == Indexing::ByRecord ? i * static_cast<int>(texelsOf<Record>()) : i;
+}
 
 namespace detail
 {
-/// One record field as the GLSL reads it: which texel, which components.
-struct GlslField
+/// A record field's GLSL type: a scalar or vector the size of its C++
+/// type (an array field: of its element).
+template <class T>
+struct GlslType;
+template <>
+struct GlslType<float>
 {
-  const char* name; ///< the GLSL accessor is instance<Name>(i)
-  const char* type; ///< GLSL type
-  std::size_t offset;
-  std::size_t bytes;
-  bool isUint;
+  static constexpr const char* name = "float";
+  static constexpr bool isUint = false;
+};
+template <>
+struct GlslType<std::uint32_t>
+{
+  static constexpr const char* name = "uint";
+  static constexpr bool isUint = true;
+};
+template <>
+struct GlslType<vec3>
+{
+  static constexpr const char* name = "vec3";
+  static constexpr bool isUint = false;
+};
+template <>
+struct GlslType<vec4>
+{
+  static constexpr const char* name = "vec4";
+  static constexpr bool isUint = false;
+};
+template <>
+struct GlslType<uvec3>
+{
+  static constexpr const char* name = "uvec3";
+  static constexpr bool isUint = true;
 };
 
+/// Whether a field at `offset` keeps each element within one texel (the
+/// GLSL reads an element as one swizzle of one texel).
+template <class Member>
+constexpr bool elementsLieInTexels(std::size_t offset)
+{
+  using Element = std::remove_all_extents_t<Member>;
+  for (std::size_t e = 0; e < sizeof(Member) / sizeof(Element); ++e)
+  {
+    const std::size_t at = offset + e * sizeof(Element);
+    if (at % kTexelBytes + sizeof(Element) > kTexelBytes)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// One record field as the GLSL reads it.
+struct GlslField
+{
+  const char* name;         ///< the C++ member's name
+  const char* type;         ///< GLSL type of the field (of an element, for an array)
+  bool isUint;              ///< read as bits, else uintBitsToFloat of them
+  std::size_t offset;       ///< bytes from the record's start
+  std::size_t elementBytes; ///< bytes of the field (of an element, for an array)
+  std::size_t count;        ///< array length; 0: not an array
+};
+
+template <class Member>
+GlslField glslField(const char* name, std::size_t offset)
+{
+  using Element = std::remove_extent_t<Member>;
+  static_assert(std::rank_v<Member> <= 1, "record fields are scalars, vectors or arrays of them");
+  return { name, GlslType<Element>::name, GlslType<Element>::isUint, offset, sizeof(Element),
+    std::extent_v<Member> };
+}
+
+/// The components of its texel that a field element of `bytes` at `offset` takes.
 inline const char* swizzle(std::size_t offset, std::size_t bytes)
 {
   static const char* table[4][4] = { { "x", "xy", "xyz", "xyzw" }, { "y", "yz", "yzw", "" },
     { "z", "zw", "", "" }, { "w", "", "", "" } };
   return table[(offset % kTexelBytes) / 4][bytes / 4 - 1];
 }
+
+/// The GLSL value of a field element at `offset` of a record whose texel k
+/// is the expression texel(k).
+template <class TexelExpression>
+std::string glslElement(const GlslField& f, std::size_t offset, TexelExpression&& texel)
+{
+  const std::string bits = texel(offset / kTexelBytes) + "." + swizzle(offset, f.elementBytes);
+  return f.isUint ? bits : "uintBitsToFloat(" + bits + ")";
+}
+
+/// The GLSL of a record: VTKRT_<NAME>_TEXELS, a struct of the record's name
+/// with a member per field, and its reader <Type> fetch<Type>(b, i), which
+/// fetches the texels holding those fields once each.
+inline void writeGlslRecord(std::ostream& s, const char* type, const char* name, std::uint32_t texels,
+  Indexing indexing, std::initializer_list<GlslField> fields)
+{
+  s << "#define VTKRT_" << name << "_TEXELS " << texels << "\n";
+  s << "struct " << type << "\n{\n";
+  std::vector<bool> used(texels, false);
+  for (const GlslField& f : fields)
+  {
+    s << "  " << f.type << " " << f.name;
+    if (f.count > 0)
+    {
+      s << "[" << f.count << "]";
+    }
+    s << ";\n";
+    for (std::size_t e = 0; e < (f.count > 0 ? f.count : 1); ++e)
+    {
+      used[(f.offset + e * f.elementBytes) / kTexelBytes] = true;
+    }
+  }
+  s << "};\n";
+  s << type << " fetch" << type << "(usamplerBuffer b, int i)\n{\n";
+  s << "  int first = " << (indexing == Indexing::ByRecord ? "i * VTKRT_" + std::string(name) + "_TEXELS" : "i")
+    << ";\n";
+  for (std::uint32_t k = 0; k < texels; ++k)
+  {
+    if (used[k])
+    {
+      s << "  uvec4 t" << k << " = texelFetch(b, first + " << k << ");\n";
+    }
+  }
+  s << "  " << type << " r;\n";
+  const auto texel = [](std::size_t k) { return "t" + std::to_string(k); };
+  for (const GlslField& f : fields)
+  {
+    if (f.count == 0)
+    {
+      s << "  r." << f.name << " = " << glslElement(f, f.offset, texel) << ";\n";
+    }
+    for (std::size_t e = 0; e < f.count; ++e)
+    {
+      s << "  r." << f.name << "[" << e << "] = " << glslElement(f, f.offset + e * f.elementBytes, texel)
+        << ";\n";
+    }
+  }
+  s << "  return r;\n}\n";
+}
+
+/// One accessor per field of the records of a uniform buffer, for a shader
+/// that reads a record's fields at different places: <prefix><Member>(i)
+/// (an array field: <prefix><Member>(i, e), its elements whole texels).
+inline void writeGlslAccessors(std::ostream& s, const char* prefix, const char* buffer, const char* name,
+  std::initializer_list<GlslField> fields)
+{
+  for (const GlslField& f : fields)
+  {
+    const std::string member = std::string(1, static_cast<char>(std::toupper(f.name[0]))) + (f.name + 1);
+    const bool array = f.count > 0;
+    assert((!array || f.elementBytes == kTexelBytes) && "an accessor's array elements are whole texels");
+    s << f.type << " " << prefix << member << (array ? "(int i, int e)" : "(int i)") << "\n{\n";
+    const auto texel = [&](std::size_t k) {
+      return std::string("texelFetch(") + buffer + ", i * VTKRT_" + name + "_TEXELS + " + std::to_string(k) +
+        (array ? " + e)" : ")");
+    };
+    s << "  return " << glslElement(f, f.offset, texel) << ";\n}\n";
+  }
+}
 } // namespace detail
 
-#define VTKRT_GPU_FIELD(name, member, type, isUint)                                                \
-  detail::GlslField                                                                                \
-  {                                                                                                \
-    name, type, offsetof(InstanceRecord, member), sizeof(InstanceRecord::member), isUint           \
-  }
+// The checks that the records' GLSL relies on.
+static_assert(sizeof(Texel) == kTexelBytes, "Texel: 16 bytes");
+#define VTKRT_GPU_FIELD_BYTES(record, member) +sizeof(record::member)
+#define VTKRT_GPU_FIELD_IN_TEXELS(record, member)                                                  \
+  &&detail::elementsLieInTexels<decltype(record::member)>(offsetof(record, member))
+#define VTKRT_GPU_CHECK_RECORD(type, NAME, indexing, fields)                                       \
+  static_assert(sizeof(type) % kTexelBytes == 0, #type ": a whole number of texels");              \
+  static_assert(std::is_trivially_copyable_v<type> && std::is_standard_layout_v<type>,             \
+    #type ": uploaded as bytes");
+#define VTKRT_GPU_CHECK_FIELDS(type, NAME, indexing, fields)                                       \
+  static_assert(0 fields == sizeof(type), #type ": its field list names every member");
+#define VTKRT_GPU_CHECK_TEXELS(type, NAME, indexing, fields)                                       \
+  static_assert(true fields, #type ": a field's elements each lie in one texel");
+VTKRT_GPU_RECORDS(VTKRT_GPU_CHECK_RECORD, VTKRT_GPU_NO_FIELD, VTKRT_GPU_NO_FIELD)
+VTKRT_GPU_RECORDS(VTKRT_GPU_CHECK_FIELDS, VTKRT_GPU_FIELD_BYTES, VTKRT_GPU_FIELD_BYTES)
+VTKRT_GPU_RECORDS(VTKRT_GPU_CHECK_TEXELS, VTKRT_GPU_FIELD_IN_TEXELS, VTKRT_GPU_NO_FIELD)
+#undef VTKRT_GPU_FIELD_BYTES
+#undef VTKRT_GPU_FIELD_IN_TEXELS
+#undef VTKRT_GPU_CHECK_RECORD
+#undef VTKRT_GPU_CHECK_FIELDS
+#undef VTKRT_GPU_CHECK_TEXELS
+static_assert(texelsOf<Ellipsoid>() == kEllipsoidTexels, "Ellipsoid: 3 texels");
 
-/// The GLSL for the layouts: texel counts, the instance flags, and one
-/// accessor per instance record field (instanceBoxMin(i), instanceFlags(i)
-/// ...) reading the field's texel of the usamplerBuffer uInstances.
+/// The GLSL for the layouts: the instance flags kInstance<Name>, per record
+/// its struct, texel count VTKRT_<NAME>_TEXELS and reader fetch<Type>(b, i),
+/// and one accessor per instance record field (instanceBoxMin(i),
+/// instanceFlags(i) ...) reading the usamplerBuffer uInstances.
 inline std::string glslLayout()
 {
-  const detail::GlslField fields[] = {
-    VTKRT_GPU_FIELD("CameraToLocalRow0", cameraToLocal[0], "vec4", false),
-    VTKRT_GPU_FIELD("CameraToLocalRow1", cameraToLocal[1], "vec4", false),
-    VTKRT_GPU_FIELD("CameraToLocalRow2", cameraToLocal[2], "vec4", false),
-    VTKRT_GPU_FIELD("BoxMin", boxMin, "vec3", false),
-    VTKRT_GPU_FIELD("Root", root, "uint", true),
-    VTKRT_GPU_FIELD("BoxMax", boxMax, "vec3", false),
-    VTKRT_GPU_FIELD("Flags", flags, "uint", true),
-    VTKRT_GPU_FIELD("Ambient", ambient, "vec3", false),
-    VTKRT_GPU_FIELD("SpecularPower", specularPower, "float", false),
-    VTKRT_GPU_FIELD("Diffuse", diffuse, "vec3", false),
-    VTKRT_GPU_FIELD("ColorBase", colorBase, "uint", true),
-    VTKRT_GPU_FIELD("Specular", specular, "vec3", false),
-    VTKRT_GPU_FIELD("NormalBase", normalBase, "uint", true),
-    VTKRT_GPU_FIELD("FirstClipPlane", firstClipPlane, "uint", true),
-    VTKRT_GPU_FIELD("ClipPlaneCount", clipPlaneCount, "uint", true),
-    VTKRT_GPU_FIELD("PropIndex", propIndex, "uint", true),
-    VTKRT_GPU_FIELD("CompositeIndex", compositeIndex, "uint", true),
-    VTKRT_GPU_FIELD("AmbientIntensity", ambientIntensity, "float", false),
-    VTKRT_GPU_FIELD("DiffuseIntensity", diffuseIntensity, "float", false),
-    VTKRT_GPU_FIELD("SphereGrow", sphereGrow, "float", false),
-    VTKRT_GPU_FIELD("ScreenRadiusPlane", screenRadiusPlane, "vec4", false),
-  };
   std::ostringstream s;
   s << "// Generated from vtkrt/core/GpuLayout.h.\n";
-  s << "#define VTKRT_NODE_TEXELS " << texelsOf<Node>() << "\n";
-  s << "#define VTKRT_TRIANGLE_TEXELS " << texelsOf<Triangle>() << "\n";
-  s << "#define VTKRT_ELLIPSOID_TEXELS " << texelsOf<Ellipsoid>() << "\n";
-  s << "#define VTKRT_INSTANCE_TEXELS " << texelsOf<InstanceRecord>() << "\n";
 #define VTKRT_GPU_FLAG_GLSL(name, bit) s << "const uint kInstance" #name " = " << bit << "u;\n";
   VTKRT_GPU_INSTANCE_FLAGS(VTKRT_GPU_FLAG_GLSL)
 #undef VTKRT_GPU_FLAG_GLSL
+#define VTKRT_GPU_GLSL_FIELD(record, member)                                                       \
+  detail::glslField<decltype(record::member)>(#member, offsetof(record, member)),
+#define VTKRT_GPU_GLSL_RECORD(type, NAME, indexing, fields)                                        \
+  detail::writeGlslRecord(s, #type, #NAME, texelsOf<type>(), Indexing::indexing, { fields });
+  VTKRT_GPU_RECORDS(VTKRT_GPU_GLSL_RECORD, VTKRT_GPU_GLSL_FIELD, VTKRT_GPU_NO_FIELD)
   s << "uniform usamplerBuffer uInstances;\n";
-  for (const detail::GlslField& f : fields)
-  {
-    const std::size_t texel = f.offset / kTexelBytes;
-    assert(f.offset % kTexelBytes + f.bytes <= kTexelBytes && "a field must lie in one texel");
-    s << f.type << " instance" << f.name << "(int i)\n{\n  return ";
-    const char* sw = detail::swizzle(f.offset, f.bytes);
-    if (f.isUint)
-    {
-      s << "texelFetch(uInstances, i * VTKRT_INSTANCE_TEXELS + " << texel << ")." << sw;
-    }
-    else
-    {
-      s << "uintBitsToFloat(texelFetch(uInstances, i * VTKRT_INSTANCE_TEXELS + " << texel << ")." << sw
-        << ")";
-    }
-    s << ";\n}\n";
-  }
+  detail::writeGlslAccessors(
+    s, "instance", "uInstances", "INSTANCE", { VTKRT_GPU_INSTANCE_FIELDS(VTKRT_GPU_GLSL_FIELD, VTKRT_GPU_NO_FIELD) });
+#undef VTKRT_GPU_GLSL_RECORD
+#undef VTKRT_GPU_GLSL_FIELD
   return s.str();
 }
-
-#undef VTKRT_GPU_FIELD
 
 } // namespace vtkrt::core::gpu
 

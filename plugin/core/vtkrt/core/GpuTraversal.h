@@ -1,8 +1,9 @@
 // The C++ twins of the shader's BVH walks: the while-while walk of
 // traverseTriangles and traverseSpheres (bvhInteriorStep, bvhPopAfterLeaf)
 // and the top-level walk of traceTopLevel, reading the packed arrays the
-// pass uploads (packNodesForGpu and the primitive texels) the way the
-// shader reads its texture buffers: through texelFetch on a TexelBuffer.
+// pass uploads (packNodesForGpu and the primitive records) the way the
+// shader reads its texture buffers: a record at a time, by readers named as
+// the shader's generated ones (fetchNode ...), on a TexelBuffer.
 // Names, arguments and operations are the shader's (see GpuKernels.h);
 // uniforms and feature #defines the walks read are a ShaderInputs.
 #ifndef vtkrt_core_GpuTraversal_h
@@ -47,11 +48,25 @@ public:
     uvec4 texel(0u);
     if (i >= 0 && static_cast<std::size_t>(i) < Texels)
     {
-      std::memcpy(&texel, Bytes + 16 * static_cast<std::size_t>(i), sizeof texel);
+      std::memcpy(&texel, Bytes + kTexelBytes * static_cast<std::size_t>(i), sizeof texel);
     }
     return texel;
   }
   std::size_t size() const { return Texels; }
+
+  /// The Record whose first texel is `first`, texel by texel.
+  template <class Record>
+  Record record(int first) const
+  {
+    Record r;
+    unsigned char* out = reinterpret_cast<unsigned char*>(&r);
+    for (std::uint32_t k = 0; k < texelsOf<Record>(); ++k)
+    {
+      const uvec4 texel = fetch(first + static_cast<int>(k));
+      std::memcpy(out + kTexelBytes * k, &texel, sizeof texel);
+    }
+    return r;
+  }
 
 private:
   const unsigned char* Bytes = nullptr;
@@ -63,21 +78,17 @@ inline uvec4 texelFetch(const TexelBuffer& buffer, int i)
   return buffer.fetch(i);
 }
 
-inline vec3 uintBitsToFloat(const glm::uvec3& bits)
-{
-  return vec3(core::uintBitsToFloat(bits.x), core::uintBitsToFloat(bits.y), core::uintBitsToFloat(bits.z));
-}
-
-inline vec4 uintBitsToFloat(const uvec4& bits)
-{
-  return vec4(uintBitsToFloat(glm::uvec3(bits)), core::uintBitsToFloat(bits.w));
-}
-
-/// A node texel's box corner (lo: min, hi: max).
-inline vec3 boxCorner(const uvec4& texel)
-{
-  return uintBitsToFloat(glm::uvec3(texel));
-}
+/// The shader's record readers, one per record of VTKRT_GPU_RECORDS
+/// (fetchNode, fetchTriangle, fetchTriangleVertices, fetchSphere,
+/// fetchEllipsoid, fetchNormal, fetchInstanceRecord): record i of a buffer
+/// (for an Ellipsoid, the one at texel i).
+#define VTKRT_GPU_FETCH(type, NAME, indexing, fields)                                              \
+  inline type fetch##type(const TexelBuffer& buffer, int i)                                        \
+  {                                                                                                \
+    return buffer.record<type>(firstTexel<type>(Indexing::indexing, i));                           \
+  }
+VTKRT_GPU_RECORDS(VTKRT_GPU_FETCH, VTKRT_GPU_NO_FIELD, VTKRT_GPU_NO_FIELD)
+#undef VTKRT_GPU_FETCH
 
 /// Value i of a buffer of four 32-bit values per texel (ids, RGBA8 colors).
 inline std::uint32_t fetchPacked(const TexelBuffer& buffer, int i)
@@ -91,10 +102,10 @@ inline std::uint32_t fetchPacked(const TexelBuffer& buffer, int i)
 /// as the shader's uniforms) and the #defines that change a walk.
 struct ShaderInputs
 {
-  TexelBuffer uNodes;     ///< every bottom-level BVH, 2 texels a node (packNodesForGpu)
-  TexelBuffer uTriangles; ///< 3 texels a triangle in leaf order: (v0, cell id), (v1, 0), (v2, 0)
-  TexelBuffer uSpheres;   ///< a texel a sphere (center, radius), 3 an ellipsoid (its map's rows)
-  TexelBuffer uTopNodes;  ///< the top-level BVH over the instance records
+  TexelBuffer uNodes;     ///< every bottom-level BVH's Nodes (packNodesForGpu)
+  TexelBuffer uTriangles; ///< Triangles in leaf order
+  TexelBuffer uSpheres;   ///< Spheres, or Ellipsoids (a texel index each), in leaf order
+  TexelBuffer uTopNodes;  ///< the Nodes of the top-level BVH over the instance records
   vec3 uCameraToAnchor = vec3(0.0f);
   int maximumTraversalSteps = 0; ///< VTKRT_MAXIMUM_TRAVERSAL_STEPS (0: no cap)
   bool screenSpheres = false;    ///< VTKRT_SCREEN_SPHERES
@@ -113,14 +124,13 @@ struct BvhStack
 /// the stack top and kept only when both children are hit; the top entry
 /// is read every step and used only at a dead end. False when the walk is
 /// over.
-inline bool bvhInteriorStep(BvhStack& stack, const uvec4& lo0, const uvec4& hi0, bool h0, float t0,
-  const uvec4& lo1, const uvec4& hi1, bool h1, float t1, float tmax, int& sp, std::uint32_t& index,
-  std::uint32_t& count, bool& culled)
+inline bool bvhInteriorStep(BvhStack& stack, const Node& n0, bool h0, float t0, const Node& n1, bool h1,
+  float t1, float tmax, int& sp, std::uint32_t& index, std::uint32_t& count, bool& culled)
 {
   assert(sp >= 0 && sp + 1 < static_cast<int>(kMaxStackSize));
   const bool nearIs1 = h1 && (!h0 || t1 < t0);
-  stack.index[sp] = nearIs1 ? lo0.w : lo1.w;
-  stack.count[sp] = nearIs1 ? hi0.w : hi1.w;
+  stack.index[sp] = nearIs1 ? n0.index : n1.index;
+  stack.count[sp] = nearIs1 ? n0.count : n1.count;
   stack.tnear[sp] = nearIs1 ? t0 : t1;
   const bool anyHit = h0 || h1;
   if (!anyHit && sp == 0)
@@ -133,8 +143,8 @@ inline bool bvhInteriorStep(BvhStack& stack, const uvec4& lo0, const uvec4& hi0,
   const std::uint32_t popIndex = stack.index[top];
   const std::uint32_t popCount = stack.count[top];
   sp = top;
-  index = anyHit ? (nearIs1 ? lo1.w : lo0.w) : (culled ? 0u : popIndex);
-  count = anyHit ? (nearIs1 ? hi1.w : hi0.w) : (culled ? 0u : popCount);
+  index = anyHit ? (nearIs1 ? n1.index : n0.index) : (culled ? 0u : popIndex);
+  count = anyHit ? (nearIs1 ? n1.count : n0.count) : (culled ? 0u : popCount);
   return true;
 }
 
@@ -166,17 +176,16 @@ inline bool bvhDescend(BvhStack& stack, const ShaderInputs& u, const vec3& org, 
     {
       return false;
     }
-    const int child = 2 * static_cast<int>(index);
-    const uvec4 lo0 = texelFetch(u.uNodes, child);
-    const uvec4 hi0 = texelFetch(u.uNodes, child + 1);
-    const uvec4 lo1 = texelFetch(u.uNodes, child + 2);
-    const uvec4 hi1 = texelFetch(u.uNodes, child + 3);
+    const Node n0 = fetchNode(u.uNodes, static_cast<int>(index));
+    const Node n1 = fetchNode(u.uNodes, static_cast<int>(index) + 1);
     float t0, t1;
-    const bool h0 = intersectRayBoxConservative(org, invDir, parallelBias, boxCorner(lo0) - growBy,
-                      boxCorner(hi0) + growBy, tmin, tmax, t0) && !culled;
-    const bool h1 = intersectRayBoxConservative(org, invDir, parallelBias, boxCorner(lo1) - growBy,
-                      boxCorner(hi1) + growBy, tmin, tmax, t1) && !culled;
-    if (!bvhInteriorStep(stack, lo0, hi0, h0, t0, lo1, hi1, h1, t1, tmax, sp, index, count, culled))
+    const bool h0 =
+      intersectRayBoxConservative(org, invDir, parallelBias, n0.lo - growBy, n0.hi + growBy, tmin, tmax, t0) &&
+      !culled;
+    const bool h1 =
+      intersectRayBoxConservative(org, invDir, parallelBias, n1.lo - growBy, n1.hi + growBy, tmin, tmax, t1) &&
+      !culled;
+    if (!bvhInteriorStep(stack, n0, h0, t0, n1, h1, t1, tmax, sp, index, count, culled))
     {
       return false;
     }
@@ -197,20 +206,18 @@ inline void whileWhileWalk(const ShaderInputs& u, int root, const vec3& org, con
   const vec3 invDir = safeInverse(dir);
   const vec3 parallelBias = parallelAxisBias(invDir);
   const vec3 growBy = vec3(grow);
-  const auto lower = [&](const uvec4& texel) { return Grow ? boxCorner(texel) - growBy : boxCorner(texel); };
-  const auto upper = [&](const uvec4& texel) { return Grow ? boxCorner(texel) + growBy : boxCorner(texel); };
   float tnear;
-  const uvec4 rootLo = texelFetch(u.uNodes, 2 * root);
-  const uvec4 rootHi = texelFetch(u.uNodes, 2 * root + 1);
-  if (!intersectRayAABB(org, invDir, lower(rootLo), upper(rootHi), tmin, tmax, tnear))
+  const Node rootNode = fetchNode(u.uNodes, root);
+  if (!intersectRayAABB(org, invDir, Grow ? rootNode.lo - growBy : rootNode.lo,
+        Grow ? rootNode.hi + growBy : rootNode.hi, tmin, tmax, tnear))
   {
     return;
   }
   BvhStack stack;
   int sp = 0;
   int steps = 0;
-  std::uint32_t index = rootLo.w;
-  std::uint32_t count = rootHi.w;
+  std::uint32_t index = rootNode.index;
+  std::uint32_t count = rootNode.count;
   bool culled = false;
   for (;;)
   {
@@ -248,11 +255,9 @@ inline bool traverseTriangles(const ShaderInputs& u, int root, const vec3& org, 
     const int end = first + count;
     for (int i = first; i < end; ++i)
     {
-      const vec3 v0 = uintBitsToFloat(glm::uvec3(texelFetch(u.uTriangles, 3 * i)));
-      const vec3 v1 = uintBitsToFloat(glm::uvec3(texelFetch(u.uTriangles, 3 * i + 1)));
-      const vec3 v2 = uintBitsToFloat(glm::uvec3(texelFetch(u.uTriangles, 3 * i + 2)));
+      const Triangle triangle = fetchTriangle(u.uTriangles, i);
       vec3 h;
-      if (intersectRayTriangle(pre, v0, v1, v2, tmin, tmax, h))
+      if (intersectRayTriangle(pre, triangle.v0, triangle.v1, triangle.v2, tmin, tmax, h))
       {
         tmax = h.x;
         tri = i;
@@ -279,12 +284,14 @@ inline bool traverseSpheres(const ShaderInputs& u, int root, const vec3& org, co
     {
       if (ellipsoids)
       {
-        const int last = first + 3 * count;
-        for (int i = first; i < last; i += 3)
+        const int texels = static_cast<int>(kEllipsoidTexels);
+        const int last = first + texels * count;
+        for (int i = first; i < last; i += texels)
         {
-          const vec4 r0 = uintBitsToFloat(texelFetch(u.uSpheres, i));
-          const vec4 r1 = uintBitsToFloat(texelFetch(u.uSpheres, i + 1));
-          const vec4 r2 = uintBitsToFloat(texelFetch(u.uSpheres, i + 2));
+          const Ellipsoid e = fetchEllipsoid(u.uSpheres, i);
+          const vec4 r0 = e.rows[0];
+          const vec4 r1 = e.rows[1];
+          const vec4 r2 = e.rows[2];
           const vec3 unitOrg(glm::dot(vec3(r0), org) + r0.w, glm::dot(vec3(r1), org) + r1.w,
             glm::dot(vec3(r2), org) + r2.w);
           const vec3 unitDir(glm::dot(vec3(r0), dir), glm::dot(vec3(r1), dir), glm::dot(vec3(r2), dir));
@@ -300,13 +307,13 @@ inline bool traverseSpheres(const ShaderInputs& u, int root, const vec3& org, co
     }
     for (int i = first; i < end; ++i)
     {
-      vec4 s = uintBitsToFloat(texelFetch(u.uSpheres, i));
+      Sphere s = fetchSphere(u.uSpheres, i);
       if (u.screenSpheres)
       {
-        s.w += glm::max(0.0f, glm::dot(vec3(radiusPlane), vec3(s)) + radiusPlane.w);
+        s.radius += glm::max(0.0f, glm::dot(vec3(radiusPlane), s.center) + radiusPlane.w);
       }
       float t;
-      if (intersectRaySphere(org, dir, vec3(s), s.w, tmin, tmax, t))
+      if (intersectRaySphere(org, dir, s.center, s.radius, tmin, tmax, t))
       {
         tmax = t;
         sphere = i;
@@ -330,8 +337,8 @@ inline void traceTopLevel(const ShaderInputs& u, const vec3& org, const vec3& di
 {
   const vec3 anchorOrg = org + u.uCameraToAnchor;
   float tnear;
-  if (!intersectRayAABB(anchorOrg, invDir, boxCorner(texelFetch(u.uTopNodes, 0)),
-        boxCorner(texelFetch(u.uTopNodes, 1)), 0.0f, tBest, tnear))
+  const Node rootNode = fetchNode(u.uTopNodes, 0);
+  if (!intersectRayAABB(anchorOrg, invDir, rootNode.lo, rootNode.hi, 0.0f, tBest, tnear))
   {
     return;
   }
@@ -339,8 +346,9 @@ inline void traceTopLevel(const ShaderInputs& u, const vec3& org, const vec3& di
   std::uint32_t cur = 0;
   for (;;)
   {
-    const int index = static_cast<int>(texelFetch(u.uTopNodes, 2 * static_cast<int>(cur)).w);
-    const int count = static_cast<int>(texelFetch(u.uTopNodes, 2 * static_cast<int>(cur) + 1).w);
+    const Node node = fetchNode(u.uTopNodes, static_cast<int>(cur));
+    const int index = static_cast<int>(node.index);
+    const int count = static_cast<int>(node.count);
     if (count > 0)
     {
       for (int i = index; i < index + count; ++i)
@@ -355,10 +363,10 @@ inline void traceTopLevel(const ShaderInputs& u, const vec3& org, const vec3& di
     else
     {
       float t0, t1;
-      const bool h0 = intersectRayAABB(anchorOrg, invDir, boxCorner(texelFetch(u.uTopNodes, 2 * index)),
-        boxCorner(texelFetch(u.uTopNodes, 2 * index + 1)), 0.0f, tBest, t0);
-      const bool h1 = intersectRayAABB(anchorOrg, invDir, boxCorner(texelFetch(u.uTopNodes, 2 * index + 2)),
-        boxCorner(texelFetch(u.uTopNodes, 2 * index + 3)), 0.0f, tBest, t1);
+      const Node n0 = fetchNode(u.uTopNodes, index);
+      const Node n1 = fetchNode(u.uTopNodes, index + 1);
+      const bool h0 = intersectRayAABB(anchorOrg, invDir, n0.lo, n0.hi, 0.0f, tBest, t0);
+      const bool h1 = intersectRayAABB(anchorOrg, invDir, n1.lo, n1.hi, 0.0f, tBest, t1);
       if (walk.descend(static_cast<std::uint32_t>(index), h0, t0, h1, t1, cur))
       {
         continue;
