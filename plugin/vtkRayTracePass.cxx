@@ -4,6 +4,7 @@
 #include "pass/vtkRayTraceBuffers.h"
 #include "pass/vtkRayTraceLights.h"
 #include "pass/vtkRayTracePacker.h"
+#include "pass/vtkRayTraceRasterSteps.h"
 #include "pass/vtkRayTraceRecords.h"
 #include "pass/vtkRayTraceScene.h"
 #include "pass/vtkRayTraceSelection.h"
@@ -16,23 +17,18 @@
 #include "vtkLightsPass.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
-#include "vtkOpaquePass.h"
 #include "vtkOpenGLCamera.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkOpenGLState.h"
-#include "vtkOverlayPass.h"
 #include "vtkProp.h"
 #include "vtkPropCollection.h"
-#include "vtkRenderPassCollection.h"
 #include "vtkRenderState.h"
-#include "vtkSequencePass.h"
+#include "vtkRenderStepsPass.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
-#include "vtkTranslucentPass.h"
-#include "vtkVolumetricPass.h"
 #include "vtk_glew.h"
 
 #include <algorithm>
@@ -152,22 +148,10 @@ vtkStandardNewMacro(vtkRayTracePass);
 vtkRayTracePass::vtkRayTracePass()
   : Internal(new Internals)
 {
-  // Default delegate: everything a vtkRenderStepsPass does after the camera
-  // pass (which would clear the traced image).
-  vtkNew<vtkRenderPassCollection> passes;
-  vtkNew<vtkLightsPass> lights;
-  vtkNew<vtkOpaquePass> opaque;
-  vtkNew<vtkTranslucentPass> translucent;
-  vtkNew<vtkVolumetricPass> volumes;
-  vtkNew<vtkOverlayPass> overlay;
-  passes->AddItem(lights);
-  passes->AddItem(opaque);
-  passes->AddItem(translucent);
-  passes->AddItem(volumes);
-  passes->AddItem(overlay);
-  vtkNew<vtkSequencePass> sequence;
-  sequence->SetPasses(passes);
-  this->SetDelegatePass(sequence);
+  // Default delegate: what the renderer draws without a pass, after its
+  // clear (which would wipe the traced image).
+  vtkNew<vtkRayTraceRasterSteps> steps;
+  this->SetDelegatePass(steps);
 }
 
 vtkRayTracePass::~vtkRayTracePass()
@@ -631,8 +615,24 @@ void vtkRayTracePass::Internals::RenderOthers(
   rest.SetPropArrayAndCount(this->Others.data(), static_cast<int>(this->Others.size()));
   rest.SetFrameBuffer(s->GetFrameBuffer());
   rest.SetRequiredKeys(s->GetRequiredKeys());
-  pass.DelegatePass->Render(&rest);
-  pass.NumberOfRenderedProps += pass.DelegatePass->GetNumberOfRenderedProps();
+  auto* steps = vtkRenderStepsPass::SafeDownCast(pass.DelegatePass);
+  if (!steps)
+  {
+    pass.DelegatePass->Render(&rest);
+    pass.NumberOfRenderedProps += pass.DelegatePass->GetNumberOfRenderedProps();
+    return;
+  }
+  // A vtkRenderStepsPass: its steps after the camera pass, whose clear would
+  // wipe the traced image (and its post-processing, which wraps that pass).
+  for (vtkRenderPass* step : { steps->GetLightsPass(), steps->GetOpaquePass(),
+         steps->GetTranslucentPass(), steps->GetVolumetricPass(), steps->GetOverlayPass() })
+  {
+    if (step)
+    {
+      step->Render(&rest);
+      pass.NumberOfRenderedProps += step->GetNumberOfRenderedProps();
+    }
+  }
 }
 
 void vtkRayTracePass::Render(const vtkRenderState* s)

@@ -76,9 +76,13 @@ public:
   ///@{
   /**
    * The pass that renders the props this pass does not trace, after the
-   * traced image (and its depth) is in place. By default a sequence of
-   * vtkLightsPass, vtkOpaquePass, vtkTranslucentPass, vtkVolumetricPass and
-   * vtkOverlayPass. It must not clear.
+   * traced image (and its depth) is in place, composited by depth. By
+   * default the renderer's own steps: lights, opaque, translucent geometry
+   * as the renderer says (order-independent blending, or depth peeling with
+   * UseDepthPeeling, MaximumNumberOfPeels, OcclusionRatio and
+   * UseDepthPeelingForVolumes), volumes, overlays. A vtkRenderStepsPass
+   * runs without its camera pass (which would clear the traced image) and
+   * post-processing; any other pass must not clear.
    */
   void SetDelegatePass(vtkRenderPass* pass);
   vtkRenderPass* GetDelegatePass();

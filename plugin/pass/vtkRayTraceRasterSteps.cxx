@@ -1,0 +1,115 @@
+#include "vtkRayTraceRasterSteps.h"
+
+#include "vtkDualDepthPeelingPass.h"
+#include "vtkLightsPass.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpaquePass.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkOrderIndependentTranslucentPass.h"
+#include "vtkOverlayPass.h"
+#include "vtkProp.h"
+#include "vtkRenderState.h"
+#include "vtkTranslucentPass.h"
+#include "vtkVolumetricPass.h"
+
+vtkStandardNewMacro(vtkRayTraceRasterSteps);
+
+vtkRayTraceRasterSteps::vtkRayTraceRasterSteps()
+  : Lights(vtkSmartPointer<vtkLightsPass>::New())
+  , Opaque(vtkSmartPointer<vtkOpaquePass>::New())
+  , Volumes(vtkSmartPointer<vtkVolumetricPass>::New())
+  , Overlay(vtkSmartPointer<vtkOverlayPass>::New())
+  , Blended(vtkSmartPointer<vtkOrderIndependentTranslucentPass>::New())
+{
+  vtkNew<vtkTranslucentPass> translucent;
+  this->Blended->SetTranslucentPass(translucent);
+}
+
+vtkRayTraceRasterSteps::~vtkRayTraceRasterSteps() = default;
+
+void vtkRayTraceRasterSteps::Step(vtkRenderPass* pass, const vtkRenderState* s)
+{
+  pass->Render(s);
+  this->NumberOfRenderedProps += pass->GetNumberOfRenderedProps();
+}
+
+bool vtkRayTraceRasterSteps::Translucent(const vtkRenderState* s, vtkOpenGLRenderer* ren)
+{
+  if (!ren->GetUseDepthPeeling())
+  {
+    this->Step(this->Blended, s);
+    return false;
+  }
+  if (!this->Peeled)
+  {
+    if (ren->IsDualDepthPeelingSupported())
+    {
+      this->Peeled = vtkSmartPointer<vtkDualDepthPeelingPass>::New();
+    }
+    else
+    {
+      this->Peeled = vtkSmartPointer<vtkDepthPeelingPass>::New();
+    }
+    vtkNew<vtkTranslucentPass> translucent;
+    this->Peeled->SetTranslucentPass(translucent);
+  }
+  auto* dual = vtkDualDepthPeelingPass::SafeDownCast(this->Peeled);
+  const bool peelVolumes = ren->GetUseDepthPeelingForVolumes() && dual;
+  if (ren->GetUseDepthPeelingForVolumes() && !dual)
+  {
+    vtkWarningMacro("UseDepthPeelingForVolumes requested, but unsupported since dual depth "
+                    "peeling is not available.");
+  }
+  if (dual)
+  {
+    dual->SetVolumetricPass(peelVolumes ? this->Volumes.Get() : nullptr);
+  }
+  this->Peeled->SetMaximumNumberOfPeels(ren->GetMaximumNumberOfPeels());
+  this->Peeled->SetOcclusionRatio(ren->GetOcclusionRatio());
+  this->Step(this->Peeled, s);
+  return peelVolumes;
+}
+
+void vtkRayTraceRasterSteps::Render(const vtkRenderState* s)
+{
+  this->NumberOfRenderedProps = 0;
+  auto* ren = vtkOpenGLRenderer::SafeDownCast(s->GetRenderer());
+  if (!ren)
+  {
+    vtkErrorMacro("vtkRayTraceRasterSteps needs a vtkOpenGLRenderer.");
+    return;
+  }
+  this->Step(this->Lights, s);
+  this->Step(this->Opaque, s);
+  bool translucent = false;
+  for (int i = 0; i < s->GetPropArrayCount() && !translucent; ++i)
+  {
+    translucent = s->GetPropArray()[i]->HasTranslucentPolygonalGeometry() != 0;
+  }
+  const bool volumesPeeled = translucent && this->Translucent(s, ren);
+  if (!volumesPeeled)
+  {
+    this->Step(this->Volumes, s);
+  }
+  this->Step(this->Overlay, s);
+}
+
+void vtkRayTraceRasterSteps::ReleaseGraphicsResources(vtkWindow* w)
+{
+  for (vtkRenderPass* pass : { this->Lights.Get(), this->Opaque.Get(), this->Volumes.Get(),
+         this->Overlay.Get(), static_cast<vtkRenderPass*>(this->Blended.Get()),
+         static_cast<vtkRenderPass*>(this->Peeled.Get()) })
+  {
+    if (pass)
+    {
+      pass->ReleaseGraphicsResources(w);
+    }
+  }
+}
+
+void vtkRayTraceRasterSteps::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Peeled: " << this->Peeled << "\n";
+}

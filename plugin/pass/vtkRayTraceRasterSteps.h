@@ -1,0 +1,55 @@
+/**
+ * @class   vtkRayTraceRasterSteps
+ * @brief   private to vtkRayTracePass: its default delegate, which draws the
+ *          props the pass does not trace as vtkOpenGLRenderer draws them.
+ *
+ * After the traced image and its depth are in place, the steps of
+ * vtkOpenGLRenderer::UpdateGeometry without a pass, minus its clear: lights,
+ * opaque geometry, translucent geometry (only when some prop has any) in
+ * depth order as the renderer says — order-independent blending, or depth
+ * peeling (dual when the context supports it) with the renderer's
+ * MaximumNumberOfPeels and OcclusionRatio, volumes peeled with them when
+ * UseDepthPeelingForVolumes —, volumes, overlays.
+ */
+#ifndef vtkRayTraceRasterSteps_h
+#define vtkRayTraceRasterSteps_h
+
+#include "vtkRenderPass.h"
+#include "vtkSmartPointer.h"
+
+class vtkDepthPeelingPass;
+class vtkOpenGLRenderer;
+class vtkOrderIndependentTranslucentPass;
+
+class vtkRayTraceRasterSteps : public vtkRenderPass
+{
+public:
+  static vtkRayTraceRasterSteps* New();
+  vtkTypeMacro(vtkRayTraceRasterSteps, vtkRenderPass);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  void Render(const vtkRenderState* s) override;
+  void ReleaseGraphicsResources(vtkWindow* w) override;
+
+protected:
+  vtkRayTraceRasterSteps();
+  ~vtkRayTraceRasterSteps() override;
+
+private:
+  vtkRayTraceRasterSteps(const vtkRayTraceRasterSteps&) = delete;
+  void operator=(const vtkRayTraceRasterSteps&) = delete;
+
+  /// Renders `pass` over `s` and counts its props.
+  void Step(vtkRenderPass* pass, const vtkRenderState* s);
+  /// The translucent step; true when it peeled the volumes too.
+  bool Translucent(const vtkRenderState* s, vtkOpenGLRenderer* ren);
+
+  vtkSmartPointer<vtkRenderPass> Lights;
+  vtkSmartPointer<vtkRenderPass> Opaque;
+  vtkSmartPointer<vtkRenderPass> Volumes;
+  vtkSmartPointer<vtkRenderPass> Overlay;
+  vtkSmartPointer<vtkOrderIndependentTranslucentPass> Blended;
+  vtkSmartPointer<vtkDepthPeelingPass> Peeled; ///< made on first use: dual when supported
+};
+
+#endif
