@@ -94,6 +94,15 @@ public:
   void MakeCurrent() override;
   void ReleaseCurrent() override;
   bool IsCurrent() override;
+
+  /**
+   * Makes this context current, keeping whichever was (any EGL context, or
+   * none); PopContext makes that one current again. VTK releases a window's
+   * graphics resources between the two while another window renders.
+   */
+  void PushContext() override;
+  void PopContext() override;
+
   int SupportsOpenGL() override;
   vtkTypeBool IsDirect() override;
   void* GetGenericDisplayId() override;

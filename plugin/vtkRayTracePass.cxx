@@ -12,6 +12,7 @@
 #include "pass/vtkRayTraceTopLevel.h"
 
 #include "vtkActor.h"
+#include "vtkCallbackCommand.h"
 #include "vtkDataObject.h"
 #include "vtkHardwareSelector.h"
 #include "vtkLightsPass.h"
@@ -29,6 +30,7 @@
 #include "vtkRenderStepsPass.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
+#include "vtkWeakPointer.h"
 #include "vtk_glew.h"
 
 #include <algorithm>
@@ -80,7 +82,10 @@ struct vtkRayTracePass::Internals
   std::vector<vtkProp*> Others;
   FrameCounters Counters;
   vtkrt::pass::ProgramCache Programs;
-  vtkOpenGLRenderWindow* Window = nullptr;
+  /// The window whose context holds the pass's GL objects (none yet, or
+  /// released); watched so they are released before it goes.
+  vtkWeakPointer<vtkOpenGLRenderWindow> Window;
+  unsigned long WindowDeleteObserver = 0;
   bool GeometryOnGpu = false;
   bool ColorsOnGpu = false;
   bool GeometryValid = true;
@@ -116,8 +121,61 @@ struct vtkRayTracePass::Internals
     this->Top.Clear();
   }
 
+  /// Makes `win` the window of the pass's GL objects: those of the window
+  /// before are released in its own context first.
+  void Attach(vtkOpenGLRenderWindow* win)
+  {
+    if (win == this->Window)
+    {
+      return;
+    }
+    this->Detach();
+    // A window's PopContext may not restore the context (VTK's default).
+    win->MakeCurrent();
+    this->Window = win;
+    auto release = vtkSmartPointer<vtkCallbackCommand>::New();
+    release->SetClientData(this);
+    release->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+      static_cast<Internals*>(self)->Detach();
+    });
+    this->WindowDeleteObserver = win->AddObserver(vtkCommand::DeleteEvent, release);
+  }
+
+  /// Releases the GL objects in their window's context (made current for it,
+  /// then the current one is restored) and forgets the window.
+  void Detach()
+  {
+    vtkOpenGLRenderWindow* win = this->Window;
+    if (!win)
+    {
+      return;
+    }
+    win->RemoveObserver(this->WindowDeleteObserver);
+    win->PushContext();
+    this->ReleaseGL(win);
+    win->PopContext();
+    this->Window = nullptr;
+  }
+
   /// The renderer's props -> traced instances and the props left to raster.
   void Extract(const vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren);
+  /// A scene that could not be uploaded: its props go to the raster
+  /// delegate this frame (the state's ones) and nothing counts as traced.
+  void LeaveTracedToRaster(const vtkRenderState* s)
+  {
+    vtkProp** props = s->GetPropArray();
+    const int count = s->GetPropArrayCount();
+    for (vtkProp* prop : this->Traced)
+    {
+      if (std::find(props, props + count, prop) != props + count)
+      {
+        this->Others.push_back(prop);
+      }
+    }
+    this->Traced.clear();
+    this->Counters.TracedPrimitives = 0;
+    this->Counters.TracedInstances = 0;
+  }
   /// Packs and uploads the geometry and colors that changed.
   void Upload(const vtkRayTracePass& pass, vtkOpenGLRenderWindow* win);
   /// Records (of the props `traced` says, all when null), top level,
@@ -156,6 +214,7 @@ vtkRayTracePass::vtkRayTracePass()
 
 vtkRayTracePass::~vtkRayTracePass()
 {
+  this->Internal->Detach();
   this->SetDelegatePass(nullptr);
 }
 
@@ -279,9 +338,8 @@ const char* vtkRayTracePass::GetLastFragmentShaderSource() const
 
 void vtkRayTracePass::ReleaseGraphicsResources(vtkWindow* w)
 {
-  this->Internal->ReleaseGL(w);
   // The window may be going away: the next Render starts afresh.
-  this->Internal->Window = nullptr;
+  this->Internal->Detach();
   if (this->DelegatePass)
   {
     this->DelegatePass->ReleaseGraphicsResources(w);
@@ -591,8 +649,7 @@ void vtkRayTracePass::Internals::Select(vtkRayTracePass& pass, const vtkRenderSt
     maximum = std::max(maximum, inst.Geom->MaximumId);
   }
   Prepared p;
-  if (!this->Scene.GetInstances().empty() && this->GeometryValid && this->ColorsValid &&
-    this->Prepare(pass, ren, win, cam, &traced, true, p))
+  if (!this->Traced.empty() && this->Prepare(pass, ren, win, cam, &traced, true, p))
   {
     this->Selecting.TraceIds(win, ren, p.Tracer);
     for (vtkTextureObject* t : p.Active)
@@ -647,16 +704,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     vtkErrorMacro("vtkRayTracePass needs a vtkOpenGLRenderer in a vtkOpenGLRenderWindow.");
     return;
   }
-  if (win != in.Window)
-  {
-    if (in.Window)
-    {
-      in.ReleaseGL(in.Window);
-    }
-    in.Window = win;
-    in.GeometryOnGpu = false;
-    in.ColorsOnGpu = false;
-  }
+  in.Attach(win);
   vtkOpenGLCamera* cam = vtkOpenGLCamera::SafeDownCast(ren->GetActiveCamera());
   if (!cam)
   {
@@ -679,6 +727,10 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   }
   in.Upload(*this, win);
+  if (!in.GeometryValid || !in.ColorsValid)
+  {
+    in.LeaveTracedToRaster(s);
+  }
   vtkHardwareSelector* selector = ren->GetSelector();
   if (selector && !this->IdMode)
   {
@@ -686,7 +738,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     vtkOpenGLCheckErrorMacro("failed after vtkRayTracePass::Render (selection)");
     return;
   }
-  if (!in.Scene.GetInstances().empty() && in.GeometryValid && in.ColorsValid)
+  if (!in.Traced.empty())
   {
     in.Trace(*this, ren, win, cam, framesBefore);
   }

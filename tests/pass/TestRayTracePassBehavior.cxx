@@ -5,6 +5,9 @@
 //                     an actor moves
 //   Lifecycle         the pass removed and installed again, its window
 //                     destroyed and replaced
+//   MovedBetweenWindows one pass moved between two live windows' renderers and
+//                     back, then its first window deleted: every frame traced
+//                     as by a fresh pass, raster unharmed
 //   App <vtkrt-render> vtkrt-render --mode raytrace on the demo and on a file,
 //                     against its raster mode
 // TestRayTracePassBehavior <Case> [vtkrt-render path].
@@ -224,6 +227,69 @@ void TestLifecycle()
   NoVTKOutput("lifecycle");
 }
 
+void TestMovedBetweenWindows()
+{
+  auto scene = [](vtkSmartPointer<vtkRenderer>& ren) {
+    auto win = MakeWindow(120, 120);
+    ren = vtkSmartPointer<vtkRenderer>::New();
+    ren->AddActor(MeshActor(ReadPolyData("bunny.vtp")));
+    ren->ResetCamera();
+    win->AddRenderer(ren);
+    return win;
+  };
+  vtkSmartPointer<vtkRenderer> ren1, ren2;
+  auto win1 = scene(ren1);
+  auto win2 = scene(ren2);
+  win1->Render();
+  auto raster1 = Grab(win1);
+  // What a fresh pass traces in each window.
+  auto tracedBy = [](vtkRenderWindow* win, vtkRenderer* ren) {
+    vtkNew<vtkRayTracePass> fresh;
+    ren->SetPass(fresh);
+    win->Render();
+    auto image = Grab(win);
+    ren->SetPass(nullptr);
+    win->Render();
+    return image;
+  };
+  auto traced1 = tracedBy(win1, ren1);
+  ren2->GetActiveCamera()->Azimuth(30);
+  auto traced2 = tracedBy(win2, ren2);
+
+  vtkNew<vtkRayTracePass> pass;
+  ren1->SetPass(pass);
+  win1->Render();
+  Check(Difference(Grab(win1), traced1) == 0.0, "moved: traced in the first window");
+  ren1->SetPass(nullptr);
+  ren2->SetPass(pass);
+  for (int frame = 0; frame < 3; ++frame)
+  {
+    win2->Render();
+    Check(Difference(Grab(win2), traced2) == 0.0,
+      "moved: frame " + std::to_string(frame) + " in the second window as a fresh pass's");
+  }
+  win1->Render();
+  Check(Difference(Grab(win1), raster1) == 0.0, "moved: the first window's raster is unharmed");
+  ren2->SetPass(nullptr);
+  ren1->SetPass(pass);
+  win1->Render();
+  Check(Difference(Grab(win1), traced1) == 0.0, "moved back: traced in the first window again");
+  // The first window goes while the pass is elsewhere: its objects go with
+  // it, and raster and the pass go on elsewhere.
+  ren1->SetPass(nullptr);
+  ren2->SetPass(pass);
+  win1->RemoveRenderer(ren1);
+  win1 = nullptr;
+  win2->Render();
+  Check(Difference(Grab(win2), traced2) == 0.0, "first window deleted: the second still traced");
+  vtkSmartPointer<vtkRenderer> ren3;
+  auto win3 = scene(ren3);
+  win3->Render();
+  Check(Difference(Grab(win3), raster1) == 0.0, "first window deleted: raster elsewhere unharmed");
+  NoGLError(win2, "moved");
+  NoVTKOutput("moved");
+}
+
 void TestApp()
 {
   if (AppPath.empty())
@@ -277,6 +343,7 @@ int main(int argc, char* argv[])
     { "Counters", TestCounters },
     { "ManyActors", TestManyActors },
     { "Lifecycle", TestLifecycle },
+    { "MovedBetweenWindows", TestMovedBetweenWindows },
     { "App", TestApp },
   };
   if (argc > 2)

@@ -3,8 +3,8 @@
 //                     at the origin
 //   Degenerate        empty renderer, empty polydata, NaN points: clean image,
 //                     no GL error, no VTK error
-//   TooLarge          buffers over the texture-buffer limit: a clear error
-//                     and nothing traced (never garbage)
+//   TooLarge          buffers over the texture-buffer limit: a clear error,
+//                     raster draws the props instead, nothing counts as traced
 // TestRayTracePassRobustness <Case>.
 #include "vtkrtPassTestUtils.h"
 #include "vtkrtTestOutputWindow.h"
@@ -201,6 +201,8 @@ void TestTooLarge()
   win->AddRenderer(ren);
   ren->AddActor(MeshActor(ReadPolyData("bunny.vtp")));
   ren->ResetCamera();
+  win->Render();
+  auto raster = Grab(win);
   vtkNew<vtkRayTracePass> pass;
   pass->SetMaximumTextureBufferTexels(10000);
   ren->SetPass(pass);
@@ -209,16 +211,24 @@ void TestTooLarge()
   Output->SetEcho(true);
   Check(Output->HasErrorContaining("more than the limit"), "too large: a clear error message");
   Output->Clear();
-  Check(CountForegroundPixels(Grab(win), background) == 0, "too large: nothing traced, no garbage");
+  // Nothing is lost: raster draws what could not be traced, and nothing
+  // counts as traced.
+  Check(Difference(Grab(win), raster) == 0.0, "too large: raster draws the mesh instead");
+  Check(pass->GetNumberOfTracedProps() == 0 && pass->GetLastTracedPrimitives() == 0 &&
+      pass->GetLastTracedInstances() == 0,
+    "too large: nothing counted as traced");
   NoGLError(win, "too large");
-  // The same frame again: no repeated error, still nothing traced.
+  // The same frame again: no repeated error, still raster.
   win->Render();
   Check(Output->GetNumberOfErrors() == 0, "too large: the error is not repeated every frame");
-  Check(CountForegroundPixels(Grab(win), background) == 0, "too large: still nothing traced");
-  // The limit lifted, the same pass renders (nothing changed but the limit).
+  Check(Difference(Grab(win), raster) == 0.0 && pass->GetLastTracedPrimitives() == 0,
+    "too large: still raster");
+  // The limit lifted, the same pass traces (nothing changed but the limit).
   pass->SetMaximumTextureBufferTexels(0);
   win->Render();
-  Check(CountForegroundPixels(Grab(win), background) > 0, "limit lifted: the scene renders");
+  Check(CountForegroundPixels(Grab(win), background) > 0 && pass->GetNumberOfTracedProps() == 1 &&
+      pass->GetLastTracedPrimitives() > 0,
+    "limit lifted: the scene is traced");
   NoVTKOutput("too large");
 }
 } // namespace
