@@ -434,6 +434,7 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   f.Triangles = this->Scene.HasTriangles();
   f.Spheres = this->Scene.HasSpheres();
   f.VertexNormals = this->Scene.HasVertexNormals();
+  f.CellNormals = this->Scene.HasCellNormals();
   f.Colors = this->Scene.HasColors();
   f.ColorTexture = this->Scene.HasColorTexture();
   f.ClipPlanes = static_cast<int>(frame.ClipPlanes.size() / 4);

@@ -35,10 +35,12 @@
  *   or, scaled by vector components, as analytic ellipsoids (each ray is
  *   mapped onto the glyph's unit sphere; orientation by direction, rotation
  *   or quaternion, as vtkOpenGLGlyph3DMapper).
- * Shading: vtkProperty ambient/diffuse/specular, flat or interpolated point
- * normals, point or cell scalars mapped by the mapper's LUT (point scalars
- * with InterpolateScalarsBeforeMapping through its color texture, sampled
- * like raster; glyphs then take the property color, as VTK 9.1's), the renderer's
+ * Shading: vtkProperty ambient/diffuse/specular, normals as
+ * vtkOpenGLPolyDataMapper takes them (interpolated point normals unless flat,
+ * else cell normals, else each triangle's geometric normal), point or cell
+ * scalars mapped by the mapper's LUT (point scalars with
+ * InterpolateScalarsBeforeMapping through its color texture, sampled like
+ * raster; glyphs then take the property color, as VTK 9.1's), the renderer's
  * lights (VTK's lighting complexities 0-3), mapper clipping planes.
  * Background: VTK's own clear (solid, gradient) shows where rays miss.
  *

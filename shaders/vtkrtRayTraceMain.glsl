@@ -33,8 +33,8 @@ const vec3 uEye = vec3(0.0);
 #ifdef VTKRT_HAS_COLORS
 uniform usamplerBuffer uColors; // packed RGBA8, four per texel
 #endif
-#ifdef VTKRT_HAS_VERTEX_NORMALS
-uniform usamplerBuffer uNormals; // a Normal per vertex
+#if defined(VTKRT_HAS_VERTEX_NORMALS) || defined(VTKRT_HAS_CELL_NORMALS)
+uniform usamplerBuffer uNormals; // a Normal per point, or per VTK cell
 #endif
 #ifdef VTKRT_HAS_TRIANGLE_VERTICES
 uniform usamplerBuffer uTriangleVertices; // TriangleVertices per triangle
@@ -554,6 +554,14 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 #endif
     }
 #endif
+#ifdef VTKRT_HAS_CELL_NORMALS
+    if ((flags & kInstanceCellNormals) != 0u)
+    {
+      // One normal per VTK cell, over all of its triangles (as raster).
+      int nb = int(instanceNormalBase(hitInstance));
+      localNormal = fetchNormal(uNormals, nb + int(vtkId)).direction;
+    }
+#endif
 #ifdef VTKRT_HAS_COLORS
     if ((flags & kInstanceCellColors) != 0u)
     {
@@ -577,24 +585,18 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
   mat3 cameraToLocal = mat3(r0.xyz, r1.xyz, r2.xyz); // columns = rows of the matrix
   vec3 n = normalize(cameraToLocal * localNormal);
   vec3 ng = mirror * (cameraToLocal * geometricNormal);
-  if ((flags & kInstanceVertexNormals) != 0u)
+  if ((flags & (kInstanceVertexNormals | kInstanceCellNormals)) != 0u)
   {
-    // VTK flips interpolated normals on back-facing triangles.
+    // VTK flips point and cell normals on back-facing triangles.
     if (dot(ng, dir) > 0.0)
     {
       n = -n;
     }
   }
-  else if ((flags & kInstanceSpheres) != 0u)
+  else if (dot(n, dir) > 0.0)
   {
-    if (dot(n, dir) > 0.0)
-    {
-      n = -n;
-    }
-  }
-  else if (dot(n, uViewBack) < 0.0)
-  {
-    // VTK's derivative normal faces the viewer: normalVC.z >= 0.
+    // Spheres, and VTK's derivative normal where there are no normals, face
+    // the eye (the ray), not just the view plane.
     n = -n;
   }
 

@@ -2,6 +2,7 @@
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -77,18 +78,18 @@ void triangulate(vtkPolyData* poly, std::vector<std::uint32_t>& indices, std::ve
   }
 }
 
-/// The data's point normals, when there is one per point.
-void readNormals(vtkPolyData* poly, std::size_t pointCount, std::vector<core::gpu::Normal>& out)
+/// `normals` as GPU records when it holds `count` vectors (one per point, or
+/// per cell); else nothing.
+void readNormals(vtkDataArray* normals, std::size_t count, std::vector<core::gpu::Normal>& out)
 {
-  vtkDataArray* normals = poly->GetPointData()->GetNormals();
   if (!normals || normals->GetNumberOfComponents() != 3 ||
-    normals->GetNumberOfTuples() != static_cast<vtkIdType>(pointCount))
+    normals->GetNumberOfTuples() != static_cast<vtkIdType>(count))
   {
     return;
   }
-  out.resize(pointCount);
+  out.resize(count);
   double nv[3];
-  for (std::size_t i = 0; i < pointCount; ++i)
+  for (std::size_t i = 0; i < count; ++i)
   {
     normals->GetTuple(static_cast<vtkIdType>(i), nv);
     out[i] = { { static_cast<float>(nv[0]), static_cast<float>(nv[1]), static_cast<float>(nv[2]) }, 0.0f };
@@ -145,7 +146,9 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
     t.unused1 = t.unused2 = 0.0f;
     g->TriangleVertices[k].unused = 0;
   }
-  readNormals(poly, points.size(), g->Normals);
+  readNormals(poly->GetPointData()->GetNormals(), points.size(), g->Normals);
+  readNormals(poly->GetCellData()->GetNormals(), static_cast<std::size_t>(poly->GetNumberOfCells()),
+    g->CellNormals);
   return g;
 }
 

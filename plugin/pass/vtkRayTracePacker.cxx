@@ -54,6 +54,8 @@ PackedGeometry PackGeometry(const Scene& scene)
         out.TriangleVertices.end(), g.TriangleVertices.begin(), g.TriangleVertices.end());
       place.NormalBase = static_cast<std::uint32_t>(out.Normals.size());
       out.Normals.insert(out.Normals.end(), g.Normals.begin(), g.Normals.end());
+      place.CellNormalBase = static_cast<std::uint32_t>(out.Normals.size());
+      out.Normals.insert(out.Normals.end(), g.CellNormals.begin(), g.CellNormals.end());
     }
     // Local child / primitive indices become global ones.
     for (core::gpu::Node node : g.Nodes)

@@ -19,8 +19,9 @@ class Scene;
 /// Where a geometry's records start in the packed buffers.
 struct GeometryPlacement
 {
-  std::uint32_t Root = 0;       ///< its root node
-  std::uint32_t NormalBase = 0; ///< its first vertex normal
+  std::uint32_t Root = 0;           ///< its root node
+  std::uint32_t NormalBase = 0;     ///< its first point normal
+  std::uint32_t CellNormalBase = 0; ///< its first cell normal (after its point normals)
 };
 
 /// Every traced geometry in the upload layout. Node indices are global:

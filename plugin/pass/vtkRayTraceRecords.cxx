@@ -184,6 +184,7 @@ std::uint32_t instanceFlags(const Instance& inst, bool mirrored)
   flags |= g.Ellipsoids ? kInstanceEllipsoids : 0u;
   flags |= inst.Lit ? kInstanceLit : 0u;
   flags |= inst.UseVertexNormals ? kInstanceVertexNormals : 0u;
+  flags |= inst.UseCellNormals ? kInstanceCellNormals : 0u;
   if (inst.Color)
   {
     flags |= inst.Color->CellColors ? kInstanceCellColors : kInstancePointColors;
@@ -257,7 +258,7 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     }
     rec.specularPower = inst.SpecularPower;
     rec.colorBase = inst.Color ? colorBase->second : 0u;
-    rec.normalBase = place->second.NormalBase;
+    rec.normalBase = inst.UseCellNormals ? place->second.CellNormalBase : place->second.NormalBase;
     rec.firstClipPlane = static_cast<std::uint32_t>(out.ClipPlanes.size() / 4);
     rec.clipPlaneCount = static_cast<std::uint32_t>(inst.ClipPlanes.size());
     rec.propIndex = static_cast<std::uint32_t>(inst.PropIndex);

@@ -213,7 +213,10 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
       Instance tri = inst;
       tri.Geom = entry.get();
       tri.Color = this->GetColors(mapper, poly, time);
+      // As vtkOpenGLPolyDataMapper: point normals unless flat, else cell
+      // normals, else the geometric normal.
       tri.UseVertexNormals = !entry->Normals.empty() && property->GetInterpolation() != VTK_FLAT;
+      tri.UseCellNormals = !tri.UseVertexNormals && !entry->CellNormals.empty();
       this->Instances.push_back(tri);
     }
   }
@@ -380,6 +383,11 @@ bool Scene::HasVertexNormals() const
 {
   return std::any_of(this->Instances.begin(), this->Instances.end(),
     [](const Instance& i) { return i.UseVertexNormals; });
+}
+bool Scene::HasCellNormals() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.UseCellNormals; });
 }
 bool Scene::HasColors() const
 {

@@ -83,6 +83,7 @@ public:
   bool HasScreenSpheres() const;
   bool HasEllipsoids() const;
   bool HasVertexNormals() const;
+  bool HasCellNormals() const;
   bool HasColors() const;
   bool HasColorTexture() const;
 

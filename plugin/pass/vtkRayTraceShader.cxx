@@ -31,7 +31,7 @@ std::string Features::Key() const
     << this->TopLevel << "A" << this->SamplesPerPixel << "H" << this->Shadows << "O"
     << this->AmbientOcclusionSamples << "M" << this->MaximumTraversalSteps << "W"
     << this->WorldCoordinates << "Q" << this->ScreenSpheres << "E" << this->Ellipsoids << "X"
-    << this->ColorTexture << "K" << this->SelectIds;
+    << this->ColorTexture << "K" << this->SelectIds << "F" << this->CellNormals;
   return s.str();
 }
 
@@ -49,6 +49,7 @@ std::string AssembleShader(const Features& f)
   define(f.Triangles, "VTKRT_HAS_TRIANGLES");
   define(f.Spheres, "VTKRT_HAS_SPHERES");
   define(f.VertexNormals, "VTKRT_HAS_VERTEX_NORMALS");
+  define(f.CellNormals, "VTKRT_HAS_CELL_NORMALS");
   define(f.Colors, "VTKRT_HAS_COLORS");
   define(f.ColorTexture, "VTKRT_HAS_COLOR_TEXTURE");
   define(f.Triangles && (f.VertexNormals || f.Colors), "VTKRT_HAS_TRIANGLE_VERTICES");

@@ -41,7 +41,8 @@ struct Geometry
   std::vector<core::gpu::Sphere> SphereRecords;       ///< leaf order
   std::vector<core::gpu::Ellipsoid> EllipsoidRecords; ///< leaf order
   std::vector<std::uint32_t> SphereIds; ///< VTK point id per sphere texel (leaf order)
-  std::vector<core::gpu::Normal> Normals; ///< per vertex, empty if none
+  std::vector<core::gpu::Normal> Normals; ///< per point, empty if none
+  std::vector<core::gpu::Normal> CellNormals; ///< per VTK cell id, empty if none
   std::size_t PrimitiveCount = 0;
   std::uint32_t MaximumId = 0; ///< the largest VTK cell (triangles) or point (spheres) id
   std::size_t VertexCount = 0;
@@ -91,6 +92,7 @@ struct Instance
   float DiffuseIntensity = 1.0f; ///< the ambient and diffuse colors (VTK 9.1)
   bool Lit = true;
   bool UseVertexNormals = false;
+  bool UseCellNormals = false; ///< one normal per cell (none per point, or flat)
   double PointSize = 0.0; ///< > 0: screen-sized spheres this many pixels wide
   std::vector<std::array<double, 4>> ClipPlanes; ///< world: n.x + d >= 0 kept
 };
@@ -101,6 +103,7 @@ struct Features
   bool Triangles = false;
   bool Spheres = false;
   bool VertexNormals = false;
+  bool CellNormals = false;
   bool Colors = false;
   bool ColorTexture = false; ///< some colors come through a color texture
   int ClipPlanes = 0;

@@ -100,7 +100,7 @@ struct Ellipsoid
 #define VTKRT_GPU_ELLIPSOID_FIELDS(FIELD, PAD) FIELD(Ellipsoid, rows)
 constexpr std::uint32_t kEllipsoidTexels = 3;
 
-/// A vertex normal.
+/// A point normal, or a cell normal (indexed by VTK cell id).
 struct Normal
 {
   vec3 direction;
@@ -125,7 +125,7 @@ struct InstanceRecord
   vec3 diffuse;
   std::uint32_t colorBase;   ///< first packed color (or color texture header)
   vec3 specular;
-  std::uint32_t normalBase;  ///< first vertex normal
+  std::uint32_t normalBase;  ///< first point (or, with CellNormals, cell) normal
   std::uint32_t firstClipPlane;
   std::uint32_t clipPlaneCount;
   std::uint32_t propIndex;
@@ -181,7 +181,8 @@ enum class Indexing
   X(CellColors, 16u)                                                                               \
   X(Mirrored, 32u)                                                                                 \
   X(Ellipsoids, 64u)                                                                               \
-  X(ColorTexture, 128u)
+  X(ColorTexture, 128u)                                                                            \
+  X(CellNormals, 256u)
 
 enum InstanceFlags : std::uint32_t
 {
