@@ -423,6 +423,12 @@ bool anyHit(vec3 org, vec3 dir, float tmax)
 // Traces and shades the ray through a point of the viewport (normalized
 // device coordinates): false on a miss, else the shaded color (the encoded
 // id in id mode) and the hit's window depth.
+// Raster lines and points lying on a traced surface (VTK's pick outline,
+// wireframes, edges) pass the depth test as they do over raster's own
+// triangles: the traced depth is pushed back by a few steps of a 24-bit depth
+// buffer, more than the float error of the hit's depth.
+const float kCoincidentDepthBias = 16.0 / 16777216.0;
+
 bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 {
   outColor = vec4(0.0);
@@ -453,7 +459,7 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 
   vec3 p = org + tBest * dir;
   vec4 clip = uCameraToClip * vec4(p, 1.0);
-  outDepth = clamp(0.5 * (clip.z / clip.w) + 0.5, 0.0, 1.0);
+  outDepth = clamp(0.5 * (clip.z / clip.w) + 0.5 + kCoincidentDepthBias, 0.0, 1.0);
 
   vec4 r0 = instanceCameraToLocal(hitInstance, 0);
   vec4 r1 = instanceCameraToLocal(hitInstance, 1);

@@ -27,6 +27,8 @@
 #include "vtkCompositePolyDataMapper2.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkConeSource.h"
+#include "vtkCubeSource.h"
+#include "vtkOutlineSource.h"
 #include "vtkElevationFilter.h"
 #include "vtkFloatArray.h"
 #include "vtkLight.h"
@@ -34,12 +36,14 @@
 #include "vtkTextActor.h"
 #include "vtkTextProperty.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <functional>
 #include <iostream>
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 using namespace vtkrtPassTest;
 
@@ -453,6 +457,111 @@ void TestPointsAsSpheres()
     },
     60.0);
 }
+
+/// Compares the traced depth with raster's over the pixels whose 3x3
+/// neighbourhood both cover (silhouettes left out): how many pixels, how
+/// many traced in front of raster, the largest difference.
+struct DepthComparison
+{
+  long Pixels = 0;
+  long InFront = 0;
+  double Largest = 0.0;
+};
+
+DepthComparison CompareDepth(const std::vector<float>& raster, const std::vector<float>& traced,
+  int w, int h)
+{
+  DepthComparison out;
+  for (int j = 1; j + 1 < h; ++j)
+  {
+    for (int i = 1; i + 1 < w; ++i)
+    {
+      bool covered = true;
+      for (int k = -1; k <= 1 && covered; ++k)
+      {
+        for (int l = -1; l <= 1 && covered; ++l)
+        {
+          const int n = (j + k) * w + i + l;
+          covered = raster[n] < 1.0f && traced[n] < 1.0f;
+        }
+      }
+      if (covered)
+      {
+        const int n = j * w + i;
+        ++out.Pixels;
+        out.InFront += traced[n] < raster[n];
+        out.Largest = std::max(out.Largest, std::abs(double(traced[n]) - double(raster[n])));
+      }
+    }
+  }
+  return out;
+}
+
+// Raster lines lying on a traced mesh (the outline vtkInteractorStyle draws
+// around a picked prop, a wireframe over a surface) pass the depth test as
+// over raster's own triangles: the traced depth of a mesh is never in front
+// of raster's depth of the same triangles (and stays within 1e-5 of it), and
+// the outline around a traced cube shows at least as much as over raster's.
+void TestCoincidentLines()
+{
+  constexpr int w = 300;
+  constexpr int h = 200;
+  for (const double azimuth : { 0.0, 30.0 })
+  {
+    auto win = MakeWindow(w, h);
+    vtkNew<vtkRenderer> ren;
+    win->AddRenderer(ren);
+    vtkNew<vtkCubeSource> cube;
+    cube->SetCenter(2.5, 0.3, 0.0);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(cube->GetOutputPort());
+    vtkNew<vtkActor> surface;
+    surface->SetMapper(mapper);
+    ren->AddActor(surface);
+    ren->AddActor(SphereActor(0.0, 0.0, 0.0, 0.5, 64));
+    ren->ResetCamera(-3.0, 3.0, -2.0, 2.0, -0.5, 0.5);
+    ren->GetActiveCamera()->Azimuth(azimuth);
+    ren->GetActiveCamera()->Elevation(azimuth * 0.5);
+    ren->GetActiveCamera()->OrthogonalizeViewUp();
+    ren->ResetCameraClippingRange();
+    std::vector<float> rasterDepth(w * h), tracedDepth(w * h);
+    win->Render();
+    win->GetZbufferData(0, 0, w - 1, h - 1, rasterDepth.data());
+    vtkNew<vtkRayTracePass> pass;
+    ren->SetPass(pass);
+    win->Render();
+    win->GetZbufferData(0, 0, w - 1, h - 1, tracedDepth.data());
+    const DepthComparison depth = CompareDepth(rasterDepth, tracedDepth, w, h);
+    std::ostringstream what;
+    what << "azimuth " << azimuth << ": traced depth behind or at raster's on " << depth.Pixels
+         << " pixels (" << depth.InFront << " in front, largest difference " << depth.Largest << ")";
+    Check(pass->GetNumberOfTracedProps() == 2 && depth.Pixels > 1000 && depth.InFront == 0 &&
+        depth.Largest < 1e-5, what.str());
+
+    // VTK's pick outline (vtkInteractorStyle::HighlightProp3D) around the cube.
+    vtkNew<vtkOutlineSource> box;
+    box->SetBounds(surface->GetBounds());
+    vtkNew<vtkPolyDataMapper> boxMapper;
+    boxMapper->SetInputConnection(box->GetOutputPort());
+    vtkNew<vtkActor> outline;
+    outline->SetMapper(boxMapper);
+    outline->GetProperty()->SetColor(1.0, 0.0, 0.0);
+    outline->GetProperty()->SetAmbient(1.0);
+    outline->GetProperty()->SetDiffuse(0.0);
+    ren->AddActor(outline);
+    const unsigned char red[3] = { 255, 0, 0 };
+    win->Render();
+    const long traced = CountColor(Grab(win), red);
+    ren->SetPass(nullptr);
+    win->Render();
+    const long raster = CountColor(Grab(win), red);
+    std::ostringstream shown;
+    shown << "azimuth " << azimuth << ": the outline shows over the traced cube (" << traced
+          << " pixels) at least as over raster's (" << raster << ")";
+    Check(raster > 20 && traced >= raster, shown.str());
+  }
+  NoVTKOutput("CoincidentLines");
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -469,6 +578,7 @@ int main(int argc, char* argv[])
     { "Fallback", TestFallback },
     { "Composite", TestComposite },
     { "PointsAsSpheres", TestPointsAsSpheres },
+    { "CoincidentLines", TestCoincidentLines },
   };
   return RunCase(argc, argv, cases);
 }

@@ -31,6 +31,7 @@
 #include "vtkXMLPolyDataReader.h"
 #include "vtk_glew.h"
 
+#include <cmath>
 #include <cstddef>
 #include <cstdlib>
 #include <functional>
@@ -214,6 +215,50 @@ inline long CountForegroundPixels(vtkImageData* image, const double background[3
     }
   }
   return count;
+}
+
+/// Pixels within 8/255 of the color `rgb` in every channel.
+inline long CountColor(vtkImageData* image, const unsigned char rgb[3])
+{
+  int d[3];
+  image->GetDimensions(d);
+  const int comps = image->GetNumberOfScalarComponents();
+  const auto* p = static_cast<const unsigned char*>(image->GetScalarPointer());
+  long count = 0;
+  for (long i = 0; i < static_cast<long>(d[0]) * d[1]; ++i)
+  {
+    count += std::abs(p[i * comps] - rgb[0]) <= 8 && std::abs(p[i * comps + 1] - rgb[1]) <= 8 &&
+      std::abs(p[i * comps + 2] - rgb[2]) <= 8;
+  }
+  return count;
+}
+
+/// Root mean square of the RGB differences (0-255 scale); -1 when the sizes
+/// differ.
+inline double RootMeanSquareError(vtkImageData* a, vtkImageData* b)
+{
+  int da[3], db[3];
+  a->GetDimensions(da);
+  b->GetDimensions(db);
+  if (da[0] != db[0] || da[1] != db[1])
+  {
+    return -1.0;
+  }
+  const int ca = a->GetNumberOfScalarComponents();
+  const int cb = b->GetNumberOfScalarComponents();
+  const auto* pa = static_cast<const unsigned char*>(a->GetScalarPointer());
+  const auto* pb = static_cast<const unsigned char*>(b->GetScalarPointer());
+  const long pixels = static_cast<long>(da[0]) * da[1];
+  double sum = 0.0;
+  for (long i = 0; i < pixels; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double d = double(pa[i * ca + c]) - double(pb[i * cb + c]);
+      sum += d * d;
+    }
+  }
+  return std::sqrt(sum / (3.0 * pixels));
 }
 
 inline void WritePNG(vtkImageData* image, const std::string& path)
