@@ -7,6 +7,7 @@
 #include "vtkAssemblyNode.h"
 #include "vtkAssemblyPath.h"
 #include "vtkCompositePolyDataMapper2.h"
+#include "vtkCellArray.h"
 #include "vtkCubeSource.h"
 #include "vtkDataObject.h"
 #include "vtkHardwareSelector.h"
@@ -16,6 +17,7 @@
 #include "vtkPropPicker.h"
 #include "vtkSelection.h"
 #include "vtkSelectionNode.h"
+#include "vtkTypeInt32Array.h"
 #include "vtkWorldPointPicker.h"
 
 #include <algorithm>
@@ -346,6 +348,72 @@ void TestPropPicking()
   NoVTKOutput("prop picking");
 }
 
+/// Cell ids past 2^24 take the selector's high 24-bit passes: a quad whose
+/// two triangles are cells 2^24 + 5 and + 6, after 2^24 + 5 one-point
+/// polygons (cells that draw nothing, traced or rasterized).
+void TestHighCellIds()
+{
+  const vtkIdType skipped = (vtkIdType(1) << 24) + 5;
+  vtkNew<vtkPoints> points;
+  const double corners[4][3] = { { -1, -1, 0 }, { 1, -1, 0 }, { 1, 1, 0 }, { -1, 1, 0 } };
+  for (const auto& c : corners)
+  {
+    points->InsertNextPoint(c);
+  }
+  vtkNew<vtkTypeInt32Array> offsets;
+  vtkNew<vtkTypeInt32Array> connectivity;
+  offsets->SetNumberOfValues(skipped + 3);
+  connectivity->SetNumberOfValues(skipped + 6);
+  for (vtkIdType c = 0; c <= skipped; ++c)
+  {
+    offsets->SetValue(c, static_cast<vtkTypeInt32>(c));
+  }
+  for (vtkIdType c = 0; c < skipped; ++c)
+  {
+    connectivity->SetValue(c, 0);
+  }
+  const vtkTypeInt32 quad[6] = { 0, 1, 2, 0, 2, 3 };
+  for (int k = 0; k < 6; ++k)
+  {
+    connectivity->SetValue(skipped + k, quad[k]);
+  }
+  offsets->SetValue(skipped + 1, static_cast<vtkTypeInt32>(skipped + 3));
+  offsets->SetValue(skipped + 2, static_cast<vtkTypeInt32>(skipped + 6));
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(offsets, connectivity);
+  vtkNew<vtkPolyData> mesh;
+  mesh->SetPoints(points);
+  mesh->SetPolys(polys);
+
+  auto win = MakeWindow(64, 64);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  ren->AddActor(MeshActor(mesh));
+  ren->ResetCamera();
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+  win->Render();
+  Check(pass->GetNumberOfTracedProps() == 1, "high ids: the quad is traced");
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(ren);
+  selector->SetArea(0, 0, 63, 63);
+  vtkSmartPointer<vtkSelection> result = vtk::TakeSmartPointer(selector->Select());
+  Check(selector->HasHighCellIds(), "high ids: the selector takes its high 24-bit passes");
+  std::set<vtkIdType> ids;
+  for (unsigned int n = 0; result && n < result->GetNumberOfNodes(); ++n)
+  {
+    vtkIdTypeArray* list = vtkIdTypeArray::SafeDownCast(result->GetNode(n)->GetSelectionList());
+    for (vtkIdType k = 0; list && k < list->GetNumberOfTuples(); ++k)
+    {
+      ids.insert(list->GetValue(k));
+    }
+  }
+  Check(ids == std::set<vtkIdType>{ skipped, skipped + 1 },
+    "high ids: the quad's cells " + std::to_string(skipped) + " and " + std::to_string(skipped + 1) +
+      " (" + std::to_string(ids.size()) + " ids)");
+  NoVTKOutput("high ids");
+}
+
 /// An area outside the window, an empty scene, a selector with no renderer.
 void TestBadInput()
 {
@@ -389,5 +457,6 @@ int main(int argc, char* argv[])
   Output = vtkrtTestOutputWindow::Install();
   return RunCase(argc, argv,
     { { "Cells", TestCells }, { "Points", TestPoints }, { "Composite", TestComposite },
-      { "PropPicking", TestPropPicking }, { "BadInput", TestBadInput } });
+      { "PropPicking", TestPropPicking }, { "HighCellIds", TestHighCellIds },
+      { "BadInput", TestBadInput } });
 }
