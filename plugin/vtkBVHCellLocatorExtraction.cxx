@@ -291,44 +291,20 @@ bool BVHCellLocatorData::AddSurfaceCell(int type, vtkIdType npts, const vtkIdTyp
 //------------------------------------------------------------------------------
 void BVHCellLocatorData::AddQuad(const vtkIdType* pts, vtkIdType cellId)
 {
-  // Split along the shorter diagonal, as vtkQuad::IntersectWithLine does.
-  const Vec3d d02 = this->LocalPoint(pts[2]) - this->LocalPoint(pts[0]);
-  const Vec3d d13 = this->LocalPoint(pts[3]) - this->LocalPoint(pts[1]);
-  if (glm::dot(d02, d02) <= glm::dot(d13, d13))
-  {
-    this->AddTriangle(pts[0], pts[1], pts[2], cellId, 0, EvaluateInCell);
-    this->AddTriangle(pts[0], pts[2], pts[3], cellId, 0, EvaluateInCell);
-  }
-  else
-  {
-    this->AddTriangle(pts[0], pts[1], pts[3], cellId, 0, EvaluateInCell);
-    this->AddTriangle(pts[1], pts[2], pts[3], cellId, 0, EvaluateInCell);
-  }
+  // A fan from point 0, as VTK's raster mapper and vtkRayTracePass draw it,
+  // so that a pick lands on the drawn surface (vtkQuad's own tests split a
+  // warped quad along its shorter diagonal).
+  this->AddTriangle(pts[0], pts[1], pts[2], cellId, 0, EvaluateInCell);
+  this->AddTriangle(pts[0], pts[2], pts[3], cellId, 0, EvaluateInCell);
 }
 
 //------------------------------------------------------------------------------
-void BVHCellLocatorData::AddPolygon(
-  vtkIdType npts, const vtkIdType* pts, vtkIdType cellId, vtkPolygon* polygon, vtkIdList* tris)
+void BVHCellLocatorData::AddPolygon(vtkIdType npts, const vtkIdType* pts, vtkIdType cellId,
+  vtkPolygon* vtkNotUsed(polygon), vtkIdList* vtkNotUsed(tris))
 {
-  polygon->GetPointIds()->SetNumberOfIds(npts);
-  polygon->GetPoints()->SetNumberOfPoints(npts);
-  for (vtkIdType i = 0; i < npts; ++i)
-  {
-    polygon->GetPointIds()->SetId(i, pts[i]);
-    const Vec3d p = this->LocalPoint(pts[i]);
-    polygon->GetPoints()->SetPoint(i, p.x, p.y, p.z);
-  }
-  tris->Reset();
-  if (polygon->Triangulate(tris) && tris->GetNumberOfIds() >= 3)
-  {
-    for (vtkIdType k = 0; k + 2 < tris->GetNumberOfIds(); k += 3)
-    {
-      this->AddTriangle(pts[tris->GetId(k)], pts[tris->GetId(k + 1)], pts[tris->GetId(k + 2)],
-        cellId, 0, EvaluateInCell);
-    }
-    return;
-  }
-  for (vtkIdType k = 1; k + 1 < npts; ++k) // fan for polygons ear-cutting rejects
+  // A fan from point 0, as VTK's raster mapper and vtkRayTracePass draw it
+  // (vtkPolygon's own tests ear-cut it).
+  for (vtkIdType k = 1; k + 1 < npts; ++k)
   {
     this->AddTriangle(pts[0], pts[k], pts[k + 1], cellId, 0, EvaluateInCell);
   }

@@ -17,6 +17,7 @@ int TestRobustThreads();
 int TestRobustLargeMesh();
 int TestPickerTriangles();
 int TestPickerQuads();
+int TestWarpedQuadsAndPolygons();
 
 int main(int argc, char* argv[])
 {
@@ -32,7 +33,8 @@ int main(int argc, char* argv[])
     { "DegenerateCells", TestRobustDegenerateCells }, { "BadInput", TestRobustBadInput },
     { "Rebuild", TestRobustRebuild }, { "Threads", TestRobustThreads },
     { "LargeMesh", TestRobustLargeMesh },
-    { "PickerTriangles", TestPickerTriangles }, { "PickerQuads", TestPickerQuads } };
+    { "PickerTriangles", TestPickerTriangles }, { "PickerQuads", TestPickerQuads },
+    { "WarpedQuadsAndPolygons", TestWarpedQuadsAndPolygons } };
   if (argc < 2)
   {
     std::cerr << "usage: " << argv[0] << " CASE" << std::endl;
