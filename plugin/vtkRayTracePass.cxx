@@ -717,7 +717,6 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
   // Lights follow the camera and VTK computes the lighting complexity.
   in.Lights->Render(s);
 
-  const int framesBefore = in.Accumulated.BeginFrame();
   in.Extract(*this, s, ren);
   if (this->IdMode)
   {
@@ -739,6 +738,8 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     vtkOpenGLCheckErrorMacro("failed after vtkRayTracePass::Render (selection)");
     return;
   }
+  // A selection render (above) leaves the accumulated image as it was.
+  const int framesBefore = in.Accumulated.BeginFrame();
   if (!in.Traced.empty())
   {
     in.Trace(*this, ren, win, cam, framesBefore);

@@ -348,6 +348,34 @@ void TestPropPicking()
   NoVTKOutput("prop picking");
 }
 
+/// Picking between progressive frames leaves the accumulated image alone:
+/// the frame after continues the sum, as if no pick had happened.
+void TestAccumulation()
+{
+  Scene picked(true, false);
+  Scene untouched(true, false);
+  for (Scene* s : { &picked, &untouched })
+  {
+    s->Pass->ProgressiveAccumulationOn();
+    for (int frame = 0; frame < 3; ++frame)
+    {
+      s->Window->Render();
+    }
+  }
+  Check(picked.Pass->GetAccumulatedFrames() == 3, "accumulation: three frames summed");
+  const std::array<int, 2> xy = picked.Project(std::array<double, 3>{ { 0, 0, 1 } }.data());
+  vtkNew<vtkPropPicker> picker;
+  picker->Pick(xy[0], xy[1], 0, picked.Renderer);
+  const unsigned int area[4] = { 0, 0, W - 1, H - 1 };
+  Select(picked, area, vtkDataObject::FIELD_ASSOCIATION_CELLS);
+  picked.Window->Render();
+  untouched.Window->Render();
+  Check(picked.Pass->GetAccumulatedFrames() == 4, "accumulation: the frame after the picks is the fourth");
+  Check(Difference(Grab(picked.Window), Grab(untouched.Window)) == 0.0,
+    "accumulation: the same image as four frames without picks");
+  NoVTKOutput("accumulation");
+}
+
 /// Cell ids past 2^24 take the selector's high 24-bit passes: a quad whose
 /// two triangles are cells 2^24 + 5 and + 6, after 2^24 + 5 one-point
 /// polygons (cells that draw nothing, traced or rasterized).
@@ -457,6 +485,7 @@ int main(int argc, char* argv[])
   Output = vtkrtTestOutputWindow::Install();
   return RunCase(argc, argv,
     { { "Cells", TestCells }, { "Points", TestPoints }, { "Composite", TestComposite },
-      { "PropPicking", TestPropPicking }, { "HighCellIds", TestHighCellIds },
+      { "PropPicking", TestPropPicking }, { "Accumulation", TestAccumulation },
+      { "HighCellIds", TestHighCellIds },
       { "BadInput", TestBadInput } });
 }
