@@ -64,6 +64,7 @@ int Run(const Options& opt)
   timings.SceneBuild = Milliseconds(start, Clock::now());
 
   timings.FirstFrame = RenderFirstFrame(window, output);
+  KeepPassPhases(scene.Renderer, timings);
   timings.SteadyFrame = SteadyFrameMilliseconds(window, scene.Renderer, opt.Frames);
   const std::string pick = opt.Pick ? PickPixel(opt, scene) : std::string();
   WriteImage(window, opt.Output, output);

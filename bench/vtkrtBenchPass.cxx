@@ -1,6 +1,7 @@
 // vtkrtBenchPass: frame times of vtkRayTracePass against VTK's raster peers,
 // measured in one run, in one EGL window, MultiSamples 0, malloc tuned for
 // large buffers (the same for every side).
+//   quad:      a full-screen quad (two triangles), pass vs vtkPolyDataMapper
 //   triangles: pass vs vtkPolyDataMapper, 100k and 1M (4M with --large)
 //   spheres:   pass (analytic) vs vtkGlyph3DMapper (triangulated 16x16
 //              spheres), RenderPointsAsSpheres and vtkOpenGLSphereMapper
@@ -10,8 +11,10 @@
 // the pass is faster); the cpu columns are process CPU time per steady frame
 // (every llvmpipe thread counted), steadier than wall time on a shared machine.
 // usage: vtkrtBenchPass [--large] [--frames N] [--sizes 512,1024]
-//          [--meshes N,..] [--spheres N,..] [--peers glyphs,points,impostors]
-// (--meshes / --spheres replace the default counts, 0 skips that kind;
+//          [--meshes quad,N,..] [--spheres N,..] [--peers glyphs,points,impostors]
+// (--meshes / --spheres replace the default counts, 0 skips that kind,
+// "quad" in --meshes keeps the quad; the pass's first frame is also printed
+// by phase: extraction, triangulation, BVH build, packing, upload, compile;
 // --peers picks the sphere peers, "none" times the pass alone)
 #include "vtkEGLHeadlessRenderWindow.h"
 #include "vtkRayTracePass.h"
@@ -28,6 +31,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPlaneSource.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
@@ -58,7 +62,27 @@ struct Timing
   double First = 0;
   double Steady = 0;
   double SteadyCpu = 0; ///< process CPU time per steady frame (all threads)
+  /// The pass's first frame by phase, ms (GetLast...Seconds): extraction,
+  /// triangulation, BVH build, packing, upload, shader compile.
+  double Phases[6] = { 0, 0, 0, 0, 0, 0 };
 };
+
+/// How a scene is framed, then moved each steady frame.
+struct Camera
+{
+  std::function<void(vtkRenderer*)> Frame;
+  std::function<void(vtkRenderer*, int frames)> Step;
+};
+
+/// The default: the whole scene in view from 20 degrees up, orbiting.
+Camera Orbit()
+{
+  return { [](vtkRenderer* ren) {
+            ren->ResetCamera();
+            ren->GetActiveCamera()->Elevation(20);
+          },
+    [](vtkRenderer* ren, int frames) { ren->GetActiveCamera()->Azimuth(360.0 / frames); } };
+}
 
 /// Process CPU time in ms (vtkrtBench::ProcessSeconds).
 double CpuMs()
@@ -109,14 +133,13 @@ vtkSmartPointer<vtkPolyData> SpheresOf(long count)
 }
 
 /// Renders `frames` orbit steps after a first frame; fresh renderer each time.
-Timing Measure(
-  vtkRenderWindow* win, const std::function<void(vtkRenderer*)>& setup, bool trace, int frames)
+Timing Measure(vtkRenderWindow* win, const std::function<void(vtkRenderer*)>& setup, bool trace,
+  int frames, const Camera& camera = Orbit())
 {
   vtkNew<vtkRenderer> ren;
   ren->SetBackground(0.2, 0.2, 0.25);
   setup(ren);
-  ren->ResetCamera();
-  ren->GetActiveCamera()->Elevation(20);
+  camera.Frame(ren);
   ren->ResetCameraClippingRange();
   vtkNew<vtkRayTracePass> pass;
   if (trace)
@@ -129,11 +152,18 @@ Timing Measure(
   win->Render();
   win->WaitForCompletion();
   t.First = Ms(t0, Clock::now());
+  const double phases[6] = { pass->GetLastExtractionSeconds(), pass->GetLastTriangulationSeconds(),
+    pass->GetLastBuildSeconds(), pass->GetLastPackingSeconds(), pass->GetLastUploadSeconds(),
+    pass->GetLastShaderCompileSeconds() };
+  for (int k = 0; k < 6; ++k)
+  {
+    t.Phases[k] = 1e3 * phases[k];
+  }
   t0 = Clock::now();
   const double cpu0 = CpuMs();
   for (int i = 0; i < frames; ++i)
   {
-    ren->GetActiveCamera()->Azimuth(360.0 / frames);
+    camera.Step(ren, frames);
     ren->ResetCameraClippingRange();
     win->Render();
   }
@@ -173,6 +203,7 @@ struct Options
   std::vector<long> Meshes = { 100000, 1000000 };
   std::vector<long> SphereCounts = { 10000, 100000 };
   std::string Peers = "glyphs,points,impostors";
+  bool Quad = true; ///< the full-screen quad (off with --meshes not naming it)
 };
 
 /// The positive numbers of a comma-separated list.
@@ -208,8 +239,10 @@ bool ParseArgs(int argc, char* argv[], Options& opt)
     }
     else if (a == "--meshes" && i + 1 < argc)
     {
-      meshesArg = ParseList(argv[++i]);
+      const std::string list = argv[++i];
+      meshesArg = ParseList(list.c_str());
       meshesGiven = true;
+      opt.Quad = list.find("quad") != std::string::npos;
     }
     else if (a == "--spheres" && i + 1 < argc)
     {
@@ -233,7 +266,7 @@ bool ParseArgs(int argc, char* argv[], Options& opt)
     else
     {
       std::cerr << "usage: " << argv[0]
-                << " [--large] [--frames N] [--sizes 512,1024] [--meshes N,..] "
+                << " [--large] [--frames N] [--sizes 512,1024] [--meshes quad,N,..] "
                    "[--spheres N,..]"
                    " [--peers glyphs,points,impostors]\n";
       return false;
@@ -268,8 +301,47 @@ void PrintHeader(vtkEGLHeadlessRenderWindow* win, int frames)
             << "\n";
 }
 
+/// The pass's first frame by phase against raster's whole first frame.
+void PhaseRow(std::ostream& out, const std::string& scene, int size, const Timing& p, const Timing& r)
+{
+  std::ostringstream os;
+  os << std::left << std::setw(20) << scene << std::setw(6) << size << std::right
+            << std::fixed << std::setprecision(1);
+  double known = 0;
+  for (double ms : p.Phases)
+  {
+    os << std::setw(9) << ms;
+    known += ms;
+  }
+  os << std::setw(9) << p.First - known << std::setw(10) << p.First << std::setw(11) << r.First
+     << "\n";
+  out << os.str();
+}
+
+/// A quad filling the view (two triangles): the per-pixel cost alone.
+void RunQuad(vtkRenderWindow* win, int size, const Options& opt, std::ostream& phases)
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->Update();
+  auto setup = [&](vtkRenderer* ren) {
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(plane->GetOutput());
+    AddActor(ren, mapper);
+  };
+  // Facing the camera, zoomed until the quad covers the view at any roll.
+  const Camera fill = { [](vtkRenderer* ren) {
+                         ren->ResetCamera();
+                         ren->GetActiveCamera()->Zoom(3.0);
+                       },
+    [](vtkRenderer* ren, int frames) { ren->GetActiveCamera()->Roll(360.0 / frames); } };
+  const Timing pass = Measure(win, setup, true, opt.Frames, fill);
+  const Timing raster = Measure(win, setup, false, opt.Frames, fill);
+  Row("full-screen quad", size, "vtkPolyDataMapper", pass, raster);
+  PhaseRow(phases, "full-screen quad", size, pass, raster);
+}
+
 /// Triangles: the pass against vtkPolyDataMapper.
-void RunMeshes(vtkRenderWindow* win, int size, const Options& opt)
+void RunMeshes(vtkRenderWindow* win, int size, const Options& opt, std::ostream& phases)
 {
   for (long n : opt.Meshes)
   {
@@ -282,8 +354,9 @@ void RunMeshes(vtkRenderWindow* win, int size, const Options& opt)
     };
     const Timing pass = Measure(win, setup, true, opt.Frames);
     const Timing raster = Measure(win, setup, false, opt.Frames);
-    Row(std::to_string(mesh->GetNumberOfCells() / 1000) + "k triangles", size,
-      "vtkPolyDataMapper", pass, raster);
+    const std::string scene = std::to_string(mesh->GetNumberOfCells() / 1000) + "k triangles";
+    Row(scene, size, "vtkPolyDataMapper", pass, raster);
+    PhaseRow(phases, scene, size, pass, raster);
   }
 }
 
@@ -372,8 +445,22 @@ int main(int argc, char* argv[])
   for (int size : opt.Sizes)
   {
     win->SetSize(size, size);
-    RunMeshes(win, size, opt);
+    std::ostringstream phases;
+    if (opt.Quad)
+    {
+      RunQuad(win, size, opt, phases);
+    }
+    RunMeshes(win, size, opt, phases);
     RunSpheres(win, size, opt);
+    if (!phases.str().empty())
+    {
+      std::cout << "\nfirst frame by phase, ms (pass; rest: drawing and what VTK does around it):\n"
+                << std::left << std::setw(26) << "scene" << std::right << std::setw(9) << "extract"
+                << std::setw(9) << "triang" << std::setw(9) << "build" << std::setw(9) << "pack"
+                << std::setw(9) << "upload" << std::setw(9) << "compile" << std::setw(9) << "rest"
+                << std::setw(10) << "pass 1st" << std::setw(11) << "raster 1st" << "\n"
+                << phases.str() << "\n";
+    }
   }
   return EXIT_SUCCESS;
 }

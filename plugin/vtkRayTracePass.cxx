@@ -34,6 +34,7 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -311,6 +312,31 @@ vtkTypeInt64 vtkRayTracePass::GetLastFrameBytesUploaded() const
 {
   return static_cast<vtkTypeInt64>(this->Internal->Counters.FrameBytesUploaded);
 }
+double vtkRayTracePass::GetLastExtractionSeconds() const
+{
+  return this->Internal->Counters.ExtractionSeconds;
+}
+double vtkRayTracePass::GetLastTriangulationSeconds() const
+{
+  return this->Internal->Counters.TriangulationSeconds;
+}
+double vtkRayTracePass::GetLastBuildSeconds() const
+{
+  return this->Internal->Counters.BuildSeconds;
+}
+double vtkRayTracePass::GetLastPackingSeconds() const
+{
+  return this->Internal->Counters.PackingSeconds;
+}
+double vtkRayTracePass::GetLastUploadSeconds() const
+{
+  return this->Internal->Counters.UploadSeconds;
+}
+double vtkRayTracePass::GetLastShaderCompileSeconds() const
+{
+  return this->Internal->Counters.ShaderCompileSeconds;
+}
+
 int vtkRayTracePass::GetLastShaderCompiles() const
 {
   return this->Internal->Counters.ShaderCompiles;
@@ -400,10 +426,14 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
   std::string error;
   if (this->Scene.GeometryChanged() || !this->GeometryOnGpu || (!this->GeometryValid && limitChanged))
   {
+    auto start = std::chrono::steady_clock::now();
     vtkrt::pass::PackedGeometry packed = vtkrt::pass::PackGeometry(this->Scene);
     this->Scene.MarkGeometryPacked();
+    this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
+    start = std::chrono::steady_clock::now();
     this->Counters.GeometryBytesUploaded +=
       this->Buffers.UploadGeometry(win, packed, limit, this->GeometryValid, error);
+    this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(start);
     this->Places.GeometryPlaces = std::move(packed.Placements);
     this->GeometryOnGpu = true;
     if (!this->GeometryValid)
@@ -413,10 +443,14 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
   }
   if (this->Scene.ColorsChanged() || !this->ColorsOnGpu || (!this->ColorsValid && limitChanged))
   {
+    auto start = std::chrono::steady_clock::now();
     vtkrt::pass::PackedColors packed = vtkrt::pass::PackColors(this->Scene);
     this->Scene.MarkColorsPacked();
+    this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
+    start = std::chrono::steady_clock::now();
     this->Counters.GeometryBytesUploaded +=
       this->Buffers.UploadColors(win, packed, limit, this->ColorsValid, error);
+    this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(start);
     this->Places.ColorBases = std::move(packed.Bases);
     this->ColorsOnGpu = true;
     if (!this->ColorsValid)
@@ -518,6 +552,7 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
   {
     return false;
   }
+  const auto uploadStart = std::chrono::steady_clock::now();
   const bool topLevel = vtkrt::pass::TopLevel::IsNeeded(frame.Records.size());
   if (topLevel)
   {
@@ -533,6 +568,7 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
     this->Counters.FrameBytesUploaded += this->Buffers.Instances.Upload(win, frame.Records);
     this->LastRecords = frame.Records;
   }
+  this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(uploadStart);
   p.Lights = vtkrt::pass::CollectLights(ren, p.Camera.Origin);
   p.F = this->FrameFeatures(pass, ren, frame, p.Lights.size(), topLevel);
   if (selectIds)
@@ -551,7 +587,12 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
     pass.AmbientOcclusionRadius > 0.0 ? pass.AmbientOcclusionRadius : frame.DefaultOcclusionRadius();
 
   const int compilesBefore = this->Counters.ShaderCompiles;
+  const auto compileStart = std::chrono::steady_clock::now();
   p.Tracer = this->Programs.Ready(win, p.F, this->Counters);
+  if (this->Counters.ShaderCompiles > compilesBefore)
+  {
+    this->Counters.ShaderCompileSeconds += vtkrt::pass::SecondsSince(compileStart);
+  }
   if (!p.Tracer)
   {
     if (this->Counters.ShaderCompiles > compilesBefore)
@@ -717,7 +758,10 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
   // Lights follow the camera and VTK computes the lighting complexity.
   in.Lights->Render(s);
 
+  const auto extractStart = std::chrono::steady_clock::now();
   in.Extract(*this, s, ren);
+  in.Counters.ExtractionSeconds = vtkrt::pass::SecondsSince(extractStart) -
+    in.Counters.TriangulationSeconds - in.Counters.BuildSeconds;
   if (this->IdMode)
   {
     vtkOpenGLState* ostate = win->GetState();

@@ -139,6 +139,23 @@ public:
   int GetLastTopLevelBuilds() const;
   ///@}
 
+  ///@{
+  /**
+   * Where the last frame's CPU time went, in seconds (a first frame's, or
+   * one after a data change; about 0 for a camera move): scene extraction
+   * (without the next two), reading points and triangulating, bottom-level
+   * BVH builds with their GPU records, packing into the upload layout,
+   * uploading (texture buffers, instance records, the top level), shader
+   * compilation. The GPU's own trace time is not among them.
+   */
+  double GetLastExtractionSeconds() const;
+  double GetLastTriangulationSeconds() const;
+  double GetLastBuildSeconds() const;
+  double GetLastPackingSeconds() const;
+  double GetLastUploadSeconds() const;
+  double GetLastShaderCompileSeconds() const;
+  ///@}
+
   /**
    * The feature key of the last frame's shader (what the scene needed).
    */

@@ -7,6 +7,8 @@
 #include "vtkEGLHeadlessRenderWindow.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
+#include "vtkRayTracePass.h"
+#include "vtkRenderer.h"
 #include "vtkWindowToImageFilter.h"
 #include "vtksys/SystemTools.hxx"
 
@@ -38,6 +40,19 @@ void WriteImage(
   }
 }
 
+void KeepPassPhases(vtkRenderer* renderer, Timings& timings)
+{
+  timings.PassPhases.clear();
+  auto* pass = vtkRayTracePass::SafeDownCast(renderer->GetPass());
+  if (pass)
+  {
+    timings.PassPhases = { 1e3 * pass->GetLastExtractionSeconds(),
+      1e3 * pass->GetLastTriangulationSeconds(), 1e3 * pass->GetLastBuildSeconds(),
+      1e3 * pass->GetLastPackingSeconds(), 1e3 * pass->GetLastUploadSeconds(),
+      1e3 * pass->GetLastShaderCompileSeconds() };
+  }
+}
+
 void PrintReport(const Options& opt, const Scene& scene, vtkEGLHeadlessRenderWindow* window,
   const Timings& timings, const std::string& pick)
 {
@@ -51,6 +66,13 @@ void PrintReport(const Options& opt, const Scene& scene, vtkEGLHeadlessRenderWin
             << "; " << window->GetDeviceDescription() << ")\n"
             << "  scene build:  " << timings.SceneBuild << " ms (read + set up)\n"
             << "  first frame:  " << timings.FirstFrame << " ms (context, upload, build)\n";
+  if (timings.PassPhases.size() == 6)
+  {
+    const std::vector<double>& p = timings.PassPhases;
+    std::cout << "    of which:   extraction " << p[0] << ", triangulation " << p[1]
+              << ", BVH build " << p[2] << ", packing " << p[3] << ", upload " << p[4]
+              << ", shader compile " << p[5] << " ms\n";
+  }
   if (opt.Frames > 0)
   {
     std::cout << "  steady frame: " << timings.SteadyFrame << " ms (mean of " << opt.Frames

@@ -5,8 +5,10 @@
 
 #include <chrono>
 #include <string>
+#include <vector>
 
 class vtkEGLHeadlessRenderWindow;
+class vtkRenderer;
 
 namespace vtkrtRender
 {
@@ -27,7 +29,13 @@ struct Timings
   double SceneBuild = 0.0;  // read + set up
   double FirstFrame = 0.0;  // context, upload, build
   double SteadyFrame = 0.0; // mean of the orbit steps; 0 without them
+  // Ray traced: the pass's first frame by phase (extraction, triangulation,
+  // BVH build, packing, upload, shader compile); empty in raster mode.
+  std::vector<double> PassPhases;
 };
+
+// Keeps the pass's phases of the frame just drawn (none without a pass).
+void KeepPassPhases(vtkRenderer* renderer, Timings& timings);
 
 // Writes the window's front buffer to `path` as a PNG; VTK's writer errors
 // are caught through `output`. Throws Failure.

@@ -110,11 +110,13 @@ void ReadPoints(vtkPoints* pts, std::vector<Vec3<double>>& out)
 std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOptions& options)
 {
   auto g = std::make_unique<Geometry>();
+  const auto start = std::chrono::steady_clock::now();
   std::vector<Vec3<double>> points;
   ReadPoints(poly->GetPoints(), points);
   std::vector<std::uint32_t> indices;
   std::vector<std::uint32_t> cellIds;
   triangulate(poly, indices, cellIds);
+  g->TriangulationSeconds = SecondsSince(start);
 
   core::TriangleMesh<double> mesh(points, indices);
   core::BVH bvh = core::buildTriangleBVH(mesh, options);

@@ -537,15 +537,16 @@ void Scene::AddGlyphSet(vtkActor* actor, vtkGlyph3DMapper* mapper, const GlyphSp
     static_cast<const void*>(mapper), static_cast<const void*>(input))];
   if (!entry || entry->SourceTime != time || entry->Quality != this->BuildQuality)
   {
+    const auto start = std::chrono::steady_clock::now();
     const GlyphPrimitives glyphs = CollectGlyphPrimitives(mapper, sphere, set);
     entry = set.PerComponent
       ? BuildEllipsoids(glyphs.UnitMaps, glyphs.Boxes, glyphs.Ids, this->SphereOptions())
       : BuildSpheres(glyphs.Centers, glyphs.Radii, glyphs.Ids, this->SphereOptions());
+    counters.AddBuild(*entry, SecondsSince(start));
     entry->Quality = this->BuildQuality;
     entry->SourceTime = time;
     entry->Keep = mapper;
     entry->KeepData = input;
-    ++counters.BVHBuilds;
     this->GeometryDirty = true;
   }
   entry->Used = true;

@@ -196,12 +196,13 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     if (!entry || entry->SourceTime != time || entry->Quality != this->BuildQuality ||
       entry->LeafSize != this->LeafSize)
     {
+      const auto start = std::chrono::steady_clock::now();
       entry = BuildTriangles(poly, this->Options());
+      counters.AddBuild(*entry, SecondsSince(start));
       entry->Quality = this->BuildQuality;
       entry->LeafSize = this->LeafSize;
       entry->SourceTime = time;
       entry->Keep = poly;
-      ++counters.BVHBuilds;
       this->GeometryDirty = true;
     }
     if (!entry->Used)
@@ -233,13 +234,14 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     if (!entry || entry->SourceTime != time || entry->SourceKey != key.str() ||
       entry->Quality != this->BuildQuality)
     {
+      const auto start = std::chrono::steady_clock::now();
       entry = BuildScreenSpheres(
         poly, property->GetRepresentation() == VTK_POINTS, this->SphereOptions());
+      counters.AddBuild(*entry, SecondsSince(start));
       entry->Quality = this->BuildQuality;
       entry->SourceTime = time;
       entry->SourceKey = key.str();
       entry->Keep = poly;
-      ++counters.BVHBuilds;
       this->GeometryDirty = true;
     }
     entry->Used = true;

@@ -11,6 +11,7 @@
 #include "vtkrt/core/GpuLayout.h"
 
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -21,6 +22,12 @@ namespace vtkrt
 {
 namespace pass
 {
+
+/// Seconds of the steady clock since `start`.
+inline double SecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 /// One bottom-level BVH with its primitives (triangles of one polydata, or
 /// spheres or ellipsoids of one glyph set / point set) in the GPU's layout,
@@ -47,6 +54,8 @@ struct Geometry
   std::uint32_t MaximumId = 0; ///< the largest VTK cell (triangles) or point (spheres) id
   std::size_t VertexCount = 0;
   std::size_t SkippedPrimitives = 0; ///< NaN or degenerate, never traced
+  double TriangulationSeconds = 0.0; ///< what making it took: points and triangles
+  double BuildSeconds = 0.0;         ///< and the BVH with its records
   bool Used = false;
   /// Points drawn as spheres: the BVH is over the bare centers and the
   /// uploaded radii are 0; each frame gives the radii (ScreenSphereRadii).
@@ -134,6 +143,22 @@ struct FrameCounters
   int ShaderCompiles = 0;
   std::size_t TracedPrimitives = 0;
   int TracedInstances = 0;
+
+  /// Where the frame's CPU time went, in seconds (a first frame's cost).
+  double ExtractionSeconds = 0.0;    ///< props to instances, without the two below
+  double TriangulationSeconds = 0.0; ///< points read, polygons and strips to triangles
+  double BuildSeconds = 0.0;         ///< bottom-level BVHs and their GPU records
+  double PackingSeconds = 0.0;       ///< the upload layout
+  double UploadSeconds = 0.0;        ///< texture buffers, records, top level
+  double ShaderCompileSeconds = 0.0;
+
+  /// Counts a geometry just made: a build, and its time.
+  void AddBuild(const Geometry& g, double seconds)
+  {
+    ++this->BVHBuilds;
+    this->TriangulationSeconds += g.TriangulationSeconds;
+    this->BuildSeconds += seconds - g.TriangulationSeconds;
+  }
 };
 
 } // namespace pass

@@ -491,10 +491,14 @@ void TestRaytraceMode()
 #ifdef VTKRT_HAVE_RAYTRACE_PASS
   Check(r.Code == 0, "raytrace: exit status 0");
   CheckImage(out, 160, 120, 0.05);
+  Check(Contains(r.Output, "of which:   extraction ") && Contains(r.Output, ", BVH build ") &&
+      Contains(r.Output, ", shader compile "),
+    "raytrace: the first frame by phase is reported");
   // The traced scene covers the same pixels as the rasterized one (shading
   // may differ; silhouettes agree up to edge pixels).
   const std::string rasterOut = Tmp + "/raster.png";
   const Result raster = RunApp("--demo --size 160x120 --frames 0 --output '" + rasterOut + "'");
+  Check(raster.Code == 0 && !Contains(raster.Output, "of which:"), "raster: no pass phases reported");
   vtkSmartPointer<vtkImageData> a = ReadPNG(out);
   vtkSmartPointer<vtkImageData> b = ReadPNG(rasterOut);
   if (raster.Code == 0 && a && b)

@@ -72,6 +72,10 @@ void TestCounters()
       s.str());
   };
   frame("first frame", 2, true, 1);
+  Check(pass->GetLastTriangulationSeconds() > 0 && pass->GetLastBuildSeconds() > 0 &&
+      pass->GetLastPackingSeconds() > 0 && pass->GetLastUploadSeconds() > 0 &&
+      pass->GetLastShaderCompileSeconds() > 0 && pass->GetLastExtractionSeconds() >= 0,
+    "first frame: every phase took time");
   Check(pass->GetLastTracedPrimitives() ==
       bunnyData->GetNumberOfCells() + ReadPolyData("demo-spheres.vtp")->GetNumberOfPoints(),
     "first frame traces every triangle and sphere");
@@ -84,6 +88,9 @@ void TestCounters()
     ren->GetActiveCamera()->Elevation(5);
     ren->ResetCameraClippingRange();
     frame("camera move " + std::to_string(i + 1), 0, false, 0);
+    Check(pass->GetLastTriangulationSeconds() == 0 && pass->GetLastBuildSeconds() == 0 &&
+        pass->GetLastPackingSeconds() == 0 && pass->GetLastShaderCompileSeconds() == 0,
+      "camera move: no triangulation, build, packing or compile time");
   }
   ren->GetActiveCamera()->ParallelProjectionOn();
   frame("parallel projection", 0, false, 0);
