@@ -760,8 +760,9 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
 
   const auto extractStart = std::chrono::steady_clock::now();
   in.Extract(*this, s, ren);
-  in.Counters.ExtractionSeconds = vtkrt::pass::SecondsSince(extractStart) -
-    in.Counters.TriangulationSeconds - in.Counters.BuildSeconds;
+  in.Counters.ExtractionSeconds = std::max(0.0,
+    vtkrt::pass::SecondsSince(extractStart) - in.Counters.TriangulationSeconds -
+      in.Counters.BuildSeconds);
   if (this->IdMode)
   {
     vtkOpenGLState* ostate = win->GetState();
