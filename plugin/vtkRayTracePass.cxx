@@ -263,6 +263,9 @@ void vtkRayTracePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Last frame: BVH builds " << c.BVHBuilds << ", geometry bytes "
      << c.GeometryBytesUploaded << ", frame bytes " << c.FrameBytesUploaded << ", shader compiles "
      << c.ShaderCompiles << ", traced primitives " << c.TracedPrimitives << "\n";
+  os << indent << "Last frame seconds: extraction " << c.ExtractionSeconds << ", triangulation "
+     << c.TriangulationSeconds << ", build " << c.BuildSeconds << ", packing " << c.PackingSeconds
+     << ", upload " << c.UploadSeconds << ", shader compile " << c.ShaderCompileSeconds << "\n";
 }
 
 bool vtkRayTracePass::DecodeId(const unsigned char rgba[4], int& propIndex, vtkIdType& id)
