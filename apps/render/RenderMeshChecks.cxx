@@ -11,6 +11,7 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
@@ -185,6 +186,7 @@ std::vector<PlyElement> ReadPlyHeader(
   }
   return elements;
 }
+
 // Names `count` elements called `name`: "1 face", "3 faces", "2 vertices".
 std::string CountOf(uint64_t count, const std::string& name)
 {
@@ -341,6 +343,21 @@ void CheckBinaryPlyData(const std::string& path, std::ifstream& file, bool bigEn
   }
 }
 
+// The starts of the whitespace-separated words of `line` (each runs to the
+// next whitespace).
+void SplitWords(const char* line, std::vector<const char*>& words)
+{
+  words.clear();
+  for (const char* c = line; *c != '\0'; ++c)
+  {
+    if (!std::isspace(static_cast<unsigned char>(*c)) &&
+      (c == line || std::isspace(static_cast<unsigned char>(c[-1]))))
+    {
+      words.push_back(c);
+    }
+  }
+}
+
 // Walks an ascii PLY's data as vtkPLY will read it: one line an element,
 // ended by a line feed, holding at least the values its properties take
 // (vtkPLY reads past the words of a short line).
@@ -348,6 +365,7 @@ void CheckAsciiPlyData(
   const std::string& path, std::ifstream& file, const std::vector<PlyElement>& elements)
 {
   char line[4096]; // vtkPLY's longest line
+  std::vector<const char*> values;
   for (const PlyElement& element : elements)
   {
     for (uint64_t index = 0; index < element.Count; ++index)
@@ -358,21 +376,17 @@ void CheckAsciiPlyData(
           file.eof() ? "is cut short: the file ends before its line feed"
                      : "has a line longer than 4095 characters");
       }
-      std::vector<std::string> values;
-      std::istringstream words(line);
-      for (std::string value; words >> value;)
-      {
-        values.push_back(value);
-      }
+      SplitWords(line, values);
       uint64_t needed = 0;
       for (const PlyProperty& property : element.Properties)
       {
         if (property.IsList && needed < values.size())
         {
-          const long long count = std::strtoll(values[needed].c_str(), nullptr, 10);
+          const long long count = std::strtoll(values[needed], nullptr, 10);
           if (count < 0)
           {
-            FailInside(path, element, index, "has a negative list length " + values[needed]);
+            FailInside(path, element, index, "has a negative list length " +
+                std::to_string(count));
           }
           needed = AddSaturated(needed, static_cast<uint64_t>(count));
         }
