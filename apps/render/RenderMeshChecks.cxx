@@ -373,8 +373,9 @@ void CheckAsciiPlyData(
       if (!file.getline(line, sizeof(line)) || file.eof())
       {
         FailInside(path, element, index,
-          file.eof() ? "is cut short: the file ends before its line feed"
-                     : "has a line longer than 4095 characters");
+          !file.eof()          ? "has a line longer than 4095 characters"
+            : file.gcount() == 0 ? "is missing: the file ends before it"
+                                 : "is cut short: the file ends before its line feed");
       }
       SplitWords(line, values);
       uint64_t needed = 0;

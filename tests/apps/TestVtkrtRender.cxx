@@ -558,6 +558,14 @@ void TestBadFiles()
   WriteText(Tmp + "/negative.obj", objTriangle + "f 1 2 -9\n");
   CheckBadFile(Tmp + "/negative.obj",
     "polygon 1 of 1 refers to point id -[0-9]+ but the mesh has 3 points \\(ids 0 to 2\\)");
+  WriteText(Tmp + "/index.vtk", "# vtk DataFile Version 3.0\nbad\nASCII\n"
+                                 "DATASET UNSTRUCTURED_GRID\nPOINTS 3 float\n"
+                                 "0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 9\nCELL_TYPES 1\n5\n");
+  CheckBadFile(Tmp + "/index.vtk",
+    "cell 1 of 1 refers to point id 9 but the mesh has 3 points \\(ids 0 to 2\\)");
+  WriteText(Tmp + "/missing-face.ply", plyHeader.substr(0, plyHeader.find("face 1")) + "face 2" +
+      plyHeader.substr(plyHeader.find("face 1") + 6) + triangle + "3 0 1 2\n");
+  CheckBadFile(Tmp + "/missing-face.ply", "face 2 of 2 is missing: the file ends before it");
 
   // Good files around them still render: the same triangle as ascii PLY and
   // OBJ, and the binary sphere whole.
