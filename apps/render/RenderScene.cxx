@@ -1,6 +1,7 @@
 #include "RenderScene.h"
 
 #include "RenderErrors.h"
+#include "RenderMeshChecks.h"
 #include "RenderOptions.h"
 #include "vtkrtDemoGlyphs.h"
 
@@ -71,6 +72,17 @@ bool ReadByExtension(const std::string& path, const std::string& ext,
   return true;
 }
 
+// Turns the first VTK error or warning captured while reading `path` into
+// our one message.
+void ThrowIfCaptured(CapturingOutputWindow* output, const std::string& path)
+{
+  if (!output->Captured.empty())
+  {
+    throw Failure{ "cannot read mesh '" + path + "': " + MessageOf(output->Captured.front()),
+      ExitRuntimeError };
+  }
+}
+
 vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, CapturingOutputWindow* output)
 {
   if (!vtksys::SystemTools::FileExists(path, true))
@@ -83,6 +95,11 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, CapturingOutputWi
   }
   const std::string ext =
     vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path));
+  if (ext == ".ply")
+  {
+    // vtkPLYReader loops or aborts on data shorter than its header declares.
+    CheckPlyFile(path);
+  }
   output->StartCapture();
   vtkSmartPointer<vtkDataObject> data;
   if (!ReadByExtension(path, ext, data))
@@ -92,21 +109,23 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, CapturingOutputWi
         "' (expected .vtp .vtk .ply .obj .stl)",
       ExitRuntimeError };
   }
+  output->StopCapture();
+  ThrowIfCaptured(output, path);
+  // Readers pass a face's out-of-range index through; normals and links
+  // would then index past the points.
+  CheckPointIds(data, path);
 
   vtkSmartPointer<vtkPolyData> mesh = vtkPolyData::SafeDownCast(data);
   if (!mesh && vtkDataSet::SafeDownCast(data))
   {
     // A legacy .vtk grid: render its outer surface.
+    output->StartCapture();
     vtkNew<vtkGeometryFilter> surface;
     surface->SetInputData(data);
     surface->Update();
     mesh = surface->GetOutput();
-  }
-  output->StopCapture();
-  if (!output->Captured.empty())
-  {
-    throw Failure{ "cannot read mesh '" + path + "': " + MessageOf(output->Captured.front()),
-      ExitRuntimeError };
+    output->StopCapture();
+    ThrowIfCaptured(output, path);
   }
   if (!mesh || mesh->GetNumberOfPolys() + mesh->GetNumberOfStrips() == 0)
   {

@@ -31,9 +31,11 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <iterator>
 #include <map>
 #include <regex>
 #include <string>
+#include <utility>
 
 namespace
 {
@@ -483,6 +485,103 @@ void TestBadArguments()
     "--help prints the usage and exits 0");
 }
 
+// A file that VTK 9.1's readers would loop, abort or crash on: exit 1 with
+// one line naming the file and what is wrong.
+void CheckBadFile(const std::string& path, const std::string& message)
+{
+  const Result r = RunApp("'" + path + "' --size 64x64 --frames 0 --output '" + Tmp + "/bad.png'");
+  const std::string name = vtksys::SystemTools::GetFilenameName(path);
+  Check(r.Code == 1 && Contains(r.Output, "^vtkrt-render: cannot read mesh '[^']*" + name + "': " +
+                         message + "\n$"),
+    name + ": exit 1 and one line saying '" + message + "'");
+}
+
+void WriteText(const std::string& path, const std::string& text)
+{
+  std::ofstream f(path, std::ios::binary);
+  f << text;
+}
+
+void TestBadFiles()
+{
+  const std::string plyHeader = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                                "property float y\nproperty float z\nelement face 1\n"
+                                "property list uchar int vertex_indices\nend_header\n";
+  const std::string triangle = "0 0 0\n1 0 0\n0 1 0\n";
+
+  // A header claiming 10^9 vertices: vtkPLYReader would loop on end-of-file.
+  std::string header = plyHeader;
+  header.replace(header.find("vertex 3"), 8, "vertex 1000000000");
+  WriteText(Tmp + "/billion.ply", header + triangle + "3 0 1 2\n");
+  CheckBadFile(Tmp + "/billion.ply",
+    "header declares 1000000000 vertices, 1 face \\(at least [0-9]+ bytes of ascii data\\) but "
+    "only 26 bytes follow the header");
+
+  // A binary PLY cut inside its vertices, and one missing only its last
+  // bytes (the last face's list is cut short).
+  const std::string good = Tmp + "/sphere.ply";
+  vtkIdType sphereTriangles = 0;
+  {
+    vtkNew<vtkSphereSource> sphere;
+    sphere->Update();
+    sphereTriangles = sphere->GetOutput()->GetNumberOfPolys();
+    vtkNew<vtkPLYWriter> writer;
+    writer->SetInputConnection(sphere->GetOutputPort());
+    writer->SetFileTypeToBinary();
+    writer->SetFileName(good.c_str());
+    writer->Write();
+  }
+  std::string bytes;
+  {
+    std::ifstream f(good, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  }
+  WriteText(Tmp + "/cut.ply", bytes.substr(0, bytes.find("end_header\n") + 11 + 20));
+  CheckBadFile(Tmp + "/cut.ply",
+    "header declares [0-9]+ vertices, [0-9]+ faces \\(at least [0-9]+ bytes of "
+    "binary_(little|big)_endian data\\) but only [0-9]+ bytes follow the header");
+  WriteText(Tmp + "/short.ply", bytes.substr(0, bytes.size() - 5));
+  CheckBadFile(Tmp + "/short.ply", "face ([0-9]+) of \\1 is cut short by the end of the file");
+
+  // An ascii PLY line with fewer values than its list length says.
+  WriteText(Tmp + "/short-line.ply", plyHeader + triangle + "3 0 1\n");
+  CheckBadFile(Tmp + "/short-line.ply", "face 1 of 1 has 3 values on its line but needs 4");
+
+  // Face indices past the points: VTK reads them, then normals crash.
+  WriteText(Tmp + "/index.ply", plyHeader + triangle + "3 0 1 7\n");
+  CheckBadFile(Tmp + "/index.ply",
+    "polygon 1 of 1 refers to point id 7 but the mesh has 3 points \\(ids 0 to 2\\)");
+  const std::string objTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  WriteText(Tmp + "/index.obj", objTriangle + "f 1 2 9\n");
+  CheckBadFile(Tmp + "/index.obj",
+    "polygon 1 of 1 refers to point id 8 but the mesh has 3 points \\(ids 0 to 2\\)");
+  WriteText(Tmp + "/negative.obj", objTriangle + "f 1 2 -9\n");
+  CheckBadFile(Tmp + "/negative.obj",
+    "polygon 1 of 1 refers to point id -[0-9]+ but the mesh has 3 points \\(ids 0 to 2\\)");
+  WriteText(Tmp + "/index.vtk", "# vtk DataFile Version 3.0\nbad\nASCII\n"
+                                 "DATASET UNSTRUCTURED_GRID\nPOINTS 3 float\n"
+                                 "0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 9\nCELL_TYPES 1\n5\n");
+  CheckBadFile(Tmp + "/index.vtk",
+    "cell 1 of 1 refers to point id 9 but the mesh has 3 points \\(ids 0 to 2\\)");
+  WriteText(Tmp + "/missing-face.ply", plyHeader.substr(0, plyHeader.find("face 1")) + "face 2" +
+      plyHeader.substr(plyHeader.find("face 1") + 6) + triangle + "3 0 1 2\n");
+  CheckBadFile(Tmp + "/missing-face.ply", "face 2 of 2 is missing: the file ends before it");
+
+  // Good files around them still render: the same triangle as ascii PLY and
+  // OBJ, and the binary sphere whole.
+  const std::pair<std::string, vtkIdType> goodFiles[] = { { Tmp + "/triangle.ply", 1 },
+    { Tmp + "/triangle.obj", 1 }, { good, sphereTriangles } };
+  WriteText(goodFiles[0].first, plyHeader + triangle + "3 0 1 2\n");
+  WriteText(goodFiles[1].first, objTriangle + "f 1 2 3\n");
+  for (const auto& file : goodFiles)
+  {
+    const Result r =
+      RunApp("'" + file.first + "' --size 64x64 --frames 0 --output '" + Tmp + "/good.png'");
+    Check(r.Code == 0 && ReportNumber(r.Output, "triangles") == file.second,
+      file.first + ": exit 0 and " + std::to_string(file.second) + " triangle(s) reported");
+  }
+}
+
 void TestRaytraceMode()
 {
   const std::string out = Tmp + "/raytrace.png";
@@ -540,6 +639,7 @@ int main(int argc, char* argv[])
     { "Files", TestFiles },
     { "Pick", TestPick },
     { "BadArguments", TestBadArguments },
+    { "BadFiles", TestBadFiles },
     { "RaytraceMode", TestRaytraceMode },
   };
   if (argc != 3 || cases.find(argv[2]) == cases.end())
