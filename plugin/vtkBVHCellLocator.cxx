@@ -195,7 +195,8 @@ void vtkBVHCellLocator::BuildTree()
   const auto start = std::chrono::steady_clock::now();
 
   // Random-access cell structures must exist before threads call GetCell
-  // (it builds them lazily, which is not thread-safe).
+  // (it builds them lazily, which is not thread-safe; Extract warms the
+  // rest up on a cell it keeps).
   if (auto* pd = vtkPolyData::SafeDownCast(this->DataSet))
   {
     if (pd->NeedToBuildCells())
@@ -203,18 +204,19 @@ void vtkBVHCellLocator::BuildTree()
       pd->BuildCells();
     }
   }
+  this->Internals->Data.Extract(this->DataSet);
+  const vtkIdType invalid = this->Internals->Data.InvalidPointIdCells;
+  if (invalid > 0)
   {
-    vtkNew<vtkGenericCell> warmup;
-    this->DataSet->GetCell(0, warmup);
-    double b[6];
-    this->DataSet->GetCellBounds(0, b);
+    vtkWarningMacro(<< invalid << " cell(s) name a point id outside [0, "
+                    << this->DataSet->GetNumberOfPoints()
+                    << "): skipped, no query returns them");
   }
-  if (this->CacheCellBounds)
+  // VTK's StoreCellBounds would read every cell, the invalid ones too.
+  if (this->CacheCellBounds && invalid == 0)
   {
     this->StoreCellBounds();
   }
-
-  this->Internals->Data.Extract(this->DataSet);
   this->Internals->Data.Build(this->BuildQuality, this->NumberOfCellsPerNode);
   if (!this->PickingTreeOnDemand && this->Internals->Data.Lazy)
   {
@@ -563,7 +565,8 @@ void vtkBVHCellLocator::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Leaf size (NumberOfCellsPerNode): " << this->NumberOfCellsPerNode << "\n";
   os << indent << "Primitives: " << d.NumberOfPrimitives() << " (" << d.NumberOfTriangles()
      << " triangles, " << d.NumberOfGeneralCells() << " general cells, " << d.SkippedCells
-     << " skipped non-finite cells)\n";
+     << " skipped non-finite cells, " << d.InvalidPointIdCells
+     << " skipped cells with out-of-range point ids)\n";
   os << indent << "Picking tree (" << vtkrt::locator::BVHCellLocatorData::kWideArity
      << " children a node): " << d.PickingNodeCount() << " nodes";
   if (d.Lazy)

@@ -24,6 +24,22 @@
 #include <limits>
 #include <vector>
 
+namespace
+{
+/// Whether every point id of a cell names one of the dataset's points.
+bool PointIdsInRange(vtkIdType npts, const vtkIdType* pts, vtkIdType nPoints)
+{
+  for (vtkIdType i = 0; i < npts; ++i)
+  {
+    if (pts[i] < 0 || pts[i] >= nPoints)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
 namespace vtkrt
 {
 namespace locator
@@ -51,7 +67,26 @@ void BVHCellLocatorData::Extract(vtkDataSet* ds)
       this->GenCell.push_back(c);
     }
   }
+  this->WarmUpCellAccess(ds);
   this->ComputeGeneralBoxes(ds);
+}
+
+//------------------------------------------------------------------------------
+/// Has the dataset build what GetCell / GetCellBounds build lazily (not
+/// thread-safe) on a cell the locator keeps, before threads call them.
+void BVHCellLocatorData::WarmUpCellAccess(vtkDataSet* ds)
+{
+  const vtkIdType cellId = !this->GenCell.empty()
+    ? this->GenCell.front()
+    : (this->TriCell.empty() ? vtkIdType(-1) : this->TriCell[0]);
+  if (cellId < 0)
+  {
+    return;
+  }
+  vtkNew<vtkGenericCell> warmup;
+  ds->GetCell(cellId, warmup);
+  double b[6];
+  ds->GetCellBounds(cellId, b);
 }
 
 //------------------------------------------------------------------------------
@@ -221,14 +256,6 @@ bool BVHCellLocatorData::AddSurfaceCell(int type, vtkIdType npts, const vtkIdTyp
   {
     return false;
   }
-  const vtkIdType nPoints = this->NumberOfPoints;
-  for (vtkIdType i = 0; i < npts; ++i)
-  {
-    if (pts[i] < 0 || pts[i] >= nPoints)
-    {
-      return false; // let the general path (and VTK) deal with it
-    }
-  }
   for (vtkIdType i = 0; i < npts; ++i)
   {
     if (!core::isFinite(this->LocalPoint(pts[i])))
@@ -361,6 +388,11 @@ void BVHCellLocatorData::ExtractPolyData(vtkPolyData* pd)
       vtkIdType npts;
       const vtkIdType* pts;
       it->GetCurrentCell(npts, pts);
+      if (!PointIdsInRange(npts, pts, this->NumberOfPoints))
+      {
+        ++this->InvalidPointIdCells; // VTK would read past the points for it
+        continue;
+      }
       int type = -1;
       if (a == 2)
       {
@@ -411,6 +443,11 @@ void BVHCellLocatorData::ExtractUnstructuredGrid(vtkUnstructuredGrid* ug)
     const vtkIdType* pts;
     const int type = ug->GetCellType(c);
     ug->GetCellPoints(c, npts, pts);
+    if (!PointIdsInRange(npts, pts, this->NumberOfPoints))
+    {
+      ++this->InvalidPointIdCells; // VTK would read past the points for it
+      continue;
+    }
     if (!(indexable && this->AddSurfaceCell(type, npts, pts, c, polygon, tris)))
     {
       this->GenCell.push_back(c);

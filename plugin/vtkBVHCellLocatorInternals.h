@@ -189,6 +189,10 @@ public:
   mutable TreeStats Stats;
   vtkIdType SkippedCells = 0;   ///< cells in no leaf (non-finite or empty bounds)
   vtkIdType NonFiniteCells = 0; ///< surface cells dropped at extraction
+  /// Cells naming a point id outside [0, NumberOfPoints): dropped at
+  /// extraction, never handed to VTK (whose cell access would read past the
+  /// points).
+  vtkIdType InvalidPointIdCells = 0;
   double BuildSeconds = 0.0;
 
   vtkIdType NumberOfTriangles() const { return static_cast<vtkIdType>(this->TriCell.size()); }
@@ -471,6 +475,7 @@ private:
   void ExtractPolyData(vtkPolyData* pd);
   void ReserveTriangles(vtkCellArray* polys, vtkCellArray* strips);
   void ExtractUnstructuredGrid(vtkUnstructuredGrid* ug);
+  void WarmUpCellAccess(vtkDataSet* ds);
   void ComputeGeneralBoxes(vtkDataSet* ds);
 };
 

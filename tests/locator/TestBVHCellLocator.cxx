@@ -14,6 +14,8 @@ int TestRobustDegenerateCells();
 int TestRobustBadInput();
 int TestRobustRebuild();
 int TestRobustThreads();
+int TestContractBadPointIdsPolyData();
+int TestContractBadPointIdsUnstructuredGrid();
 int TestRobustLargeMesh();
 int TestPickerTriangles();
 int TestPickerQuads();
@@ -31,6 +33,8 @@ int main(int argc, char* argv[])
     { "ExtremeCoordinates", TestRobustExtremeCoordinates },
     { "DegenerateCells", TestRobustDegenerateCells }, { "BadInput", TestRobustBadInput },
     { "Rebuild", TestRobustRebuild }, { "Threads", TestRobustThreads },
+    { "BadPointIdsPolyData", TestContractBadPointIdsPolyData },
+    { "BadPointIdsUnstructuredGrid", TestContractBadPointIdsUnstructuredGrid },
     { "LargeMesh", TestRobustLargeMesh },
     { "PickerTriangles", TestPickerTriangles }, { "PickerQuads", TestPickerQuads } };
   if (argc < 2)
