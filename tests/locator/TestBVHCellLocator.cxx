@@ -16,6 +16,7 @@ int TestRobustRebuild();
 int TestRobustThreads();
 int TestContractBadPointIdsPolyData();
 int TestContractBadPointIdsUnstructuredGrid();
+int TestContractFreshLocatorThreads();
 int TestRobustLargeMesh();
 int TestPickerTriangles();
 int TestPickerQuads();
@@ -35,6 +36,7 @@ int main(int argc, char* argv[])
     { "Rebuild", TestRobustRebuild }, { "Threads", TestRobustThreads },
     { "BadPointIdsPolyData", TestContractBadPointIdsPolyData },
     { "BadPointIdsUnstructuredGrid", TestContractBadPointIdsUnstructuredGrid },
+    { "FreshLocatorThreads", TestContractFreshLocatorThreads },
     { "LargeMesh", TestRobustLargeMesh },
     { "PickerTriangles", TestPickerTriangles }, { "PickerQuads", TestPickerQuads } };
   if (argc < 2)

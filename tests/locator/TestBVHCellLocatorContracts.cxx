@@ -7,6 +7,7 @@
 #include "vtkUnstructuredGrid.h"
 
 #include <algorithm>
+#include <atomic>
 #include <thread>
 
 using namespace locatortest;
@@ -173,5 +174,104 @@ int TestContractBadPointIdsUnstructuredGrid()
   loc->FindCellsWithinBounds(everything, all);
   LT_CHECK(all->GetNumberOfIds() == 2 && all->GetId(0) == 1 && all->GetId(1) == 3);
   LT_CHECK(catcher->Warnings.size() == 1);
+  return 0;
+}
+
+namespace
+{
+struct ThreadAnswer
+{
+  int Hit = 0;
+  double T = -1.0;
+  vtkIdType HitCell = -1;
+  vtkIdType ClosestCell = -1;
+  double Dist2 = -1.0;
+};
+
+ThreadAnswer Ask(vtkBVHCellLocator* loc, const Segment& s, vtkGenericCell* cell)
+{
+  ThreadAnswer a;
+  double x[3], pc[3], cp[3];
+  int sub;
+  a.Hit = loc->IntersectWithLine(s.P1, s.P2, 0.0, a.T, x, pc, sub, a.HitCell, cell);
+  loc->FindClosestPoint(s.P1, cp, cell, a.ClosestCell, sub, a.Dist2);
+  return a;
+}
+
+/// Queries loc from `threads` std::threads released at once (the first
+/// query of each races the others into the build); mismatches against ref.
+int RaceQueries(vtkBVHCellLocator* loc, const std::vector<Segment>& segs,
+  const std::vector<ThreadAnswer>& ref, int threads)
+{
+  std::vector<ThreadAnswer> got(segs.size());
+  std::atomic<int> waiting{ threads };
+  std::vector<std::thread> workers;
+  for (int w = 0; w < threads; ++w)
+  {
+    workers.emplace_back([&, w]() {
+      vtkNew<vtkGenericCell> cell;
+      --waiting;
+      while (waiting.load() > 0)
+      {
+      }
+      for (size_t i = w; i < segs.size(); i += threads)
+      {
+        got[i] = Ask(loc, segs[i], cell);
+      }
+    });
+  }
+  for (auto& th : workers)
+  {
+    th.join();
+  }
+  int mismatches = 0;
+  for (size_t i = 0; i < segs.size(); ++i)
+  {
+    const ThreadAnswer& a = got[i];
+    const ThreadAnswer& b = ref[i];
+    mismatches += (a.Hit != b.Hit || a.T != b.T || a.HitCell != b.HitCell ||
+                    a.ClosestCell != b.ClosestCell || a.Dist2 != b.Dist2)
+      ? 1
+      : 0;
+  }
+  return mismatches;
+}
+} // namespace
+
+/// A fresh, unbuilt locator (and one whose dataset was modified since its
+/// build) queried first from 4 threads at once: one builds, the others
+/// wait for the published tree; every answer is the single-threaded one.
+int TestContractFreshLocatorThreads()
+{
+  auto pd = MakeBumpySphere(60);
+  Random rng(311);
+  const std::vector<Segment> segs = RandomSegments(pd, 400, rng);
+  vtkNew<vtkBVHCellLocator> refLoc;
+  refLoc->SetDataSet(pd);
+  refLoc->BuildLocator();
+  std::vector<ThreadAnswer> ref;
+  vtkNew<vtkGenericCell> cell;
+  for (const auto& s : segs)
+  {
+    ref.push_back(Ask(refLoc, s, cell));
+  }
+  int mismatches = 0, staleMismatches = 0;
+  for (int round = 0; round < 8; ++round)
+  {
+    vtkNew<vtkBVHCellLocator> loc;
+    loc->SetDataSet(pd);
+    if (round % 2)
+    {
+      loc->PickingTreeOnDemandOff();
+    }
+    mismatches += RaceQueries(loc, segs, ref, 4);
+    // Stale: the first queries after a Modified() race into the rebuild.
+    pd->GetPoints()->Modified();
+    staleMismatches += RaceQueries(loc, segs, ref, 4);
+  }
+  std::cout << "fresh locators, 4 threads: " << mismatches << " mismatches, after Modified(): "
+            << staleMismatches << ", over 8 x " << segs.size() << " queries each" << std::endl;
+  LT_CHECK(mismatches == 0);
+  LT_CHECK(staleMismatches == 0);
   return 0;
 }
