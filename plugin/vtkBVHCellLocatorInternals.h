@@ -375,6 +375,9 @@ public:
     const double p1[3], const double p2[3], double tol, std::vector<vtkIdType>& cells) const;
   /// The cells whose bounds overlap bbox (sorted ids).
   void CellsInBox(const double bbox[6], std::vector<vtkIdType>& cells) const;
+  /// The cells a zero-length segment at p hits (VTK's cells decide), t = 0.
+  void CellsThroughPoint(const double p[3], double tol, vtkDataSet* ds, vtkGenericCell* cell,
+    bool firstOnly, std::vector<LineHit>& hits) const;
   /// The closest point of any cell within radius of xw: subId and inside as
   /// the cell reports them, `cell` (when given) that cell.
   bool FindClosestPoint(

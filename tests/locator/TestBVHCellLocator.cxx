@@ -17,6 +17,8 @@ int TestRobustThreads();
 int TestContractBadPointIdsPolyData();
 int TestContractBadPointIdsUnstructuredGrid();
 int TestContractFreshLocatorThreads();
+int TestContractZeroLengthSegment();
+int TestContractZeroAreaClosestPoint();
 int TestRobustLargeMesh();
 int TestPickerTriangles();
 int TestPickerQuads();
@@ -37,6 +39,8 @@ int main(int argc, char* argv[])
     { "BadPointIdsPolyData", TestContractBadPointIdsPolyData },
     { "BadPointIdsUnstructuredGrid", TestContractBadPointIdsUnstructuredGrid },
     { "FreshLocatorThreads", TestContractFreshLocatorThreads },
+    { "ZeroLengthSegment", TestContractZeroLengthSegment },
+    { "ZeroAreaClosestPoint", TestContractZeroAreaClosestPoint },
     { "LargeMesh", TestRobustLargeMesh },
     { "PickerTriangles", TestPickerTriangles }, { "PickerQuads", TestPickerQuads } };
   if (argc < 2)

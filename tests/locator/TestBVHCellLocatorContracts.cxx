@@ -3,10 +3,12 @@
 // zero-length segments, float points moved under UseExistingSearchStructure.
 #include "LocatorTestUtils.h"
 #include "vtkBVHCellLocator.h"
+#include "vtkStaticCellLocator.h"
 #include "vtkTetra.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <thread>
 
@@ -273,5 +275,182 @@ int TestContractFreshLocatorThreads()
             << staleMismatches << ", over 8 x " << segs.size() << " queries each" << std::endl;
   LT_CHECK(mismatches == 0);
   LT_CHECK(staleMismatches == 0);
+  return 0;
+}
+
+namespace
+{
+bool BoundsHold(const double b[6], const double p[3], double tol)
+{
+  return b[0] - tol <= p[0] && p[0] <= b[1] + tol && b[2] - tol <= p[1] && p[1] <= b[3] + tol &&
+    b[4] - tol <= p[2] && p[2] <= b[5] + tol;
+}
+
+/// How many cells' bounds, grown by tol, hold p (brute force).
+vtkIdType CellsWithBoundsHolding(vtkDataSet* ds, const double p[3], double tol)
+{
+  vtkIdType count = 0;
+  for (vtkIdType c = 0; c < ds->GetNumberOfCells(); ++c)
+  {
+    double b[6];
+    ds->GetCellBounds(c, b);
+    count += BoundsHold(b, p, tol) ? 1 : 0;
+  }
+  return count;
+}
+} // namespace
+
+/// A zero-length segment (p1 == p2) is a point: it hits a cell when the
+/// cell's own IntersectWithLine(p, p) says so (VTK's triangles do when p
+/// lies on them), as vtkStaticCellLocator answers; FindCellsAlongLine gives
+/// the cells whose bounds, grown by tol, hold p.
+int TestContractZeroLengthSegment()
+{
+  // A flat triangulated grid in z = 0 (dyadic coordinates: points on it lie
+  // exactly in the plane), and a bumpy sphere whose vertices lie on their cells.
+  vtkNew<vtkPoints> gridPts;
+  gridPts->SetDataTypeToDouble();
+  const int n = 16;
+  for (int j = 0; j <= n; ++j)
+  {
+    for (int i = 0; i <= n; ++i)
+    {
+      gridPts->InsertNextPoint(i * 0.25, j * 0.25, 0.0);
+    }
+  }
+  vtkNew<vtkCellArray> gridTris;
+  for (int j = 0; j < n; ++j)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      const vtkIdType a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      const vtkIdType t1[3] = { a, b, d }, t2[3] = { a, d, c };
+      gridTris->InsertNextCell(3, t1);
+      gridTris->InsertNextCell(3, t2);
+    }
+  }
+  vtkNew<vtkPolyData> grid;
+  grid->SetPoints(gridPts);
+  grid->SetPolys(gridTris);
+  auto sphere = MakeBumpySphere(24);
+
+  Random rng(523);
+  int onHits = 0, compared = 0;
+  for (vtkPolyData* pd : { grid.Get(), sphere.Get() })
+  {
+    vtkNew<vtkBVHCellLocator> loc;
+    loc->SetDataSet(pd);
+    loc->BuildLocator();
+    vtkNew<vtkStaticCellLocator> vtkLoc;
+    vtkLoc->SetDataSet(pd);
+    vtkLoc->BuildLocator();
+    std::vector<std::array<double, 3>> points;
+    for (int k = 0; k < 200; ++k)
+    {
+      const vtkIdType v = static_cast<vtkIdType>(rng.Next(0, pd->GetNumberOfPoints() - 1e-9));
+      std::array<double, 3> p;
+      pd->GetPoint(v, p.data());
+      if (pd == grid.Get() && k % 2 == 0)
+      {
+        // Dyadic points inside the grid's cells, on and just off the plane.
+        p = { std::floor(rng.Next(0, 4 * 64)) / 64.0 + 1.0 / 128.0,
+          std::floor(rng.Next(0, 4 * 64)) / 64.0 + 1.0 / 256.0, k % 4 == 0 ? 0.0 : 1e-9 };
+      }
+      points.push_back(p);
+    }
+    vtkNew<vtkGenericCell> cell, vtkCell;
+    for (auto& p : points)
+    {
+      for (double tol : { 0.0, 1e-6 })
+      {
+        double t = -1, x[3], pc[3], vt, vx[3], vpc[3];
+        int sub, vsub;
+        vtkIdType cellId, vtkCellId;
+        const int hit = loc->IntersectWithLine(p.data(), p.data(), tol, t, x, pc, sub, cellId, cell);
+        const int vtkHit =
+          vtkLoc->IntersectWithLine(p.data(), p.data(), tol, vt, vx, vpc, vsub, vtkCellId, vtkCell);
+        ++compared;
+        LT_CHECK_MSG(hit == vtkHit, "p " << p[0] << " " << p[1] << " " << p[2] << " ours " << hit);
+        vtkNew<vtkIdList> along, vtkAlong;
+        loc->FindCellsAlongLine(p.data(), p.data(), tol, along);
+        vtkLoc->FindCellsAlongLine(p.data(), p.data(), tol, vtkAlong);
+        LT_CHECK(along->GetNumberOfIds() == CellsWithBoundsHolding(pd, p.data(), tol));
+        for (vtkIdType i = 0; i < along->GetNumberOfIds(); ++i)
+        {
+          double b[6];
+          pd->GetCellBounds(along->GetId(i), b);
+          LT_CHECK(BoundsHold(b, p.data(), tol));
+        }
+        if (!hit)
+        {
+          continue;
+        }
+        ++onHits;
+        LT_CHECK(vtkAlong->GetNumberOfIds() > 0);
+        LT_CHECK(t == 0.0 && x[0] == p[0] && x[1] == p[1] && x[2] == p[2]);
+        LT_CHECK(along->IsId(cellId) >= 0);
+        // The cell answered is one p lies on, by VTK's own test; the filled
+        // cell is it.
+        vtkNew<vtkGenericCell> check;
+        pd->GetCell(cellId, check);
+        double ct, cx[3], cpc[3];
+        int csub;
+        LT_CHECK(check->IntersectWithLine(p.data(), p.data(), tol, ct, cx, cpc, csub) == 1);
+        LT_CHECK(cell->GetCellType() == VTK_TRIANGLE && cell->GetPointId(0) == check->GetPointId(0));
+        LT_CHECK(std::abs(pc[0] - cpc[0]) < 1e-12 && std::abs(pc[1] - cpc[1]) < 1e-12);
+        vtkNew<vtkPoints> hitPts;
+        vtkNew<vtkIdList> hitIds;
+        LT_CHECK(loc->IntersectWithLine(p.data(), p.data(), hitPts, hitIds) == 1);
+        LT_CHECK(hitIds->GetNumberOfIds() >= 1 && hitIds->IsId(cellId) >= 0);
+      }
+    }
+  }
+  std::cout << "zero-length segments: " << onHits << " hits of " << compared
+            << " queries, all as vtkStaticCellLocator" << std::endl;
+  LT_CHECK(onHits > 100);
+  return 0;
+}
+
+/// Zero-area triangles (collinear points, a repeated point) are never a
+/// closest cell, as for VTK's locators (vtkTriangle::EvaluatePosition fails
+/// on them); the nearest real triangle is.
+int TestContractZeroAreaClosestPoint()
+{
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  const double xyz[7][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 5, 5, 0 }, { 6, 6, 0 },
+    { 7, 7, 0 }, { 5, 7, 0 } };
+  for (const auto& p : xyz)
+  {
+    pts->InsertNextPoint(p);
+  }
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType tri[3] = { 0, 1, 2 }, collinear[3] = { 3, 4, 5 }, repeated[3] = { 6, 6, 4 };
+  polys->InsertNextCell(3, tri);
+  polys->InsertNextCell(3, collinear);
+  polys->InsertNextCell(3, repeated);
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(pts);
+  pd->SetPolys(polys);
+  vtkNew<vtkBVHCellLocator> loc;
+  loc->SetDataSet(pd);
+  loc->BuildLocator();
+  vtkNew<vtkStaticCellLocator> vtkLoc;
+  vtkLoc->SetDataSet(pd);
+  vtkLoc->BuildLocator();
+  vtkNew<vtkGenericCell> cell;
+  for (const auto& q : { std::array<double, 3>{ 6, 6, 0.5 }, std::array<double, 3>{ 5.5, 6.5, 0 },
+         std::array<double, 3>{ 0.2, 0.2, 1 } })
+  {
+    double x[3] = { q[0], q[1], q[2] }, cp[3], vcp[3], d2, vd2;
+    vtkIdType c, vc;
+    int sub, vsub, inside = -1, vinside = -1;
+    LT_CHECK(loc->FindClosestPointWithinRadius(x, 100, cp, cell, c, sub, d2, inside) == 1);
+    LT_CHECK(vtkLoc->FindClosestPointWithinRadius(x, 100, vcp, cell, vc, vsub, vd2, vinside) == 1);
+    LT_CHECK_MSG(c == vc && c == 0, "ours " << c << " VTK " << vc);
+    LT_CHECK(std::abs(d2 - vd2) < 1e-12 && inside == vinside);
+    loc->FindClosestPoint(x, cp, c, sub, d2);
+    LT_CHECK(c == 0 && std::abs(d2 - vd2) < 1e-12);
+  }
   return 0;
 }
