@@ -183,6 +183,19 @@ bool vtkBVHCellLocator::PrepareQuery()
       this->BuildTree();
     }
   }
+  if (this->UseExistingSearchStructure && this->Internals->Data.PointsCopyStale())
+  {
+    // Float (non-double) points are read from the build's copy: re-read
+    // them where they are now, or refuse when the array no longer matches.
+    std::lock_guard<std::mutex> lock(this->Internals->BuildMutex);
+    if (this->Internals->Data.PointsCopyStale() && !this->Internals->Data.RefreshPointsCopy())
+    {
+      vtkErrorMacro(<< "The dataset's points were replaced, reallocated or shrunk since the "
+                       "locator was built; rebuild it (ForceBuildLocator) or turn "
+                       "UseExistingSearchStructure off");
+      return false;
+    }
+  }
   return this->Internals->HasTree() && this->Internals->Data.NumberOfPrimitives() > 0;
 }
 

@@ -129,14 +129,7 @@ void BVHCellLocatorData::BindPoints(vtkPoints* pts)
   else
   {
     this->PointsCopy.resize(static_cast<size_t>(n));
-    vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
-      double p[3];
-      for (vtkIdType i = b; i < e; ++i)
-      {
-        pts->GetPoint(i, p);
-        this->PointsCopy[i] = Vec3d(p[0], p[1], p[2]);
-      }
-    });
+    this->CopyPoints(pts);
   }
   const Vec3d* src = reinterpret_cast<const Vec3d*>(this->WorldCoords());
   // Bounds of the finite points, in fixed chunks (same result for any
@@ -165,6 +158,53 @@ void BVHCellLocatorData::BindPoints(vtkPoints* pts)
   this->Origin = b.isEmpty() ? Vec3d(0.0) : b.center();
   const Vec3d o = this->Origin;
   this->PointBounds = b.isEmpty() ? Box() : Box(b.min - o, b.max - o);
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::CopyPoints(vtkPoints* pts)
+{
+  const vtkMTimeType copied = std::max(pts->GetMTime(), pts->GetData()->GetMTime());
+  vtkSMPTools::For(0, this->NumberOfPoints, [&](vtkIdType b, vtkIdType e) {
+    double p[3];
+    for (vtkIdType i = b; i < e; ++i)
+    {
+      pts->GetPoint(i, p);
+      this->PointsCopy[i] = Vec3d(p[0], p[1], p[2]);
+    }
+  });
+  this->CopiedPoints = pts;
+  this->CopiedCoordsArray = pts->GetData();
+  this->CopiedCoordsPointer = pts->GetData()->GetVoidPointer(0);
+  this->CopiedCoordsTime.Value.store(copied, std::memory_order_release);
+}
+
+//------------------------------------------------------------------------------
+bool BVHCellLocatorData::PointsCopyStale() const
+{
+  vtkPoints* pts = this->CopiedPoints;
+  if (!pts)
+  {
+    return false;
+  }
+  vtkDataArray* a = pts->GetData();
+  return a != this->CopiedCoordsArray || a->GetVoidPointer(0) != this->CopiedCoordsPointer ||
+    a->GetNumberOfTuples() < this->NumberOfPoints ||
+    std::max(pts->GetMTime(), a->GetMTime()) >
+    this->CopiedCoordsTime.Value.load(std::memory_order_acquire);
+}
+
+//------------------------------------------------------------------------------
+bool BVHCellLocatorData::RefreshPointsCopy()
+{
+  vtkPoints* pts = this->CopiedPoints;
+  vtkDataArray* a = pts->GetData();
+  if (a != this->CopiedCoordsArray || a->GetVoidPointer(0) != this->CopiedCoordsPointer ||
+    a->GetNumberOfTuples() < this->NumberOfPoints)
+  {
+    return false;
+  }
+  this->CopyPoints(pts);
+  return true;
 }
 
 //------------------------------------------------------------------------------

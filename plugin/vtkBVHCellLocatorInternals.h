@@ -15,6 +15,7 @@
 
 #include "vtkDataArray.h"
 #include "vtkGenericCell.h"
+#include "vtkPoints.h"
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
@@ -40,7 +41,6 @@
 class vtkCellArray;
 class vtkDataSet;
 class vtkIdList;
-class vtkPoints;
 class vtkPolyData;
 class vtkPolygon;
 class vtkUnstructuredGrid;
@@ -169,6 +169,28 @@ public:
   /// whether the array still has them there.
   const double* DataSetCoords = nullptr;
   vtkSmartPointer<vtkDataArray> DataSetCoordsArray;
+  /// The non-double points copied to PointsCopy, their array and where it
+  /// held them, and the points' MTime at the copy: with
+  /// UseExistingSearchStructure the copy follows moved points
+  /// (RefreshPointsCopy). Copying copies the time, not the atomic.
+  vtkSmartPointer<vtkPoints> CopiedPoints;
+  vtkSmartPointer<vtkDataArray> CopiedCoordsArray;
+  const void* CopiedCoordsPointer = nullptr;
+  struct CopyTime
+  {
+    std::atomic<vtkMTimeType> Value{ 0 };
+    CopyTime() = default;
+    CopyTime(const CopyTime& o)
+      : Value(o.Value.load())
+    {
+    }
+    CopyTime& operator=(const CopyTime& o)
+    {
+      this->Value.store(o.Value.load());
+      return *this;
+    }
+  };
+  CopyTime CopiedCoordsTime;
   TriangleArray<vtkIdType> TriCell;        ///< original cell id per triangle
   /// subId and TriangleFlags per triangle (strips: subId is the triangle's
   /// index), in leaf order empty when UniformCellBase >= 0.
@@ -411,6 +433,15 @@ public:
         this->DataSetCoordsArray->GetNumberOfTuples() >= this->NumberOfPoints);
   }
 
+  /// Whether the copied (non-double) points were modified, reallocated or
+  /// shrunk since the copy.
+  bool PointsCopyStale() const;
+  /// Re-reads moved points into PointsCopy, the trees kept (tests then see
+  /// the points where they are, as VTK's locators do with
+  /// UseExistingSearchStructure); false, reading nothing, when the points
+  /// array was replaced, reallocated or shrunk.
+  bool RefreshPointsCopy();
+
 private:
   /// Local double vertex k of (leaf-ordered) triangle prim.
   Vec3d Vertex(std::uint32_t prim, int k) const
@@ -461,6 +492,8 @@ private:
   // Extraction
   void ComputeOrigin(vtkDataSet* ds);
   void BindPoints(vtkPoints* pts);
+  /// PointsCopy from pts (sized already), and what PointsCopyStale compares.
+  void CopyPoints(vtkPoints* pts);
   /// Whether every point id fits the 32-bit ids of the triangle arrays.
   bool PointsIndexable() const
   {

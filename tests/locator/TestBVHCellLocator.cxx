@@ -19,6 +19,7 @@ int TestContractBadPointIdsUnstructuredGrid();
 int TestContractFreshLocatorThreads();
 int TestContractZeroLengthSegment();
 int TestContractZeroAreaClosestPoint();
+int TestContractMovedFloatPoints();
 int TestRobustLargeMesh();
 int TestPickerTriangles();
 int TestPickerQuads();
@@ -41,6 +42,7 @@ int main(int argc, char* argv[])
     { "FreshLocatorThreads", TestContractFreshLocatorThreads },
     { "ZeroLengthSegment", TestContractZeroLengthSegment },
     { "ZeroAreaClosestPoint", TestContractZeroAreaClosestPoint },
+    { "MovedFloatPoints", TestContractMovedFloatPoints },
     { "LargeMesh", TestRobustLargeMesh },
     { "PickerTriangles", TestPickerTriangles }, { "PickerQuads", TestPickerQuads } };
   if (argc < 2)
