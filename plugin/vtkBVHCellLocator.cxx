@@ -13,6 +13,7 @@
 #include "vtkBVHCellLocatorInternals.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -26,11 +27,17 @@ using vtkrt::locator::BVHCellLocatorData;
 struct vtkBVHCellLocator::vtkInternals
 {
   BVHCellLocatorData Data;
-  bool HasTree = false;
+  // The BuildTime of the tree queries may read, 0 when there is none:
+  // stored (release) once the tree is complete, so a query that loads it
+  // (acquire) sees the whole tree without taking BuildMutex.
+  std::atomic<vtkMTimeType> TreeTime{ 0 };
   std::mutex BuildMutex;
   // The polydata the tree was built over (when the dataset is one): its
-  // staleness is judged by GeometryMTime().
-  vtkPolyData* BuiltPolyData = nullptr;
+  // staleness is judged by GeometryMTime(). Atomic: queries read it while
+  // the first of them to see a stale tree rebuilds.
+  std::atomic<vtkPolyData*> BuiltPolyData{ nullptr };
+
+  bool HasTree() const { return this->TreeTime.load(std::memory_order_acquire) != 0; }
   // Scratch cell for the overloads that take none; never used concurrently
   // by the thread-safe forms.
   vtkNew<vtkGenericCell> ScratchCell;
@@ -63,7 +70,8 @@ vtkBVHCellLocator::~vtkBVHCellLocator()
 //------------------------------------------------------------------------------
 bool vtkBVHCellLocator::NeedsBuild() const
 {
-  if (!this->Internals->HasTree)
+  const vtkMTimeType built = this->Internals->TreeTime.load(std::memory_order_acquire);
+  if (built == 0)
   {
     return true;
   }
@@ -71,14 +79,13 @@ bool vtkBVHCellLocator::NeedsBuild() const
   {
     return false;
   }
-  const vtkMTimeType built = this->BuildTime.GetMTime();
   return this->MTime.GetMTime() > built || (this->DataSet && this->GeometryMTime() > built);
 }
 
 //------------------------------------------------------------------------------
 vtkMTimeType vtkBVHCellLocator::GeometryMTime() const
 {
-  vtkPolyData* pd = this->Internals->BuiltPolyData;
+  vtkPolyData* pd = this->Internals->BuiltPolyData.load(std::memory_order_relaxed);
   if (pd != this->DataSet)
   {
     return this->DataSet->GetMTime();
@@ -147,7 +154,7 @@ void vtkBVHCellLocator::ForceBuildLocator()
 //------------------------------------------------------------------------------
 bool vtkBVHCellLocator::PrepareQuery()
 {
-  if (!this->DataSet && !(this->Internals->HasTree && this->UseExistingSearchStructure))
+  if (!this->DataSet && !(this->Internals->HasTree() && this->UseExistingSearchStructure))
   {
     vtkErrorMacro(<< "No dataset: set one with SetDataSet() before querying");
     return false;
@@ -176,26 +183,43 @@ bool vtkBVHCellLocator::PrepareQuery()
       this->BuildTree();
     }
   }
-  return this->Internals->HasTree && this->Internals->Data.NumberOfPrimitives() > 0;
+  if (this->UseExistingSearchStructure && this->Internals->Data.PointsCopyStale())
+  {
+    // Float (non-double) points are read from the build's copy: re-read
+    // them where they are now, or refuse when the array no longer matches.
+    std::lock_guard<std::mutex> lock(this->Internals->BuildMutex);
+    if (this->Internals->Data.PointsCopyStale() && !this->Internals->Data.RefreshPointsCopy())
+    {
+      vtkErrorMacro(<< "The dataset's points were replaced, reallocated or shrunk since the "
+                       "locator was built; rebuild it (ForceBuildLocator) or turn "
+                       "UseExistingSearchStructure off");
+      return false;
+    }
+  }
+  return this->Internals->HasTree() && this->Internals->Data.NumberOfPrimitives() > 0;
 }
 
 //------------------------------------------------------------------------------
 void vtkBVHCellLocator::BuildTree()
 {
-  this->Internals->HasTree = false;
+  this->Internals->TreeTime.store(0);
   this->FreeCellBounds();
   this->Internals->Data.Clear();
-  this->Internals->BuiltPolyData = vtkPolyData::SafeDownCast(this->DataSet);
+  this->Internals->BuiltPolyData.store(vtkPolyData::SafeDownCast(this->DataSet), std::memory_order_relaxed);
   if (!this->DataSet || this->DataSet->GetNumberOfCells() < 1)
   {
-    this->Internals->HasTree = this->DataSet != nullptr;
     this->BuildTime.Modified();
+    if (this->DataSet)
+    {
+      this->Internals->TreeTime.store(this->BuildTime.GetMTime(), std::memory_order_release);
+    }
     return;
   }
   const auto start = std::chrono::steady_clock::now();
 
   // Random-access cell structures must exist before threads call GetCell
-  // (it builds them lazily, which is not thread-safe).
+  // (it builds them lazily, which is not thread-safe; Extract warms the
+  // rest up on a cell it keeps).
   if (auto* pd = vtkPolyData::SafeDownCast(this->DataSet))
   {
     if (pd->NeedToBuildCells())
@@ -203,18 +227,19 @@ void vtkBVHCellLocator::BuildTree()
       pd->BuildCells();
     }
   }
+  this->Internals->Data.Extract(this->DataSet);
+  const vtkIdType invalid = this->Internals->Data.InvalidPointIdCells;
+  if (invalid > 0)
   {
-    vtkNew<vtkGenericCell> warmup;
-    this->DataSet->GetCell(0, warmup);
-    double b[6];
-    this->DataSet->GetCellBounds(0, b);
+    vtkWarningMacro(<< invalid << " cell(s) name a point id outside [0, "
+                    << this->DataSet->GetNumberOfPoints()
+                    << "): skipped, no query returns them");
   }
-  if (this->CacheCellBounds)
+  // VTK's StoreCellBounds would read every cell, the invalid ones too.
+  if (this->CacheCellBounds && invalid == 0)
   {
     this->StoreCellBounds();
   }
-
-  this->Internals->Data.Extract(this->DataSet);
   this->Internals->Data.Build(this->BuildQuality, this->NumberOfCellsPerNode);
   if (!this->PickingTreeOnDemand && this->Internals->Data.Lazy)
   {
@@ -224,16 +249,16 @@ void vtkBVHCellLocator::BuildTree()
 
   this->Internals->Data.BuildSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  this->Internals->HasTree = true;
   this->BuildTime.Modified();
+  this->Internals->TreeTime.store(this->BuildTime.GetMTime(), std::memory_order_release);
 }
 
 //------------------------------------------------------------------------------
 void vtkBVHCellLocator::FreeSearchStructure()
 {
   this->Internals->Data.Clear();
-  this->Internals->HasTree = false;
-  this->Internals->BuiltPolyData = nullptr;
+  this->Internals->TreeTime.store(0);
+  this->Internals->BuiltPolyData.store(nullptr);
   this->FreeCellBounds();
 }
 
@@ -244,7 +269,7 @@ void vtkBVHCellLocator::GenerateRepresentation(int level, vtkPolyData* pd)
   {
     return;
   }
-  if (this->DataSet && !this->PrepareQuery() && !this->Internals->HasTree)
+  if (this->DataSet && !this->PrepareQuery() && !this->Internals->HasTree())
   {
     return;
   }
@@ -500,7 +525,7 @@ bool vtkBVHCellLocator::InsideCellBounds(double x[3], vtkIdType cellId)
     return false;
   }
   double b[6];
-  if (this->CellBounds && this->Internals->HasTree && !this->NeedsBuild())
+  if (this->CellBounds && this->Internals->HasTree() && !this->NeedsBuild())
   {
 #if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 0)
     // VTK 9.2 stores the cached bounds flat (6 per cell).
@@ -558,12 +583,13 @@ void vtkBVHCellLocator::PrintSelf(ostream& os, vtkIndent indent)
   static const char* qualityNames[] = { "Fast", "SAH", "High" };
   os << indent << "BuildQuality: " << qualityNames[this->BuildQuality] << "\n";
   os << indent << "PickingTreeOnDemand: " << (this->PickingTreeOnDemand ? "On" : "Off") << "\n";
-  os << indent << "Built: " << (this->Internals->HasTree ? "yes" : "no") << "\n";
+  os << indent << "Built: " << (this->Internals->HasTree() ? "yes" : "no") << "\n";
   const auto& d = this->Internals->Data;
   os << indent << "Leaf size (NumberOfCellsPerNode): " << this->NumberOfCellsPerNode << "\n";
   os << indent << "Primitives: " << d.NumberOfPrimitives() << " (" << d.NumberOfTriangles()
      << " triangles, " << d.NumberOfGeneralCells() << " general cells, " << d.SkippedCells
-     << " skipped non-finite cells)\n";
+     << " skipped non-finite cells, " << d.InvalidPointIdCells
+     << " skipped cells with out-of-range point ids)\n";
   os << indent << "Picking tree (" << vtkrt::locator::BVHCellLocatorData::kWideArity
      << " children a node): " << d.PickingNodeCount() << " nodes";
   if (d.Lazy)

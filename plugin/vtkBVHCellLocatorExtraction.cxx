@@ -24,6 +24,22 @@
 #include <limits>
 #include <vector>
 
+namespace
+{
+/// Whether every point id of a cell names one of the dataset's points.
+bool PointIdsInRange(vtkIdType npts, const vtkIdType* pts, vtkIdType nPoints)
+{
+  for (vtkIdType i = 0; i < npts; ++i)
+  {
+    if (pts[i] < 0 || pts[i] >= nPoints)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
 namespace vtkrt
 {
 namespace locator
@@ -51,7 +67,26 @@ void BVHCellLocatorData::Extract(vtkDataSet* ds)
       this->GenCell.push_back(c);
     }
   }
+  this->WarmUpCellAccess(ds);
   this->ComputeGeneralBoxes(ds);
+}
+
+//------------------------------------------------------------------------------
+/// Has the dataset build what GetCell / GetCellBounds build lazily (not
+/// thread-safe) on a cell the locator keeps, before threads call them.
+void BVHCellLocatorData::WarmUpCellAccess(vtkDataSet* ds)
+{
+  const vtkIdType cellId = !this->GenCell.empty()
+    ? this->GenCell.front()
+    : (this->TriCell.empty() ? vtkIdType(-1) : this->TriCell[0]);
+  if (cellId < 0)
+  {
+    return;
+  }
+  vtkNew<vtkGenericCell> warmup;
+  ds->GetCell(cellId, warmup);
+  double b[6];
+  ds->GetCellBounds(cellId, b);
 }
 
 //------------------------------------------------------------------------------
@@ -94,14 +129,7 @@ void BVHCellLocatorData::BindPoints(vtkPoints* pts)
   else
   {
     this->PointsCopy.resize(static_cast<size_t>(n));
-    vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
-      double p[3];
-      for (vtkIdType i = b; i < e; ++i)
-      {
-        pts->GetPoint(i, p);
-        this->PointsCopy[i] = Vec3d(p[0], p[1], p[2]);
-      }
-    });
+    this->CopyPoints(pts);
   }
   const Vec3d* src = reinterpret_cast<const Vec3d*>(this->WorldCoords());
   // Bounds of the finite points, in fixed chunks (same result for any
@@ -130,6 +158,53 @@ void BVHCellLocatorData::BindPoints(vtkPoints* pts)
   this->Origin = b.isEmpty() ? Vec3d(0.0) : b.center();
   const Vec3d o = this->Origin;
   this->PointBounds = b.isEmpty() ? Box() : Box(b.min - o, b.max - o);
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::CopyPoints(vtkPoints* pts)
+{
+  const vtkMTimeType copied = std::max(pts->GetMTime(), pts->GetData()->GetMTime());
+  vtkSMPTools::For(0, this->NumberOfPoints, [&](vtkIdType b, vtkIdType e) {
+    double p[3];
+    for (vtkIdType i = b; i < e; ++i)
+    {
+      pts->GetPoint(i, p);
+      this->PointsCopy[i] = Vec3d(p[0], p[1], p[2]);
+    }
+  });
+  this->CopiedPoints = pts;
+  this->CopiedCoordsArray = pts->GetData();
+  this->CopiedCoordsPointer = pts->GetData()->GetVoidPointer(0);
+  this->CopiedCoordsTime.Value.store(copied, std::memory_order_release);
+}
+
+//------------------------------------------------------------------------------
+bool BVHCellLocatorData::PointsCopyStale() const
+{
+  vtkPoints* pts = this->CopiedPoints;
+  if (!pts)
+  {
+    return false;
+  }
+  vtkDataArray* a = pts->GetData();
+  return a != this->CopiedCoordsArray || a->GetVoidPointer(0) != this->CopiedCoordsPointer ||
+    a->GetNumberOfTuples() < this->NumberOfPoints ||
+    std::max(pts->GetMTime(), a->GetMTime()) >
+    this->CopiedCoordsTime.Value.load(std::memory_order_acquire);
+}
+
+//------------------------------------------------------------------------------
+bool BVHCellLocatorData::RefreshPointsCopy()
+{
+  vtkPoints* pts = this->CopiedPoints;
+  vtkDataArray* a = pts->GetData();
+  if (a != this->CopiedCoordsArray || a->GetVoidPointer(0) != this->CopiedCoordsPointer ||
+    a->GetNumberOfTuples() < this->NumberOfPoints)
+  {
+    return false;
+  }
+  this->CopyPoints(pts);
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -220,14 +295,6 @@ bool BVHCellLocatorData::AddSurfaceCell(int type, vtkIdType npts, const vtkIdTyp
   if (type != VTK_TRIANGLE && type != VTK_QUAD && type != VTK_POLYGON && type != VTK_TRIANGLE_STRIP)
   {
     return false;
-  }
-  const vtkIdType nPoints = this->NumberOfPoints;
-  for (vtkIdType i = 0; i < npts; ++i)
-  {
-    if (pts[i] < 0 || pts[i] >= nPoints)
-    {
-      return false; // let the general path (and VTK) deal with it
-    }
   }
   for (vtkIdType i = 0; i < npts; ++i)
   {
@@ -337,6 +404,11 @@ void BVHCellLocatorData::ExtractPolyData(vtkPolyData* pd)
       vtkIdType npts;
       const vtkIdType* pts;
       it->GetCurrentCell(npts, pts);
+      if (!PointIdsInRange(npts, pts, this->NumberOfPoints))
+      {
+        ++this->InvalidPointIdCells; // VTK would read past the points for it
+        continue;
+      }
       int type = -1;
       if (a == 2)
       {
@@ -387,6 +459,11 @@ void BVHCellLocatorData::ExtractUnstructuredGrid(vtkUnstructuredGrid* ug)
     const vtkIdType* pts;
     const int type = ug->GetCellType(c);
     ug->GetCellPoints(c, npts, pts);
+    if (!PointIdsInRange(npts, pts, this->NumberOfPoints))
+    {
+      ++this->InvalidPointIdCells; // VTK would read past the points for it
+      continue;
+    }
     if (!(indexable && this->AddSurfaceCell(type, npts, pts, c, polygon, tris)))
     {
       this->GenCell.push_back(c);

@@ -15,6 +15,7 @@
 
 #include "vtkDataArray.h"
 #include "vtkGenericCell.h"
+#include "vtkPoints.h"
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
@@ -40,7 +41,6 @@
 class vtkCellArray;
 class vtkDataSet;
 class vtkIdList;
-class vtkPoints;
 class vtkPolyData;
 class vtkPolygon;
 class vtkUnstructuredGrid;
@@ -169,6 +169,28 @@ public:
   /// whether the array still has them there.
   const double* DataSetCoords = nullptr;
   vtkSmartPointer<vtkDataArray> DataSetCoordsArray;
+  /// The non-double points copied to PointsCopy, their array and where it
+  /// held them, and the points' MTime at the copy: with
+  /// UseExistingSearchStructure the copy follows moved points
+  /// (RefreshPointsCopy). Copying copies the time, not the atomic.
+  vtkSmartPointer<vtkPoints> CopiedPoints;
+  vtkSmartPointer<vtkDataArray> CopiedCoordsArray;
+  const void* CopiedCoordsPointer = nullptr;
+  struct CopyTime
+  {
+    std::atomic<vtkMTimeType> Value{ 0 };
+    CopyTime() = default;
+    CopyTime(const CopyTime& o)
+      : Value(o.Value.load())
+    {
+    }
+    CopyTime& operator=(const CopyTime& o)
+    {
+      this->Value.store(o.Value.load());
+      return *this;
+    }
+  };
+  CopyTime CopiedCoordsTime;
   TriangleArray<vtkIdType> TriCell;        ///< original cell id per triangle
   /// subId and TriangleFlags per triangle (strips: subId is the triangle's
   /// index), in leaf order empty when UniformCellBase >= 0.
@@ -189,6 +211,10 @@ public:
   mutable TreeStats Stats;
   vtkIdType SkippedCells = 0;   ///< cells in no leaf (non-finite or empty bounds)
   vtkIdType NonFiniteCells = 0; ///< surface cells dropped at extraction
+  /// Cells naming a point id outside [0, NumberOfPoints): dropped at
+  /// extraction, never handed to VTK (whose cell access would read past the
+  /// points).
+  vtkIdType InvalidPointIdCells = 0;
   double BuildSeconds = 0.0;
 
   vtkIdType NumberOfTriangles() const { return static_cast<vtkIdType>(this->TriCell.size()); }
@@ -371,6 +397,9 @@ public:
     const double p1[3], const double p2[3], double tol, std::vector<vtkIdType>& cells) const;
   /// The cells whose bounds overlap bbox (sorted ids).
   void CellsInBox(const double bbox[6], std::vector<vtkIdType>& cells) const;
+  /// The cells a zero-length segment at p hits (VTK's cells decide), t = 0.
+  void CellsThroughPoint(const double p[3], double tol, vtkDataSet* ds, vtkGenericCell* cell,
+    bool firstOnly, std::vector<LineHit>& hits) const;
   /// The closest point of any cell within radius of xw: subId and inside as
   /// the cell reports them, `cell` (when given) that cell.
   bool FindClosestPoint(
@@ -403,6 +432,15 @@ public:
       (this->DataSetCoordsArray->GetVoidPointer(0) == this->DataSetCoords &&
         this->DataSetCoordsArray->GetNumberOfTuples() >= this->NumberOfPoints);
   }
+
+  /// Whether the copied (non-double) points were modified, reallocated or
+  /// shrunk since the copy.
+  bool PointsCopyStale() const;
+  /// Re-reads moved points into PointsCopy, the trees kept (tests then see
+  /// the points where they are, as VTK's locators do with
+  /// UseExistingSearchStructure); false, reading nothing, when the points
+  /// array was replaced, reallocated or shrunk.
+  bool RefreshPointsCopy();
 
 private:
   /// Local double vertex k of (leaf-ordered) triangle prim.
@@ -454,6 +492,8 @@ private:
   // Extraction
   void ComputeOrigin(vtkDataSet* ds);
   void BindPoints(vtkPoints* pts);
+  /// PointsCopy from pts (sized already), and what PointsCopyStale compares.
+  void CopyPoints(vtkPoints* pts);
   /// Whether every point id fits the 32-bit ids of the triangle arrays.
   bool PointsIndexable() const
   {
@@ -471,6 +511,7 @@ private:
   void ExtractPolyData(vtkPolyData* pd);
   void ReserveTriangles(vtkCellArray* polys, vtkCellArray* strips);
   void ExtractUnstructuredGrid(vtkUnstructuredGrid* ug);
+  void WarmUpCellAccess(vtkDataSet* ds);
   void ComputeGeneralBoxes(vtkDataSet* ds);
 };
 

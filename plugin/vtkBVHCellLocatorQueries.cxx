@@ -39,6 +39,21 @@ inline bool IntersectCell(vtkDataSet* ds, vtkIdType cellId, vtkGenericCell* cell
   return cell->IntersectWithLine(p1, p2, tol, t, x, pc, sub) && t >= r.tmin && t <= r.tmax;
 }
 
+/// Whether p1 -> p2 is a zero-length segment at a finite point.
+inline bool IsFinitePoint(const double p1[3], const double p2[3])
+{
+  return p1[0] == p2[0] && p1[1] == p2[1] && p1[2] == p2[2] && std::isfinite(p1[0]) &&
+    std::isfinite(p1[1]) && std::isfinite(p1[2]);
+}
+
+/// vtkTriangle::EvaluatePosition fails (-1) on a zero-area triangle, so
+/// VTK's locators never give one as a closest point.
+inline bool ZeroArea(const Vec3d& v0, const Vec3d& v1, const Vec3d& v2)
+{
+  const Vec3d n = glm::cross(v1 - v0, v2 - v0);
+  return n.x == 0.0 && n.y == 0.0 && n.z == 0.0;
+}
+
 inline void Barycentric(
   const Vec3d& x, const Vec3d& v0, const Vec3d& e1, const Vec3d& e2, double& u, double& v)
 {
@@ -250,7 +265,18 @@ bool BVHCellLocatorData::IntersectWithLine(const double p1[3], const double p2[3
   core::Ray<double> ray;
   if (!this->MakeSegment(p1, p2, ray))
   {
-    return false;
+    std::vector<LineHit> hits;
+    if (IsFinitePoint(p1, p2))
+    {
+      // The scratch cell is left holding the hit cell (the caller's, if given).
+      this->CellsThroughPoint(p1, tol, ds, cell.Get(), true, hits);
+    }
+    if (hits.empty())
+    {
+      return false;
+    }
+    out = hits.front();
+    return true;
   }
   const core::RayTrianglePrecomputed<double> triPre(ray);
   const vtkIdType nTri = this->NumberOfTriangles();
@@ -345,6 +371,10 @@ void BVHCellLocatorData::AllHits(const double p1[3], const double p2[3], double 
   core::Ray<double> ray;
   if (!this->MakeSegment(p1, p2, ray))
   {
+    if (IsFinitePoint(p1, p2))
+    {
+      this->CellsThroughPoint(p1, tol, ds, cell.Get(), false, hits);
+    }
     return;
   }
   const core::RayTrianglePrecomputed<double> triPre(ray);
@@ -413,6 +443,13 @@ void BVHCellLocatorData::CellsAlongLine(
   core::Ray<double> ray;
   if (!this->MakeSegment(p1, p2, ray))
   {
+    if (IsFinitePoint(p1, p2))
+    {
+      // A point: the cells whose bounds, grown by tol, hold it.
+      const double box[6] = { p1[0] - tol, p1[0] + tol, p1[1] - tol, p1[1] + tol, p1[2] - tol,
+        p1[2] + tol };
+      this->CellsInBox(box, cells);
+    }
     return;
   }
   const core::RayBoxPrecomputed<double> boxPre(ray);
@@ -428,6 +465,44 @@ void BVHCellLocatorData::CellsAlongLine(
   core::allHitsSegment(PickingScene{ this }, ray, tol, isect);
   std::sort(cells.begin(), cells.end());
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+}
+
+//------------------------------------------------------------------------------
+/// A zero-length segment is a point: it hits the cells whose own
+/// IntersectWithLine(p, p) says so (VTK's cells do when p lies on them), at
+/// t = 0, x = p, pcoords and subId as EvaluatePosition gives them; in cell
+/// id order, the first only when firstOnly (then `cell` holds it).
+void BVHCellLocatorData::CellsThroughPoint(const double p[3], double tol, vtkDataSet* ds,
+  vtkGenericCell* cell, bool firstOnly, std::vector<LineHit>& hits) const
+{
+  std::vector<vtkIdType> candidates;
+  const double box[6] = { p[0] - tol, p[0] + tol, p[1] - tol, p[1] + tol, p[2] - tol, p[2] + tol };
+  this->CellsInBox(box, candidates);
+  if (!ds || candidates.empty())
+  {
+    return;
+  }
+  std::vector<double> weights(static_cast<size_t>(std::max(ds->GetMaxCellSize(), 1)));
+  double x[3] = { p[0], p[1], p[2] };
+  for (const vtkIdType cellId : candidates)
+  {
+    ds->GetCell(cellId, cell);
+    double t, cx[3], pc[3], d2;
+    int sub;
+    if (!cell->IntersectWithLine(x, x, tol, t, cx, pc, sub))
+    {
+      continue;
+    }
+    LineHit h;
+    h.CellId = cellId;
+    std::copy(x, x + 3, h.X);
+    cell->EvaluatePosition(x, cx, h.SubId, h.PCoords, d2, weights.data());
+    hits.push_back(h);
+    if (firstOnly)
+    {
+      return;
+    }
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -466,6 +541,10 @@ bool BVHCellLocatorData::ClosestPoint(
       const Vec3d v0 = this->Vertex(prim, 0);
       const Vec3d v1 = this->Vertex(prim, 1);
       const Vec3d v2 = this->Vertex(prim, 2);
+      if (ZeroArea(v0, v1, v2))
+      {
+        return false;
+      }
       cand.point = core::closestPointOnTriangle(p, v0, v1, v2);
       const Vec3d d = p - cand.point;
       cand.dist2 = glm::dot(d, d);

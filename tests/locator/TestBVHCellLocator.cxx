@@ -14,6 +14,12 @@ int TestRobustDegenerateCells();
 int TestRobustBadInput();
 int TestRobustRebuild();
 int TestRobustThreads();
+int TestContractBadPointIdsPolyData();
+int TestContractBadPointIdsUnstructuredGrid();
+int TestContractFreshLocatorThreads();
+int TestContractZeroLengthSegment();
+int TestContractZeroAreaClosestPoint();
+int TestContractMovedFloatPoints();
 int TestRobustLargeMesh();
 int TestPickerTriangles();
 int TestPickerQuads();
@@ -32,6 +38,12 @@ int main(int argc, char* argv[])
     { "ExtremeCoordinates", TestRobustExtremeCoordinates },
     { "DegenerateCells", TestRobustDegenerateCells }, { "BadInput", TestRobustBadInput },
     { "Rebuild", TestRobustRebuild }, { "Threads", TestRobustThreads },
+    { "BadPointIdsPolyData", TestContractBadPointIdsPolyData },
+    { "BadPointIdsUnstructuredGrid", TestContractBadPointIdsUnstructuredGrid },
+    { "FreshLocatorThreads", TestContractFreshLocatorThreads },
+    { "ZeroLengthSegment", TestContractZeroLengthSegment },
+    { "ZeroAreaClosestPoint", TestContractZeroAreaClosestPoint },
+    { "MovedFloatPoints", TestContractMovedFloatPoints },
     { "LargeMesh", TestRobustLargeMesh },
     { "PickerTriangles", TestPickerTriangles }, { "PickerQuads", TestPickerQuads },
     { "WarpedQuadsAndPolygons", TestWarpedQuadsAndPolygons } };
