@@ -12,7 +12,6 @@
 #include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkPolygon.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkUnstructuredGrid.h"
@@ -289,8 +288,7 @@ void BVHCellLocatorData::AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkI
 //------------------------------------------------------------------------------
 /// Triangulates a surface cell onto the fast path; false when it must take
 /// the general path.
-bool BVHCellLocatorData::AddSurfaceCell(int type, vtkIdType npts, const vtkIdType* pts, vtkIdType cellId,
-  vtkPolygon* polygon, vtkIdList* tris)
+bool BVHCellLocatorData::AddSurfaceCell(int type, vtkIdType npts, const vtkIdType* pts, vtkIdType cellId)
 {
   if (type != VTK_TRIANGLE && type != VTK_QUAD && type != VTK_POLYGON && type != VTK_TRIANGLE_STRIP)
   {
@@ -335,7 +333,7 @@ bool BVHCellLocatorData::AddSurfaceCell(int type, vtkIdType npts, const vtkIdTyp
         this->AddQuad(pts, cellId);
         return true;
       }
-      this->AddPolygon(npts, pts, cellId, polygon, tris);
+      this->AddPolygon(npts, pts, cellId);
       return true;
     case VTK_TRIANGLE_STRIP:
       if (npts < 3)
@@ -366,8 +364,7 @@ void BVHCellLocatorData::AddQuad(const vtkIdType* pts, vtkIdType cellId)
 }
 
 //------------------------------------------------------------------------------
-void BVHCellLocatorData::AddPolygon(vtkIdType npts, const vtkIdType* pts, vtkIdType cellId,
-  vtkPolygon* vtkNotUsed(polygon), vtkIdList* vtkNotUsed(tris))
+void BVHCellLocatorData::AddPolygon(vtkIdType npts, const vtkIdType* pts, vtkIdType cellId)
 {
   // A fan from point 0, as VTK's raster mapper and vtkRayTracePass draw it
   // (vtkPolygon's own tests ear-cut it).
@@ -380,8 +377,6 @@ void BVHCellLocatorData::AddPolygon(vtkIdType npts, const vtkIdType* pts, vtkIdT
 //------------------------------------------------------------------------------
 void BVHCellLocatorData::ExtractPolyData(vtkPolyData* pd)
 {
-  vtkNew<vtkPolygon> polygon;
-  vtkNew<vtkIdList> tris;
   const bool indexable = this->PointsIndexable();
   vtkIdType cellId = 0;
   vtkCellArray* arrays[4] = { pd->GetVerts(), pd->GetLines(), pd->GetPolys(), pd->GetStrips() };
@@ -418,7 +413,7 @@ void BVHCellLocatorData::ExtractPolyData(vtkPolyData* pd)
       {
         type = VTK_TRIANGLE_STRIP;
       }
-      if (!(indexable && type >= 0 && this->AddSurfaceCell(type, npts, pts, cellId, polygon, tris)))
+      if (!(indexable && type >= 0 && this->AddSurfaceCell(type, npts, pts, cellId)))
       {
         this->GenCell.push_back(cellId);
       }
@@ -449,8 +444,6 @@ void BVHCellLocatorData::ReserveTriangles(vtkCellArray* polys, vtkCellArray* str
 //------------------------------------------------------------------------------
 void BVHCellLocatorData::ExtractUnstructuredGrid(vtkUnstructuredGrid* ug)
 {
-  vtkNew<vtkPolygon> polygon;
-  vtkNew<vtkIdList> tris;
   const bool indexable = this->PointsIndexable();
   const vtkIdType n = ug->GetNumberOfCells();
   for (vtkIdType c = 0; c < n; ++c)
@@ -464,7 +457,7 @@ void BVHCellLocatorData::ExtractUnstructuredGrid(vtkUnstructuredGrid* ug)
       ++this->InvalidPointIdCells; // VTK would read past the points for it
       continue;
     }
-    if (!(indexable && this->AddSurfaceCell(type, npts, pts, c, polygon, tris)))
+    if (!(indexable && this->AddSurfaceCell(type, npts, pts, c)))
     {
       this->GenCell.push_back(c);
     }

@@ -6,7 +6,7 @@
 //
 // Primitives are of two kinds sharing one tree:
 // - triangles (fast path): polydata / unstructured-grid triangles, quads,
-//   polygons (ear-cut) and triangle strips, stored as point-index triples
+//   polygons (fans, as drawn) and triangle strips, stored as point-index triples
 //   into the dataset's double points (or a double copy of them) and tested
 //   without any vtkCell;
 // - general cells: every other cell, tested by its own vtkCell methods.
@@ -42,7 +42,6 @@ class vtkCellArray;
 class vtkDataSet;
 class vtkIdList;
 class vtkPolyData;
-class vtkPolygon;
 class vtkUnstructuredGrid;
 
 namespace vtkrt
@@ -503,11 +502,9 @@ private:
   template <class IdT>
   bool ExtractTriangles(const IdT* offsets, const IdT* conn, vtkIdType n, vtkIdType cellBase);
   void AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cellId, int sub, std::uint8_t flags);
-  bool AddSurfaceCell(int type, vtkIdType npts, const vtkIdType* pts, vtkIdType cellId,
-    vtkPolygon* polygon, vtkIdList* tris);
+  bool AddSurfaceCell(int type, vtkIdType npts, const vtkIdType* pts, vtkIdType cellId);
   void AddQuad(const vtkIdType* pts, vtkIdType cellId);
-  void AddPolygon(
-    vtkIdType npts, const vtkIdType* pts, vtkIdType cellId, vtkPolygon* polygon, vtkIdList* tris);
+  void AddPolygon(vtkIdType npts, const vtkIdType* pts, vtkIdType cellId);
   void ExtractPolyData(vtkPolyData* pd);
   void ReserveTriangles(vtkCellArray* polys, vtkCellArray* strips);
   void ExtractUnstructuredGrid(vtkUnstructuredGrid* ug);
