@@ -8,7 +8,6 @@
 #include "vtkCellType.h"
 #include "vtkDataSet.h"
 #include "vtkDoubleArray.h"
-#include "vtkIdList.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
