@@ -630,6 +630,21 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRen
   ostate->vtkglDisable(GL_BLEND);
   if (p.F.SamplesPerPixel == 0)
   {
+    // Rays only where the traced instances can be: the rest keeps VTK's
+    // clear (under IceT, each rank traces its own piece's share).
+    vtkOpenGLState::ScopedglScissor scissor(ostate);
+    vtkOpenGLState::ScopedglEnableDisable scissorTest(ostate, GL_SCISSOR_TEST);
+    int footprint[4];
+    if (vtkrt::pass::TracedFootprint(p.Camera, p.Frame, ren, footprint))
+    {
+      int box[4];
+      ostate->vtkglGetIntegerv(ostate->GetEnumState(GL_SCISSOR_TEST) ? GL_SCISSOR_BOX : GL_VIEWPORT, box);
+      ostate->vtkglEnable(GL_SCISSOR_TEST);
+      const int x0 = std::max(footprint[0], box[0]), y0 = std::max(footprint[1], box[1]);
+      const int x1 = std::min(footprint[0] + footprint[2], box[0] + box[2]);
+      const int y1 = std::min(footprint[1] + footprint[3], box[1] + box[3]);
+      ostate->vtkglScissor(x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0));
+    }
     tracer->Render();
   }
   else

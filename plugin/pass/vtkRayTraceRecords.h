@@ -79,6 +79,14 @@ struct FrameRecords
 bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlacements& places,
   const CameraFrame& camera, vtkRenderer* ren, FrameRecords& out);
 
+/// The pixels where a primary ray can meet the frame's instances: the
+/// window rectangle (x, y, width, height) around their world boxes'
+/// projections, a pixel wider on each side. False when it is the whole
+/// viewport anyway, or when a box reaches behind the eye (its projection
+/// is unbounded).
+bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRenderer* ren,
+  int rect[4]);
+
 /// Drops the records (and world boxes) of the props `traced` leaves out
 /// (indexed by prop index).
 void KeepTracedProps(const std::vector<bool>& traced, FrameRecords& frame);

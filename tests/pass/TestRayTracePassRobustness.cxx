@@ -233,6 +233,40 @@ void TestTooLarge()
 }
 } // namespace
 
+/// The pass traces only the pixels around its instances' projected boxes:
+/// cameras that make that rectangle tricky (a box reaching behind the eye,
+/// objects cut by the viewport's edges, a renderer in part of the window)
+/// still give raster's picture.
+void TestFootprint()
+{
+  auto win = MakeWindow(160, 120);
+  vtkNew<vtkRenderer> ren;
+  ren->SetViewport(0.1, 0.2, 0.9, 1.0);
+  win->AddRenderer(ren);
+  ren->AddActor(SphereActor(0, 0, 0, 1.0, 48));
+  ren->AddActor(SphereActor(2.5, 0.5, -1.0, 0.7, 48));
+  ren->ResetCamera();
+  auto compare = [&](const std::string& what) {
+    ren->ResetCameraClippingRange();
+    ren->SetPass(nullptr);
+    win->Render();
+    auto raster = Grab(win);
+    vtkNew<vtkRayTracePass> pass;
+    ren->SetPass(pass);
+    win->Render();
+    const long off = CountDifferingPixels(raster, Grab(win), 48);
+    Check(off <= 40, "footprint, " + what + ": " + std::to_string(off) + " pixels off raster");
+  };
+  compare("whole scene in view");
+  ren->GetActiveCamera()->Zoom(3.0);
+  ren->GetActiveCamera()->Azimuth(20);
+  compare("objects cut by the viewport's edges");
+  ren->GetActiveCamera()->SetPosition(0.2, 0.1, 0.3); // inside the first sphere's box
+  ren->GetActiveCamera()->SetFocalPoint(2.5, 0.5, -1.0);
+  compare("a box reaching behind the eye");
+  NoVTKOutput("footprint");
+}
+
 int main(int argc, char* argv[])
 {
   Output = vtkrtTestOutputWindow::Install();
@@ -240,6 +274,7 @@ int main(int argc, char* argv[])
     { "FarFromOrigin", TestFarFromOrigin },
     { "Degenerate", TestDegenerate },
     { "TooLarge", TestTooLarge },
+    { "Footprint", TestFootprint },
   };
   return RunCase(argc, argv, cases);
 }
