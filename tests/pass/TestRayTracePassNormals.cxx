@@ -171,33 +171,6 @@ vtkSmartPointer<vtkActor> AddActor(vtkRenderer* ren, vtkPolyData* poly, int inte
   return actor;
 }
 
-/// RGB root mean square difference (0..255) over the whole image.
-double RootMeanSquareError(vtkImageData* a, vtkImageData* b)
-{
-  int da[3], db[3];
-  a->GetDimensions(da);
-  b->GetDimensions(db);
-  if (da[0] != db[0] || da[1] != db[1])
-  {
-    return vtkMath::Inf();
-  }
-  const int ca = a->GetNumberOfScalarComponents();
-  const int cb = b->GetNumberOfScalarComponents();
-  const auto* pa = static_cast<const unsigned char*>(a->GetScalarPointer());
-  const auto* pb = static_cast<const unsigned char*>(b->GetScalarPointer());
-  const long pixels = static_cast<long>(da[0]) * da[1];
-  double sum = 0.0;
-  for (long i = 0; i < pixels; ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      const double d = double(pa[i * ca + c]) - double(pb[i * cb + c]);
-      sum += d * d;
-    }
-  }
-  return std::sqrt(sum / (3.0 * std::max(1L, pixels)));
-}
-
 /// Writes raster, traced and their difference (x4, RGB) to the test's
 /// temporary directory.
 void WriteComparison(const std::string& name, vtkImageData* raster, vtkImageData* traced)

@@ -50,34 +50,11 @@ struct Scene
   }
 };
 
-/// RGB root mean square difference, 0..255.
-double RgbRmse(vtkImageData* a, vtkImageData* b)
-{
-  vtkUnsignedCharArray* pa = vtkUnsignedCharArray::SafeDownCast(a->GetPointData()->GetScalars());
-  vtkUnsignedCharArray* pb = vtkUnsignedCharArray::SafeDownCast(b->GetPointData()->GetScalars());
-  if (!pa || !pb || pa->GetNumberOfTuples() != pb->GetNumberOfTuples())
-  {
-    return 1e9;
-  }
-  const int ca = pa->GetNumberOfComponents();
-  const int cb = pb->GetNumberOfComponents();
-  double sum = 0.0;
-  for (vtkIdType i = 0; i < pa->GetNumberOfTuples(); ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      const double d = double(pa->GetValue(i * ca + c)) - double(pb->GetValue(i * cb + c));
-      sum += d * d;
-    }
-  }
-  return std::sqrt(sum / (3.0 * pa->GetNumberOfTuples()));
-}
-
 /// Checks the RMSE; on failure writes both images and the raster one as
 /// <name>.raster.png beside the usual failure and diff images.
 void CheckClose(const std::string& name, vtkImageData* raster, vtkImageData* traced, double maxRmse)
 {
-  const double rmse = RgbRmse(raster, traced);
+  const double rmse = RootMeanSquareError(raster, traced);
   std::ostringstream what;
   what << name << ": RGB RMSE " << rmse << " against raster (<= " << maxRmse << ")";
   Check(rmse <= maxRmse, what.str());
@@ -120,7 +97,7 @@ void TestPeelCount()
 {
   RasterAndTraced one = Compare("OnePeel", true, 1, 3.0);
   RasterAndTraced many = Compare("TwentyPeels", true, 20, 3.0);
-  Check(RgbRmse(one.Traced, many.Traced) > 1.0, "one peel and twenty peels differ");
+  Check(RootMeanSquareError(one.Traced, many.Traced) > 1.0, "one peel and twenty peels differ");
 }
 
 /// A user's vtkRenderStepsPass whose translucent step is dual depth peeling

@@ -37,6 +37,7 @@
 #include <functional>
 #include <map>
 #include <iostream>
+#include <limits>
 #include <string>
 
 namespace vtkrtPassTest
@@ -233,8 +234,8 @@ inline long CountColor(vtkImageData* image, const unsigned char rgb[3])
   return count;
 }
 
-/// Root mean square of the RGB differences (0-255 scale); -1 when the sizes
-/// differ.
+/// Root mean square of the RGB differences (0-255 scale); infinite when the
+/// sizes differ (so no bound accepts it).
 inline double RootMeanSquareError(vtkImageData* a, vtkImageData* b)
 {
   int da[3], db[3];
@@ -242,7 +243,7 @@ inline double RootMeanSquareError(vtkImageData* a, vtkImageData* b)
   b->GetDimensions(db);
   if (da[0] != db[0] || da[1] != db[1])
   {
-    return -1.0;
+    return std::numeric_limits<double>::infinity();
   }
   const int ca = a->GetNumberOfScalarComponents();
   const int cb = b->GetNumberOfScalarComponents();

@@ -1,0 +1,411 @@
+#include "vtkRayTracePassInternals.h"
+
+using vtkrt::pass::Features;
+using vtkrt::pass::Instance;
+
+namespace
+{
+/// Row-major double 4x4 -> column-major float (what GLSL's mat4 expects).
+void toGLSL(const vtkMatrix4x4* m, float out[16])
+{
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      out[c * 4 + r] = static_cast<float>(m->GetElement(r, c));
+    }
+  }
+}
+
+/// Appends the bytes of trivially copyable values as floats (a signature
+/// compares them bit for bit).
+template <class T>
+void appendAsFloats(std::vector<float>& out, const std::vector<T>& values)
+{
+  static_assert(sizeof(T) % sizeof(float) == 0, "whole floats");
+  out.push_back(static_cast<float>(values.size()));
+  const std::size_t first = out.size();
+  out.resize(first + values.size() * sizeof(T) / sizeof(float));
+  if (!values.empty())
+  {
+    std::memcpy(out.data() + first, values.data(), values.size() * sizeof(T));
+  }
+}
+} // namespace
+
+void vtkRayTracePass::Internals::Extract(
+  const vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren)
+{
+  this->Scene.SetBuildQuality(pass.BuildQuality);
+  this->Scene.SetLeafSize(pass.LeafSize);
+  if (pass.IdMode || (!pass.Shadows && pass.AmbientOcclusionSamples == 0))
+  {
+    this->Scene.Extract(
+      ren, s->GetPropArray(), s->GetPropArrayCount(), this->Traced, this->Others, this->Counters);
+    return;
+  }
+  // Secondary rays see props out of view too (VTK's culler left them out of
+  // the render state): trace every visible prop, and leave to raster only
+  // the render state's own.
+  std::vector<vtkProp*> all;
+  vtkPropCollection* props = ren->GetViewProps();
+  vtkCollectionSimpleIterator pit;
+  props->InitTraversal(pit);
+  while (vtkProp* prop = props->GetNextProp(pit))
+  {
+    if (prop->GetVisibility())
+    {
+      all.push_back(prop);
+    }
+  }
+  std::vector<vtkProp*> others;
+  this->Scene.Extract(ren, all.data(), static_cast<int>(all.size()), this->Traced, others, this->Counters);
+  vtkProp** stateProps = s->GetPropArray();
+  const int stateCount = s->GetPropArrayCount();
+  this->Others.clear();
+  for (vtkProp* prop : others)
+  {
+    if (std::find(stateProps, stateProps + stateCount, prop) != stateProps + stateCount)
+    {
+      this->Others.push_back(prop);
+    }
+  }
+}
+
+void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRenderWindow* win)
+{
+  GLint maxTexels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  std::size_t limit = static_cast<std::size_t>(maxTexels);
+  if (pass.MaximumTextureBufferTexels > 0)
+  {
+    limit = std::min(limit, static_cast<std::size_t>(pass.MaximumTextureBufferTexels));
+  }
+  // A scene refused for its size is tried again when the limit changes.
+  const bool limitChanged = limit != this->CheckedLimit;
+  this->CheckedLimit = limit;
+  std::string error;
+  if (this->Scene.GeometryChanged() || !this->GeometryOnGpu || (!this->GeometryValid && limitChanged))
+  {
+    auto start = std::chrono::steady_clock::now();
+    vtkrt::pass::PackedGeometry packed = vtkrt::pass::PackGeometry(this->Scene);
+    this->Scene.MarkGeometryPacked();
+    this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
+    start = std::chrono::steady_clock::now();
+    this->Counters.GeometryBytesUploaded +=
+      this->Buffers.UploadGeometry(win, packed, limit, this->GeometryValid, error);
+    this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(start);
+    this->Places.GeometryPlaces = std::move(packed.Placements);
+    this->GeometryOnGpu = true;
+    if (!this->GeometryValid)
+    {
+      vtkErrorWithObjectMacro(&pass, << error);
+    }
+  }
+  if (this->Scene.ColorsChanged() || !this->ColorsOnGpu || (!this->ColorsValid && limitChanged))
+  {
+    auto start = std::chrono::steady_clock::now();
+    vtkrt::pass::PackedColors packed = vtkrt::pass::PackColors(this->Scene);
+    this->Scene.MarkColorsPacked();
+    this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
+    start = std::chrono::steady_clock::now();
+    this->Counters.GeometryBytesUploaded +=
+      this->Buffers.UploadColors(win, packed, limit, this->ColorsValid, error);
+    this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(start);
+    this->Places.ColorBases = std::move(packed.Bases);
+    this->ColorsOnGpu = true;
+    if (!this->ColorsValid)
+    {
+      vtkErrorWithObjectMacro(&pass, << error);
+    }
+  }
+}
+
+Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
+  vtkOpenGLRenderer* ren, const vtkrt::pass::FrameRecords& frame, std::size_t lights,
+  bool topLevel) const
+{
+  Features f;
+  f.Triangles = this->Scene.HasTriangles();
+  f.Spheres = this->Scene.HasSpheres();
+  f.VertexNormals = this->Scene.HasVertexNormals();
+  f.CellNormals = this->Scene.HasCellNormals();
+  f.Colors = this->Scene.HasColors();
+  f.ColorTexture = this->Scene.HasColorTexture();
+  f.ClipPlanes = static_cast<int>(frame.ClipPlanes.size() / 4);
+  f.Lights = static_cast<int>(lights);
+  f.LightComplexity = f.Lights > 0 ? ren->GetLightingComplexity() : 0;
+  f.IdMode = pass.IdMode;
+  f.TopLevel = topLevel;
+  // Sub-pixel sampling goes through the accumulation buffer (not in id
+  // mode: ids do not average).
+  const bool sampled = !pass.IdMode && (pass.SamplesPerPixel > 1 || pass.ProgressiveAccumulation);
+  f.SamplesPerPixel = sampled ? pass.SamplesPerPixel : 0;
+  // Secondary rays only where they change the image: shaded, lit frames.
+  const bool shaded = !pass.IdMode && f.LightComplexity > 0;
+  f.Shadows = shaded && pass.Shadows;
+  f.AmbientOcclusionSamples = shaded ? pass.AmbientOcclusionSamples : 0;
+  f.MaximumTraversalSteps = pass.MaximumTraversalSteps;
+  f.WorldCoordinates = pass.PrecisionMode == WORLD;
+  f.ScreenSpheres = this->Scene.HasScreenSpheres();
+  f.Ellipsoids = this->Scene.HasEllipsoids();
+  GLint major = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  f.Fp64 = major >= 4;
+  return f;
+}
+
+void vtkRayTracePass::Internals::SetUniforms(vtkShaderProgram* program, const Features& f,
+  const vtkrt::pass::CameraFrame& camera, const vtkrt::pass::FrameRecords& frame,
+  const std::vector<vtkrt::core::gpu::Light>& lights, double occlusionRadius) const
+{
+  float m[16];
+  toGLSL(camera.CameraToClip, m);
+  program->SetUniformMatrix4x4("uCameraToClip", m);
+  toGLSL(camera.ClipToCamera, m);
+  program->SetUniformMatrix4x4("uClipToCamera", m);
+  const double* dop = camera.DirectionOfProjection;
+  const float viewBack[3] = { static_cast<float>(-dop[0]), static_cast<float>(-dop[1]),
+    static_cast<float>(-dop[2]) };
+  program->SetUniform3f("uViewBack", viewBack);
+  program->SetUniformi("uNumberOfInstances", static_cast<int>(frame.Records.size()));
+  if (f.WorldCoordinates)
+  {
+    const float eye[3] = { static_cast<float>(camera.Eye[0]), static_cast<float>(camera.Eye[1]),
+      static_cast<float>(camera.Eye[2]) };
+    program->SetUniform3f("uEye", eye);
+  }
+  if (f.AmbientOcclusionSamples > 0)
+  {
+    program->SetUniformf("uAmbientOcclusionRadius", static_cast<float>(occlusionRadius));
+  }
+  if (f.TopLevel)
+  {
+    const vtkrt::core::Vec3<double>& anchor = this->Top.GetAnchor();
+    const float toAnchor[3] = { static_cast<float>(camera.Origin[0] - anchor.x),
+      static_cast<float>(camera.Origin[1] - anchor.y), static_cast<float>(camera.Origin[2] - anchor.z) };
+    program->SetUniform3f("uCameraToAnchor", toAnchor);
+  }
+  if (f.ClipPlanes > 0)
+  {
+    program->SetUniform4fv("uClipPlanes", f.ClipPlanes, frame.ClipPlanes.data());
+  }
+  vtkrt::pass::SetLightUniforms(program, lights);
+}
+
+bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren,
+  vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam, const std::vector<bool>* traced, bool selectIds,
+  Prepared& p)
+{
+  const std::vector<Instance>& instances = this->Scene.GetInstances();
+  p.Camera.Set(ren, cam, pass.PrecisionMode == WORLD);
+  vtkrt::pass::FrameRecords& frame = p.Frame;
+  if (!vtkrt::pass::MakeFrameRecords(instances, this->Places, p.Camera, ren, frame))
+  {
+    vtkErrorWithObjectMacro(&pass, "vtkRayTracePass: a traced instance has no uploaded geometry.");
+    return false;
+  }
+  if (traced)
+  {
+    vtkrt::pass::KeepTracedProps(*traced, frame);
+  }
+  if (frame.Records.empty())
+  {
+    return false;
+  }
+  const auto uploadStart = std::chrono::steady_clock::now();
+  const bool topLevel = vtkrt::pass::TopLevel::IsNeeded(frame.Records.size());
+  if (topLevel)
+  {
+    this->Top.Update(win, frame.WorldBoxes, this->Buffers.TopNodes, this->Counters);
+    this->Top.Reorder(frame.Records);
+  }
+  // Unchanged records (a still frame; any camera move in WORLD mode) are
+  // not uploaded again.
+  const std::size_t recordBytes = frame.Records.size() * sizeof(vtkrt::core::gpu::InstanceRecord);
+  if (frame.Records.size() != this->LastRecords.size() || !this->Buffers.Instances.GetTexels() ||
+    std::memcmp(frame.Records.data(), this->LastRecords.data(), recordBytes) != 0)
+  {
+    this->Counters.FrameBytesUploaded += this->Buffers.Instances.Upload(win, frame.Records);
+    this->LastRecords = frame.Records;
+  }
+  this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(uploadStart);
+  p.Lights = vtkrt::pass::CollectLights(ren, p.Camera.Origin);
+  p.F = this->FrameFeatures(pass, ren, frame, p.Lights.size(), topLevel);
+  if (selectIds)
+  {
+    // Ids only: one centered ray a pixel, nothing shaded.
+    p.F.SelectIds = true;
+    p.F.IdMode = false;
+    p.F.SamplesPerPixel = 0;
+    p.F.Shadows = false;
+    p.F.AmbientOcclusionSamples = 0;
+    p.F.Lights = 0;
+    p.F.LightComplexity = 0;
+    p.Lights.clear();
+  }
+  p.OcclusionRadius =
+    pass.AmbientOcclusionRadius > 0.0 ? pass.AmbientOcclusionRadius : frame.DefaultOcclusionRadius();
+
+  const int compilesBefore = this->Counters.ShaderCompiles;
+  const auto compileStart = std::chrono::steady_clock::now();
+  p.Tracer = this->Programs.Ready(win, p.F, this->Counters);
+  if (this->Counters.ShaderCompiles > compilesBefore)
+  {
+    this->Counters.ShaderCompileSeconds += vtkrt::pass::SecondsSince(compileStart);
+  }
+  if (!p.Tracer)
+  {
+    if (this->Counters.ShaderCompiles > compilesBefore)
+    {
+      vtkErrorWithObjectMacro(&pass, "vtkRayTracePass: the ray tracing shader (features "
+          << this->Programs.GetLastKey() << ") failed to compile.");
+    }
+    return false;
+  }
+  this->SetUniforms(p.Tracer->Program, p.F, p.Camera, frame, p.Lights, p.OcclusionRadius);
+  p.Active = this->Buffers.Bind(p.Tracer->Program);
+  return true;
+}
+
+void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren,
+  vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam, int framesBefore)
+{
+  Prepared p;
+  if (!this->Prepare(pass, ren, win, cam, nullptr, false, p))
+  {
+    return;
+  }
+  vtkOpenGLQuadHelper* tracer = p.Tracer;
+  vtkOpenGLState* ostate = win->GetState();
+  vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
+  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_ALWAYS);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglDisable(GL_BLEND);
+  if (p.F.SamplesPerPixel == 0)
+  {
+    // Rays only where the traced instances can be: the rest keeps VTK's
+    // clear (under IceT, each rank traces its own piece's share).
+    vtkOpenGLState::ScopedglScissor scissor(ostate);
+    vtkOpenGLState::ScopedglEnableDisable scissorTest(ostate, GL_SCISSOR_TEST);
+    int footprint[4];
+    if (vtkrt::pass::TracedFootprint(p.Camera, p.Frame, ren, footprint))
+    {
+      int box[4];
+      ostate->vtkglGetIntegerv(ostate->GetEnumState(GL_SCISSOR_TEST) ? GL_SCISSOR_BOX : GL_VIEWPORT, box);
+      ostate->vtkglEnable(GL_SCISSOR_TEST);
+      const int x0 = std::max(footprint[0], box[0]), y0 = std::max(footprint[1], box[1]);
+      const int x1 = std::min(footprint[0] + footprint[2], box[0] + box[2]);
+      const int y1 = std::min(footprint[1] + footprint[3], box[1] + box[3]);
+      ostate->vtkglScissor(x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0));
+    }
+    tracer->Render();
+  }
+  else
+  {
+    // What the image is traced from: any change restarts accumulating.
+    std::vector<float> signature(32);
+    toGLSL(p.Camera.ClipToCamera, signature.data());
+    toGLSL(p.Camera.CameraToClip, signature.data() + 16);
+    appendAsFloats(signature, p.Frame.Records);
+    appendAsFloats(signature, p.Frame.ClipPlanes);
+    appendAsFloats(signature, p.Lights);
+    signature.push_back(static_cast<float>(p.OcclusionRadius));
+    const std::string& key = this->Programs.GetLastKey();
+    signature.insert(signature.end(), key.begin(), key.end());
+    const bool restart = !pass.ProgressiveAccumulation || this->Counters.GeometryBytesUploaded > 0 ||
+      this->Counters.ShaderCompiles > 0;
+    this->Accumulated.Trace(
+      win, ren, tracer, std::move(signature), restart, framesBefore, pass.SamplesPerPixel);
+    for (vtkTextureObject* t : p.Active)
+    {
+      t->Deactivate();
+    }
+    p.Active.clear();
+    if (!this->Accumulated.Resolve(win, pass.SamplesPerPixel, this->Counters))
+    {
+      vtkErrorWithObjectMacro(&pass, "vtkRayTracePass: the accumulation resolve shader failed to compile.");
+    }
+  }
+  for (vtkTextureObject* t : p.Active)
+  {
+    t->Deactivate();
+  }
+}
+
+void vtkRayTracePass::Internals::Select(vtkRayTracePass& pass, const vtkRenderState* s,
+  vtkOpenGLRenderer* ren, vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam,
+  vtkHardwareSelector* selector)
+{
+  std::vector<vtkProp*> props =
+    vtkrt::pass::SelectionProps(ren, s->GetPropArray(), s->GetPropArrayCount());
+  if (selector->GetFieldAssociation() == vtkDataObject::FIELD_ASSOCIATION_POINTS)
+  {
+    // Points: every prop draws its points as raster does, depth-tested
+    // against the depth of the traced frame the selector rendered first.
+    pass.NumberOfRenderedProps =
+      selector->Render(ren, props.data(), static_cast<int>(props.size()));
+    return;
+  }
+  // Traced prop i is drawn by stand-in i; only the pickable ones in the
+  // selection's props are traced, so that the others hide nothing.
+  std::vector<vtkrt::pass::SelectableProp> selectable(this->Traced.size());
+  std::vector<bool> traced(this->Traced.size(), false);
+  for (std::size_t i = 0; i < this->Traced.size(); ++i)
+  {
+    selectable[i].Actor = vtkActor::SafeDownCast(this->Traced[i]);
+    traced[i] = this->Traced[i]->GetPickable() &&
+      std::find(props.begin(), props.end(), this->Traced[i]) != props.end();
+  }
+  for (const Instance& inst : this->Scene.GetInstances())
+  {
+    std::uint32_t& maximum = selectable[static_cast<std::size_t>(inst.PropIndex)].MaximumId;
+    maximum = std::max(maximum, inst.Geom->MaximumId);
+  }
+  Prepared p;
+  if (!this->Traced.empty() && this->Prepare(pass, ren, win, cam, &traced, true, p))
+  {
+    this->Selecting.TraceIds(win, ren, p.Tracer);
+    for (vtkTextureObject* t : p.Active)
+    {
+      t->Deactivate();
+    }
+  }
+  pass.NumberOfRenderedProps =
+    this->Selecting.RenderPass(win, ren, selector, props, selectable, this->Counters);
+}
+
+void vtkRayTracePass::Internals::RenderOthers(
+  vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren)
+{
+  if (pass.IdMode || !pass.DelegatePass || this->Others.empty())
+  {
+    return;
+  }
+  vtkRenderState rest(ren);
+  rest.SetPropArrayAndCount(this->Others.data(), static_cast<int>(this->Others.size()));
+  rest.SetFrameBuffer(s->GetFrameBuffer());
+  rest.SetRequiredKeys(s->GetRequiredKeys());
+  auto* steps = vtkRenderStepsPass::SafeDownCast(pass.DelegatePass);
+  if (!steps)
+  {
+    pass.DelegatePass->Render(&rest);
+    pass.NumberOfRenderedProps += pass.DelegatePass->GetNumberOfRenderedProps();
+    return;
+  }
+  // A vtkRenderStepsPass: its steps after the camera pass, whose clear would
+  // wipe the traced image (and its post-processing, which wraps that pass).
+  for (vtkRenderPass* step : { steps->GetLightsPass(), steps->GetOpaquePass(),
+         steps->GetTranslucentPass(), steps->GetVolumetricPass(), steps->GetOverlayPass() })
+  {
+    if (step)
+    {
+      step->Render(&rest);
+      pass.NumberOfRenderedProps += step->GetNumberOfRenderedProps();
+    }
+  }
+}

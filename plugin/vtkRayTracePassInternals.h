@@ -1,0 +1,177 @@
+// Private to vtkRayTracePass: its state and the named steps of a frame
+// (vtkRayTracePassFrame.cxx); vtkRayTracePass.cxx keeps the knobs and the
+// frame's page, Render.
+#ifndef vtkRayTracePassInternals_h
+#define vtkRayTracePassInternals_h
+
+#include "vtkRayTracePass.h"
+
+#include "pass/vtkRayTraceAccumulation.h"
+#include "pass/vtkRayTraceBuffers.h"
+#include "pass/vtkRayTraceLights.h"
+#include "pass/vtkRayTracePacker.h"
+#include "pass/vtkRayTraceRasterSteps.h"
+#include "pass/vtkRayTraceRecords.h"
+#include "pass/vtkRayTraceScene.h"
+#include "pass/vtkRayTraceSelection.h"
+#include "pass/vtkRayTraceShader.h"
+#include "pass/vtkRayTraceTopLevel.h"
+
+#include "vtkActor.h"
+#include "vtkCallbackCommand.h"
+#include "vtkDataObject.h"
+#include "vtkHardwareSelector.h"
+#include "vtkLightsPass.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLCamera.h"
+#include "vtkOpenGLError.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkOpenGLState.h"
+#include "vtkProp.h"
+#include "vtkPropCollection.h"
+#include "vtkRenderState.h"
+#include "vtkRenderStepsPass.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtkWeakPointer.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <string>
+#include <utility>
+#include <vector>
+
+/// The pass's state and the named steps of a frame.
+struct vtkRayTracePass::Internals
+{
+  vtkrt::pass::Scene Scene;
+  vtkNew<vtkLightsPass> Lights;
+  std::vector<vtkProp*> Traced;
+  std::vector<vtkProp*> Others;
+  vtkrt::pass::FrameCounters Counters;
+  vtkrt::pass::ProgramCache Programs;
+  /// The window whose context holds the pass's GL objects (none yet, or
+  /// released); watched so they are released before it goes.
+  vtkWeakPointer<vtkOpenGLRenderWindow> Window;
+  unsigned long WindowDeleteObserver = 0;
+  bool GeometryOnGpu = false;
+  bool ColorsOnGpu = false;
+  bool GeometryValid = true;
+  bool ColorsValid = true;
+  std::size_t CheckedLimit = 0; ///< the texel limit the buffers were checked against
+  std::vector<vtkrt::core::gpu::InstanceRecord> LastRecords; ///< the records on the GPU
+  vtkrt::pass::SceneBuffers Buffers;
+  vtkrt::pass::ScenePlacements Places;
+  vtkrt::pass::TopLevel Top;
+  vtkrt::pass::Accumulation Accumulated;
+  vtkrt::pass::Selection Selecting;
+
+  /// A frame ready to trace: what Prepare made for the tracer.
+  struct Prepared
+  {
+    vtkrt::pass::CameraFrame Camera;
+    vtkrt::pass::FrameRecords Frame;
+    std::vector<vtkrt::core::gpu::Light> Lights;
+    vtkrt::pass::Features F;
+    double OcclusionRadius = 0.0;
+    std::vector<vtkTextureObject*> Active; ///< bound samplers
+    vtkOpenGLQuadHelper* Tracer = nullptr;
+  };
+
+  void ReleaseGL(vtkWindow* w)
+  {
+    this->Accumulated.Release(w);
+    this->Selecting.Release(w);
+    this->Programs.Release(w);
+    this->Buffers.Release(w);
+    this->GeometryOnGpu = false;
+    this->ColorsOnGpu = false;
+    this->Top.Clear();
+  }
+
+  /// Makes `win` the window of the pass's GL objects: those of the window
+  /// before are released in its own context first.
+  void Attach(vtkOpenGLRenderWindow* win)
+  {
+    if (win == this->Window)
+    {
+      return;
+    }
+    this->Detach();
+    // A window's PopContext may not restore the context (VTK's default).
+    win->MakeCurrent();
+    this->Window = win;
+    auto release = vtkSmartPointer<vtkCallbackCommand>::New();
+    release->SetClientData(this);
+    release->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+      static_cast<Internals*>(self)->Detach();
+    });
+    this->WindowDeleteObserver = win->AddObserver(vtkCommand::DeleteEvent, release);
+  }
+
+  /// Releases the GL objects in their window's context (made current for it,
+  /// then the current one is restored) and forgets the window.
+  void Detach()
+  {
+    vtkOpenGLRenderWindow* win = this->Window;
+    if (!win)
+    {
+      return;
+    }
+    win->RemoveObserver(this->WindowDeleteObserver);
+    win->PushContext();
+    this->ReleaseGL(win);
+    win->PopContext();
+    this->Window = nullptr;
+  }
+
+  /// The renderer's props -> traced instances and the props left to raster.
+  void Extract(const vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren);
+  /// A scene that could not be uploaded: its props go to the raster
+  /// delegate this frame (the state's ones) and nothing counts as traced.
+  void LeaveTracedToRaster(const vtkRenderState* s)
+  {
+    vtkProp** props = s->GetPropArray();
+    const int count = s->GetPropArrayCount();
+    for (vtkProp* prop : this->Traced)
+    {
+      if (std::find(props, props + count, prop) != props + count)
+      {
+        this->Others.push_back(prop);
+      }
+    }
+    this->Traced.clear();
+    this->Counters.TracedPrimitives = 0;
+    this->Counters.TracedInstances = 0;
+  }
+  /// Packs and uploads the geometry and colors that changed.
+  void Upload(const vtkRayTracePass& pass, vtkOpenGLRenderWindow* win);
+  /// Records (of the props `traced` says, all when null), top level,
+  /// lights and shader (the selection ids variant when `selectIds`): the
+  /// tracer ready, its uniforms set, its samplers bound; false when it
+  /// cannot trace.
+  bool Prepare(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren, vtkOpenGLRenderWindow* win,
+    vtkOpenGLCamera* cam, const std::vector<bool>* traced, bool selectIds, Prepared& p);
+  /// Prepare, then the trace (straight or accumulated).
+  void Trace(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren, vtkOpenGLRenderWindow* win,
+    vtkOpenGLCamera* cam, int framesBefore);
+  /// One pass of the renderer's vtkHardwareSelector instead of a frame.
+  void Select(vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren,
+    vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam, vtkHardwareSelector* selector);
+  /// What the frame needs from the shader.
+  vtkrt::pass::Features FrameFeatures(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren,
+    const vtkrt::pass::FrameRecords& frame, std::size_t lights, bool topLevel) const;
+  /// The uniforms of the tracer other than the samplers.
+  void SetUniforms(vtkShaderProgram* program, const vtkrt::pass::Features& f,
+    const vtkrt::pass::CameraFrame& camera, const vtkrt::pass::FrameRecords& frame,
+    const std::vector<vtkrt::core::gpu::Light>& lights, double occlusionRadius) const;
+  /// Draws what the pass did not trace through the delegate.
+  void RenderOthers(vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren);
+};
+
+#endif
