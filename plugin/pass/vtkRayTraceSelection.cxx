@@ -128,7 +128,7 @@ void Selection::TraceIds(vtkOpenGLRenderWindow* win, vtkRenderer* ren, vtkOpenGL
 }
 
 int Selection::RenderPass(vtkOpenGLRenderWindow* win, vtkRenderer* ren,
-  vtkHardwareSelector* selector, const std::vector<vtkProp*>& props,
+  vtkHardwareSelector* selector, std::vector<vtkProp*>& props,
   const std::vector<SelectableProp>& traced, FrameCounters& counters)
 {
   this->Window = win;
@@ -146,8 +146,7 @@ int Selection::RenderPass(vtkOpenGLRenderWindow* win, vtkRenderer* ren,
     this->StandIns[i]->SetStandIn(this, static_cast<int>(i), traced[i].MaximumId, originals[i]);
     actor->SetMapper(this->StandIns[i]);
   }
-  std::vector<vtkProp*> list = props;
-  const int rendered = selector->Render(ren, list.data(), static_cast<int>(list.size()));
+  const int rendered = selector->Render(ren, props.data(), static_cast<int>(props.size()));
   for (std::size_t i = 0; i < traced.size(); ++i)
   {
     traced[i].Actor->SetMapper(originals[i]);

@@ -60,7 +60,7 @@ public:
   /// vtkHardwareSelector::Render, traced prop i (traced[i]) drawn from the
   /// id buffer by a stand-in mapper; returns the props rendered.
   int RenderPass(vtkOpenGLRenderWindow* win, vtkRenderer* ren, vtkHardwareSelector* selector,
-    const std::vector<vtkProp*>& props, const std::vector<SelectableProp>& traced,
+    std::vector<vtkProp*>& props, const std::vector<SelectableProp>& traced,
     FrameCounters& counters);
 
   /// Draws traced prop `index`'s pixels in the encoding of the selector's
