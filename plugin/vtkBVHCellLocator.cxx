@@ -280,14 +280,16 @@ void vtkBVHCellLocator::GenerateRepresentation(int level, vtkPolyData* pd)
   this->Internals->Data.BoxesAtLevel(level, boxes);
   static const int faces[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 },
     { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
-  const Vec3d& o = this->Internals->Data.Origin;
+  const auto& data = this->Internals->Data;
   for (const auto& b : boxes)
   {
     vtkIdType base = pts->GetNumberOfPoints();
     for (int k = 0; k < 8; ++k)
     {
-      pts->InsertNextPoint(o.x + ((k & 1) ? b.max.x : b.min.x), o.y + ((k & 2) ? b.max.y : b.min.y),
-        o.z + ((k & 4) ? b.max.z : b.min.z));
+      const Vec3d corner((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y,
+        (k & 4) ? b.max.z : b.min.z);
+      const Vec3d p = data.ToWorld(corner);
+      pts->InsertNextPoint(p.x, p.y, p.z);
     }
     for (const auto& f : faces)
     {
@@ -620,4 +622,5 @@ void vtkBVHCellLocator::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Memory: " << this->GetMemorySize() << " bytes\n";
   os << indent << "Local origin: (" << d.Origin.x << ", " << d.Origin.y << ", " << d.Origin.z
      << ")\n";
+  os << indent << "Local scale: " << d.Scale << "\n";
 }

@@ -103,13 +103,41 @@ void BVHCellLocatorData::ComputeOrigin(vtkDataSet* ds)
       b.extend(v);
     }
   }
-  this->Origin = b.isEmpty() ? Vec3d(0.0) : b.center();
+  this->SetLocalFrame(b);
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::SetLocalFrame(const Box& b)
+{
+  this->Origin = Vec3d(0.0);
+  this->Scale = this->PreScale = this->PostScale = 1.0;
+  if (b.isEmpty())
+  {
+    this->ScaledOrigin = this->Origin;
+    return;
+  }
+  // Halves first: neither the center nor the half-size of bounds spanning
+  // more than the largest double may overflow.
+  const Vec3d half = b.max * 0.5 - b.min * 0.5;
+  this->Origin = b.min * 0.5 + b.max * 0.5;
+  const double size = std::max(half.x, std::max(half.y, half.z));
+  if (size > 0.0)
+  {
+    int exponent = 0;
+    std::frexp(size, &exponent); // size in [0.5, 1) * 2^exponent
+    // A normal power of two (the clamp matters only for bounds near
+    // double's limits).
+    exponent = std::max(-1000, std::min(1000, exponent));
+    this->Scale = std::ldexp(1.0, -exponent);
+    (this->Scale < 1.0 ? this->PreScale : this->PostScale) = this->Scale;
+  }
+  this->ScaledOrigin = this->Origin * this->PreScale;
 }
 
 //------------------------------------------------------------------------------
 /// The points: double coordinates read in place (else a double copy of
-/// them), the Origin at the center of their finite bounds (NaN/inf
-/// points would poison it).
+/// them), the local frame from their finite bounds (NaN/inf points would
+/// poison it).
 void BVHCellLocatorData::BindPoints(vtkPoints* pts)
 {
   const vtkIdType n = pts ? pts->GetNumberOfPoints() : 0;
@@ -153,9 +181,8 @@ void BVHCellLocatorData::BindPoints(vtkPoints* pts)
   {
     b.extend(box);
   }
-  this->Origin = b.isEmpty() ? Vec3d(0.0) : b.center();
-  const Vec3d o = this->Origin;
-  this->PointBounds = b.isEmpty() ? Box() : Box(b.min - o, b.max - o);
+  this->SetLocalFrame(b);
+  this->PointBounds = b.isEmpty() ? Box() : Box(this->ToLocal(b.min), this->ToLocal(b.max));
 }
 
 //------------------------------------------------------------------------------
@@ -481,9 +508,10 @@ void BVHCellLocatorData::ComputeGeneralBoxes(vtkDataSet* ds)
       }
       // Cells are tested in world coordinates and the ray is walked in
       // local ones: widen by the rounding of the shift.
-      Vec3d lo = box.min - this->Origin, hi = box.max - this->Origin;
-      const Vec3d slack = eps *
-        (glm::abs(box.min) + glm::abs(box.max) + glm::abs(this->Origin) * 2.0);
+      Vec3d lo = this->ToLocal(box.min), hi = this->ToLocal(box.max);
+      const Vec3d farOrigin = glm::min(glm::abs(this->ScaledOrigin) * (2.0 * this->PostScale),
+        Vec3d(std::numeric_limits<double>::max()));
+      const Vec3d slack = eps * (glm::abs(lo) + glm::abs(hi) + farOrigin);
       this->GenBox[i] = Box(lo - slack, hi + slack);
     }
   });

@@ -137,7 +137,19 @@ private:
 class BVHCellLocatorData
 {
 public:
+  /// Local coordinates are (world - Origin) * Scale, with Origin the center
+  /// of the finite points' bounds and Scale the power of two that brings
+  /// their half-size into [0.5, 1): the exact tests' products then stay in
+  /// double's range at any scale a double holds, and a power-of-two scale
+  /// rounds nothing, so every answer is the one an unscaled mesh gives.
+  /// Scaling down multiplies before the shift (world - Origin could
+  /// overflow), scaling up after it (world * Scale could):
+  /// local = (world * PreScale - ScaledOrigin) * PostScale.
   Vec3d Origin = Vec3d(0.0);
+  double Scale = 1.0;
+  double PreScale = 1.0;
+  double PostScale = 1.0;
+  Vec3d ScaledOrigin = Vec3d(0.0); ///< Origin * PreScale
   Box PointBounds; ///< the finite points' bounds, local (fast path only)
   /// World coordinates of the points when the dataset's are not double
   /// (double ones are read in place, DataSetCoords): fast path only.
@@ -150,8 +162,8 @@ public:
   /// 3 point ids per triangle, leaf order: the exact test reads the double
   /// vertices through them from WorldCoords().
   TriangleArray<std::uint32_t> TriIds;
-  /// Each leaf slot's triangle as 9 floats (vertex 0, 1, 2; x y z; point -
-  /// Origin rounded to nearest), and one float of padding at the end (a
+  /// Each leaf slot's triangle as 9 floats (vertex 0, 1, 2; x y z; the local
+  /// point rounded to nearest), and one float of padding at the end (a
   /// vertex is read as four floats): what the float pre-test reads, which
   /// spares the double test nearly every miss. Stored per slot, not read
   /// through TriIds from a float copy of the points: a leaf's loads then
@@ -162,7 +174,7 @@ public:
   /// (extraction order), subId 0 (set by the all-triangle polys path).
   vtkIdType UniformCellBase = -1;
   /// The dataset's double coordinates at build time, read in place (the
-  /// exact tests compute point - Origin, the same doubles a local copy would
+  /// exact tests compute the local point, the same doubles a local copy would
   /// hold, and the hit's cell fill then finds them in cache); null when not
   /// double. DataSetCoordsArray keeps them alive; CoordsUnchanged() tells
   /// whether the array still has them there.
@@ -416,12 +428,32 @@ public:
     static_assert(sizeof(Vec3d) == 3 * sizeof(double), "x y z, packed");
     return this->DataSetCoords ? this->DataSetCoords : reinterpret_cast<const double*>(this->PointsCopy.data());
   }
-  /// Point id relative to Origin (rounded once, as a stored local copy would be).
+  /// Point id in local coordinates (rounded once, as a stored local copy would be).
   Vec3d LocalPoint(vtkIdType id) const
   {
-    const double* c = this->WorldCoords() + 3 * static_cast<std::size_t>(id);
-    return Vec3d(c[0] - this->Origin.x, c[1] - this->Origin.y, c[2] - this->Origin.z);
+    return this->ToLocal(this->WorldCoords() + 3 * static_cast<std::size_t>(id));
   }
+  /// World to local coordinates and back (see Scale).
+  Vec3d ToLocal(const double p[3]) const
+  {
+    const Vec3d& o = this->ScaledOrigin;
+    const double pre = this->PreScale, post = this->PostScale;
+    return Vec3d((p[0] * pre - o.x) * post, (p[1] * pre - o.y) * post, (p[2] * pre - o.z) * post);
+  }
+  Vec3d ToLocal(const Vec3d& p) const
+  {
+    const double c[3] = { p.x, p.y, p.z };
+    return this->ToLocal(c);
+  }
+  Vec3d ToWorld(const Vec3d& local) const
+  {
+    return (local / this->PostScale + this->ScaledOrigin) / this->PreScale;
+  }
+  /// A world length (tolerance, radius) in local units, and back.
+  double ToLocalLength(double world) const { return world * this->Scale; }
+  double ToWorldLength(double local) const { return local / this->Scale; }
+  /// The local frame of a mesh whose finite points have these (world) bounds.
+  void SetLocalFrame(const Box& worldBounds);
   /// False when the dataset's double coordinates array no longer holds the
   /// build's points where they were (reallocated or shrunk, perhaps without
   /// a Modified()): the tree must not read them.
@@ -447,12 +479,6 @@ private:
   {
     return this->LocalPoint(this->TriIds[3 * static_cast<std::size_t>(prim) + k]);
   }
-
-  Vec3d ToLocal(const double p[3]) const
-  {
-    return Vec3d(p[0] - this->Origin.x, p[1] - this->Origin.y, p[2] - this->Origin.z);
-  }
-  Vec3d ToLocal(const Vec3d& p) const { return p - this->Origin; }
 
   Box PrimitiveBox(std::uint32_t prim) const
   {

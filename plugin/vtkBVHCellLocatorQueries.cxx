@@ -169,7 +169,11 @@ inline bool BVHCellLocatorData::MakeSegment(const double p1[3], const double p2[
   {
     return false;
   }
-  const Vec3d dir(p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]);
+  // Scaled as ToLocal scales, so the direction is that of the world
+  // segment times Scale, exactly.
+  const double pre = this->PreScale, post = this->PostScale;
+  const Vec3d dir((p2[0] * pre - p1[0] * pre) * post, (p2[1] * pre - p1[1] * pre) * post,
+    (p2[2] * pre - p1[2] * pre) * post);
   // VTK cells never hit a zero-length segment either.
   ray = core::Ray<double>(this->ToLocal(p1), dir, 0.0, 1.0);
   return ray.isValid();
@@ -243,7 +247,7 @@ inline void BVHCellLocatorData::SetTriangleHit(
   out.CellId = this->TriCell[prim];
   for (int k = 0; k < 3; ++k)
   {
-    out.X[k] = p1[k] + hit.t * ray.dir[k];
+    out.X[k] = p1[k] + hit.t * this->ToWorldLength(ray.dir[k]);
   }
   const std::uint8_t flags = this->TriangleFlags(prim);
   out.NeedsEvaluate = (flags & EvaluateInCell) != 0;
@@ -279,6 +283,7 @@ bool BVHCellLocatorData::IntersectWithLine(const double p1[3], const double p2[3
     return true;
   }
   const core::RayTrianglePrecomputed<double> triPre(ray);
+  const double localTol = this->ToLocalLength(tol); // general cells take tol in world units
   const vtkIdType nTri = this->NumberOfTriangles();
   vtkIdType bestCell = -1;
   bool generalBest = false; ///< out holds a general cell's hit (a triangle's is filled after the walk)
@@ -290,7 +295,7 @@ bool BVHCellLocatorData::IntersectWithLine(const double p1[3], const double p2[3
     if (static_cast<vtkIdType>(prim) < nTri)
     {
       double t, u, v;
-      if (!this->IntersectTriangle(prim, triPre, r, tol, t, u, v))
+      if (!this->IntersectTriangle(prim, triPre, r, localTol, t, u, v))
       {
         return false;
       }
@@ -333,7 +338,7 @@ bool BVHCellLocatorData::IntersectWithLine(const double p1[3], const double p2[3
     return true;
   };
   core::Hit<double> hit;
-  if (!core::closestHitSegment(PickingScene{ this }, ray, triPre, tol, isect, hit))
+  if (!core::closestHitSegment(PickingScene{ this }, ray, triPre, localTol, isect, hit))
   {
     return false;
   }
@@ -378,13 +383,14 @@ void BVHCellLocatorData::AllHits(const double p1[3], const double p2[3], double 
     return;
   }
   const core::RayTrianglePrecomputed<double> triPre(ray);
+  const double localTol = this->ToLocalLength(tol); // general cells take tol in world units
   const vtkIdType nTri = this->NumberOfTriangles();
   auto isect = [&](std::uint32_t prim, const core::Ray<double>& r, core::Hit<double>&) {
     LineHit h;
     if (static_cast<vtkIdType>(prim) < nTri)
     {
       double t, u, v;
-      if (!this->IntersectTriangle(prim, triPre, r, tol, t, u, v))
+      if (!this->IntersectTriangle(prim, triPre, r, localTol, t, u, v))
       {
         return false;
       }
@@ -392,7 +398,7 @@ void BVHCellLocatorData::AllHits(const double p1[3], const double p2[3], double 
       h.CellId = this->TriCell[prim];
       for (int k = 0; k < 3; ++k)
       {
-        h.X[k] = p1[k] + t * r.dir[k];
+        h.X[k] = p1[k] + t * this->ToWorldLength(r.dir[k]);
       }
       const Vec3d v0 = this->Vertex(prim, 0);
       const Vec3d v1 = this->Vertex(prim, 1);
@@ -423,7 +429,7 @@ void BVHCellLocatorData::AllHits(const double p1[3], const double p2[3], double 
     hits.push_back(h);
     return false; // collected here; nothing for the traversal to keep
   };
-  core::allHitsSegment(PickingScene{ this }, ray, tol, isect);
+  core::allHitsSegment(PickingScene{ this }, ray, localTol, isect);
   // One hit per cell (its nearest), then along the segment.
   std::sort(hits.begin(), hits.end(), [](const LineHit& a, const LineHit& b) {
     return a.CellId != b.CellId ? a.CellId < b.CellId : a.T < b.T;
@@ -453,16 +459,17 @@ void BVHCellLocatorData::CellsAlongLine(
     return;
   }
   const core::RayBoxPrecomputed<double> boxPre(ray);
+  const double localTol = this->ToLocalLength(tol);
   auto isect = [&](std::uint32_t prim, const core::Ray<double>& r, core::Hit<double>&) {
     const Box b = this->PrimitiveBox(prim);
     double tnear;
-    if (core::intersectRayAABB(boxPre, b.min - Vec3d(tol), b.max + Vec3d(tol), r.tmin, r.tmax, tnear))
+    if (core::intersectRayAABB(boxPre, b.min - Vec3d(localTol), b.max + Vec3d(localTol), r.tmin, r.tmax, tnear))
     {
       cells.push_back(this->PrimitiveCell(prim));
     }
     return false;
   };
-  core::allHitsSegment(PickingScene{ this }, ray, tol, isect);
+  core::allHitsSegment(PickingScene{ this }, ray, localTol, isect);
   std::sort(cells.begin(), cells.end());
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
 }
@@ -566,7 +573,7 @@ bool BVHCellLocatorData::ClosestPoint(
       std::copy(xx, xx + 3, cp); // inside a 3D cell: x itself
     }
     cand.point = this->ToLocal(cp);
-    cand.dist2 = d2;
+    cand.dist2 = d2 * this->Scale * this->Scale; // in local units, as the triangles'
     // Keep the cell's own answer in case this candidate wins.
     if (d2 < general.Dist2 || generalPrim == core::kInvalidIndex)
     {
@@ -581,7 +588,7 @@ bool BVHCellLocatorData::ClosestPoint(
   };
   core::PointHit<double> best;
   this->EnsureTree();
-  if (!core::closestPoint(this->Tree, x, radius, fn, best))
+  if (!core::closestPoint(this->Tree, x, this->ToLocalLength(radius), fn, best))
   {
     return false;
   }
@@ -592,10 +599,11 @@ bool BVHCellLocatorData::ClosestPoint(
   }
   const std::uint32_t prim = best.prim;
   out.CellId = this->TriCell[prim];
-  out.Dist2 = best.dist2;
+  out.Dist2 = best.dist2 / this->Scale / this->Scale;
+  const Vec3d xWorld = this->ToWorld(best.point);
   for (int k = 0; k < 3; ++k)
   {
-    out.X[k] = best.point[k] + this->Origin[k];
+    out.X[k] = xWorld[k];
   }
   out.SubId = this->TriangleSubId(prim);
   out.NeedsEvaluate = (this->TriangleFlags(prim) & EvaluateInCell) != 0;
@@ -634,7 +642,7 @@ vtkIdType BVHCellLocatorData::FindCell(const double xw[3], double tol2, vtkDataS
   double pcoords[3], double* weights) const
 {
   const Vec3d x = this->ToLocal(xw);
-  const Vec3d tol(std::sqrt(tol2));
+  const Vec3d tol(this->ToLocalLength(std::sqrt(tol2)));
   const Box q(x - tol, x + tol);
   std::vector<vtkIdType> candidates;
   this->EnsureTree();

@@ -10,6 +10,7 @@ int TestOracleQuadsStripsPolygons();
 int TestOracleUnstructuredGrid();
 int TestOracleLinesAndVertices();
 int TestRobustExtremeCoordinates();
+int TestRobustExtremeScales();
 int TestRobustDegenerateCells();
 int TestRobustBadInput();
 int TestRobustRebuild();
@@ -36,6 +37,7 @@ int main(int argc, char* argv[])
     { "OracleUnstructuredGrid", TestOracleUnstructuredGrid },
     { "OracleLinesAndVertices", TestOracleLinesAndVertices },
     { "ExtremeCoordinates", TestRobustExtremeCoordinates },
+    { "ExtremeScales", TestRobustExtremeScales },
     { "DegenerateCells", TestRobustDegenerateCells }, { "BadInput", TestRobustBadInput },
     { "Rebuild", TestRobustRebuild }, { "Threads", TestRobustThreads },
     { "BadPointIdsPolyData", TestContractBadPointIdsPolyData },
