@@ -15,6 +15,8 @@
 #include "vtkSmartPointer.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "vtkrt/core/LocalFrame.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -109,28 +111,12 @@ void BVHCellLocatorData::ComputeOrigin(vtkDataSet* ds)
 //------------------------------------------------------------------------------
 void BVHCellLocatorData::SetLocalFrame(const Box& b)
 {
-  this->Origin = Vec3d(0.0);
-  this->Scale = this->PreScale = this->PostScale = 1.0;
-  if (b.isEmpty())
-  {
-    this->ScaledOrigin = this->Origin;
-    return;
-  }
-  // Halves first: neither the center nor the half-size of bounds spanning
-  // more than the largest double may overflow.
-  const Vec3d half = b.max * 0.5 - b.min * 0.5;
-  this->Origin = b.min * 0.5 + b.max * 0.5;
-  const double size = std::max(half.x, std::max(half.y, half.z));
-  if (size > 0.0)
-  {
-    int exponent = 0;
-    std::frexp(size, &exponent); // size in [0.5, 1) * 2^exponent
-    // A normal power of two (the clamp matters only for bounds near
-    // double's limits).
-    exponent = std::max(-1000, std::min(1000, exponent));
-    this->Scale = std::ldexp(1.0, -exponent);
-    (this->Scale < 1.0 ? this->PreScale : this->PostScale) = this->Scale;
-  }
+  const core::ScaledFrame frame = core::ScaledFrame::of(b);
+  this->Origin = frame.origin;
+  this->Scale = frame.scale;
+  // As ScaledFrame::toLocal: scale down before the shift, up after it.
+  this->PreScale = this->Scale < 1.0 ? this->Scale : 1.0;
+  this->PostScale = this->Scale < 1.0 ? 1.0 : this->Scale;
   this->ScaledOrigin = this->Origin * this->PreScale;
 }
 

@@ -171,19 +171,24 @@ void vtkRayTracePass::Internals::SetUniforms(vtkShaderProgram* program, const Fe
   program->SetUniformi("uNumberOfInstances", static_cast<int>(frame.Records.size()));
   if (f.WorldCoordinates)
   {
-    const float eye[3] = { static_cast<float>(camera.Eye[0]), static_cast<float>(camera.Eye[1]),
-      static_cast<float>(camera.Eye[2]) };
+    double eyeInShader[3];
+    camera.ToShader(camera.Eye, eyeInShader);
+    const float eye[3] = { static_cast<float>(eyeInShader[0]), static_cast<float>(eyeInShader[1]),
+      static_cast<float>(eyeInShader[2]) };
     program->SetUniform3f("uEye", eye);
   }
   if (f.AmbientOcclusionSamples > 0)
   {
-    program->SetUniformf("uAmbientOcclusionRadius", static_cast<float>(occlusionRadius));
+    program->SetUniformf(
+      "uAmbientOcclusionRadius", static_cast<float>(occlusionRadius * camera.Scale));
   }
   if (f.TopLevel)
   {
     const vtkrt::core::Vec3<double>& anchor = this->Top.GetAnchor();
-    const float toAnchor[3] = { static_cast<float>(camera.Origin[0] - anchor.x),
-      static_cast<float>(camera.Origin[1] - anchor.y), static_cast<float>(camera.Origin[2] - anchor.z) };
+    // The top level is built over the world boxes times the shader scale.
+    const float toAnchor[3] = { static_cast<float>(camera.Origin[0] * camera.Scale - anchor.x),
+      static_cast<float>(camera.Origin[1] * camera.Scale - anchor.y),
+      static_cast<float>(camera.Origin[2] * camera.Scale - anchor.z) };
     program->SetUniform3f("uCameraToAnchor", toAnchor);
   }
   if (f.ClipPlanes > 0)
@@ -198,7 +203,7 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
   Prepared& p)
 {
   const std::vector<Instance>& instances = this->Scene.GetInstances();
-  p.Camera.Set(ren, cam, pass.PrecisionMode == WORLD);
+  p.Camera.Set(ren, cam, pass.PrecisionMode == WORLD, vtkrt::pass::SceneScale(instances));
   vtkrt::pass::FrameRecords& frame = p.Frame;
   if (!vtkrt::pass::MakeFrameRecords(instances, this->Places, p.Camera, ren, frame))
   {
@@ -217,7 +222,12 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
   const bool topLevel = vtkrt::pass::TopLevel::IsNeeded(frame.Records.size());
   if (topLevel)
   {
-    this->Top.Update(win, frame.WorldBoxes, this->Buffers.TopNodes, this->Counters);
+    std::vector<vtkrt::core::AABB<double>> scaledBoxes(frame.WorldBoxes);
+    for (vtkrt::core::AABB<double>& b : scaledBoxes)
+    {
+      b = vtkrt::core::AABB<double>(b.min * p.Camera.Scale, b.max * p.Camera.Scale);
+    }
+    this->Top.Update(win, scaledBoxes, this->Buffers.TopNodes, this->Counters);
     this->Top.Reorder(frame.Records);
   }
   // Unchanged records (a still frame; any camera move in WORLD mode) are
@@ -230,7 +240,7 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
     this->LastRecords = frame.Records;
   }
   this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(uploadStart);
-  p.Lights = vtkrt::pass::CollectLights(ren, p.Camera.Origin);
+  p.Lights = vtkrt::pass::CollectLights(ren, p.Camera.Origin, p.Camera.Scale);
   p.F = this->FrameFeatures(pass, ren, frame, p.Lights.size(), topLevel);
   if (selectIds)
   {

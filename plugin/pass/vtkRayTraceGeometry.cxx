@@ -13,6 +13,7 @@
 #include "vtkrt/core/Mesh.h"
 
 #include <algorithm>
+#include <functional>
 #include <limits>
 #include <optional>
 
@@ -25,11 +26,30 @@ using core::Vec3;
 
 namespace
 {
-/// Takes a freshly built BVH into `g`: its skipped-primitive count and, when
-/// it is not empty, the local origin (the center of what is traced: NaN
-/// primitives are not in the tree), the bounds relative to it and the GPU
-/// nodes. Returns the origin, or nothing for an empty tree.
-std::optional<Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh)
+/// The frame the primitives are built in: that of the finite boxes' union
+/// (model coordinates), so the BVH and every GPU record are in units near 1
+/// whatever the data's size and offset.
+core::ScaledFrame buildFrame(std::size_t count, const std::function<core::AABB<double>(std::size_t)>& boxOf)
+{
+  core::AABB<double> all;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const core::AABB<double> b = boxOf(i);
+    if (!b.isEmpty() && b.isFinite())
+    {
+      all.extend(b.min);
+      all.extend(b.max);
+    }
+  }
+  return core::ScaledFrame::of(all);
+}
+
+/// Takes a BVH built in `frame`'s coordinates into `g`: its skipped-primitive
+/// count and, when it is not empty, the local origin (the center of what is
+/// traced: NaN primitives are not in the tree; in model coordinates with
+/// the frame's scale), the bounds relative to it and the GPU nodes. Returns
+/// the origin in the frame's coordinates, or nothing for an empty tree.
+std::optional<Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh, const core::ScaledFrame& frame)
 {
   g.SkippedPrimitives = bvh.stats.skippedPrimitives;
   if (bvh.empty())
@@ -38,11 +58,13 @@ std::optional<Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh)
   }
   const core::AABB<double> b = bvh.bounds();
   const Vec3<double> origin = b.center();
-  g.Origin = { { origin.x, origin.y, origin.z } };
+  const Vec3<double> modelOrigin = frame.toModel(origin);
+  g.Origin = { { modelOrigin.x, modelOrigin.y, modelOrigin.z } };
+  g.Scale = frame.scale;
   for (int k = 0; k < 3; ++k)
   {
-    g.LocalBounds[2 * k] = b.min[k] - g.Origin[k];
-    g.LocalBounds[2 * k + 1] = b.max[k] - g.Origin[k];
+    g.LocalBounds[2 * k] = b.min[k] - origin[k];
+    g.LocalBounds[2 * k + 1] = b.max[k] - origin[k];
   }
   g.Nodes = core::packGpuNodes(bvh.nodes, origin);
   return origin;
@@ -113,6 +135,12 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
   const auto start = std::chrono::steady_clock::now();
   std::vector<Vec3<double>> points;
   ReadPoints(poly->GetPoints(), points);
+  const core::ScaledFrame frame = buildFrame(
+    points.size(), [&](std::size_t i) { return core::AABB<double>(points[i], points[i]); });
+  for (Vec3<double>& p : points)
+  {
+    p = frame.toLocal(p);
+  }
   std::vector<std::uint32_t> indices;
   std::vector<std::uint32_t> cellIds;
   triangulate(poly, indices, cellIds);
@@ -122,7 +150,7 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
   core::BVH bvh = core::buildTriangleBVH(mesh, options);
   g->Spheres = false;
   g->VertexCount = points.size();
-  const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh);
+  const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh, frame);
   if (!adopted)
   {
     return g;
@@ -154,15 +182,30 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
   return g;
 }
 
-std::unique_ptr<Geometry> BuildSpheres(const std::vector<Vec3<double>>& centers,
-  const std::vector<double>& radii, const std::vector<std::uint32_t>& ids,
+std::unique_ptr<Geometry> BuildSpheres(const std::vector<Vec3<double>>& modelCenters,
+  const std::vector<double>& modelRadii, const std::vector<std::uint32_t>& ids,
   const core::BuildOptions& options)
 {
   auto g = std::make_unique<Geometry>();
   g->Spheres = true;
+  const std::size_t count = std::min(modelCenters.size(), modelRadii.size());
+  const core::ScaledFrame frame = buildFrame(count, [&](std::size_t i) {
+    const Vec3<double> r(modelRadii[i]);
+    return core::AABB<double>(modelCenters[i] - r, modelCenters[i] + r);
+  });
+  std::vector<Vec3<double>> centers(count);
+  std::vector<double> radii(count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    centers[i] = frame.toLocal(modelCenters[i]);
+    // A positive radius stays positive (bare centers have the smallest one).
+    radii[i] = modelRadii[i] > 0.0
+      ? std::max(modelRadii[i] * frame.scale, std::numeric_limits<double>::min())
+      : modelRadii[i];
+  }
   core::SphereSet<double> set(centers, radii);
   core::BVH bvh = core::buildSphereBVH(set, options);
-  const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh);
+  const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh, frame);
   if (!adopted)
   {
     return g;
@@ -235,15 +278,37 @@ std::unique_ptr<Geometry> BuildScreenSpheres(
   return g;
 }
 
-std::unique_ptr<Geometry> BuildEllipsoids(const std::vector<std::array<double, 12>>& maps,
-  const std::vector<core::AABB<double>>& boxes, const std::vector<std::uint32_t>& ids,
+std::unique_ptr<Geometry> BuildEllipsoids(const std::vector<std::array<double, 12>>& modelMaps,
+  const std::vector<core::AABB<double>>& modelBoxes, const std::vector<std::uint32_t>& ids,
   const core::BuildOptions& options)
 {
   auto g = std::make_unique<Geometry>();
   g->Spheres = true;
   g->Ellipsoids = true;
+  const core::ScaledFrame frame =
+    buildFrame(modelBoxes.size(), [&](std::size_t i) { return modelBoxes[i]; });
+  std::vector<core::AABB<double>> boxes(modelBoxes.size());
+  for (std::size_t i = 0; i < boxes.size(); ++i)
+  {
+    const core::AABB<double>& b = modelBoxes[i];
+    boxes[i] = b.isEmpty() ? b : core::AABB<double>(frame.toLocal(b.min), frame.toLocal(b.max));
+  }
+  // A p + b with p = p' / scale + origin: (A / scale) p' + (A origin + b).
+  std::vector<std::array<double, 12>> maps(modelMaps);
+  for (std::array<double, 12>& m : maps)
+  {
+    for (int r = 0; r < 3; ++r)
+    {
+      m[4 * r + 3] += m[4 * r] * frame.origin.x + m[4 * r + 1] * frame.origin.y +
+        m[4 * r + 2] * frame.origin.z;
+      for (int c = 0; c < 3; ++c)
+      {
+        m[4 * r + c] /= frame.scale;
+      }
+    }
+  }
   core::BVH bvh = core::buildBVH(boxes, options);
-  const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh);
+  const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh, frame);
   if (!adopted)
   {
     return g;

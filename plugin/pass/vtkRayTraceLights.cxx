@@ -11,7 +11,7 @@ namespace vtkrt
 namespace pass
 {
 
-std::vector<core::gpu::Light> CollectLights(vtkRenderer* ren, const double origin[3])
+std::vector<core::gpu::Light> CollectLights(vtkRenderer* ren, const double origin[3], double scale)
 {
   std::vector<core::gpu::Light> out;
   vtkLightCollection* lights = ren->GetLights();
@@ -35,9 +35,12 @@ std::vector<core::gpu::Light> CollectLights(vtkRenderer* ren, const double origi
     {
       l.color[k] = static_cast<float>(color[k] * intensity);
       l.direction[k] = static_cast<float>(direction[k]);
-      l.position[k] = static_cast<float>(position[k] - origin[k]);
-      l.attenuation[k] = static_cast<float>(attenuation[k]);
+      l.position[k] = static_cast<float>((position[k] - origin[k]) * scale);
     }
+    // 1 / (a + b d + c d^2) with d in world units, the shader's d' = d * scale.
+    l.attenuation[0] = static_cast<float>(attenuation[0]);
+    l.attenuation[1] = static_cast<float>(attenuation[1] / scale);
+    l.attenuation[2] = static_cast<float>(attenuation[2] / scale / scale);
     l.cone[0] = static_cast<float>(light->GetConeAngle());
     l.cone[1] = static_cast<float>(light->GetExponent());
     l.cone[2] = light->GetPositional() ? 1.0f : 0.0f;

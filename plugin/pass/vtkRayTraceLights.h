@@ -16,8 +16,9 @@ namespace vtkrt
 namespace pass
 {
 
-/// `origin`: the shader's origin in world coordinates.
-std::vector<core::gpu::Light> CollectLights(vtkRenderer* ren, const double origin[3]);
+/// `origin`: the shader's origin in world coordinates, `scale`: shader
+/// units per world unit (positions and the attenuation's distances scale).
+std::vector<core::gpu::Light> CollectLights(vtkRenderer* ren, const double origin[3], double scale);
 
 /// uLightColor, uLightDirection, uLightPosition, uLightAttenuation, uLightCone.
 void SetLightUniforms(vtkShaderProgram* program, const std::vector<core::gpu::Light>& lights);

@@ -9,6 +9,7 @@
 #include "vtkOpenGLCamera.h"
 #include "vtkOpenGLRenderer.h"
 
+#include "vtkrt/core/LocalFrame.h"
 #include "vtkrt/core/Math.h"
 
 #include <algorithm>
@@ -19,8 +20,9 @@ namespace vtkrt
 namespace pass
 {
 
-void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCoordinates)
+void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCoordinates, double scale)
 {
+  this->Scale = scale;
   vtkMatrix4x4* wcvc;
   vtkMatrix3x3* normalMatrix;
   vtkMatrix4x4* vcdc;
@@ -33,18 +35,31 @@ void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCo
   }
   vtkNew<vtkMatrix4x4> worldToClip; // row-major P * V
   vtkMatrix4x4::Transpose(wcdc, worldToClip);
-  vtkNew<vtkMatrix4x4> originTranslation;
+  vtkNew<vtkMatrix4x4> shaderToWorld;
   for (int k = 0; k < 3; ++k)
   {
-    originTranslation->SetElement(k, 3, this->Origin[k]);
+    shaderToWorld->SetElement(k, k, 1.0 / scale);
+    shaderToWorld->SetElement(k, 3, this->Origin[k]);
   }
-  vtkMatrix4x4::Multiply4x4(worldToClip, originTranslation, this->CameraToClip);
+  vtkMatrix4x4::Multiply4x4(worldToClip, shaderToWorld, this->CameraToClip);
+  // Clip coordinates are homogeneous: a power of two brings the entries
+  // near 1 (float holds them at any scene size) and changes no image.
+  double largest = 0.0;
+  for (int i = 0; i < 16; ++i)
+  {
+    largest = std::max(largest, std::abs(this->CameraToClip->GetData()[i]));
+  }
+  const double normalize = core::powerOfTwoScale(largest);
+  for (int i = 0; i < 16; ++i)
+  {
+    this->CameraToClip->GetData()[i] *= normalize;
+  }
   vtkMatrix4x4::Invert(this->CameraToClip, this->ClipToCamera);
   cam->GetDirectionOfProjection(this->DirectionOfProjection);
 }
 
 ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* ren,
-  const double localToShader[16], const double eyeInShader[3])
+  const double localToShader[16], const double eyeInShader[3], double shaderScale)
 {
   ScreenSphereRadii out;
   const Geometry& g = *inst.Geom;
@@ -60,8 +75,8 @@ ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* re
   // World radius per unit of view depth (perspective) or constant (parallel).
   const double perDepth =
     inst.PointSize * std::tan(vtkMath::RadiansFromDegrees(cam->GetViewAngle()) / 2.0) / pixels;
-  const double constant = inst.PointSize * cam->GetParallelScale() / pixels;
-  // Local units -> world units: the actor's (uniform) scale.
+  const double constant = inst.PointSize * cam->GetParallelScale() * shaderScale / pixels;
+  // Local units -> shader units: the actor's (uniform) scale.
   double m3[3][3];
   for (int r = 0; r < 3; ++r)
   {
@@ -102,13 +117,14 @@ ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* re
     out.MaxLocal = std::max(out.MaxLocal,
       out.Plane[0] * p[0] + out.Plane[1] * p[1] + out.Plane[2] * p[2] + out.Plane[3]);
   }
-  out.MaxWorld = out.MaxLocal * scale;
+  out.MaxWorld = out.MaxLocal * scale / shaderScale;
   return out;
 }
 
 namespace
 {
-/// The instance's local (Geometry::Origin-relative) to shader matrix.
+/// The instance's local (Geometry) to shader matrix: (M (l / scale +
+/// origin) - camera origin) * camera scale, composed in double.
 void localToShader(const Instance& inst, const CameraFrame& camera, vtkMatrix4x4* out)
 {
   const Geometry& g = *inst.Geom;
@@ -119,8 +135,9 @@ void localToShader(const Instance& inst, const CameraFrame& camera, vtkMatrix4x4
     for (int c = 0; c < 3; ++c)
     {
       t += out->GetElement(r, c) * g.Origin[c];
+      out->SetElement(r, c, out->GetElement(r, c) / g.Scale * camera.Scale);
     }
-    out->SetElement(r, 3, t - camera.Origin[r]);
+    out->SetElement(r, 3, (t - camera.Origin[r]) * camera.Scale);
   }
 }
 
@@ -131,9 +148,9 @@ core::AABB<double> worldBox(const Instance& inst)
   core::AABB<double> box;
   for (int corner = 0; corner < 8; ++corner)
   {
-    double p[4] = { g.LocalBounds[(corner & 1) ? 1 : 0] + g.Origin[0],
-      g.LocalBounds[(corner & 2) ? 3 : 2] + g.Origin[1],
-      g.LocalBounds[(corner & 4) ? 5 : 4] + g.Origin[2], 1.0 };
+    double p[4] = { g.LocalBounds[(corner & 1) ? 1 : 0] / g.Scale + g.Origin[0],
+      g.LocalBounds[(corner & 2) ? 3 : 2] / g.Scale + g.Origin[1],
+      g.LocalBounds[(corner & 4) ? 5 : 4] / g.Scale + g.Origin[2], 1.0 };
     double w[4];
     for (int r = 0; r < 4; ++r)
     {
@@ -195,6 +212,21 @@ std::uint32_t instanceFlags(const Instance& inst, bool mirrored)
 }
 } // namespace
 
+double SceneScale(const std::vector<Instance>& instances)
+{
+  core::AABB<double> all;
+  for (const Instance& inst : instances)
+  {
+    const core::AABB<double> b = worldBox(inst);
+    if (!b.isEmpty() && b.isFinite())
+    {
+      all.extend(b.min);
+      all.extend(b.max);
+    }
+  }
+  return core::ScaledFrame::of(all).scale;
+}
+
 double FrameRecords::DefaultOcclusionRadius() const
 {
   core::AABB<double> all;
@@ -213,8 +245,8 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
   out.Records.assign(instances.size(), core::gpu::InstanceRecord{});
   out.ClipPlanes.clear();
   out.WorldBoxes.resize(instances.size());
-  const double eyeInShader[3] = { camera.Eye[0] - camera.Origin[0], camera.Eye[1] - camera.Origin[1],
-    camera.Eye[2] - camera.Origin[2] };
+  double eyeInShader[3];
+  camera.ToShader(camera.Eye, eyeInShader);
   for (std::size_t i = 0; i < instances.size(); ++i)
   {
     const Instance& inst = instances[i];
@@ -229,7 +261,8 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     vtkNew<vtkMatrix4x4> shaderToLocal;
     vtkMatrix4x4::Invert(toShader, shaderToLocal);
     // Points drawn as spheres: radii from this frame's camera.
-    const ScreenSphereRadii screen = ComputeScreenSphereRadii(inst, ren, toShader->GetData(), eyeInShader);
+    const ScreenSphereRadii screen =
+      ComputeScreenSphereRadii(inst, ren, toShader->GetData(), eyeInShader, camera.Scale);
     out.WorldBoxes[i] = worldBox(inst);
     if (screen.MaxWorld > 0.0)
     {
@@ -247,7 +280,7 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
         rec.cameraToLocal[r][c] = static_cast<float>(shaderToLocal->GetElement(r, c));
       }
     }
-    shaderBox(inst, toShader, screen.MaxWorld, rec);
+    shaderBox(inst, toShader, screen.MaxWorld * camera.Scale, rec);
     rec.root = place->second.Root;
     rec.flags = instanceFlags(inst, toShader->Determinant() < 0.0);
     for (int k = 0; k < 3; ++k)
@@ -272,7 +305,8 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     }
     for (const auto& pl : inst.ClipPlanes)
     {
-      const double d = pl[3] + pl[0] * camera.Origin[0] + pl[1] * camera.Origin[1] + pl[2] * camera.Origin[2];
+      const double d = (pl[3] + pl[0] * camera.Origin[0] + pl[1] * camera.Origin[1] +
+                         pl[2] * camera.Origin[2]) * camera.Scale;
       out.ClipPlanes.insert(out.ClipPlanes.end(),
         { static_cast<float>(pl[0]), static_cast<float>(pl[1]), static_cast<float>(pl[2]),
           static_cast<float>(d) });
@@ -313,9 +347,10 @@ bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRe
   {
     for (int corner = 0; corner < 8; ++corner)
     {
-      double p[4] = { ((corner & 1) ? box.max.x : box.min.x) - camera.Origin[0],
-        ((corner & 2) ? box.max.y : box.min.y) - camera.Origin[1],
-        ((corner & 4) ? box.max.z : box.min.z) - camera.Origin[2], 1.0 };
+      const double world[3] = { (corner & 1) ? box.max.x : box.min.x,
+        (corner & 2) ? box.max.y : box.min.y, (corner & 4) ? box.max.z : box.min.z };
+      double p[4] = { 0.0, 0.0, 0.0, 1.0 };
+      camera.ToShader(world, p);
       camera.CameraToClip->MultiplyPoint(p, p);
       // At or behind the eye plane the projection has no bound.
       if (!(p[3] > 1e-12 * (std::abs(p[0]) + std::abs(p[1]) + std::abs(p[2]))))

@@ -27,19 +27,36 @@ namespace pass
 struct ScenePlacements;
 
 /// The frame's camera in the shader's coordinates, from VTK's own matrices
-/// (the ones raster uses).
+/// (the ones raster uses). Shader coordinates are (world - Origin) * Scale.
 struct CameraFrame
 {
   /// The shader's origin: the eye (camera-relative) or the world origin
   /// (WORLD precision mode: plain float world values).
   double Origin[3] = { 0, 0, 0 };
+  /// Shader units per world unit: a power of two bringing the scene's size
+  /// near 1 (SceneScale), so float products of shader coordinates (lengths,
+  /// normals, lighting) neither overflow nor underflow.
+  double Scale = 1.0;
   double Eye[3] = { 0, 0, 0 }; ///< in world coordinates
   double DirectionOfProjection[3] = { 0, 0, 1 };
   vtkNew<vtkMatrix4x4> CameraToClip; ///< row-major, from the shader's coordinates
   vtkNew<vtkMatrix4x4> ClipToCamera;
 
-  void Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCoordinates);
+  void Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCoordinates, double scale);
+
+  /// A world point in shader coordinates.
+  void ToShader(const double world[3], double out[3]) const
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      out[k] = (world[k] - this->Origin[k]) * this->Scale;
+    }
+  }
 };
+
+/// The shader scale for these instances (CameraFrame::Scale): the power of
+/// two that brings the half-size of their world boxes' union near 1.
+double SceneScale(const std::vector<Instance>& instances);
 
 /// Radii of screen-sized spheres (points drawn as spheres) for one frame.
 /// VTK draws such a point PointSize pixels wide whatever its distance, so
@@ -56,10 +73,11 @@ struct ScreenSphereRadii
   double MaxWorld = 0.0; ///< the same bound in world units
 };
 
-/// `localToShader`: row-major local (Geometry::Origin-relative) to shader
-/// coordinates, `eyeInShader`: the camera position in shader coordinates.
+/// `localToShader`: row-major local (Geometry) to shader coordinates,
+/// `eyeInShader`: the camera position in shader coordinates, `shaderScale`:
+/// shader units per world unit.
 ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* ren,
-  const double localToShader[16], const double eyeInShader[3]);
+  const double localToShader[16], const double eyeInShader[3], double shaderScale);
 
 /// The records of one frame, in instance order.
 struct FrameRecords

@@ -40,8 +40,12 @@ struct Geometry
   std::string SourceKey;       ///< extra key (e.g. sphere radius settings)
   int Quality = -1;            ///< the build quality it was built with
   std::uint32_t LeafSize = 0;  ///< the maximum leaf size it was built with (triangles)
+  /// Local coordinates are model coordinates relative to Origin, times
+  /// Scale (a power of two bringing the data's size near 1, so float
+  /// products of local coordinates neither overflow nor underflow).
   std::array<double, 3> Origin{ { 0, 0, 0 } }; ///< local origin (model coordinates)
-  std::array<double, 6> LocalBounds{ { 0, 0, 0, 0, 0, 0 } }; ///< relative to Origin
+  double Scale = 1.0;                          ///< local units per model unit
+  std::array<double, 6> LocalBounds{ { 0, 0, 0, 0, 0, 0 } }; ///< local coordinates
   std::vector<core::gpu::Node> Nodes;
   std::vector<core::gpu::Triangle> Triangles; ///< leaf order
   std::vector<core::gpu::TriangleVertices> TriangleVertices;

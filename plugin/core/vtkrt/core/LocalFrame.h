@@ -7,6 +7,8 @@
 
 #include "vtkrt/core/BVH.h"
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace vtkrt::core
@@ -64,6 +66,55 @@ inline std::vector<Vec3<float>> relativeFloatPoints(const Vec3<T>* points, std::
   }
   return out;
 }
+
+/// The power of two that brings a positive, finite half-size into
+/// [0.5, 1) (clamped to 2^-1000 .. 2^1000, normal doubles); 1 for anything
+/// else. Scaling by it rounds nothing (short of double's limits).
+inline double powerOfTwoScale(double halfSize)
+{
+  if (!(halfSize > 0.0) || !std::isfinite(halfSize))
+  {
+    return 1.0;
+  }
+  int exponent = 0;
+  std::frexp(halfSize, &exponent); // halfSize in [0.5, 1) * 2^exponent
+  return std::ldexp(1.0, -std::max(-1000, std::min(1000, exponent)));
+}
+
+/// A box's local frame: its center and the power of two that brings its
+/// half-size near 1, so products of local coordinates stay in range
+/// whatever the box's size. local = (p - origin) * scale, computed so that
+/// neither the shift nor the product overflows (see toLocal).
+struct ScaledFrame
+{
+  Vec3<double> origin{ 0.0 };
+  double scale = 1.0;
+
+  /// The frame of `box` (the identity for an empty or non-finite box).
+  static ScaledFrame of(const AABB<double>& box)
+  {
+    ScaledFrame f;
+    if (box.isEmpty() || !box.isFinite())
+    {
+      return f;
+    }
+    // Halves first: bounds spanning more than the largest double overflow
+    // neither their center nor their half-size.
+    const Vec3<double> half = box.max * 0.5 - box.min * 0.5;
+    f.origin = box.min * 0.5 + box.max * 0.5;
+    f.scale = powerOfTwoScale(std::max(half.x, std::max(half.y, half.z)));
+    return f;
+  }
+
+  /// Scaling down multiplies before the shift (p - origin could overflow),
+  /// scaling up after it (p * scale could).
+  Vec3<double> toLocal(const Vec3<double>& p) const
+  {
+    return this->scale < 1.0 ? p * this->scale - this->origin * this->scale
+                             : (p - this->origin) * this->scale;
+  }
+  Vec3<double> toModel(const Vec3<double>& local) const { return local / this->scale + this->origin; }
+};
 
 } // namespace vtkrt::core
 
