@@ -495,12 +495,6 @@ vtkIdType vtkBVHCellLocator::FindCell(
     return -1;
   }
   vtkrt::locator::QueryCell qc(cell);
-  std::vector<double> localWeights;
-  if (!weights)
-  {
-    localWeights.resize(static_cast<size_t>(std::max(this->DataSet->GetMaxCellSize(), 1)));
-    weights = localWeights.data();
-  }
   double localPcoords[3];
   if (!pcoords)
   {

@@ -15,6 +15,7 @@
 #include "vtkrt/core/Ray.h"
 #include "vtkrt/core/SegmentQueries.h"
 #include "vtkrt/core/Triangle.h"
+#include "vtkrt/core/WidePointQueries.h"
 #include "vtkrt/core/WideTraversal.h"
 
 #include <algorithm>
@@ -69,6 +70,28 @@ inline void Barycentric(
   u = (d22 * w1 - d12 * w2) / det;
   v = (d11 * w2 - d12 * w1) / det;
 }
+
+/// The weights EvaluatePosition writes for a cell: on the stack for cells
+/// of up to 64 points, else on the heap (no per-query allocation, and not
+/// vtkDataSet::GetMaxCellSize, which visits every cell of a polydata).
+class CellWeights
+{
+public:
+  double* For(vtkCell* c)
+  {
+    const size_t n = static_cast<size_t>(std::max<vtkIdType>(c->GetNumberOfPoints(), 1));
+    if (n <= sizeof(this->Small) / sizeof(double))
+    {
+      return this->Small;
+    }
+    this->Large.resize(std::max(this->Large.size(), n));
+    return this->Large.data();
+  }
+
+private:
+  double Small[64];
+  std::vector<double> Large;
+};
 
 // What DataSet->GetCell(cellId, cell) gives for a triangle, from the point
 // ids kept with it and the coordinates the exact test read (the dataset's
@@ -348,8 +371,8 @@ bool BVHCellLocatorData::IntersectWithLine(const double p1[3], const double p2[3
     vtkGenericCell* c = cell.Get();
     ds->GetCell(out.CellId, c);
     double closest[3], dist2;
-    std::vector<double> weights(static_cast<size_t>(std::max<vtkIdType>(c->GetNumberOfPoints(), 1)));
-    c->EvaluatePosition(out.X, closest, out.SubId, out.PCoords, dist2, weights.data());
+    CellWeights weights;
+    c->EvaluatePosition(out.X, closest, out.SubId, out.PCoords, dist2, weights.For(c));
   }
   if (given && out.TrianglePointIds)
   {
@@ -423,7 +446,7 @@ void BVHCellLocatorData::AllHits(const double p1[3], const double p2[3], double 
     hits.push_back(h);
     return false; // collected here; nothing for the traversal to keep
   };
-  core::allHitsSegment(PickingScene{ this }, ray, tol, isect);
+  core::allHitsSegment(PickingScene{ this }, ray, triPre, tol, true, isect);
   // One hit per cell (its nearest), then along the segment.
   std::sort(hits.begin(), hits.end(), [](const LineHit& a, const LineHit& b) {
     return a.CellId != b.CellId ? a.CellId < b.CellId : a.T < b.T;
@@ -453,6 +476,7 @@ void BVHCellLocatorData::CellsAlongLine(
     return;
   }
   const core::RayBoxPrecomputed<double> boxPre(ray);
+  const core::RayTrianglePrecomputed<double> triPre(ray);
   auto isect = [&](std::uint32_t prim, const core::Ray<double>& r, core::Hit<double>&) {
     const Box b = this->PrimitiveBox(prim);
     double tnear;
@@ -462,7 +486,8 @@ void BVHCellLocatorData::CellsAlongLine(
     }
     return false;
   };
-  core::allHitsSegment(PickingScene{ this }, ray, tol, isect);
+  // Cells by their bounds: every triangle of a leaf the segment reaches.
+  core::allHitsSegment(PickingScene{ this }, ray, triPre, tol, false, isect);
   std::sort(cells.begin(), cells.end());
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
 }
@@ -482,7 +507,7 @@ void BVHCellLocatorData::CellsThroughPoint(const double p[3], double tol, vtkDat
   {
     return;
   }
-  std::vector<double> weights(static_cast<size_t>(std::max(ds->GetMaxCellSize(), 1)));
+  CellWeights weights;
   double x[3] = { p[0], p[1], p[2] };
   for (const vtkIdType cellId : candidates)
   {
@@ -496,7 +521,7 @@ void BVHCellLocatorData::CellsThroughPoint(const double p[3], double tol, vtkDat
     LineHit h;
     h.CellId = cellId;
     std::copy(x, x + 3, h.X);
-    cell->EvaluatePosition(x, cx, h.SubId, h.PCoords, d2, weights.data());
+    cell->EvaluatePosition(x, cx, h.SubId, h.PCoords, d2, weights.For(cell));
     hits.push_back(h);
     if (firstOnly)
     {
@@ -508,16 +533,26 @@ void BVHCellLocatorData::CellsThroughPoint(const double p[3], double tol, vtkDat
 //------------------------------------------------------------------------------
 void BVHCellLocatorData::CellsInBox(const double bbox[6], std::vector<vtkIdType>& cells) const
 {
-  cells.clear();
   const Box q(this->ToLocal(Vec3d(bbox[0], bbox[2], bbox[4])),
     this->ToLocal(Vec3d(bbox[1], bbox[3], bbox[5])));
-  this->EnsureTree();
-  core::queryBox(this->Tree, q, [&](std::uint32_t prim) {
+  this->CellsInLocalBox(q, cells);
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::CellsInLocalBox(const Box& q, std::vector<vtkIdType>& cells) const
+{
+  cells.clear();
+  auto overlap = [&](std::uint32_t prim) {
     if (this->PrimitiveBox(prim).overlaps(q))
     {
       cells.push_back(this->PrimitiveCell(prim));
     }
-  });
+  };
+  if (!core::overlapBoxWide(PickingScene{ this }, q, overlap))
+  {
+    this->EnsureTree();
+    core::queryBox(this->Tree, q, overlap);
+  }
   std::sort(cells.begin(), cells.end());
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
 }
@@ -531,7 +566,7 @@ bool BVHCellLocatorData::ClosestPoint(
 {
   const Vec3d x = this->ToLocal(xw);
   const vtkIdType nTri = this->NumberOfTriangles();
-  std::vector<double> weights(static_cast<size_t>(std::max(ds ? ds->GetMaxCellSize() : 1, 1)));
+  CellWeights weights;
   // Per general primitive, what EvaluatePosition said (read back for the winner).
   PointHit general;
   std::uint32_t generalPrim = core::kInvalidIndex;
@@ -556,7 +591,7 @@ bool BVHCellLocatorData::ClosestPoint(
     double cp[3], pc[3], d2;
     int sub;
     double xx[3] = { xw[0], xw[1], xw[2] };
-    const int r = c->EvaluatePosition(xx, cp, sub, pc, d2, weights.data());
+    const int r = c->EvaluatePosition(xx, cp, sub, pc, d2, weights.For(c));
     if (r < 0 || !std::isfinite(d2))
     {
       return false;
@@ -580,8 +615,12 @@ bool BVHCellLocatorData::ClosestPoint(
     return true;
   };
   core::PointHit<double> best;
-  this->EnsureTree();
-  if (!core::closestPoint(this->Tree, x, radius, fn, best))
+  const int wide = core::closestPointWide(PickingScene{ this }, x, radius, fn, best);
+  if (wide < 0)
+  {
+    this->EnsureTree(); // beyond the float walk's reach: the double walk
+  }
+  if (wide == 0 || (wide < 0 && !core::closestPoint(this->Tree, x, radius, fn, best)))
   {
     return false;
   }
@@ -598,7 +637,10 @@ bool BVHCellLocatorData::ClosestPoint(
     out.X[k] = best.point[k] + this->Origin[k];
   }
   out.SubId = this->TriangleSubId(prim);
-  out.NeedsEvaluate = (this->TriangleFlags(prim) & EvaluateInCell) != 0;
+  const std::uint8_t flags = this->TriangleFlags(prim);
+  out.NeedsEvaluate = (flags & EvaluateInCell) != 0;
+  out.TrianglePointIds =
+    (flags & WholeTriangle) ? this->TriIds.data() + 3 * static_cast<std::size_t>(prim) : nullptr;
   out.Inside = this->ProjectsInside(prim, x) ? 1 : 0;
   return true;
 }
@@ -618,11 +660,15 @@ bool BVHCellLocatorData::FindClosestPoint(
     vtkGenericCell* c = qc.Get();
     ds->GetCell(hit.CellId, c);
     double cp[3], d2, pc[3];
-    std::vector<double> weights(static_cast<size_t>(std::max<vtkIdType>(c->GetNumberOfPoints(), 1)));
-    const int r = c->EvaluatePosition(xw, cp, hit.SubId, pc, d2, weights.data());
+    CellWeights weights;
+    const int r = c->EvaluatePosition(xw, cp, hit.SubId, pc, d2, weights.For(c));
     hit.Inside = r == 1 ? 1 : 0;
   }
-  if (cell)
+  if (cell && hit.TrianglePointIds)
+  {
+    FillTriangleCell(cell, hit.TrianglePointIds, this->WorldCoords());
+  }
+  else if (cell)
   {
     ds->GetCell(hit.CellId, cell);
   }
@@ -637,22 +683,16 @@ vtkIdType BVHCellLocatorData::FindCell(const double xw[3], double tol2, vtkDataS
   const Vec3d tol(std::sqrt(tol2));
   const Box q(x - tol, x + tol);
   std::vector<vtkIdType> candidates;
-  this->EnsureTree();
-  core::queryBox(this->Tree, q, [&](std::uint32_t prim) {
-    if (this->PrimitiveBox(prim).overlaps(q))
-    {
-      candidates.push_back(this->PrimitiveCell(prim));
-    }
-  });
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  this->CellsInLocalBox(q, candidates);
   double xx[3] = { xw[0], xw[1], xw[2] };
+  CellWeights ownWeights;
   for (const vtkIdType cellId : candidates)
   {
     ds->GetCell(cellId, cell);
     double cp[3], dist2;
     int sub;
-    if (cell->EvaluatePosition(xx, cp, sub, pcoords, dist2, weights) == 1 && dist2 <= tol2)
+    double* w = weights ? weights : ownWeights.For(cell);
+    if (cell->EvaluatePosition(xx, cp, sub, pcoords, dist2, w) == 1 && dist2 <= tol2)
     {
       return cellId;
     }

@@ -53,11 +53,20 @@ bool closestHitSegment(Scene scene, const Ray<double>& ray, const RayTrianglePre
   return closestHit(nodes, tree.primIndex.data(), ray, isect, hit);
 }
 
-/// Every primitive whose box, grown by tol, the segment meets goes to
-/// isect (which collects what it wants).
+/// Every primitive in a leaf whose box, grown by tol, the segment meets
+/// goes to isect (which collects what it wants and returns false), through
+/// the wide float walk where it takes the segment. trianglePreTest: only
+/// the triangles the exact watertight test might accept (at tol 0); off,
+/// every triangle of those leaves.
 template <class Scene, class Isect>
-void allHitsSegment(Scene scene, const Ray<double>& ray, double tol, Isect& isect)
+void allHitsSegment(Scene scene, const Ray<double>& ray, const RayTrianglePrecomputed<double>& triPre,
+  double tol, bool trianglePreTest, Isect& isect)
 {
+  Hit<double> none;
+  if (closestHitWide(scene, ray, triPre, tol, isect, none, trianglePreTest) >= 0)
+  {
+    return;
+  }
   const BVH& tree = scene.binaryTree();
   const GrownNodeSource nodes{ tree.nodes.data(), tree.nodes.size(), tol };
   allHits(nodes, tree.primIndex.data(), ray, isect);
