@@ -649,7 +649,9 @@ int main(int argc, char* argv[])
     }
   }
   std::printf("# vtkrtBenchLocator\n\nVTK SMP backend %s (builds may use it).\n", vtkSMPTools::GetBackend());
-  std::printf("Ray tables: IntersectWithLine(p1, p2, tol=0, ...) over random segments, "
+  if (g_Rays)
+  {
+    std::printf("Ray tables: IntersectWithLine(p1, p2, tol=0, ...) over random segments, "
               "single thread (rates from thread CPU time, %d interleaved rounds; build and first pick: best of 3, wall "
               "clock; malloc tuned as NOTES-vtk91.md says, for every peer).\nRatios: peer / "
               "vtkBVHCellLocator (default, fast build). Same hits: t within 1e-6.\n"
@@ -657,7 +659,8 @@ int main(int argc, char* argv[])
               "vtkBVHCellLocator's fast build makes each part of its picking tree when a query first "
               "reaches it (PickingTreeOnDemand, default): its build and first pick are that; its rate "
               "and memory are the whole tree's, as in the row that builds it up front.\n",
-    g_Rounds);
+      g_Rounds);
+  }
   auto wantMesh = [](const char* name) { return g_Mesh.empty() || std::strstr(name, g_Mesh.c_str()); };
   if (wantMesh("bunny"))
   {

@@ -241,10 +241,11 @@ void vtkBVHCellLocator::BuildTree()
     this->StoreCellBounds();
   }
   this->Internals->Data.Build(this->BuildQuality, this->NumberOfCellsPerNode);
-  if (!this->PickingTreeOnDemand && this->Internals->Data.Lazy)
+  if (!this->PickingTreeOnDemand)
   {
-    this->Internals->Data.Lazy->buildAll();
-    this->Internals->Data.DropExtractionArrays();
+    // Every structure now, the binary tree of the segments the float walk
+    // cannot take included: no query builds anything.
+    this->Internals->Data.EnsureTree();
   }
 
   this->Internals->Data.BuildSeconds =

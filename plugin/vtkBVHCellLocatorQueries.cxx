@@ -682,13 +682,40 @@ vtkIdType BVHCellLocatorData::FindCell(const double xw[3], double tol2, vtkDataS
   const Vec3d x = this->ToLocal(xw);
   const Vec3d tol(std::sqrt(tol2));
   const Box q(x - tol, x + tol);
-  std::vector<vtkIdType> candidates;
-  this->CellsInLocalBox(q, candidates);
+  // Candidates (cell id, primitive) in cell id order: a VTK_TRIANGLE cell
+  // is filled from its kept point ids, not looked up in the dataset.
+  std::vector<std::pair<vtkIdType, std::uint32_t>> candidates;
+  auto overlap = [&](std::uint32_t prim) {
+    if (this->PrimitiveBox(prim).overlaps(q))
+    {
+      candidates.emplace_back(this->PrimitiveCell(prim), prim);
+    }
+  };
+  if (!core::overlapBoxWide(PickingScene{ this }, q, overlap))
+  {
+    this->EnsureTree();
+    core::queryBox(this->Tree, q, overlap);
+  }
+  std::sort(candidates.begin(), candidates.end());
   double xx[3] = { xw[0], xw[1], xw[2] };
   CellWeights ownWeights;
-  for (const vtkIdType cellId : candidates)
+  const vtkIdType nTri = this->NumberOfTriangles();
+  for (size_t k = 0; k < candidates.size(); ++k)
   {
-    ds->GetCell(cellId, cell);
+    const vtkIdType cellId = candidates[k].first;
+    const std::uint32_t prim = candidates[k].second;
+    if (k > 0 && candidates[k - 1].first == cellId)
+    {
+      continue; // another triangle of a cell already tested
+    }
+    if (static_cast<vtkIdType>(prim) < nTri && (this->TriangleFlags(prim) & WholeTriangle))
+    {
+      FillTriangleCell(cell, this->TriIds.data() + 3 * static_cast<std::size_t>(prim), this->WorldCoords());
+    }
+    else
+    {
+      ds->GetCell(cellId, cell);
+    }
     double cp[3], dist2;
     int sub;
     double* w = weights ? weights : ownWeights.For(cell);

@@ -24,6 +24,8 @@ int TestRobustLargeMesh();
 int TestPickerTriangles();
 int TestPickerQuads();
 int TestWarpedQuadsAndPolygons();
+int TestQueriesClosestPointProbes();
+int TestQueriesFirstQueryBuildsNothing();
 
 int main(int argc, char* argv[])
 {
@@ -46,7 +48,9 @@ int main(int argc, char* argv[])
     { "MovedFloatPoints", TestContractMovedFloatPoints },
     { "LargeMesh", TestRobustLargeMesh },
     { "PickerTriangles", TestPickerTriangles }, { "PickerQuads", TestPickerQuads },
-    { "WarpedQuadsAndPolygons", TestWarpedQuadsAndPolygons } };
+    { "WarpedQuadsAndPolygons", TestWarpedQuadsAndPolygons },
+    { "QueriesClosestPointProbes", TestQueriesClosestPointProbes },
+    { "QueriesFirstQueryBuildsNothing", TestQueriesFirstQueryBuildsNothing } };
   if (argc < 2)
   {
     std::cerr << "usage: " << argv[0] << " CASE" << std::endl;
