@@ -11,6 +11,7 @@
 #include "vtkPolyData.h"
 
 #include "vtkBVHCellLocatorInternals.h"
+#include "vtkrt/core/WidePointQueries.h" // kWidePointReach
 
 #include <algorithm>
 #include <atomic>
@@ -241,10 +242,15 @@ void vtkBVHCellLocator::BuildTree()
     this->StoreCellBounds();
   }
   this->Internals->Data.Build(this->BuildQuality, this->NumberOfCellsPerNode);
-  if (!this->PickingTreeOnDemand)
+  if (!this->PickingTreeOnDemand && this->Internals->Data.Lazy)
   {
-    // Every structure now, the binary tree of the segments the float walk
-    // cannot take included: no query builds anything.
+    this->Internals->Data.Lazy->buildAll();
+    this->Internals->Data.DropExtractionArrays();
+  }
+  if (!(this->Internals->Data.Extent <= vtkrt::core::detail::kWidePointReach))
+  {
+    // Boxes beyond float's reach: every query walks the binary tree, so it
+    // is built now rather than by the first of them.
     this->Internals->Data.EnsureTree();
   }
 

@@ -256,6 +256,21 @@ inline bool BVHCellLocatorData::ProjectsInside(std::uint32_t prim, const Vec3d& 
 }
 
 //------------------------------------------------------------------------------
+/// Whether triangle prim is certainly farther than sqrt(tol2) from x (local;
+/// xw in world coordinates), so that vtkTriangle::EvaluatePosition could not
+/// give dist2 <= tol2 (inside, dist2 is the distance to the triangle). The
+/// margin dwarfs both computations' rounding (a few ulps of the squared
+/// coordinates).
+inline bool BVHCellLocatorData::FartherThan(std::uint32_t prim, const Vec3d& x, double tol2, const double xw[3]) const
+{
+  const Vec3d v0 = this->Vertex(prim, 0);
+  const Vec3d d = x - core::closestPointOnTriangle(x, v0, this->Vertex(prim, 1), this->Vertex(prim, 2));
+  const double scale2 = xw[0] * xw[0] + xw[1] * xw[1] + xw[2] * xw[2] + glm::dot(v0, v0) +
+    glm::dot(this->Origin, this->Origin) + this->Extent * this->Extent;
+  return glm::dot(d, d) > tol2 * (1.0 + 1e-9) + 1e-12 * scale2;
+}
+
+//------------------------------------------------------------------------------
 /// The walk's nearest triangle hit as a LineHit (world coordinates; VTK
 /// triangle pcoords, to be evaluated in the cell for quads and polygons).
 inline void BVHCellLocatorData::SetTriangleHit(
@@ -710,6 +725,10 @@ vtkIdType BVHCellLocatorData::FindCell(const double xw[3], double tol2, vtkDataS
     }
     if (static_cast<vtkIdType>(prim) < nTri && (this->TriangleFlags(prim) & WholeTriangle))
     {
+      if (this->FartherThan(prim, x, tol2, xw))
+      {
+        continue;
+      }
       FillTriangleCell(cell, this->TriIds.data() + 3 * static_cast<std::size_t>(prim), this->WorldCoords());
     }
     else

@@ -26,6 +26,7 @@ int TestPickerQuads();
 int TestWarpedQuadsAndPolygons();
 int TestQueriesClosestPointProbes();
 int TestQueriesFirstQueryBuildsNothing();
+int TestQueriesAxisParallelSegments();
 
 int main(int argc, char* argv[])
 {
@@ -50,7 +51,8 @@ int main(int argc, char* argv[])
     { "PickerTriangles", TestPickerTriangles }, { "PickerQuads", TestPickerQuads },
     { "WarpedQuadsAndPolygons", TestWarpedQuadsAndPolygons },
     { "QueriesClosestPointProbes", TestQueriesClosestPointProbes },
-    { "QueriesFirstQueryBuildsNothing", TestQueriesFirstQueryBuildsNothing } };
+    { "QueriesFirstQueryBuildsNothing", TestQueriesFirstQueryBuildsNothing },
+    { "QueriesAxisParallelSegments", TestQueriesAxisParallelSegments } };
   if (argc < 2)
   {
     std::cerr << "usage: " << argv[0] << " CASE" << std::endl;

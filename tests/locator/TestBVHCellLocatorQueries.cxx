@@ -165,8 +165,8 @@ int TestQueriesClosestPointProbes()
 /// BuildLocator() leaves no structure for a first query to build: on
 /// demand (the default) the queries of every kind reach only the picking
 /// tree (the binary tree stays unbuilt); with PickingTreeOnDemand off no
-/// query builds anything (same memory, same build time), an axis-parallel
-/// segment (which takes the binary tree) included.
+/// query builds anything (same memory, same build time), a segment
+/// parallel to an axis (which the float walk refuses) included.
 int TestQueriesFirstQueryBuildsNothing()
 {
   auto pd = MakeBumpySphere(80);
@@ -211,11 +211,90 @@ int TestQueriesFirstQueryBuildsNothing()
   whole->SetPickingTreeOnDemand(false);
   whole->SetDataSet(pd);
   whole->BuildLocator();
-  LT_CHECK(BinaryTreeBuilt(whole));
+  LT_CHECK(!BinaryTreeBuilt(whole));
   const vtkMTimeType wholeBuilt = whole->GetBuildTime();
   const size_t bytes = whole->GetMemorySize();
   askAll(whole, true);
   LT_CHECK(whole->GetBuildTime() == wholeBuilt);
   LT_CHECK_MSG(whole->GetMemorySize() == bytes, whole->GetMemorySize() << " bytes after the queries, " << bytes << " before");
+  LT_CHECK(!BinaryTreeBuilt(whole));
+  return 0;
+}
+
+/// Segments parallel to an axis, which the float walk refuses (the wide
+/// tree is then walked in double): nearest hit, all hits and cells along
+/// the line against brute force, for the fast build and the SAH build (its
+/// wide tree re-laid from the binary one), at tolerance 0 and above.
+int TestQueriesAxisParallelSegments()
+{
+  auto pd = MakeBumpySphere(40);
+  double b[6];
+  pd->GetBounds(b);
+  Random rng(21);
+  std::vector<Segment> segs;
+  for (int i = 0; i < 240; ++i)
+  {
+    const int axis = i % 3;
+    Segment s;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double c = 0.5 * (b[2 * a] + b[2 * a + 1]), h = 0.6 * (b[2 * a + 1] - b[2 * a]);
+      s.P1[a] = s.P2[a] = rng.Next(c - h, c + h);
+    }
+    s.P1[axis] = b[2 * axis] - 0.5 * (i % 2);
+    s.P2[axis] = b[2 * axis + 1] + 0.25;
+    if (i % 4 == 0)
+    {
+      std::swap(s.P1, s.P2);
+    }
+    segs.push_back(s);
+  }
+  for (int quality : { vtkBVHCellLocator::FAST, vtkBVHCellLocator::SAH })
+  {
+    vtkNew<vtkBVHCellLocator> loc;
+    loc->SetBuildQuality(quality);
+    loc->SetDataSet(pd);
+    loc->BuildLocator();
+    const char* name = quality == vtkBVHCellLocator::FAST ? "axis-parallel, fast build" : "axis-parallel, SAH build";
+    CheckIntersectWithLine(pd, loc, {}, segs, 0.0, name);
+    vtkNew<vtkPoints> pts;
+    vtkNew<vtkIdList> ids;
+    for (const Segment& s : segs)
+    {
+      for (double tol : { 0.0, 1e-3 })
+      {
+        loc->IntersectWithLine(s.P1, s.P2, tol, pts, ids);
+        std::set<vtkIdType> ours;
+        for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+        {
+          ours.insert(ids->GetId(k));
+        }
+        std::set<vtkIdType> ref;
+        for (const auto& h : BruteForceAllHits(pd, s.P1, s.P2, tol))
+        {
+          ref.insert(h.first);
+        }
+        LT_CHECK_MSG(ours == ref, name << " all hits: " << ours.size() << " cells, brute force " << ref.size());
+        loc->FindCellsAlongLine(s.P1, s.P2, tol, ids);
+        std::vector<vtkIdType> along;
+        for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c)
+        {
+          double cb[6];
+          pd->GetCellBounds(c, cb);
+          for (int a = 0; a < 3; ++a)
+          {
+            cb[2 * a] -= tol;
+            cb[2 * a + 1] += tol;
+          }
+          if (SegmentMeetsBox(s.P1, s.P2, cb))
+          {
+            along.push_back(c);
+          }
+        }
+        LT_CHECK_MSG(ToVector(ids) == along, name << " along line: " << ids->GetNumberOfIds() << " cells, brute force " << along.size());
+      }
+    }
+    LT_CHECK(!BinaryTreeBuilt(loc) || quality != vtkBVHCellLocator::FAST);
+  }
   return 0;
 }

@@ -155,6 +155,35 @@ inline WideSlot resolveWideSlot(const Scene& scene, WideSlot s)
   return s;
 }
 
+/// The slots of w in mask (non-zero) at distances dist: returns the
+/// nearest (the walk's next step) and pushes the others, farthest deepest.
+inline WideSlot pushOrdered(const WideSlot& cur, const WideNode& w, int mask, const float dist[kWideArity],
+  WideSlot* stack, std::uint32_t& sp)
+{
+  int i = countTrailingZeros(static_cast<unsigned>(mask));
+  mask &= mask - 1;
+  WideSlot nearest{ cur.Nodes, w.child[i], w.count[i], dist[i] };
+  const std::uint32_t base = sp;
+  while (mask)
+  {
+    i = countTrailingZeros(static_cast<unsigned>(mask));
+    mask &= mask - 1;
+    WideSlot c{ cur.Nodes, w.child[i], w.count[i], dist[i] };
+    if (c.Dist < nearest.Dist)
+    {
+      std::swap(c, nearest);
+    }
+    std::uint32_t j = sp++;
+    while (j > base && stack[j - 1].Dist < c.Dist)
+    {
+      stack[j] = stack[j - 1];
+      --j;
+    }
+    stack[j] = c;
+  }
+  return nearest;
+}
+
 /// The float bound above a double squared distance (+inf beyond float).
 inline float wideDistanceBound(double d2)
 {
@@ -209,32 +238,10 @@ int closestPointWide(const Scene& scene, const Vec3<double>& p, double maxDistan
     {
       const WideNode& w = cur.Nodes[cur.Ref];
       alignas(16) float d2[kWideArity];
-      int mask = detail::boxDistances8(w.box, xlo, xhi, bound, d2);
+      const int mask = detail::boxDistances8(w.box, xlo, xhi, bound, d2);
       if (mask)
       {
-        // Nearest first; the others wait on the stack, farthest deepest.
-        int i = detail::countTrailingZeros(static_cast<unsigned>(mask));
-        mask &= mask - 1;
-        detail::WideSlot nearest{ cur.Nodes, w.child[i], w.count[i], d2[i] };
-        const std::uint32_t base = sp;
-        while (mask)
-        {
-          i = detail::countTrailingZeros(static_cast<unsigned>(mask));
-          mask &= mask - 1;
-          detail::WideSlot c{ cur.Nodes, w.child[i], w.count[i], d2[i] };
-          if (c.Dist < nearest.Dist)
-          {
-            std::swap(c, nearest);
-          }
-          std::uint32_t j = sp++;
-          while (j > base && stack[j - 1].Dist < c.Dist)
-          {
-            stack[j] = stack[j - 1];
-            --j;
-          }
-          stack[j] = c;
-        }
-        cur = nearest;
+        cur = detail::pushOrdered(cur, w, mask, d2, stack, sp);
         continue;
       }
     }
