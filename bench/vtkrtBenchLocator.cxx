@@ -8,10 +8,13 @@
 // rates (below 1: slower than ours) and for times (above 1: slower).
 //
 // Usage: vtkrtBenchLocator [--4m] [--rays N] [--rounds R] [--quick] [--only SUBSTR]...
-//                          [--mesh SUBSTR] [--leaf N]
+//                          [--mesh SUBSTR] [--leaf N] [--part rays|queries|all]
 //   --only: keep only the peers whose name contains SUBSTR (repeatable; the
 //   first kept peer is the reference of the ratios); --mesh: only the meshes
-//   whose name contains SUBSTR; --rounds: rate rounds (default 5, below).
+//   whose name contains SUBSTR; --rounds: rate rounds (default 5 for rays, 3
+//   for the other queries, below); --part: the ray tables (this file), the
+//   tables of every other query (vtkrtBenchLocatorQueries.cxx), or both
+//   (the default).
 //
 // Rates: this VM's speed drifts by tens of percent over seconds (shared
 // cores and caches), so one timing per peer would compare peers measured at
@@ -20,6 +23,7 @@
 // median over the rounds, and its rate ratio the median (with the range) of
 // the per-round ratios, each ratio from timings seconds apart.
 #include "vtkBVHCellLocator.h"
+#include "vtkrtBenchLocatorQueries.h"
 #include "vtkrtBenchTiming.h"
 #include "vtkrtDataFile.h"
 
@@ -149,6 +153,9 @@ std::vector<Segment> RandomSegments(vtkPolyData* pd, int count)
 std::vector<std::string> g_Only;
 std::string g_Mesh;
 int g_Rounds = 5;
+int g_QueryRounds = 3;
+bool g_Rays = true;    ///< --part: the ray tables
+bool g_Queries = true; ///< --part: the other queries' tables
 int g_LeafSize = 0; ///< > 0: vtkBVHCellLocator's NumberOfCellsPerNode (else its default)
 
 struct Result
@@ -529,6 +536,14 @@ void InterleavedRates(const std::vector<Peer>& peers, vtkPolyData* pd, const std
 
 void RunMesh(const std::string& name, vtkPolyData* pd, int rays, bool quick)
 {
+  if (g_Queries)
+  {
+    vtkrtBench::RunLocatorQueries(name, pd, g_QueryRounds, quick);
+  }
+  if (!g_Rays)
+  {
+    return;
+  }
   const vtkIdType tris = pd->GetNumberOfCells();
   std::printf("\n## %s: %lld triangles, %d random segments\n\n", name.c_str(),
     static_cast<long long>(tris), rays);
@@ -620,21 +635,32 @@ int main(int argc, char* argv[])
     else if (!std::strcmp(argv[i], "--rounds") && i + 1 < argc)
     {
       g_Rounds = std::max(1, std::atoi(argv[++i]));
+      g_QueryRounds = g_Rounds;
+    }
+    else if (!std::strcmp(argv[i], "--part") && i + 1 < argc)
+    {
+      const std::string part = argv[++i];
+      g_Rays = part != "queries";
+      g_Queries = part != "rays";
     }
     else if (!std::strcmp(argv[i], "--rays") && i + 1 < argc)
     {
       rays = std::max(10, std::atoi(argv[++i]));
     }
   }
-  std::printf("# vtkrtBenchLocator\n\nIntersectWithLine(p1, p2, tol=0, ...) over random segments, "
+  std::printf("# vtkrtBenchLocator\n\nVTK SMP backend %s (builds may use it).\n", vtkSMPTools::GetBackend());
+  if (g_Rays)
+  {
+    std::printf("Ray tables: IntersectWithLine(p1, p2, tol=0, ...) over random segments, "
               "single thread (rates from thread CPU time, %d interleaved rounds; build and first pick: best of 3, wall "
               "clock; malloc tuned as NOTES-vtk91.md says, for every peer).\nRatios: peer / "
               "vtkBVHCellLocator (default, fast build). Same hits: t within 1e-6.\n"
-              "VTK SMP backend %s (builds may use it); Embree built with 1 thread.\n"
+              "Embree built with 1 thread.\n"
               "vtkBVHCellLocator's fast build makes each part of its picking tree when a query first "
               "reaches it (PickingTreeOnDemand, default): its build and first pick are that; its rate "
               "and memory are the whole tree's, as in the row that builds it up front.\n",
-    g_Rounds, vtkSMPTools::GetBackend());
+      g_Rounds);
+  }
   auto wantMesh = [](const char* name) { return g_Mesh.empty() || std::strstr(name, g_Mesh.c_str()); };
   if (wantMesh("bunny"))
   {

@@ -11,6 +11,7 @@
 #include "vtkPolyData.h"
 
 #include "vtkBVHCellLocatorInternals.h"
+#include "vtkrt/core/WidePointQueries.h" // kWidePointReach
 
 #include <algorithm>
 #include <atomic>
@@ -245,6 +246,12 @@ void vtkBVHCellLocator::BuildTree()
   {
     this->Internals->Data.Lazy->buildAll();
     this->Internals->Data.DropExtractionArrays();
+  }
+  if (!(this->Internals->Data.Extent <= vtkrt::core::detail::kWidePointReach))
+  {
+    // Boxes beyond float's reach: every query walks the binary tree, so it
+    // is built now rather than by the first of them.
+    this->Internals->Data.EnsureTree();
   }
 
   this->Internals->Data.BuildSeconds =
@@ -497,12 +504,6 @@ vtkIdType vtkBVHCellLocator::FindCell(
     return -1;
   }
   vtkrt::locator::QueryCell qc(cell);
-  std::vector<double> localWeights;
-  if (!weights)
-  {
-    localWeights.resize(static_cast<size_t>(std::max(this->DataSet->GetMaxCellSize(), 1)));
-    weights = localWeights.data();
-  }
   double localPcoords[3];
   if (!pcoords)
   {

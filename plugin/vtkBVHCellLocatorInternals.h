@@ -81,6 +81,7 @@ struct PointHit
   int SubId = 0;
   int Inside = 0;
   bool NeedsEvaluate = false;
+  const std::uint32_t* TrianglePointIds = nullptr; ///< set when the cell is that VTK_TRIANGLE
 };
 
 struct TreeStats
@@ -408,6 +409,8 @@ public:
     const double p1[3], const double p2[3], double tol, std::vector<vtkIdType>& cells) const;
   /// The cells whose bounds overlap bbox (sorted ids).
   void CellsInBox(const double bbox[6], std::vector<vtkIdType>& cells) const;
+  /// The same for a box in local coordinates.
+  void CellsInLocalBox(const Box& q, std::vector<vtkIdType>& cells) const;
   /// The cells a zero-length segment at p hits (VTK's cells decide), t = 0.
   void CellsThroughPoint(const double p[3], double tol, vtkDataSet* ds, vtkGenericCell* cell,
     bool firstOnly, std::vector<LineHit>& hits) const;
@@ -415,6 +418,7 @@ public:
   /// the cell reports them, `cell` (when given) that cell.
   bool FindClosestPoint(
     const double xw[3], double radius, vtkDataSet* ds, vtkGenericCell* cell, PointHit& out) const;
+  /// weights: the caller's, or null (sized per candidate cell here).
   vtkIdType FindCell(const double xw[3], double tol2, vtkDataSet* ds, vtkGenericCell* cell,
     double pcoords[3], double* weights) const;
 
@@ -513,6 +517,7 @@ private:
   inline bool IntersectTriangle(std::uint32_t prim, const core::RayTrianglePrecomputed<double>& pre,
     const core::Ray<double>& ray, double tol, double& t, double& u, double& v) const;
   inline bool ProjectsInside(std::uint32_t prim, const Vec3d& x) const;
+  inline bool FartherThan(std::uint32_t prim, const Vec3d& x, double localTol, const double xw[3]) const;
 
   // Extraction
   void ComputeOrigin(vtkDataSet* ds);

@@ -15,6 +15,7 @@
 #include "vtkrt/core/Ray.h"
 #include "vtkrt/core/SegmentQueries.h"
 #include "vtkrt/core/Triangle.h"
+#include "vtkrt/core/WidePointQueries.h"
 #include "vtkrt/core/WideTraversal.h"
 
 #include <algorithm>
@@ -69,6 +70,28 @@ inline void Barycentric(
   u = (d22 * w1 - d12 * w2) / det;
   v = (d11 * w2 - d12 * w1) / det;
 }
+
+/// The weights EvaluatePosition writes for a cell: on the stack for cells
+/// of up to 64 points, else on the heap (no per-query allocation, and not
+/// vtkDataSet::GetMaxCellSize, which visits every cell of a polydata).
+class CellWeights
+{
+public:
+  double* For(vtkCell* c)
+  {
+    const size_t n = static_cast<size_t>(std::max<vtkIdType>(c->GetNumberOfPoints(), 1));
+    if (n <= sizeof(this->Small) / sizeof(double))
+    {
+      return this->Small;
+    }
+    this->Large.resize(std::max(this->Large.size(), n));
+    return this->Large.data();
+  }
+
+private:
+  double Small[64];
+  std::vector<double> Large;
+};
 
 // What DataSet->GetCell(cellId, cell) gives for a triangle, from the point
 // ids kept with it and the coordinates the exact test read (the dataset's
@@ -237,6 +260,28 @@ inline bool BVHCellLocatorData::ProjectsInside(std::uint32_t prim, const Vec3d& 
 }
 
 //------------------------------------------------------------------------------
+/// Whether triangle prim is certainly farther than sqrt(tol2) from x (local;
+/// xw in world coordinates), so that vtkTriangle::EvaluatePosition could not
+/// give dist2 <= tol2 (inside, dist2 is the distance to the triangle). The
+/// margin dwarfs both computations' rounding (a few ulps of the squared
+/// coordinates).
+inline bool BVHCellLocatorData::FartherThan(
+  std::uint32_t prim, const Vec3d& x, double localTol, const double xw[3]) const
+{
+  const Vec3d v0 = this->Vertex(prim, 0);
+  const Vec3d d = x - core::closestPointOnTriangle(x, v0, this->Vertex(prim, 1), this->Vertex(prim, 2));
+  // VTK evaluates the cell in world coordinates: allow its rounding there.
+  double m = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    m = std::max({ m, std::abs(xw[k]), std::abs(this->Origin[k]) });
+  }
+  const double slack = this->ToLocalLength(3e-6 * m);
+  return glm::dot(d, d) > localTol * localTol * (1.0 + 1e-9) + slack * slack +
+    1e-12 * (glm::dot(v0, v0) + this->Extent * this->Extent);
+}
+
+//------------------------------------------------------------------------------
 /// The walk's nearest triangle hit as a LineHit (world coordinates; VTK
 /// triangle pcoords, to be evaluated in the cell for quads and polygons).
 inline void BVHCellLocatorData::SetTriangleHit(
@@ -353,8 +398,8 @@ bool BVHCellLocatorData::IntersectWithLine(const double p1[3], const double p2[3
     vtkGenericCell* c = cell.Get();
     ds->GetCell(out.CellId, c);
     double closest[3], dist2;
-    std::vector<double> weights(static_cast<size_t>(std::max<vtkIdType>(c->GetNumberOfPoints(), 1)));
-    c->EvaluatePosition(out.X, closest, out.SubId, out.PCoords, dist2, weights.data());
+    CellWeights weights;
+    c->EvaluatePosition(out.X, closest, out.SubId, out.PCoords, dist2, weights.For(c));
   }
   if (given && out.TrianglePointIds)
   {
@@ -429,7 +474,7 @@ void BVHCellLocatorData::AllHits(const double p1[3], const double p2[3], double 
     hits.push_back(h);
     return false; // collected here; nothing for the traversal to keep
   };
-  core::allHitsSegment(PickingScene{ this }, ray, localTol, isect);
+  core::allHitsSegment(PickingScene{ this }, ray, triPre, localTol, true, isect);
   // One hit per cell (its nearest), then along the segment.
   std::sort(hits.begin(), hits.end(), [](const LineHit& a, const LineHit& b) {
     return a.CellId != b.CellId ? a.CellId < b.CellId : a.T < b.T;
@@ -459,6 +504,7 @@ void BVHCellLocatorData::CellsAlongLine(
     return;
   }
   const core::RayBoxPrecomputed<double> boxPre(ray);
+  const core::RayTrianglePrecomputed<double> triPre(ray);
   const double localTol = this->ToLocalLength(tol);
   auto isect = [&](std::uint32_t prim, const core::Ray<double>& r, core::Hit<double>&) {
     const Box b = this->PrimitiveBox(prim);
@@ -469,7 +515,8 @@ void BVHCellLocatorData::CellsAlongLine(
     }
     return false;
   };
-  core::allHitsSegment(PickingScene{ this }, ray, localTol, isect);
+  // Cells by their bounds: every triangle of a leaf the segment reaches.
+  core::allHitsSegment(PickingScene{ this }, ray, triPre, localTol, false, isect);
   std::sort(cells.begin(), cells.end());
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
 }
@@ -489,7 +536,7 @@ void BVHCellLocatorData::CellsThroughPoint(const double p[3], double tol, vtkDat
   {
     return;
   }
-  std::vector<double> weights(static_cast<size_t>(std::max(ds->GetMaxCellSize(), 1)));
+  CellWeights weights;
   double x[3] = { p[0], p[1], p[2] };
   for (const vtkIdType cellId : candidates)
   {
@@ -503,7 +550,7 @@ void BVHCellLocatorData::CellsThroughPoint(const double p[3], double tol, vtkDat
     LineHit h;
     h.CellId = cellId;
     std::copy(x, x + 3, h.X);
-    cell->EvaluatePosition(x, cx, h.SubId, h.PCoords, d2, weights.data());
+    cell->EvaluatePosition(x, cx, h.SubId, h.PCoords, d2, weights.For(cell));
     hits.push_back(h);
     if (firstOnly)
     {
@@ -515,16 +562,26 @@ void BVHCellLocatorData::CellsThroughPoint(const double p[3], double tol, vtkDat
 //------------------------------------------------------------------------------
 void BVHCellLocatorData::CellsInBox(const double bbox[6], std::vector<vtkIdType>& cells) const
 {
-  cells.clear();
   const Box q(this->ToLocal(Vec3d(bbox[0], bbox[2], bbox[4])),
     this->ToLocal(Vec3d(bbox[1], bbox[3], bbox[5])));
-  this->EnsureTree();
-  core::queryBox(this->Tree, q, [&](std::uint32_t prim) {
+  this->CellsInLocalBox(q, cells);
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::CellsInLocalBox(const Box& q, std::vector<vtkIdType>& cells) const
+{
+  cells.clear();
+  auto overlap = [&](std::uint32_t prim) {
     if (this->PrimitiveBox(prim).overlaps(q))
     {
       cells.push_back(this->PrimitiveCell(prim));
     }
-  });
+  };
+  if (!core::overlapBoxWide(PickingScene{ this }, q, overlap))
+  {
+    this->EnsureTree();
+    core::queryBox(this->Tree, q, overlap);
+  }
   std::sort(cells.begin(), cells.end());
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
 }
@@ -538,7 +595,7 @@ bool BVHCellLocatorData::ClosestPoint(
 {
   const Vec3d x = this->ToLocal(xw);
   const vtkIdType nTri = this->NumberOfTriangles();
-  std::vector<double> weights(static_cast<size_t>(std::max(ds ? ds->GetMaxCellSize() : 1, 1)));
+  CellWeights weights;
   // Per general primitive, what EvaluatePosition said (read back for the winner).
   PointHit general;
   std::uint32_t generalPrim = core::kInvalidIndex;
@@ -563,7 +620,7 @@ bool BVHCellLocatorData::ClosestPoint(
     double cp[3], pc[3], d2;
     int sub;
     double xx[3] = { xw[0], xw[1], xw[2] };
-    const int r = c->EvaluatePosition(xx, cp, sub, pc, d2, weights.data());
+    const int r = c->EvaluatePosition(xx, cp, sub, pc, d2, weights.For(c));
     if (r < 0 || !std::isfinite(d2))
     {
       return false;
@@ -587,8 +644,13 @@ bool BVHCellLocatorData::ClosestPoint(
     return true;
   };
   core::PointHit<double> best;
-  this->EnsureTree();
-  if (!core::closestPoint(this->Tree, x, this->ToLocalLength(radius), fn, best))
+  const double localRadius = this->ToLocalLength(radius);
+  const int wide = core::closestPointWide(PickingScene{ this }, x, localRadius, fn, best);
+  if (wide < 0)
+  {
+    this->EnsureTree(); // beyond the float walk's reach: the double walk
+  }
+  if (wide == 0 || (wide < 0 && !core::closestPoint(this->Tree, x, localRadius, fn, best)))
   {
     return false;
   }
@@ -606,7 +668,10 @@ bool BVHCellLocatorData::ClosestPoint(
     out.X[k] = xWorld[k];
   }
   out.SubId = this->TriangleSubId(prim);
-  out.NeedsEvaluate = (this->TriangleFlags(prim) & EvaluateInCell) != 0;
+  const std::uint8_t flags = this->TriangleFlags(prim);
+  out.NeedsEvaluate = (flags & EvaluateInCell) != 0;
+  out.TrianglePointIds =
+    (flags & WholeTriangle) ? this->TriIds.data() + 3 * static_cast<std::size_t>(prim) : nullptr;
   out.Inside = this->ProjectsInside(prim, x) ? 1 : 0;
   return true;
 }
@@ -626,11 +691,15 @@ bool BVHCellLocatorData::FindClosestPoint(
     vtkGenericCell* c = qc.Get();
     ds->GetCell(hit.CellId, c);
     double cp[3], d2, pc[3];
-    std::vector<double> weights(static_cast<size_t>(std::max<vtkIdType>(c->GetNumberOfPoints(), 1)));
-    const int r = c->EvaluatePosition(xw, cp, hit.SubId, pc, d2, weights.data());
+    CellWeights weights;
+    const int r = c->EvaluatePosition(xw, cp, hit.SubId, pc, d2, weights.For(c));
     hit.Inside = r == 1 ? 1 : 0;
   }
-  if (cell)
+  if (cell && hit.TrianglePointIds)
+  {
+    FillTriangleCell(cell, hit.TrianglePointIds, this->WorldCoords());
+  }
+  else if (cell)
   {
     ds->GetCell(hit.CellId, cell);
   }
@@ -644,23 +713,48 @@ vtkIdType BVHCellLocatorData::FindCell(const double xw[3], double tol2, vtkDataS
   const Vec3d x = this->ToLocal(xw);
   const Vec3d tol(this->ToLocalLength(std::sqrt(tol2)));
   const Box q(x - tol, x + tol);
-  std::vector<vtkIdType> candidates;
-  this->EnsureTree();
-  core::queryBox(this->Tree, q, [&](std::uint32_t prim) {
+  // Candidates (cell id, primitive) in cell id order: a VTK_TRIANGLE cell
+  // is filled from its kept point ids, not looked up in the dataset.
+  std::vector<std::pair<vtkIdType, std::uint32_t>> candidates;
+  auto overlap = [&](std::uint32_t prim) {
     if (this->PrimitiveBox(prim).overlaps(q))
     {
-      candidates.push_back(this->PrimitiveCell(prim));
+      candidates.emplace_back(this->PrimitiveCell(prim), prim);
     }
-  });
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-  double xx[3] = { xw[0], xw[1], xw[2] };
-  for (const vtkIdType cellId : candidates)
+  };
+  if (!core::overlapBoxWide(PickingScene{ this }, q, overlap))
   {
-    ds->GetCell(cellId, cell);
+    this->EnsureTree();
+    core::queryBox(this->Tree, q, overlap);
+  }
+  std::sort(candidates.begin(), candidates.end());
+  double xx[3] = { xw[0], xw[1], xw[2] };
+  CellWeights ownWeights;
+  const vtkIdType nTri = this->NumberOfTriangles();
+  for (size_t k = 0; k < candidates.size(); ++k)
+  {
+    const vtkIdType cellId = candidates[k].first;
+    const std::uint32_t prim = candidates[k].second;
+    if (k > 0 && candidates[k - 1].first == cellId)
+    {
+      continue; // another triangle of a cell already tested
+    }
+    if (static_cast<vtkIdType>(prim) < nTri && (this->TriangleFlags(prim) & WholeTriangle))
+    {
+      if (this->FartherThan(prim, x, tol.x, xw))
+      {
+        continue;
+      }
+      FillTriangleCell(cell, this->TriIds.data() + 3 * static_cast<std::size_t>(prim), this->WorldCoords());
+    }
+    else
+    {
+      ds->GetCell(cellId, cell);
+    }
     double cp[3], dist2;
     int sub;
-    if (cell->EvaluatePosition(xx, cp, sub, pcoords, dist2, weights) == 1 && dist2 <= tol2)
+    double* w = weights ? weights : ownWeights.For(cell);
+    if (cell->EvaluatePosition(xx, cp, sub, pcoords, dist2, w) == 1 && dist2 <= tol2)
     {
       return cellId;
     }

@@ -25,6 +25,9 @@ int TestRobustLargeMesh();
 int TestPickerTriangles();
 int TestPickerQuads();
 int TestWarpedQuadsAndPolygons();
+int TestQueriesClosestPointProbes();
+int TestQueriesFirstQueryBuildsNothing();
+int TestQueriesAxisParallelSegments();
 
 int main(int argc, char* argv[])
 {
@@ -48,7 +51,10 @@ int main(int argc, char* argv[])
     { "MovedFloatPoints", TestContractMovedFloatPoints },
     { "LargeMesh", TestRobustLargeMesh },
     { "PickerTriangles", TestPickerTriangles }, { "PickerQuads", TestPickerQuads },
-    { "WarpedQuadsAndPolygons", TestWarpedQuadsAndPolygons } };
+    { "WarpedQuadsAndPolygons", TestWarpedQuadsAndPolygons },
+    { "QueriesClosestPointProbes", TestQueriesClosestPointProbes },
+    { "QueriesFirstQueryBuildsNothing", TestQueriesFirstQueryBuildsNothing },
+    { "QueriesAxisParallelSegments", TestQueriesAxisParallelSegments } };
   if (argc < 2)
   {
     std::cerr << "usage: " << argv[0] << " CASE" << std::endl;

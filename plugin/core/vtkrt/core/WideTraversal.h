@@ -126,8 +126,8 @@ VTKRT_ALWAYS_INLINE inline void testWideTriangles(const Scene& scene, const Cons
 /// Kernels; inlined into its (SSE or AVX2) caller with the caller's exact
 /// test.
 template <class Kernels, class Scene, class Isect>
-VTKRT_ALWAYS_INLINE inline bool walkWide(
-  Scene scene, const ConservativeRay4& fray, Ray<double> ray, double tol, Isect& isect, Hit<double>& hit)
+VTKRT_ALWAYS_INLINE inline bool walkWide(Scene scene, const ConservativeRay4& fray, Ray<double> ray,
+  double tol, bool trianglePreTest, Isect& isect, Hit<double>& hit)
 {
   hit = Hit<double>();
   const std::uint32_t nTri = scene.triangleCount();
@@ -135,7 +135,8 @@ VTKRT_ALWAYS_INLINE inline bool walkWide(
   // Slots are primitives when all are triangles (the binary tree may be
   // under construction then: not read); otherwise through its primIndex.
   const std::uint32_t* primIndex = allTriangles ? nullptr : scene.slotPrimitives();
-  const bool preTest = tol == 0.0; // the float triangle test knows no tolerance
+  // The float triangle test knows no tolerance.
+  const bool preTest = trianglePreTest && tol == 0.0;
   // Below the top levels of a large tree, a node's children are fetched
   // while its boxes are tested (Kernels::prefetchChildren): the step to
   // the next node or leaf then seldom waits on memory.
@@ -284,29 +285,32 @@ VTKRT_ALWAYS_INLINE inline bool walkWide(
 /// has it. closestHitWide's return values.
 template <class Scene, class Isect>
 VTKRT_TARGET_AVX2 int closestHitWideAvx2(Scene scene, const Ray<double>& ray,
-  const RayTrianglePrecomputed<double>& triPre, double tol, Isect& isect, Hit<double>& hit)
+  const RayTrianglePrecomputed<double>& triPre, double tol, bool trianglePreTest, Isect& isect, Hit<double>& hit)
 {
   ConservativeRay4 fray;
   if (!fray.initAvx2(ray, triPre, tol, scene.extent()))
   {
     return -1;
   }
-  return detail::walkWide<WideAvx2Kernels>(scene, fray, ray, tol, isect, hit) ? 1 : 0;
+  return detail::walkWide<WideAvx2Kernels>(scene, fray, ray, tol, trianglePreTest, isect, hit) ? 1 : 0;
 }
 #endif
 
 /// The closest hit of `ray` within the boxes grown by tol (the triangles'
-/// float pre-test only runs at tol 0). Returns 1 (hit), 0 (none), or -1 when
-/// the float walk cannot take the ray (ConservativeRay4::init refuses it:
-/// walk in double instead, e.g. closestHitSegment).
+/// float pre-test only runs at tol 0, and only with trianglePreTest: off,
+/// isect sees every triangle of every leaf the walk reaches). Returns 1
+/// (hit), 0 (none), or -1 when the float walk cannot take the ray
+/// (ConservativeRay4::init refuses it: walk in double instead, e.g.
+/// closestHitSegment). An isect that never reports a hit sees every
+/// primitive of every leaf whose box the segment meets.
 template <class Scene, class Isect>
 int closestHitWide(Scene scene, const Ray<double>& ray, const RayTrianglePrecomputed<double>& triPre, double tol,
-  Isect& isect, Hit<double>& hit)
+  Isect& isect, Hit<double>& hit, bool trianglePreTest = true)
 {
 #if VTKRT_CORE_AVX2
   if (useAvx2())
   {
-    return closestHitWideAvx2(scene, ray, triPre, tol, isect, hit);
+    return closestHitWideAvx2(scene, ray, triPre, tol, trianglePreTest, isect, hit);
   }
 #endif
   ConservativeRay4 fray;
@@ -314,7 +318,7 @@ int closestHitWide(Scene scene, const Ray<double>& ray, const RayTrianglePrecomp
   {
     return -1;
   }
-  return detail::walkWide<WideSseKernels>(scene, fray, ray, tol, isect, hit) ? 1 : 0;
+  return detail::walkWide<WideSseKernels>(scene, fray, ray, tol, trianglePreTest, isect, hit) ? 1 : 0;
 }
 
 } // namespace vtkrt::core

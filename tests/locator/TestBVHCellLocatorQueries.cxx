@@ -1,0 +1,300 @@
+// The point and box queries over the picking tree: closest points against
+// brute force over probes as a user's (on the surface, near it, around it,
+// far away, the center of a sphere), on a mesh within the float walk's
+// reach and on one beyond it (the double walk); and that no query after
+// BuildLocator() builds the binary tree.
+#include "LocatorTestUtils.h"
+
+#include "vtkBVHCellLocator.h"
+#include "vtkTransform.h"
+#include "vtkTransformPolyDataFilter.h"
+
+#include <array>
+#include <sstream>
+
+using namespace locatortest;
+
+namespace
+{
+/// Probes around pd: a mix as vtkrtBenchLocator's (see its query part).
+std::vector<std::array<double, 3>> Probes(vtkPolyData* pd, int count, Random& rng)
+{
+  double b[6];
+  pd->GetBounds(b);
+  const double diag = Diagonal(pd);
+  std::vector<std::array<double, 3>> out;
+  out.push_back({ 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) });
+  for (int i = 0; i < count; ++i)
+  {
+    std::array<double, 3> x;
+    if (i % 3 == 0)
+    {
+      // On a random cell or within 1% of the diagonal of it.
+      const vtkIdType c = std::min<vtkIdType>(pd->GetNumberOfCells() - 1,
+        static_cast<vtkIdType>(rng.Next(0, static_cast<double>(pd->GetNumberOfCells()))));
+      double p[3][3], n[3];
+      vtkIdType npts;
+      const vtkIdType* ids;
+      pd->GetCellPoints(c, npts, ids);
+      for (int k = 0; k < 3; ++k)
+      {
+        pd->GetPoint(ids[k], p[k]);
+      }
+      vtkTriangle::ComputeNormal(p[0], p[1], p[2], n);
+      const double u = rng.Next(0, 0.5), v = rng.Next(0, 0.5);
+      const double off = (i % 2) ? rng.Next(-0.01, 0.01) * diag : 0.0;
+      for (int a = 0; a < 3; ++a)
+      {
+        x[a] = p[0][a] + u * (p[1][a] - p[0][a]) + v * (p[2][a] - p[0][a]) + off * n[a];
+      }
+    }
+    else
+    {
+      // In the bounds grown by half, or 1 to 3 diagonals away.
+      const double grow = (i % 3 == 1) ? 0.75 : 3.0;
+      for (int a = 0; a < 3; ++a)
+      {
+        const double c = 0.5 * (b[2 * a] + b[2 * a + 1]), h = grow * (b[2 * a + 1] - b[2 * a]);
+        x[a] = rng.Next(c - h, c + h);
+      }
+    }
+    out.push_back(x);
+  }
+  return out;
+}
+
+/// FindClosestPoint (every overload) and FindClosestPointWithinRadius on
+/// each probe against brute force over VTK's cells.
+void CheckProbes(vtkPolyData* pd, vtkBVHCellLocator* loc, int count, const char* name)
+{
+  Random rng(5);
+  const double diag = Diagonal(pd);
+  const double eps2 = 1e-14 * diag * diag;
+  const double radius = 0.02 * diag;
+  vtkNew<vtkGenericCell> cell;
+  int checked = 0, inRadius = 0;
+  for (auto& q : Probes(pd, count, rng))
+  {
+    double x[3] = { q[0], q[1], q[2] }, cp[3], d2 = -1;
+    vtkIdType cellId = -1, refCell;
+    int sub;
+    const double ref = BruteForceClosest(pd, x, refCell);
+    loc->FindClosestPoint(x, cp, cell, cellId, sub, d2);
+    LT_CHECK_MSG(std::abs(d2 - ref) <= eps2 + 1e-9 * ref, name << " d2 " << d2 << " brute force " << ref);
+    LT_CHECK(cellId >= 0 && SameCellPoints(pd, cellId, cell));
+    LT_CHECK(cellId < 0 || std::abs(DistanceToCell2(pd, cellId, x) - d2) <= eps2 + 1e-9 * d2);
+    LT_CHECK(std::abs(vtkMath::Distance2BetweenPoints(x, cp) - d2) <= eps2 + 1e-9 * d2);
+    double rd2 = -1;
+    vtkIdType rc = -2;
+    const vtkIdType found = loc->FindClosestPointWithinRadius(x, radius, cp, cell, rc, sub, rd2);
+    if (ref <= radius * radius * (1 - 1e-9))
+    {
+      LT_CHECK_MSG(found == 1 && rd2 == d2, name << " within radius: " << found << " d2 " << rd2 << " vs " << d2);
+      ++inRadius;
+    }
+    else if (ref > radius * radius * (1 + 1e-9))
+    {
+      LT_CHECK(found == 0 && rc == -1);
+    }
+    ++checked;
+  }
+  LT_CHECK(inRadius > count / 10);
+  std::cout << name << ": " << checked << " probes agree with brute force (" << inRadius
+            << " within the radius)" << std::endl;
+}
+
+/// FindCellsWithinBounds against brute force over small and large boxes.
+void CheckBoxes(vtkPolyData* pd, vtkBVHCellLocator* loc, int count, const char* name)
+{
+  Random rng(9);
+  double b[6];
+  pd->GetBounds(b);
+  const double diag = Diagonal(pd);
+  vtkNew<vtkIdList> ids;
+  for (int i = 0; i < count; ++i)
+  {
+    double box[6];
+    const double half = (i % 4 == 0 ? 0.2 : 0.01) * diag;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double c = rng.Next(b[2 * a], b[2 * a + 1]);
+      box[2 * a] = c - half;
+      box[2 * a + 1] = c + half;
+    }
+    loc->FindCellsWithinBounds(box, ids);
+    LT_CHECK_MSG(ToVector(ids) == BruteForceCellsInBox(pd, box), name << " box " << i);
+  }
+}
+
+bool BinaryTreeBuilt(vtkBVHCellLocator* loc)
+{
+  std::ostringstream os;
+  loc->PrintSelf(os, vtkIndent());
+  return os.str().find("binary tree not built yet") == std::string::npos;
+}
+} // namespace
+
+/// Closest points, radius queries and boxes against brute force, within
+/// the float walk's reach and beyond it (a mesh 1e18 across).
+int TestQueriesClosestPointProbes()
+{
+  auto pd = MakeBumpySphere(60);
+  vtkNew<vtkBVHCellLocator> loc;
+  loc->SetDataSet(pd);
+  loc->BuildLocator();
+  CheckProbes(pd, loc, 600, "bumpy sphere");
+  CheckBoxes(pd, loc, 200, "bumpy sphere");
+  LT_CHECK(!BinaryTreeBuilt(loc));
+
+  vtkNew<vtkTransform> scale;
+  scale->Scale(1e18, 1e18, 1e18);
+  vtkNew<vtkTransformPolyDataFilter> big;
+  big->SetTransform(scale);
+  big->SetInputData(MakeBumpySphere(24));
+  big->Update();
+  vtkNew<vtkPolyData> huge;
+  huge->DeepCopy(big->GetOutput());
+  vtkNew<vtkBVHCellLocator> hugeLoc;
+  hugeLoc->SetDataSet(huge);
+  hugeLoc->BuildLocator();
+  CheckProbes(huge, hugeLoc, 200, "bumpy sphere 1e18 across (double walk)");
+  CheckBoxes(huge, hugeLoc, 50, "bumpy sphere 1e18 across (double walk)");
+  return 0;
+}
+
+/// BuildLocator() leaves no structure for a first query to build: on
+/// demand (the default) the queries of every kind reach only the picking
+/// tree (the binary tree stays unbuilt); with PickingTreeOnDemand off no
+/// query builds anything (same memory, same build time), a segment
+/// parallel to an axis (which the float walk refuses) included.
+int TestQueriesFirstQueryBuildsNothing()
+{
+  auto pd = MakeBumpySphere(80);
+  double b[6];
+  pd->GetBounds(b);
+  double mid[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
+  double far[3] = { b[1] + 3, b[3] + 2, b[5] + 1 }, off[3] = { b[0] - 1, mid[1] + 0.1, mid[2] - 0.05 };
+  double box[6] = { mid[0] - 0.1, mid[0] + 0.1, b[2] - 0.1, b[2] + 0.2, mid[2] - 0.1, mid[2] + 0.1 };
+  const double axisP1[3] = { mid[0] + 0.01, mid[1] + 0.02, b[4] - 1 }, axisP2[3] = { mid[0] + 0.01, mid[1] + 0.02, b[5] + 1 };
+  auto askAll = [&](vtkBVHCellLocator* loc, bool axisParallel) {
+    vtkNew<vtkGenericCell> cell;
+    vtkNew<vtkIdList> ids;
+    vtkNew<vtkPoints> pts;
+    double x[3], pc[3], t, d2, w[8];
+    int sub;
+    vtkIdType c;
+    loc->FindClosestPoint(far, x, cell, c, sub, d2);
+    LT_CHECK(c >= 0);
+    LT_CHECK(loc->FindClosestPointWithinRadius(off, 2.0, x, cell, c, sub, d2) == 1);
+    loc->FindCellsWithinBounds(box, ids);
+    LT_CHECK(ids->GetNumberOfIds() > 0);
+    LT_CHECK(loc->IntersectWithLine(off, far, 0.0, t, x, pc, sub, c, cell) == 1 || c == -1);
+    LT_CHECK(loc->IntersectWithLine(off, mid, pts, ids) != 0);
+    loc->FindCellsAlongLine(off, mid, 0.0, ids);
+    LT_CHECK(ids->GetNumberOfIds() > 0);
+    LT_CHECK(loc->FindCell(mid, 0.0, cell, pc, w) == -1);
+    if (axisParallel)
+    {
+      LT_CHECK(loc->IntersectWithLine(axisP1, axisP2, 0.0, t, x, pc, sub, c, cell) == 1);
+    }
+  };
+
+  vtkNew<vtkBVHCellLocator> onDemand;
+  onDemand->SetDataSet(pd);
+  onDemand->BuildLocator();
+  const vtkMTimeType built = onDemand->GetBuildTime();
+  askAll(onDemand, false);
+  LT_CHECK(!BinaryTreeBuilt(onDemand));
+  LT_CHECK(onDemand->GetBuildTime() == built);
+
+  vtkNew<vtkBVHCellLocator> whole;
+  whole->SetPickingTreeOnDemand(false);
+  whole->SetDataSet(pd);
+  whole->BuildLocator();
+  LT_CHECK(!BinaryTreeBuilt(whole));
+  const vtkMTimeType wholeBuilt = whole->GetBuildTime();
+  const size_t bytes = whole->GetMemorySize();
+  askAll(whole, true);
+  LT_CHECK(whole->GetBuildTime() == wholeBuilt);
+  LT_CHECK_MSG(whole->GetMemorySize() == bytes, whole->GetMemorySize() << " bytes after the queries, " << bytes << " before");
+  LT_CHECK(!BinaryTreeBuilt(whole));
+  return 0;
+}
+
+/// Segments parallel to an axis, which the float walk refuses (the wide
+/// tree is then walked in double): nearest hit, all hits and cells along
+/// the line against brute force, for the fast build and the SAH build (its
+/// wide tree re-laid from the binary one), at tolerance 0 and above.
+int TestQueriesAxisParallelSegments()
+{
+  auto pd = MakeBumpySphere(40);
+  double b[6];
+  pd->GetBounds(b);
+  Random rng(21);
+  std::vector<Segment> segs;
+  for (int i = 0; i < 240; ++i)
+  {
+    const int axis = i % 3;
+    Segment s;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double c = 0.5 * (b[2 * a] + b[2 * a + 1]), h = 0.6 * (b[2 * a + 1] - b[2 * a]);
+      s.P1[a] = s.P2[a] = rng.Next(c - h, c + h);
+    }
+    s.P1[axis] = b[2 * axis] - 0.5 * (i % 2);
+    s.P2[axis] = b[2 * axis + 1] + 0.25;
+    if (i % 4 == 0)
+    {
+      std::swap(s.P1, s.P2);
+    }
+    segs.push_back(s);
+  }
+  for (int quality : { vtkBVHCellLocator::FAST, vtkBVHCellLocator::SAH })
+  {
+    vtkNew<vtkBVHCellLocator> loc;
+    loc->SetBuildQuality(quality);
+    loc->SetDataSet(pd);
+    loc->BuildLocator();
+    const char* name = quality == vtkBVHCellLocator::FAST ? "axis-parallel, fast build" : "axis-parallel, SAH build";
+    CheckIntersectWithLine(pd, loc, {}, segs, 0.0, name);
+    vtkNew<vtkPoints> pts;
+    vtkNew<vtkIdList> ids;
+    for (const Segment& s : segs)
+    {
+      for (double tol : { 0.0, 1e-3 })
+      {
+        loc->IntersectWithLine(s.P1, s.P2, tol, pts, ids);
+        std::set<vtkIdType> ours;
+        for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+        {
+          ours.insert(ids->GetId(k));
+        }
+        std::set<vtkIdType> ref;
+        for (const auto& h : BruteForceAllHits(pd, s.P1, s.P2, tol))
+        {
+          ref.insert(h.first);
+        }
+        LT_CHECK_MSG(ours == ref, name << " all hits: " << ours.size() << " cells, brute force " << ref.size());
+        loc->FindCellsAlongLine(s.P1, s.P2, tol, ids);
+        std::vector<vtkIdType> along;
+        for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c)
+        {
+          double cb[6];
+          pd->GetCellBounds(c, cb);
+          for (int a = 0; a < 3; ++a)
+          {
+            cb[2 * a] -= tol;
+            cb[2 * a + 1] += tol;
+          }
+          if (SegmentMeetsBox(s.P1, s.P2, cb))
+          {
+            along.push_back(c);
+          }
+        }
+        LT_CHECK_MSG(ToVector(ids) == along, name << " along line: " << ids->GetNumberOfIds() << " cells, brute force " << along.size());
+      }
+    }
+    LT_CHECK(!BinaryTreeBuilt(loc) || quality != vtkBVHCellLocator::FAST);
+  }
+  return 0;
+}
