@@ -214,7 +214,7 @@ void TestDemo()
 {
   const std::string out = Tmp + "/demo.png";
   vtksys::SystemTools::RemoveFile(out);
-  const Result r = RunApp("--demo --size 320x240 --frames 2 --output '" + out + "'");
+  const Result r = RunApp("--demo --mode raster --size 320x240 --frames 2 --output '" + out + "'");
   Check(r.Code == 0, "exit status 0");
   vtkNew<vtkXMLPolyDataReader> bunny;
   bunny->SetFileName(VTKRT_DATA_DIR "/bunny.vtp");
@@ -596,7 +596,8 @@ void TestRaytraceMode()
   // The traced scene covers the same pixels as the rasterized one (shading
   // may differ; silhouettes agree up to edge pixels).
   const std::string rasterOut = Tmp + "/raster.png";
-  const Result raster = RunApp("--demo --size 160x120 --frames 0 --output '" + rasterOut + "'");
+  const Result raster =
+    RunApp("--demo --mode raster --size 160x120 --frames 0 --output '" + rasterOut + "'");
   Check(raster.Code == 0 && !Contains(raster.Output, "of which:"), "raster: no pass phases reported");
   vtkSmartPointer<vtkImageData> a = ReadPNG(out);
   vtkSmartPointer<vtkImageData> b = ReadPNG(rasterOut);
