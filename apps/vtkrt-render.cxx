@@ -78,8 +78,7 @@ bool WantsWindow(const Options& opt)
 
 // Headless: the first frame, the timed orbit, accumulation, picks, the image
 // and the report.
-int RunOffscreen(Scene& scene, const Options& opt, CapturingOutputWindow* output,
-  Timings& timings)
+int RunOffscreen(Scene& scene, const Options& opt, CapturingOutputWindow* output, Timings& timings)
 {
   vtkSmartPointer<vtkEGLHeadlessRenderWindow> window = NewWindow(opt, scene.Renderer);
   Progress::Begin(opt.Mode == "raytrace" ? "first frame (context, BVH build, upload, shaders)"
@@ -143,11 +142,13 @@ int main(int argc, char* argv[])
   }
   catch (const UsageError& e)
   {
+    Progress::Interrupt();
     std::cerr << "vtkrt-render: " << e.Message << "\n(run vtkrt-render --help for the options)\n";
     return ExitUsage;
   }
   catch (const Failure& e)
   {
+    Progress::Interrupt();
     std::cerr << "vtkrt-render: " << e.Message << "\n";
     return e.Code;
   }

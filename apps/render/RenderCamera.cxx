@@ -18,9 +18,11 @@ namespace vtkrtRender
 namespace
 {
 // ResetCamera fits the bounding sphere, which leaves most scenes small: zoom
-// until the scene's projected points (mesh vertices, glyph spheres' boxes)
-// fill 90% of the image's tighter side.
-void FrameScene(vtkRenderer* renderer, const std::vector<double>& points, double aspect)
+// (or, to keep a view angle that was asked for, dolly) until the scene's
+// projected points (mesh vertices, glyph spheres' boxes) fill 90% of the
+// image's tighter side.
+void FrameScene(
+  vtkRenderer* renderer, const std::vector<double>& points, double aspect, bool keepAngle)
 {
   vtkCamera* camera = renderer->GetActiveCamera();
   renderer->ResetCameraClippingRange();
@@ -28,7 +30,7 @@ void FrameScene(vtkRenderer* renderer, const std::vector<double>& points, double
   {
     return;
   }
-  for (int iteration = 0; iteration < 4; ++iteration)
+  for (int iteration = 0; iteration < (keepAngle ? 8 : 4); ++iteration)
   {
     vtkMatrix4x4* m = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
     double extent = 0.0;
@@ -47,7 +49,15 @@ void FrameScene(vtkRenderer* renderer, const std::vector<double>& points, double
     {
       break;
     }
-    camera->Zoom(0.9 / extent);
+    if (keepAngle)
+    {
+      camera->Dolly(0.9 / extent);
+      renderer->ResetCameraClippingRange();
+    }
+    else
+    {
+      camera->Zoom(0.9 / extent);
+    }
   }
   renderer->ResetCameraClippingRange();
 }
@@ -129,9 +139,9 @@ void AimCamera(Scene& scene, const Options& opt)
 {
   const CameraOptions& c = opt.Camera;
   vtkCamera* camera = scene.Renderer->GetActiveCamera();
-  camera->SetViewAngle(c.ViewAngle);
   OrientForUp(camera, c.Up);
   scene.Renderer->ResetCamera();
+  camera->SetViewAngle(c.ViewAngle); // after ResetCamera, which sets 30
   const bool placed = c.PositionGiven || c.FocalPointGiven || c.ViewUpGiven;
   // An explicit placement is kept as given: the default orbit would move it.
   if (!placed || c.OrbitGiven)
@@ -150,7 +160,8 @@ void AimCamera(Scene& scene, const Options& opt)
   }
   if (!c.PositionGiven)
   {
-    FrameScene(scene.Renderer, FramingPoints(scene), static_cast<double>(opt.Width) / opt.Height);
+    FrameScene(scene.Renderer, FramingPoints(scene), static_cast<double>(opt.Width) / opt.Height,
+      c.ViewAngle != 30.0);
   }
   camera->Zoom(c.Zoom);
   scene.Renderer->ResetCameraClippingRange();

@@ -59,8 +59,8 @@ vtkDataArray* FindArray(const SceneMesh& mesh, const ScalarOptions& options)
   vtkFieldData* fields = options.Cells ? static_cast<vtkFieldData*>(mesh.Mesh->GetCellData())
                                        : static_cast<vtkFieldData*>(mesh.Mesh->GetPointData());
   auto* attributes = static_cast<vtkDataSetAttributes*>(fields);
-  vtkDataArray* array = options.Array.empty() ? attributes->GetScalars()
-                                              : fields->GetArray(options.Array.c_str());
+  vtkDataArray* array =
+    options.Array.empty() ? attributes->GetScalars() : fields->GetArray(options.Array.c_str());
   for (int i = 0; !array && options.Array.empty() && i < fields->GetNumberOfArrays(); ++i)
   {
     array = fields->GetArray(i); // no active scalars: the first numeric array
@@ -82,15 +82,15 @@ vtkDataArray* FindArray(const SceneMesh& mesh, const ScalarOptions& options)
   }
   if (options.Component >= array->GetNumberOfComponents())
   {
-    throw UsageError{ "--comp " + std::to_string(options.Component) + ": the " + kind +
-      " array '" + (array->GetName() ? array->GetName() : "") + "' of '" + mesh.File + "' has " +
+    throw UsageError{ "--comp " + std::to_string(options.Component) + ": the " + kind + " array '" +
+      (array->GetName() ? array->GetName() : "") + "' of '" + mesh.File + "' has " +
       std::to_string(array->GetNumberOfComponents()) + " component(s)" };
   }
   return array;
 }
 
-void Describe(Scene& scene, const ScalarOptions& options, const std::string& name,
-  const double range[2])
+void Describe(
+  Scene& scene, const ScalarOptions& options, const std::string& name, const double range[2])
 {
   std::ostringstream text;
   text << (options.Cells ? "cell" : "point") << " array '" << name << "' ("

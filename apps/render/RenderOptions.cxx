@@ -147,30 +147,36 @@ void DeclareOptions(CLI::App& app, Words& w, Options& opt)
   app.add_option("--resolution", w.Resolution, "image size in pixels (default 800,600)")
     ->type_name("W,H");
   app.add_option("--size", w.Size, "the same as WxH")->type_name("WxH");
-  app.add_option("-o,--output", w.Output,
-       "image to write, by extension .png .jpg .tif .bmp (default: a window when there is a "
-       "display, else vtkrt-render.png)")
+  app
+    .add_option("-o,--output", w.Output,
+      "image to write, by extension .png .jpg .tif .bmp (default: a window when there is a "
+      "display, else vtkrt-render.png)")
     ->type_name("FILE");
   app.add_option("--mode", w.Mode, "raytrace (default; vtkRayTracePass) or raster (VTK's)")
     ->type_name("raytrace|raster");
-  app.add_option("--samples", w.Samples,
-       "raytrace: rays per pixel (default 1); raster: MSAA samples (default 0)")
+  app
+    .add_option("--samples", w.Samples,
+      "raytrace: rays per pixel (default 1); raster: MSAA samples (default 0)")
     ->type_name("N");
   app.add_flag("--shadows", opt.Trace.Shadows, "raytrace: hard shadows");
   app.add_option("--ao", w.Ao, "raytrace: ambient occlusion rays per sample (0 off)")
     ->type_name("N");
-  app.add_option("--progressive", w.Progressive,
-       "raytrace: frames accumulated before writing (progressive accumulation)")
+  app
+    .add_option("--progressive", w.Progressive,
+      "raytrace: frames accumulated before writing (progressive accumulation)")
     ->type_name("N");
-  app.add_option("--precision", w.Precision,
-       "raytrace: GPU coordinates relative to the eye (default) or plain world floats")
+  app
+    .add_option("--precision", w.Precision,
+      "raytrace: GPU coordinates relative to the eye (default) or plain world floats")
     ->type_name("camera|world");
-  app.add_option("--frames", w.Frames,
-       "orbit steps timed for the steady frame time (default 8; 0 skips them)")
+  app
+    .add_option(
+      "--frames", w.Frames, "orbit steps timed for the steady frame time (default 8; 0 skips them)")
     ->type_name("N");
-  app.add_option("--pick", w.Picks,
-       "pick the pixel (X, Y) of the image (origin top left) and print the cell id and "
-       "world point (or the glyph sphere); repeatable")
+  app
+    .add_option("--pick", w.Picks,
+      "pick the pixel (X, Y) of the image (origin top left) and print the cell id and "
+      "world point (or the glyph sphere); repeatable")
     ->type_name("X Y")
     ->expected(2)
     ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
@@ -184,8 +190,7 @@ void DeclareScalarOptions(CLI::App& app, Words& w, Options& opt)
   app.add_flag("--cells", opt.Scalars.Cells, "--scalars takes cell arrays");
   app.add_option("--comp", w.Comp, "component to colour by (default -1: magnitude)")
     ->type_name("N");
-  app.add_option("--range", w.Range, "scalar range (default: the array's)")
-    ->type_name("MIN,MAX");
+  app.add_option("--range", w.Range, "scalar range (default: the array's)")->type_name("MIN,MAX");
   std::string names;
   for (const std::string& n : ColormapNames())
   {
@@ -198,12 +203,10 @@ void DeclareScalarOptions(CLI::App& app, Words& w, Options& opt)
 void DeclareCameraOptions(CLI::App& app, Words& w)
 {
   app.add_option("--up", w.Up, "up axis (default +Y)")->type_name("+X|-X|+Y|-Y|+Z|-Z");
-  app.add_option("--azimuth", w.Azimuth, "orbit about the view up (default 30)")
-    ->type_name("DEG");
+  app.add_option("--azimuth", w.Azimuth, "orbit about the view up (default 30)")->type_name("DEG");
   app.add_option("--elevation", w.Elevation, "orbit up/down (default 20)")->type_name("DEG");
   app.add_option("--camera-position", w.Position, "camera position")->type_name("X,Y,Z");
-  app.add_option("--camera-focal-point", w.FocalPoint, "camera focal point")
-    ->type_name("X,Y,Z");
+  app.add_option("--camera-focal-point", w.FocalPoint, "camera focal point")->type_name("X,Y,Z");
   app.add_option("--camera-view-up", w.ViewUp, "camera view up")->type_name("X,Y,Z");
   app.add_option("--camera-view-angle", w.ViewAngle, "vertical view angle (default 30)")
     ->type_name("DEG");
@@ -213,16 +216,15 @@ void DeclareCameraOptions(CLI::App& app, Words& w)
 
 void DeclareLookOptions(CLI::App& app, Words& w, Options& opt)
 {
-  app.add_option("--color", w.Color, "surface colour (default 0.8,0.82,0.88)")
-    ->type_name("R,G,B");
-  app.add_option("--opacity", w.Opacity, "surface opacity (below 1: rasterized)")
-    ->type_name("A");
+  app.add_option("--color", w.Color, "surface colour (default 0.8,0.82,0.88)")->type_name("R,G,B");
+  app.add_option("--opacity", w.Opacity, "surface opacity (below 1: rasterized)")->type_name("A");
   app.add_flag("--edges", opt.Look.Edges, "show cell edges (rasterized)");
   app.add_option("--point-size", w.PointSize, "size of points in pixels (point clouds)")
     ->type_name("PX");
   app.add_option("--bg-color", w.Background, "background colour")->type_name("R,G,B");
-  app.add_option("--interaction-test-play", opt.InteractionPlay,
-       "window: play a vtkInteractorEventRecorder log, then quit (for tests)")
+  app
+    .add_option("--interaction-test-play", opt.InteractionPlay,
+      "window: play a vtkInteractorEventRecorder log, then quit (for tests)")
     ->type_name("FILE");
 }
 
@@ -259,8 +261,8 @@ void CheckImageWords(const CLI::App& app, const Words& w, Options& opt)
     Pixel p;
     if (!ParseInt(w.Picks[i], p.X) || !ParseInt(w.Picks[i + 1], p.Y))
     {
-      throw UsageError{ "--pick expects two integer pixel coordinates X Y (got '" +
-        w.Picks[i] + "' '" + w.Picks[i + 1] + "')" };
+      throw UsageError{ "--pick expects two integer pixel coordinates X Y (got '" + w.Picks[i] +
+        "' '" + w.Picks[i + 1] + "')" };
     }
     opt.Picks.push_back(p);
   }

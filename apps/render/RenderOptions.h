@@ -16,9 +16,9 @@ using Vector3 = std::array<double, 3>;
 struct ScalarOptions
 {
   bool Enabled = false;
-  std::string Array;     // empty: the active scalars (else the first array)
-  bool Cells = false;    // cell data instead of point data
-  int Component = -1;    // -1: magnitude
+  std::string Array;  // empty: the active scalars (else the first array)
+  bool Cells = false; // cell data instead of point data
+  int Component = -1; // -1: magnitude
   bool RangeGiven = false;
   double Range[2] = { 0.0, 1.0 };
   std::string Colormap = "viridis";
@@ -72,8 +72,8 @@ struct Options
   double Elevation = 20.0;
   std::string Output = "vtkrt-render.png";
   bool OutputGiven = false;
-  std::string Mode;  // "raster" or "raytrace"; empty: raytrace when built
-  int Samples = -1;  // -1: the mode's default (raster 0 MSAA, raytrace 1 ray)
+  std::string Mode; // "raster" or "raytrace"; empty: raytrace when built
+  int Samples = -1; // -1: the mode's default (raster 0 MSAA, raytrace 1 ray)
   int Frames = 8;
   std::vector<Pixel> Picks;
   bool Verbose = false;

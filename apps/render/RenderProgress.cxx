@@ -8,6 +8,7 @@ namespace vtkrtRender
 {
 bool Progress::Shown = false;
 bool Progress::Terminal = false;
+bool Progress::Open = false;
 std::string Progress::What;
 std::chrono::steady_clock::time_point Progress::Start;
 
@@ -25,6 +26,7 @@ void Progress::Begin(const std::string& what)
   {
     std::fprintf(stderr, "vtkrt-render: %s ...", what.c_str());
     std::fflush(stderr);
+    Progress::Open = true;
   }
 }
 
@@ -41,13 +43,23 @@ void Progress::Update(int done, int total)
   }
 }
 
+void Progress::Interrupt()
+{
+  if (Progress::Open)
+  {
+    std::fprintf(stderr, "\n");
+    Progress::Open = false;
+  }
+}
+
 void Progress::End()
 {
   if (Progress::Shown)
   {
-    const double ms = std::chrono::duration<double, std::milli>(
-      std::chrono::steady_clock::now() - Progress::Start)
-                        .count();
+    Progress::Open = false;
+    const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - Progress::Start)
+        .count();
     std::fprintf(stderr, "%s %.0f ms%s\n",
       Progress::Terminal ? ("\rvtkrt-render: " + Progress::What + " ... done in").c_str()
                          : " done in",

@@ -24,9 +24,13 @@ public:
   // Ends the current step with its time and a newline.
   static void End();
 
+  // Ends a step that failed with a newline, so the error starts its own line.
+  static void Interrupt();
+
 private:
   static bool Shown;
   static bool Terminal;
+  static bool Open; // a step's line is started and not ended
   static std::string What;
   static std::chrono::steady_clock::time_point Start;
 };

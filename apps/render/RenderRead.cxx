@@ -262,8 +262,7 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, CapturingOutputWi
 {
   vtkSmartPointer<vtkPolyData> mesh = SurfaceOf(ReadData(path, output), path, output);
   if (mesh && mesh->GetNumberOfPolys() + mesh->GetNumberOfStrips() == 0 &&
-    vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path)) ==
-      ".ply" &&
+    vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path)) == ".ply" &&
     HasPlyStrips(path))
   {
     vtkNew<vtkCellArray> strips;

@@ -4,15 +4,15 @@
 #include "RenderOptions.h"
 #include "RenderScene.h"
 
+#include "vtkBMPWriter.h"
 #include "vtkEGLHeadlessRenderWindow.h"
 #include "vtkImageWriter.h"
-#include "vtkNew.h"
-#include "vtkBMPWriter.h"
 #include "vtkJPEGWriter.h"
+#include "vtkNew.h"
 #include "vtkPNGWriter.h"
-#include "vtkTIFFWriter.h"
 #include "vtkRayTracePass.h"
 #include "vtkRenderer.h"
+#include "vtkTIFFWriter.h"
 #include "vtkWindowToImageFilter.h"
 #include "vtksys/SystemTools.hxx"
 
@@ -100,8 +100,14 @@ void PrintReport(const Options& opt, const Scene& scene, vtkEGLHeadlessRenderWin
   {
     std::cout << "  coloured by:  " << scene.Coloring << "\n";
   }
-  std::cout
-            << "  device:       " << window->GetGLRenderer() << " (" << window->GetGLVersion()
+  if (auto* pass = vtkRayTracePass::SafeDownCast(scene.Renderer->GetPass()))
+  {
+    std::cout << "  tracing:      " << pass->GetSamplesPerPixel() << " ray(s) per pixel, shadows "
+              << (pass->GetShadows() ? "on" : "off") << ", ambient occlusion "
+              << pass->GetAmbientOcclusionSamples() << " ray(s), precision "
+              << pass->GetPrecisionModeAsString() << "\n";
+  }
+  std::cout << "  device:       " << window->GetGLRenderer() << " (" << window->GetGLVersion()
             << "; " << window->GetDeviceDescription() << ")\n"
             << "  scene build:  " << timings.SceneBuild << " ms (read + set up)\n"
             << "  first frame:  " << timings.FirstFrame << " ms (context, upload, build)\n";

@@ -42,8 +42,8 @@ void KeepPassPhases(vtkRenderer* renderer, Timings& timings);
 // Writes the window's front buffer to `path`, as PNG, JPEG, TIFF or BMP by
 // its extension; VTK's writer errors are caught through `output`. Throws
 // Failure.
-void WriteImage(vtkEGLHeadlessRenderWindow* window, const std::string& path,
-  CapturingOutputWindow* output);
+void WriteImage(
+  vtkEGLHeadlessRenderWindow* window, const std::string& path, CapturingOutputWindow* output);
 
 // The report on stdout: mode, scene, device, timings, the picks (one line
 // each) and the file written.

@@ -131,8 +131,7 @@ void BuildDemo(Scene& scene, CapturingOutputWindow* output, const LookOptions& l
   const std::string dir = DemoDataDirectory();
   vtkSmartPointer<vtkPolyData> bunny = ReadMesh(dir + "/bunny.vtp", output);
   const double bunnyColor[3] = { 0.86, 0.82, 0.74 };
-  AddMesh(scene, dir + "/bunny.vtp", bunny, look.ColorGiven ? look.Color.data() : bunnyColor,
-    look);
+  AddMesh(scene, dir + "/bunny.vtp", bunny, look.ColorGiven ? look.Color.data() : bunnyColor, look);
 
   // Sphere glyphs of the "radius" array, coloured by "scalar" (vtkrtDemoGlyphs.h).
   vtkNew<vtkXMLPolyDataReader> centresReader;
@@ -195,8 +194,8 @@ bool UseRayTracing(vtkRenderer* renderer, const Options& opt)
   pass->SetShadows(opt.Trace.Shadows);
   pass->SetAmbientOcclusionSamples(opt.Trace.AmbientOcclusion);
   pass->SetProgressiveAccumulation(opt.Trace.Progressive > 0);
-  pass->SetPrecisionMode(opt.Trace.Precision == "world" ? vtkRayTracePass::WORLD
-                                                        : vtkRayTracePass::CAMERA_RELATIVE);
+  pass->SetPrecisionMode(
+    opt.Trace.Precision == "world" ? vtkRayTracePass::WORLD : vtkRayTracePass::CAMERA_RELATIVE);
   renderer->SetPass(pass);
   return true;
 #else

@@ -217,8 +217,8 @@ int RunWindow(Scene& scene, const Options& opt)
   {
     PlayEvents(interactor, opt.InteractionPlay);
     const double* p = scene.Renderer->GetActiveCamera()->GetPosition();
-    std::cout << std::setprecision(6) << "camera position (" << p[0] << ", " << p[1] << ", "
-              << p[2] << ") after the events" << std::endl;
+    std::cout << std::setprecision(6) << "camera position (" << p[0] << ", " << p[1] << ", " << p[2]
+              << ") after the events" << std::endl;
     return ExitOk;
   }
   interactor->Start();
