@@ -485,6 +485,85 @@ void TestTraceKnobs()
     "--mode raster --samples 4: MSAA, no tracing");
 }
 
+// The mean colour of the pixels of `image` that are not background.
+void MeanCovered(vtkImageData* image, double mean[3], long& covered)
+{
+  mean[0] = mean[1] = mean[2] = 0.0;
+  covered = 0;
+  int d[3];
+  image->GetDimensions(d);
+  for (int y = 0; y < d[1]; ++y)
+  {
+    for (int x = 0; x < d[0]; ++x)
+    {
+      const unsigned char* c = Pixel(image, x, y);
+      if (!IsBackground(c))
+      {
+        ++covered;
+        for (int k = 0; k < 3; ++k)
+        {
+          mean[k] += c[k];
+        }
+      }
+    }
+  }
+  for (int k = 0; k < 3 && covered > 0; ++k)
+  {
+    mean[k] /= covered;
+  }
+}
+
+void TestLook()
+{
+  const double origin[3] = { 0, 0, 0 };
+  const std::string stl =
+    "'" + WriteSTL("sphere.stl", Sphere(1.0, origin, 48)) + "' --resolution 160,120";
+  double grey[3], red[3];
+  long covered = 0;
+  vtkSmartPointer<vtkImageData> image = Render(stl, "grey.png");
+  MeanCovered(image, grey, covered);
+  image = Render(stl + " --color 1,0,0", "red.png");
+  MeanCovered(image, red, covered);
+  Check(red[0] > 2 * red[1] + 20 && red[0] > 2 * red[2] + 20 && grey[0] < grey[2],
+    "--color 1,0,0: the sphere is red");
+  image = Render(stl + " --bg-color 0,0,0", "black.png");
+  Check(
+    image && Pixel(image, 0, 0)[0] == 0 && Pixel(image, 0, 0)[1] == 0 && Pixel(image, 0, 0)[2] == 0,
+    "--bg-color 0,0,0: a black corner");
+  image = Render(stl + " --opacity 0.3 --bg-color 0,0,0", "faint.png");
+  vtkSmartPointer<vtkImageData> opaque = Render(stl + " --bg-color 0,0,0", "opaque.png");
+  const unsigned char* middle = image ? Pixel(image, 80, 60) : nullptr;
+  const unsigned char* full = opaque ? Pixel(opaque, 80, 60) : nullptr;
+  Check(middle && full && middle[0] > 10 && middle[0] < 0.6 * full[0],
+    "--opacity 0.3: the sphere's middle blends with the black background");
+  vtkSmartPointer<vtkImageData> plainImage = Render(stl + " --mode raster", "plain.png");
+  vtkSmartPointer<vtkImageData> edgedImage = Render(stl + " --mode raster --edges", "edges.png");
+  Check(plainImage && edgedImage && MeanBrightness(edgedImage) < MeanBrightness(plainImage) - 2,
+    "--edges: the cell edges darken the sphere");
+
+  // A point cloud (a PLY of vertices only) is drawn as spheres of --point-size pixels.
+  std::ostringstream cloud;
+  cloud << "ply\nformat ascii 1.0\nelement vertex 25\nproperty float x\nproperty float y\n"
+           "property float z\nend_header\n";
+  for (int i = 0; i < 25; ++i)
+  {
+    cloud << (i % 5) << " " << (i / 5) << " 0\n";
+  }
+  WriteText(Tmp + "/cloud.ply", cloud.str());
+  long small = 0, large = 0, colourful = 0;
+  Result r;
+  CountPixels(
+    Render("'" + Tmp + "/cloud.ply' --resolution 200,200 --point-size 4", "cloud-4.png", &r), 0,
+    200, small, colourful);
+  Check(ReportNumber(r.Output, "points") == 25, "point cloud: 25 points reported");
+  CountPixels(
+    Render("'" + Tmp + "/cloud.ply' --resolution 200,200 --point-size 12", "cloud-12.png"), 0, 200,
+    large, colourful);
+  Check(small > 25 * 4 && large > 4 * small,
+    "--point-size 4 and 12: " + std::to_string(small) + " and " + std::to_string(large) +
+      " pixels of points");
+}
+
 void TestProgress()
 {
   const std::string args = "'" + Data +
@@ -602,6 +681,7 @@ int main(int argc, char* argv[])
     { "PicksAndFiles", TestPicksAndFiles },
     { "Strips", TestStrips },
     { "TraceKnobs", TestTraceKnobs },
+    { "Look", TestLook },
     { "Progress", TestProgress },
     { "BadInput", TestBadInput },
     { "Window", TestWindow },
