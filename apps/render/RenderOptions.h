@@ -36,13 +36,14 @@ struct CameraOptions
   double Zoom = 1.0;
 };
 
-// What the ray tracer does beyond one ray a pixel.
+// What the ray tracer does beyond one ray a pixel. What is not given leaves
+// the pass's own setting (its default, or a quality preset's).
 struct TraceOptions
 {
-  bool Shadows = false;
-  int AmbientOcclusion = 0; // rays per sample; 0 off
-  int Progressive = 0;      // frames accumulated before writing; 0 off
-  std::string Precision = "camera";
+  bool Shadows = false;      // on when given
+  int AmbientOcclusion = -1; // rays per sample; -1 not given
+  int Progressive = 0;       // frames accumulated before writing; 0 not given
+  std::string Precision;     // "camera" or "world"; empty not given
 };
 
 // Surface appearance and background.

@@ -190,12 +190,29 @@ bool UseRayTracing(vtkRenderer* renderer, const Options& opt)
 {
 #ifdef VTKRT_HAVE_RAYTRACE_PASS
   vtkNew<vtkRayTracePass> pass;
-  pass->SetSamplesPerPixel(opt.Samples > 0 ? opt.Samples : 1);
-  pass->SetShadows(opt.Trace.Shadows);
-  pass->SetAmbientOcclusionSamples(opt.Trace.AmbientOcclusion);
-  pass->SetProgressiveAccumulation(opt.Trace.Progressive > 0);
-  pass->SetPrecisionMode(
-    opt.Trace.Precision == "world" ? vtkRayTracePass::WORLD : vtkRayTracePass::CAMERA_RELATIVE);
+  // Only the knobs given on the command line: the rest keep the pass's own.
+  const TraceOptions& trace = opt.Trace;
+  if (opt.Samples > 0)
+  {
+    pass->SetSamplesPerPixel(opt.Samples);
+  }
+  if (trace.Shadows)
+  {
+    pass->SetShadows(true);
+  }
+  if (trace.AmbientOcclusion >= 0)
+  {
+    pass->SetAmbientOcclusionSamples(trace.AmbientOcclusion);
+  }
+  if (trace.Progressive > 0)
+  {
+    pass->SetProgressiveAccumulation(true);
+  }
+  if (!trace.Precision.empty())
+  {
+    pass->SetPrecisionMode(
+      trace.Precision == "world" ? vtkRayTracePass::WORLD : vtkRayTracePass::CAMERA_RELATIVE);
+  }
   renderer->SetPass(pass);
   return true;
 #else
