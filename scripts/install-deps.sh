@@ -9,6 +9,7 @@ PKGS=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev
   libembree-dev
   xvfb xauth
+  libcli11-dev
 )
 missing=()
 for p in "${PKGS[@]}"; do

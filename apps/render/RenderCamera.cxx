@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace vtkrtRender
@@ -17,9 +18,11 @@ namespace vtkrtRender
 namespace
 {
 // ResetCamera fits the bounding sphere, which leaves most scenes small: zoom
-// until the scene's projected points (mesh vertices, glyph spheres' boxes)
-// fill 90% of the image's tighter side.
-void FrameScene(vtkRenderer* renderer, const std::vector<double>& points, double aspect)
+// (or, to keep a view angle that was asked for, dolly) until the scene's
+// projected points (mesh vertices, glyph spheres' boxes) fill 90% of the
+// image's tighter side.
+void FrameScene(
+  vtkRenderer* renderer, const std::vector<double>& points, double aspect, bool keepAngle)
 {
   vtkCamera* camera = renderer->GetActiveCamera();
   renderer->ResetCameraClippingRange();
@@ -27,7 +30,7 @@ void FrameScene(vtkRenderer* renderer, const std::vector<double>& points, double
   {
     return;
   }
-  for (int iteration = 0; iteration < 4; ++iteration)
+  for (int iteration = 0; iteration < (keepAngle ? 8 : 4); ++iteration)
   {
     vtkMatrix4x4* m = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
     double extent = 0.0;
@@ -46,7 +49,15 @@ void FrameScene(vtkRenderer* renderer, const std::vector<double>& points, double
     {
       break;
     }
-    camera->Zoom(0.9 / extent);
+    if (keepAngle)
+    {
+      camera->Dolly(0.9 / extent);
+      renderer->ResetCameraClippingRange();
+    }
+    else
+    {
+      camera->Zoom(0.9 / extent);
+    }
   }
   renderer->ResetCameraClippingRange();
 }
@@ -55,14 +66,14 @@ void FrameScene(vtkRenderer* renderer, const std::vector<double>& points, double
 std::vector<double> FramingPoints(const Scene& scene)
 {
   std::vector<double> points;
-  if (scene.Mesh)
+  for (const SceneMesh& mesh : scene.Meshes)
   {
-    const vtkIdType n = scene.Mesh->GetNumberOfPoints();
-    points.reserve(3 * static_cast<size_t>(n));
+    const vtkIdType n = mesh.Mesh->GetNumberOfPoints();
+    points.reserve(points.size() + 3 * static_cast<size_t>(n));
     for (vtkIdType i = 0; i < n; ++i)
     {
       double p[3];
-      scene.Mesh->GetPoint(i, p);
+      mesh.Mesh->GetPoint(i, p);
       points.insert(points.end(), p, p + 3);
     }
   }
@@ -84,15 +95,75 @@ std::vector<double> FramingPoints(const Scene& scene)
   }
   return points;
 }
+
+// Looks at the scene with `up` (+X ... -Z) as the view up: from +Z when up
+// is X or Y, from -Y when up is Z (so X points right for +Y and +Z up).
+void OrientForUp(vtkCamera* camera, const std::string& up)
+{
+  const double sign = up[0] == '-' ? -1.0 : 1.0;
+  const int axis = up[1] - 'X';
+  double viewUp[3] = { 0.0, 0.0, 0.0 };
+  viewUp[axis] = sign;
+  double toEye[3] = { 0.0, 0.0, 1.0 };
+  if (axis == 2)
+  {
+    toEye[1] = -sign;
+    toEye[2] = 0.0;
+  }
+  camera->SetFocalPoint(0.0, 0.0, 0.0);
+  camera->SetPosition(toEye);
+  camera->SetViewUp(viewUp);
+}
+
+// The explicit placement of --camera-*: what is given replaces what the
+// orbit chose.
+void PlaceCamera(vtkCamera* camera, const CameraOptions& c)
+{
+  if (c.FocalPointGiven)
+  {
+    camera->SetFocalPoint(c.FocalPoint.data());
+  }
+  if (c.PositionGiven)
+  {
+    camera->SetPosition(c.Position.data());
+  }
+  if (c.ViewUpGiven)
+  {
+    camera->SetViewUp(c.ViewUp.data());
+  }
+  camera->OrthogonalizeViewUp();
+}
 } // namespace
 
 void AimCamera(Scene& scene, const Options& opt)
 {
+  const CameraOptions& c = opt.Camera;
   vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  OrientForUp(camera, c.Up);
   scene.Renderer->ResetCamera();
-  camera->Azimuth(opt.Azimuth);
-  camera->Elevation(opt.Elevation);
-  camera->OrthogonalizeViewUp();
-  FrameScene(scene.Renderer, FramingPoints(scene), static_cast<double>(opt.Width) / opt.Height);
+  camera->SetViewAngle(c.ViewAngle); // after ResetCamera, which sets 30
+  const bool placed = c.PositionGiven || c.FocalPointGiven || c.ViewUpGiven;
+  // An explicit placement is kept as given: the default orbit would move it.
+  if (!placed || c.OrbitGiven)
+  {
+    if (placed)
+    {
+      PlaceCamera(camera, c);
+    }
+    camera->Azimuth(opt.Azimuth);
+    camera->Elevation(opt.Elevation);
+    camera->OrthogonalizeViewUp();
+  }
+  else
+  {
+    PlaceCamera(camera, c);
+  }
+  if (!c.PositionGiven)
+  {
+    FrameScene(scene.Renderer, FramingPoints(scene), static_cast<double>(opt.Width) / opt.Height,
+      c.ViewAngle != 30.0);
+  }
+  camera->Zoom(c.Zoom);
+  scene.Renderer->ResetCameraClippingRange();
 }
 } // namespace vtkrtRender

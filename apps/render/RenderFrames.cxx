@@ -2,10 +2,12 @@
 
 #include "RenderErrors.h"
 #include "RenderOptions.h"
+#include "RenderProgress.h"
 #include "RenderReport.h"
 
 #include "vtkCamera.h"
 #include "vtkNew.h"
+#include "vtkRayTracePass.h"
 #include "vtkRenderer.h"
 
 #include <iostream>
@@ -17,7 +19,7 @@ vtkSmartPointer<vtkEGLHeadlessRenderWindow> NewWindow(const Options& opt, vtkRen
   auto window = vtkSmartPointer<vtkEGLHeadlessRenderWindow>::New();
   window->SetSize(opt.Width, opt.Height);
   // Explicit: VTK's default is 8 (llvmpipe clamps to 4) and MSAA costs a lot.
-  window->SetMultiSamples(opt.Mode == "raster" ? opt.Samples : 0);
+  window->SetMultiSamples(opt.Mode == "raster" && opt.Samples > 0 ? opt.Samples : 0);
   window->AddRenderer(renderer);
   return window;
 }
@@ -63,5 +65,23 @@ double SteadyFrameMilliseconds(
   camera->DeepCopy(saved);
   window->Render();
   return steady;
+}
+
+int AccumulateFrames(vtkEGLHeadlessRenderWindow* window, vtkRenderer* renderer, int frames)
+{
+  auto* pass = vtkRayTracePass::SafeDownCast(renderer->GetPass());
+  if (!pass || frames <= 0)
+  {
+    return 0;
+  }
+  Progress::Begin("accumulating " + std::to_string(frames) + " frames");
+  // The frame already drawn counts when nothing changed since.
+  for (int done = pass->GetAccumulatedFrames(); done < frames; ++done)
+  {
+    window->Render();
+    Progress::Update(pass->GetAccumulatedFrames(), frames);
+  }
+  Progress::End();
+  return pass->GetAccumulatedFrames();
 }
 } // namespace vtkrtRender

@@ -26,6 +26,10 @@ double RenderFirstFrame(vtkEGLHeadlessRenderWindow* window, CapturingOutputWindo
 // exactly; the mean milliseconds of a step, 0 when `frames` is 0.
 double SteadyFrameMilliseconds(
   vtkEGLHeadlessRenderWindow* window, vtkRenderer* renderer, int frames);
+
+// Renders until the ray tracer has accumulated `frames` frames of the
+// still view (--progressive); returns how many it holds (0 without a pass).
+int AccumulateFrames(vtkEGLHeadlessRenderWindow* window, vtkRenderer* renderer, int frames);
 } // namespace vtkrtRender
 
 #endif

@@ -26,24 +26,41 @@ namespace
 using PickRay = vtkrt::core::Ray<double>;
 using Vec3 = vtkrt::core::Vec3<double>;
 
-// Adds a BVH locator over the mesh to the picker when the build has one.
+// Adds a BVH locator over each mesh to the picker when the build has one.
 // Returns a description of what picks.
-std::string PrepareLocator(vtkCellPicker* picker, vtkPolyData* mesh)
+std::string PrepareLocators(vtkCellPicker* picker, const Scene& scene)
 {
 #ifdef VTKRT_HAVE_BVH_LOCATOR
-  if (mesh)
+  for (const SceneMesh& mesh : scene.Meshes)
   {
     vtkNew<vtkBVHCellLocator> locator;
-    locator->SetDataSet(mesh);
+    locator->SetDataSet(mesh.Mesh);
     locator->BuildLocator();
     picker->AddLocator(locator);
+  }
+  if (!scene.Meshes.empty())
+  {
     return "vtkCellPicker + vtkBVHCellLocator";
   }
 #else
   (void)picker;
-  (void)mesh;
+  (void)scene;
 #endif
   return "vtkCellPicker";
+}
+
+// " on the mesh" when the picker's actor draws a file of the scene (naming
+// the file when there are several).
+std::string OnWhichMesh(const Scene& scene, vtkProp* actor)
+{
+  for (const SceneMesh& mesh : scene.Meshes)
+  {
+    if (mesh.Actor == actor)
+    {
+      return " on the mesh" + (scene.Meshes.size() > 1 ? " '" + mesh.File + "'" : std::string());
+    }
+  }
+  return "";
 }
 
 // The ray through a display pixel from the near (t = 0) to the far (t = 1)
@@ -92,17 +109,17 @@ vtkIdType NearestSphere(const PickRay& ray, vtkPolyData* centres, double& t)
 }
 } // namespace
 
-std::string PickPixel(const Options& opt, const Scene& scene)
+std::string PickPixel(const Scene& scene, const Pixel& pixel, int height)
 {
   std::ostringstream report;
   report << std::setprecision(9);
   // Image rows run top down, VTK's display coordinates bottom up; the ray
   // goes through the pixel's centre, as the image's own rays do.
-  const double x = opt.PickX + 0.5, y = opt.Height - 1 - opt.PickY + 0.5;
+  const double x = pixel.X + 0.5, y = height - 1 - pixel.Y + 0.5;
   vtkNew<vtkCellPicker> picker;
   picker->SetTolerance(0.0);
   const auto p0 = Clock::now();
-  const std::string how = PrepareLocator(picker, scene.Mesh);
+  const std::string how = PrepareLocators(picker, scene);
   const auto p1 = Clock::now();
   const bool meshHit = picker->Pick(x, y, 0.0, scene.Renderer) && picker->GetCellId() >= 0;
   const auto p2 = Clock::now();
@@ -119,7 +136,7 @@ std::string PickPixel(const Options& opt, const Scene& scene)
   double sphereT = meshT;
   const vtkIdType sphereId = NearestSphere(ray, scene.SphereCentres, sphereT);
 
-  report << "pick (" << opt.PickX << ", " << opt.PickY << "): ";
+  report << "pick (" << pixel.X << ", " << pixel.Y << "): ";
   if (sphereId >= 0)
   {
     const Vec3 p = ray.at(sphereT);
@@ -130,8 +147,7 @@ std::string PickPixel(const Options& opt, const Scene& scene)
   {
     const double* p = picker->GetPickPosition();
     report << "cell " << picker->GetCellId() << " at world (" << p[0] << ", " << p[1] << ", "
-           << p[2] << ")" << (picker->GetActor() == scene.MeshActor ? " on the mesh" : "") << " ["
-           << how << "]";
+           << p[2] << ")" << OnWhichMesh(scene, picker->GetActor()) << " [" << how << "]";
   }
   else
   {

@@ -8,12 +8,13 @@
 
 namespace vtkrtRender
 {
-struct Options;
+struct Pixel;
 struct Scene;
 
-// The pick report line for opt.PickX, opt.PickY: what was hit, where, by
-// what, and the locator's build and pick times.
-std::string PickPixel(const Options& opt, const Scene& scene);
+// The pick report line for `pixel` of an image `height` pixels high (rows
+// top down): what was hit, where, by what, and the locator's build and pick
+// times.
+std::string PickPixel(const Scene& scene, const Pixel& pixel, int height);
 } // namespace vtkrtRender
 
 #endif

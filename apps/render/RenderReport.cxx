@@ -4,11 +4,15 @@
 #include "RenderOptions.h"
 #include "RenderScene.h"
 
+#include "vtkBMPWriter.h"
 #include "vtkEGLHeadlessRenderWindow.h"
+#include "vtkImageWriter.h"
+#include "vtkJPEGWriter.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
 #include "vtkRayTracePass.h"
 #include "vtkRenderer.h"
+#include "vtkTIFFWriter.h"
 #include "vtkWindowToImageFilter.h"
 #include "vtksys/SystemTools.hxx"
 
@@ -17,6 +21,32 @@
 
 namespace vtkrtRender
 {
+namespace
+{
+// The writer of the image type `path`'s extension names (checked by the
+// option parser).
+vtkSmartPointer<vtkImageWriter> NewImageWriter(const std::string& path)
+{
+  const std::string ext =
+    vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path));
+  if (ext == ".jpg" || ext == ".jpeg")
+  {
+    auto writer = vtkSmartPointer<vtkJPEGWriter>::New();
+    writer->SetQuality(95);
+    return writer;
+  }
+  if (ext == ".tif" || ext == ".tiff")
+  {
+    return vtkSmartPointer<vtkTIFFWriter>::New();
+  }
+  if (ext == ".bmp")
+  {
+    return vtkSmartPointer<vtkBMPWriter>::New();
+  }
+  return vtkSmartPointer<vtkPNGWriter>::New();
+}
+} // namespace
+
 void WriteImage(
   vtkEGLHeadlessRenderWindow* window, const std::string& path, CapturingOutputWindow* output)
 {
@@ -27,7 +57,7 @@ void WriteImage(
   grab->ShouldRerenderOff();
   grab->Update();
   output->StartCapture();
-  vtkNew<vtkPNGWriter> writer;
+  vtkSmartPointer<vtkImageWriter> writer = NewImageWriter(path);
   writer->SetInputConnection(grab->GetOutputPort());
   writer->SetFileName(path.c_str());
   writer->Write();
@@ -54,15 +84,30 @@ void KeepPassPhases(vtkRenderer* renderer, Timings& timings)
 }
 
 void PrintReport(const Options& opt, const Scene& scene, vtkEGLHeadlessRenderWindow* window,
-  const Timings& timings, const std::string& pick)
+  const Timings& timings, const std::vector<std::string>& picks)
 {
   std::cout << std::fixed << std::setprecision(1);
   std::cout << "vtkrt-render: " << opt.Mode << " " << opt.Width << "x" << opt.Height
             << ", MultiSamples " << window->GetMultiSamples() << "\n"
             << "  scene:        " << scene.Description << "\n"
             << "  triangles:    " << scene.Triangles << "\n"
-            << "  spheres:      " << scene.Spheres << "\n"
-            << "  device:       " << window->GetGLRenderer() << " (" << window->GetGLVersion()
+            << "  spheres:      " << scene.Spheres << "\n";
+  if (scene.Points > 0)
+  {
+    std::cout << "  points:       " << scene.Points << " (point cloud, as spheres)\n";
+  }
+  if (!scene.Coloring.empty())
+  {
+    std::cout << "  coloured by:  " << scene.Coloring << "\n";
+  }
+  if (auto* pass = vtkRayTracePass::SafeDownCast(scene.Renderer->GetPass()))
+  {
+    std::cout << "  tracing:      " << pass->GetSamplesPerPixel() << " ray(s) per pixel, shadows "
+              << (pass->GetShadows() ? "on" : "off") << ", ambient occlusion "
+              << pass->GetAmbientOcclusionSamples() << " ray(s), precision "
+              << pass->GetPrecisionModeAsString() << "\n";
+  }
+  std::cout << "  device:       " << window->GetGLRenderer() << " (" << window->GetGLVersion()
             << "; " << window->GetDeviceDescription() << ")\n"
             << "  scene build:  " << timings.SceneBuild << " ms (read + set up)\n"
             << "  first frame:  " << timings.FirstFrame << " ms (context, upload, build)\n";
@@ -78,11 +123,12 @@ void PrintReport(const Options& opt, const Scene& scene, vtkEGLHeadlessRenderWin
     std::cout << "  steady frame: " << timings.SteadyFrame << " ms (mean of " << opt.Frames
               << " orbit steps)\n";
   }
-  if (opt.Mode == "raytrace" && opt.Samples > 0)
+  if (opt.Trace.Progressive > 0 && opt.Mode == "raytrace")
   {
-    std::cout << "  note:         --samples applies to raster mode (MSAA); ignored\n";
+    std::cout << "  accumulated:  " << timings.AccumulatedFrames << " frames in "
+              << timings.Accumulation << " ms\n";
   }
-  if (opt.Pick)
+  for (const std::string& pick : picks)
   {
     std::cout << "  " << pick << "\n";
   }

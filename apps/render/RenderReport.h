@@ -32,20 +32,23 @@ struct Timings
   // Ray traced: the pass's first frame by phase (extraction, triangulation,
   // BVH build, packing, upload, shader compile); empty in raster mode.
   std::vector<double> PassPhases;
+  int AccumulatedFrames = 0; // the pass's, after --progressive
+  double Accumulation = 0.0; // milliseconds of the --progressive frames
 };
 
 // Keeps the pass's phases of the frame just drawn (none without a pass).
 void KeepPassPhases(vtkRenderer* renderer, Timings& timings);
 
-// Writes the window's front buffer to `path` as a PNG; VTK's writer errors
-// are caught through `output`. Throws Failure.
-void WriteImage(vtkEGLHeadlessRenderWindow* window, const std::string& path,
-  CapturingOutputWindow* output);
+// Writes the window's front buffer to `path`, as PNG, JPEG, TIFF or BMP by
+// its extension; VTK's writer errors are caught through `output`. Throws
+// Failure.
+void WriteImage(
+  vtkEGLHeadlessRenderWindow* window, const std::string& path, CapturingOutputWindow* output);
 
-// The report on stdout: mode, scene, device, timings, the pick (`pick`,
-// empty without --pick) and the file written.
+// The report on stdout: mode, scene, device, timings, the picks (one line
+// each) and the file written.
 void PrintReport(const Options& opt, const Scene& scene, vtkEGLHeadlessRenderWindow* window,
-  const Timings& timings, const std::string& pick);
+  const Timings& timings, const std::vector<std::string>& picks);
 } // namespace vtkrtRender
 
 #endif

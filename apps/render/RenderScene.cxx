@@ -1,21 +1,17 @@
 #include "RenderScene.h"
 
+#include "RenderColoring.h"
 #include "RenderErrors.h"
-#include "RenderMeshChecks.h"
 #include "RenderOptions.h"
+#include "RenderProgress.h"
+#include "RenderRead.h"
 #include "vtkrtDemoGlyphs.h"
 
 #include "vtkCellArray.h"
-#include "vtkDataSet.h"
-#include "vtkGenericDataObjectReader.h"
-#include "vtkGeometryFilter.h"
-#include "vtkOBJReader.h"
-#include "vtkPLYReader.h"
 #include "vtkPointData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkPolyDataNormals.h"
 #include "vtkProperty.h"
-#include "vtkSTLReader.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtksys/SystemTools.hxx"
 
@@ -24,117 +20,12 @@
 #endif
 
 #include <cstdlib>
-#include <fstream>
 #include <vector>
 
 namespace vtkrtRender
 {
 namespace
 {
-template <class Reader>
-vtkSmartPointer<vtkDataObject> ReadWith(const std::string& path)
-{
-  vtkNew<Reader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  return reader->GetOutputDataObject(0);
-}
-
-// The data of `path` read by the reader of its extension `ext`; false for an
-// extension no reader here takes.
-bool ReadByExtension(const std::string& path, const std::string& ext,
-  vtkSmartPointer<vtkDataObject>& data)
-{
-  if (ext == ".vtp")
-  {
-    data = ReadWith<vtkXMLPolyDataReader>(path);
-  }
-  else if (ext == ".vtk")
-  {
-    data = ReadWith<vtkGenericDataObjectReader>(path);
-  }
-  else if (ext == ".ply")
-  {
-    data = ReadWith<vtkPLYReader>(path);
-  }
-  else if (ext == ".obj")
-  {
-    data = ReadWith<vtkOBJReader>(path);
-  }
-  else if (ext == ".stl")
-  {
-    data = ReadWith<vtkSTLReader>(path);
-  }
-  else
-  {
-    return false;
-  }
-  return true;
-}
-
-// Turns the first VTK error or warning captured while reading `path` into
-// our one message.
-void ThrowIfCaptured(CapturingOutputWindow* output, const std::string& path)
-{
-  if (!output->Captured.empty())
-  {
-    throw Failure{ "cannot read mesh '" + path + "': " + MessageOf(output->Captured.front()),
-      ExitRuntimeError };
-  }
-}
-
-vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, CapturingOutputWindow* output)
-{
-  if (!vtksys::SystemTools::FileExists(path, true))
-  {
-    throw Failure{ "cannot read mesh '" + path + "': no such file", ExitRuntimeError };
-  }
-  if (!std::ifstream(path).good())
-  {
-    throw Failure{ "cannot read mesh '" + path + "': cannot open it", ExitRuntimeError };
-  }
-  const std::string ext =
-    vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path));
-  if (ext == ".ply")
-  {
-    // vtkPLYReader loops or aborts on data shorter than its header declares.
-    CheckPlyFile(path);
-  }
-  output->StartCapture();
-  vtkSmartPointer<vtkDataObject> data;
-  if (!ReadByExtension(path, ext, data))
-  {
-    output->StopCapture();
-    throw Failure{ "cannot read mesh '" + path + "': unknown extension '" + ext +
-        "' (expected .vtp .vtk .ply .obj .stl)",
-      ExitRuntimeError };
-  }
-  output->StopCapture();
-  ThrowIfCaptured(output, path);
-  // Readers pass a face's out-of-range index through; normals and links
-  // would then index past the points.
-  CheckPointIds(data, path);
-
-  vtkSmartPointer<vtkPolyData> mesh = vtkPolyData::SafeDownCast(data);
-  if (!mesh && vtkDataSet::SafeDownCast(data))
-  {
-    // A legacy .vtk grid: render its outer surface.
-    output->StartCapture();
-    vtkNew<vtkGeometryFilter> surface;
-    surface->SetInputData(data);
-    surface->Update();
-    mesh = surface->GetOutput();
-    output->StopCapture();
-    ThrowIfCaptured(output, path);
-  }
-  if (!mesh || mesh->GetNumberOfPolys() + mesh->GetNumberOfStrips() == 0)
-  {
-    throw Failure{ "cannot read mesh '" + path + "': it has no polygons to render",
-      ExitRuntimeError };
-  }
-  return mesh;
-}
-
 vtkIdType CountTriangles(vtkPolyData* mesh)
 {
   // A polygon or strip of n points is n - 2 triangles.
@@ -178,40 +69,69 @@ std::string DemoDataDirectory()
     ExitRuntimeError };
 }
 
-void AddMesh(Scene& scene, vtkPolyData* mesh, const double color[3])
+// A point cloud (no polygons): one vertex a point, drawn (and traced) as
+// spheres of the point size.
+vtkSmartPointer<vtkPolyData> AsPointCloud(vtkPolyData* mesh)
 {
-  vtkSmartPointer<vtkPolyData> shaded = mesh;
-  if (!mesh->GetPointData()->GetNormals())
+  auto cloud = vtkSmartPointer<vtkPolyData>::New();
+  cloud->SetPoints(mesh->GetPoints());
+  cloud->GetPointData()->PassData(mesh->GetPointData());
+  vtkNew<vtkCellArray> vertices;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
   {
-    // Shading normals for files without them: smooth, but split at sharp
-    // edges (30 degrees) so boxes stay boxes. Cells keep their ids.
-    vtkNew<vtkPolyDataNormals> normals;
-    normals->SetInputData(mesh);
-    normals->SplittingOn();
-    normals->SetFeatureAngle(30.0);
-    normals->ComputeCellNormalsOff();
-    normals->Update();
-    shaded = normals->GetOutput();
+    vertices->InsertNextCell(1, &i);
   }
+  cloud->SetVerts(vertices);
+  return cloud;
+}
+
+// Shading normals for files without them: smooth, but split at sharp edges
+// (30 degrees) so boxes stay boxes. Cells keep their ids.
+vtkSmartPointer<vtkPolyData> WithNormals(vtkPolyData* mesh)
+{
+  if (mesh->GetPointData()->GetNormals())
+  {
+    return mesh;
+  }
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputData(mesh);
+  normals->SplittingOn();
+  normals->SetFeatureAngle(30.0);
+  normals->ComputeCellNormalsOff();
+  normals->Update();
+  return normals->GetOutput();
+}
+
+void AddMesh(Scene& scene, const std::string& file, vtkPolyData* mesh, const double color[3],
+  const LookOptions& look)
+{
+  const bool cloud = mesh->GetNumberOfPolys() + mesh->GetNumberOfStrips() == 0;
+  vtkSmartPointer<vtkPolyData> shaded = cloud ? AsPointCloud(mesh) : WithNormals(mesh);
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputData(shaded);
   mapper->ScalarVisibilityOff();
-  scene.MeshActor = vtkSmartPointer<vtkActor>::New();
-  scene.MeshActor->SetMapper(mapper);
-  scene.MeshActor->GetProperty()->SetColor(color[0], color[1], color[2]);
-  scene.MeshActor->GetProperty()->SetSpecular(0.3);
-  scene.MeshActor->GetProperty()->SetSpecularPower(30);
-  scene.Renderer->AddActor(scene.MeshActor);
-  scene.Mesh = shaded;
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  vtkProperty* property = actor->GetProperty();
+  property->SetColor(color[0], color[1], color[2]);
+  property->SetSpecular(0.3);
+  property->SetSpecularPower(30);
+  property->SetOpacity(look.Opacity);
+  property->SetEdgeVisibility(look.Edges);
+  property->SetPointSize(static_cast<float>(look.PointSize));
+  property->SetRenderPointsAsSpheres(cloud);
+  scene.Renderer->AddActor(actor);
+  scene.Meshes.push_back(SceneMesh{ file, shaded, actor });
   scene.Triangles += CountTriangles(mesh);
+  scene.Points += cloud ? mesh->GetNumberOfPoints() : 0;
 }
 
-void BuildDemo(Scene& scene, CapturingOutputWindow* output)
+void BuildDemo(Scene& scene, CapturingOutputWindow* output, const LookOptions& look)
 {
   const std::string dir = DemoDataDirectory();
   vtkSmartPointer<vtkPolyData> bunny = ReadMesh(dir + "/bunny.vtp", output);
   const double bunnyColor[3] = { 0.86, 0.82, 0.74 };
-  AddMesh(scene, bunny, bunnyColor);
+  AddMesh(scene, dir + "/bunny.vtp", bunny, look.ColorGiven ? look.Color.data() : bunnyColor, look);
 
   // Sphere glyphs of the "radius" array, coloured by "scalar" (vtkrtDemoGlyphs.h).
   vtkNew<vtkXMLPolyDataReader> centresReader;
@@ -230,35 +150,74 @@ void BuildDemo(Scene& scene, CapturingOutputWindow* output)
   scene.SphereCentres = centres;
   scene.Description = "demo (" + dir + "/bunny.vtp + demo-spheres.vtp)";
 }
+
+void BuildFiles(Scene& scene, const Options& opt, CapturingOutputWindow* output)
+{
+  for (const std::string& file : opt.MeshFiles)
+  {
+    Progress::Begin("reading " + vtksys::SystemTools::GetFilenameName(file));
+    vtkSmartPointer<vtkPolyData> mesh = ReadMesh(file, output);
+    Progress::End();
+    AddMesh(scene, file, mesh, opt.Look.Color.data(), opt.Look);
+    scene.Description += (scene.Description.empty() ? "" : " + ") + file;
+  }
+}
 } // namespace
 
 void BuildScene(Scene& scene, const Options& opt, CapturingOutputWindow* output)
 {
   if (opt.Demo)
   {
-    BuildDemo(scene, output);
+    BuildDemo(scene, output, opt.Look);
   }
   else
   {
-    const double color[3] = { 0.80, 0.82, 0.88 };
-    AddMesh(scene, ReadMesh(opt.MeshFile, output), color);
-    scene.Description = opt.MeshFile;
+    BuildFiles(scene, opt, output);
   }
-  scene.Renderer->SetBackground(0.32, 0.34, 0.43);
+  if (opt.Scalars.Enabled)
+  {
+    ColorByScalars(scene, opt.Scalars);
+  }
+  const Vector3& bg = opt.Look.Background;
+  scene.Renderer->SetBackground(bg[0], bg[1], bg[2]);
   if (opt.Mode == "raytrace")
   {
-    UseRayTracing(scene.Renderer);
+    UseRayTracing(scene.Renderer, opt);
   }
 }
 
-bool UseRayTracing(vtkRenderer* renderer)
+bool UseRayTracing(vtkRenderer* renderer, const Options& opt)
 {
 #ifdef VTKRT_HAVE_RAYTRACE_PASS
   vtkNew<vtkRayTracePass> pass;
+  // Only the knobs given on the command line: the rest keep the pass's own.
+  const TraceOptions& trace = opt.Trace;
+  if (opt.Samples > 0)
+  {
+    pass->SetSamplesPerPixel(opt.Samples);
+  }
+  if (trace.Shadows)
+  {
+    pass->SetShadows(true);
+  }
+  if (trace.AmbientOcclusion >= 0)
+  {
+    pass->SetAmbientOcclusionSamples(trace.AmbientOcclusion);
+  }
+  if (trace.Progressive > 0)
+  {
+    pass->SetProgressiveAccumulation(true);
+  }
+  if (!trace.Precision.empty())
+  {
+    pass->SetPrecisionMode(
+      trace.Precision == "world" ? vtkRayTracePass::WORLD : vtkRayTracePass::CAMERA_RELATIVE);
+  }
   renderer->SetPass(pass);
   return true;
 #else
   (void)renderer;
+  (void)opt;
   return false;
 #endif
 }

@@ -1,7 +1,9 @@
 // An ordinary VTK application, ray traced by adding two lines:
 //   vtkNew<vtkRayTracePass> pass;  renderer->SetPass(pass);
-// With a display it opens a desktop window (close it to quit); without one, or
-// with --offscreen, it renders headless through EGL and writes a PNG.
+// Given an output file it renders, writes the PNG and exits: in a desktop
+// window when there is a display, headless through EGL without one or with
+// --offscreen. Without an output file and with a display it opens the
+// window to look around in (close it to quit).
 #include "vtkEGLHeadlessRenderWindow.h"
 #include "vtkRayTracePass.h"
 
@@ -28,7 +30,7 @@
 int main(int argc, char* argv[])
 {
   bool offscreen = std::getenv("DISPLAY") == nullptr;
-  const char* output = "SwapInRayTracing.png";
+  const char* output = nullptr;
   for (int i = 1; i < argc; ++i)
   {
     if (std::strcmp(argv[i], "--offscreen") == 0)
@@ -36,6 +38,9 @@ int main(int argc, char* argv[])
     else
       output = argv[i];
   }
+  const bool interactive = !offscreen && output == nullptr;
+  if (output == nullptr)
+    output = "SwapInRayTracing.png";
 
   // The scene, exactly as any VTK app builds it: a mesh and sphere glyphs.
   vtkNew<vtkSuperquadricSource> shape;
@@ -84,7 +89,7 @@ int main(int argc, char* argv[])
   window->AddRenderer(renderer);
   window->Render();
 
-  if (!offscreen)
+  if (interactive)
   {
     vtkNew<vtkRenderWindowInteractor> interactor;
     interactor->SetRenderWindow(window);

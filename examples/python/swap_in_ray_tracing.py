@@ -2,8 +2,10 @@
 
     pass_ = vtkrt.vtkRayTracePass(); renderer.SetPass(pass_)
 
-With a display it opens a desktop window (close it to quit); without one, or
-with --offscreen, it renders headless through EGL and writes a PNG.
+Given an output file it renders, writes the PNG and exits: in a desktop window
+when there is a display, headless through EGL without one or with --offscreen.
+Without an output file and with a display it opens the window to look around
+in (close it to quit).
 """
 import os
 import sys
@@ -18,6 +20,7 @@ import vtkmodules.vtkInteractionStyle  # noqa: F401  (default interactor style)
 
 args = [a for a in sys.argv[1:] if a != "--offscreen"]
 offscreen = "--offscreen" in sys.argv or "DISPLAY" not in os.environ
+interactive = not offscreen and not args
 output = args[0] if args else "swap_in_ray_tracing.png"
 
 shape = vtkSuperquadricSource()
@@ -60,7 +63,7 @@ window.SetMultiSamples(0)
 window.AddRenderer(renderer)
 window.Render()
 
-if not offscreen:
+if interactive:
     interactor = vtkRenderWindowInteractor()
     interactor.SetRenderWindow(window)
     interactor.Start()

@@ -1,7 +1,10 @@
 // End-to-end tests of vtkrt-render: runs the program, checks its exit
 // status, its report and the PNG it writes.
 //   TestVtkrtRender <path to vtkrt-render> <case>
+// The viewer's options (scalars, camera, formats, window) are tested by
+// TestVtkrtRenderViewer.
 #include "vtkrtImageRegression.h"
+#include "vtkrtRenderAppTest.h"
 #include "vtkrtTestOutputWindow.h"
 
 #include "vtkCellArray.h"
@@ -39,78 +42,6 @@
 
 namespace
 {
-int Failures = 0;
-std::string App;
-// One directory per case: CTest runs the cases at once, and two of them
-// write a sphere.stl of different radii.
-std::string Tmp = std::string(VTKRT_TEMP_DIR) + "/TestVtkrtRender";
-
-void Check(bool ok, const std::string& what)
-{
-  std::cout << (ok ? "ok   " : "FAIL ") << what << "\n";
-  if (!ok)
-  {
-    ++Failures;
-  }
-}
-
-struct Result
-{
-  int Code = -1;
-  std::string Output; // stdout and stderr together
-};
-
-Result RunApp(const std::string& args, const std::string& environment = "")
-{
-  const std::string command = environment + " '" + App + "' " + args + " 2>&1";
-  std::cout << "$ " << environment << (environment.empty() ? "" : " ") << "vtkrt-render " << args
-            << "\n";
-  Result r;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe)
-  {
-    return r;
-  }
-  char buffer[4096];
-  size_t n;
-  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0)
-  {
-    r.Output.append(buffer, n);
-  }
-  const int status = pclose(pipe);
-  r.Code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::cout << r.Output << "[exit " << r.Code << "]\n";
-  return r;
-}
-
-bool Contains(const std::string& text, const std::string& pattern)
-{
-  return std::regex_search(text, std::regex(pattern));
-}
-
-// Reads `key: <integer>` from the report.
-long long ReportNumber(const std::string& text, const std::string& key)
-{
-  std::smatch m;
-  if (std::regex_search(text, m, std::regex(key + ":\\s+([0-9]+)")))
-  {
-    return std::stoll(m[1]);
-  }
-  return -1;
-}
-
-vtkSmartPointer<vtkImageData> ReadPNG(const std::string& path)
-{
-  if (!vtksys::SystemTools::FileExists(path, true))
-  {
-    return nullptr;
-  }
-  vtkNew<vtkPNGReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  return reader->GetOutput();
-}
-
 // The image exists, has the requested size and a share of pixels that are
 // not the app's background colour.
 void CheckImage(const std::string& path, int w, int h, double minCoverage)
@@ -214,7 +145,7 @@ void TestDemo()
 {
   const std::string out = Tmp + "/demo.png";
   vtksys::SystemTools::RemoveFile(out);
-  const Result r = RunApp("--demo --size 320x240 --frames 2 --output '" + out + "'");
+  const Result r = RunApp("--demo --mode raster --size 320x240 --frames 2 --output '" + out + "'");
   Check(r.Code == 0, "exit status 0");
   vtkNew<vtkXMLPolyDataReader> bunny;
   bunny->SetFileName(VTKRT_DATA_DIR "/bunny.vtp");
@@ -596,7 +527,8 @@ void TestRaytraceMode()
   // The traced scene covers the same pixels as the rasterized one (shading
   // may differ; silhouettes agree up to edge pixels).
   const std::string rasterOut = Tmp + "/raster.png";
-  const Result raster = RunApp("--demo --size 160x120 --frames 0 --output '" + rasterOut + "'");
+  const Result raster =
+    RunApp("--demo --mode raster --size 160x120 --frames 0 --output '" + rasterOut + "'");
   Check(raster.Code == 0 && !Contains(raster.Output, "of which:"), "raster: no pass phases reported");
   vtkSmartPointer<vtkImageData> a = ReadPNG(out);
   vtkSmartPointer<vtkImageData> b = ReadPNG(rasterOut);
@@ -653,7 +585,7 @@ int main(int argc, char* argv[])
     return EXIT_FAILURE;
   }
   App = argv[1];
-  Tmp += std::string("/") + argv[2];
+  Tmp = std::string(VTKRT_TEMP_DIR) + "/TestVtkrtRender/" + argv[2];
   vtksys::SystemTools::MakeDirectory(Tmp);
   cases.at(argv[2])();
   Check(output->GetNumberOfErrors() == 0 && output->GetNumberOfWarnings() == 0,

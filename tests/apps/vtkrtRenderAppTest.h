@@ -1,0 +1,94 @@
+// What the vtkrt-render test drivers share: a check that counts failures,
+// running the app and reading its report and images.
+#ifndef vtkrtRenderAppTest_h
+#define vtkrtRenderAppTest_h
+
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPNGReader.h"
+#include "vtkSmartPointer.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <iostream>
+#include <regex>
+#include <string>
+
+namespace
+{
+int Failures = 0;
+std::string App;
+// One directory per driver and case: CTest runs the cases at once, and some
+// write files of the same name with different contents.
+std::string Tmp;
+
+void Check(bool ok, const std::string& what)
+{
+  std::cout << (ok ? "ok   " : "FAIL ") << what << "\n";
+  if (!ok)
+  {
+    ++Failures;
+  }
+}
+
+struct Result
+{
+  int Code = -1;
+  std::string Output; // stdout and stderr together
+};
+
+Result RunApp(const std::string& args, const std::string& environment = "")
+{
+  const std::string command = environment + " '" + App + "' " + args + " 2>&1";
+  std::cout << "$ " << environment << (environment.empty() ? "" : " ") << "vtkrt-render " << args
+            << "\n";
+  Result r;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe)
+  {
+    return r;
+  }
+  char buffer[4096];
+  size_t n;
+  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0)
+  {
+    r.Output.append(buffer, n);
+  }
+  const int status = pclose(pipe);
+  r.Code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::cout << r.Output << "[exit " << r.Code << "]\n";
+  return r;
+}
+
+bool Contains(const std::string& text, const std::string& pattern)
+{
+  return std::regex_search(text, std::regex(pattern));
+}
+
+// Reads `key: <integer>` from the report.
+long long ReportNumber(const std::string& text, const std::string& key)
+{
+  std::smatch m;
+  if (std::regex_search(text, m, std::regex(key + ":\\s+([0-9]+)")))
+  {
+    return std::stoll(m[1]);
+  }
+  return -1;
+}
+
+vtkSmartPointer<vtkImageData> ReadPNG(const std::string& path)
+{
+  if (!vtksys::SystemTools::FileExists(path, true))
+  {
+    return nullptr;
+  }
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  return reader->GetOutput();
+}
+} // namespace
+
+#endif
