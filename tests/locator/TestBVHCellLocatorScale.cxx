@@ -229,5 +229,24 @@ int TestRobustExtremeScales()
                      : sameCell >= hits * 98 / 100);
     LT_CHECK(!c.Exact || sameTol == hits);
   }
+
+  // A mesh at 1e-200 queried from 1e120 away: no double holds that in the
+  // mesh's frame (1e320 mesh sizes), so no answer, and one error a query.
+  const double zero[3] = { 0, 0, 0 };
+  auto tiny = Mapped(base, 1e-200, zero);
+  vtkNew<vtkBVHCellLocator> loc;
+  loc->SetDataSet(tiny);
+  loc->BuildLocator();
+  vtkNew<ErrorCatcher> catcher;
+  catcher->Watch(loc);
+  const double far1[3] = { -1e120, 0.0, 0.0 }, far2[3] = { 1e120, 0.0, 0.0 };
+  LT_CHECK(!Intersect(loc, far1, far2, 0.0).Hit);
+  LT_CHECK(Closest(loc, far2).CellId < 0);
+  LT_CHECK_MSG(catcher->Errors.size() == 2, catcher->Errors.size() << " errors (2)");
+  LT_CHECK(catcher->Errors.empty() || catcher->Errors[0].find("1e300") != std::string::npos);
+  // The same ray from 1e-190 away hits, silently.
+  const double near1[3] = { -1e-190, 0.0, 0.0 }, near2[3] = { 1e-190, 0.0, 0.0 };
+  LT_CHECK(Intersect(loc, near1, near2, 0.0).Hit);
+  LT_CHECK(catcher->Errors.size() == 2 && catcher->Warnings.empty());
   return 0;
 }
