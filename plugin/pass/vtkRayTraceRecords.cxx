@@ -72,7 +72,8 @@ ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* re
   int origin[2];
   ren->GetTiledSizeAndOrigin(size, size + 1, origin, origin + 1);
   const double pixels = static_cast<double>(std::max(1, size[1]));
-  // World radius per unit of view depth (perspective) or constant (parallel).
+  // Radius per unit of view depth (perspective) or constant (parallel), in
+  // shader units.
   const double perDepth =
     inst.PointSize * std::tan(vtkMath::RadiansFromDegrees(cam->GetViewAngle()) / 2.0) / pixels;
   const double constant = inst.PointSize * cam->GetParallelScale() * shaderScale / pixels;
