@@ -50,6 +50,26 @@ inline bool IsFinite3(const double p[3])
 {
   return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
 }
+
+/// Whether finite query points lie beyond what the local frame holds (over
+/// ~1e300 mesh sizes from the mesh): such a query cannot be answered. Asked
+/// only once a query found nothing.
+bool BeyondLocalFrame(const vtkrt::locator::BVHCellLocatorData& d, const double* p1,
+  const double* p2 = nullptr)
+{
+  for (const double* p : { p1, p2 })
+  {
+    if (p && IsFinite3(p) && !vtkrt::core::isFinite(d.ToLocal(p)))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+constexpr const char* kBeyondLocalFrame = "a query point lies over ~1e300 times the mesh's "
+                                          "size from it, beyond double's range in the mesh's "
+                                          "frame: no answer";
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -323,6 +343,10 @@ int vtkBVHCellLocator::IntersectWithLine(const double p1[3], const double p2[3],
   vtkrt::locator::LineHit hit;
   if (!this->Internals->Data.IntersectWithLine(p1, p2, std::abs(tol), this->DataSet, cell, hit))
   {
+    if (BeyondLocalFrame(this->Internals->Data, p1, p2))
+    {
+      vtkErrorMacro("IntersectWithLine: " << kBeyondLocalFrame);
+    }
     return 0;
   }
   t = hit.T;
@@ -378,6 +402,10 @@ int vtkBVHCellLocator::IntersectWithLine(const double p1[3], const double p2[3],
   this->Internals->Data.AllHits(p1, p2, std::abs(tol), this->DataSet, cell, hits);
   if (hits.empty())
   {
+    if (BeyondLocalFrame(this->Internals->Data, p1, p2))
+    {
+      vtkErrorMacro("IntersectWithLine: " << kBeyondLocalFrame);
+    }
     return 0;
   }
   for (const auto& h : hits)
@@ -409,6 +437,10 @@ void vtkBVHCellLocator::FindCellsAlongLine(
   }
   std::vector<vtkIdType> ids;
   this->Internals->Data.CellsAlongLine(p1, p2, std::abs(tolerance), ids);
+  if (ids.empty() && BeyondLocalFrame(this->Internals->Data, p1, p2))
+  {
+    vtkErrorMacro("FindCellsAlongLine: " << kBeyondLocalFrame);
+  }
   cells->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
   std::copy(ids.begin(), ids.end(), cells->GetPointer(0));
 }
@@ -447,6 +479,10 @@ vtkIdType vtkBVHCellLocator::FindClosestPointWithinRadius(double x[3], double ra
   vtkrt::locator::PointHit hit;
   if (!this->Internals->Data.FindClosestPoint(x, radius, this->DataSet, cell, hit))
   {
+    if (BeyondLocalFrame(this->Internals->Data, x))
+    {
+      vtkErrorMacro("FindClosestPoint: " << kBeyondLocalFrame);
+    }
     return 0;
   }
   cellId = hit.CellId;
@@ -509,8 +545,13 @@ vtkIdType vtkBVHCellLocator::FindCell(
   {
     pcoords = localPcoords;
   }
-  return this->Internals->Data.FindCell(
+  const vtkIdType found = this->Internals->Data.FindCell(
     x, std::max(tol2, 0.0), this->DataSet, qc.Get(), pcoords, weights);
+  if (found < 0 && BeyondLocalFrame(this->Internals->Data, x))
+  {
+    vtkErrorMacro("FindCell: " << kBeyondLocalFrame);
+  }
+  return found;
 }
 
 //------------------------------------------------------------------------------

@@ -203,7 +203,7 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
   Prepared& p)
 {
   const std::vector<Instance>& instances = this->Scene.GetInstances();
-  p.Camera.Set(ren, cam, pass.PrecisionMode == WORLD, vtkrt::pass::SceneScale(instances));
+  p.Camera.Set(ren, cam, pass.PrecisionMode == WORLD, vtkrt::pass::ViewScale(cam));
   vtkrt::pass::FrameRecords& frame = p.Frame;
   if (!vtkrt::pass::MakeFrameRecords(instances, this->Places, p.Camera, ren, frame))
   {
@@ -213,6 +213,18 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
   if (traced)
   {
     vtkrt::pass::KeepTracedProps(*traced, frame);
+  }
+  else if (frame.TooSmallProps != this->WarnedTooSmallProps)
+  {
+    // Once per change of what cannot be shaded, not every frame.
+    this->WarnedTooSmallProps = frame.TooSmallProps;
+    if (!frame.TooSmallProps.empty())
+    {
+      vtkWarningWithObjectMacro(&pass, "vtkRayTracePass: "
+          << frame.TooSmallProps.size() << " prop(s) (the first at prop index "
+          << frame.TooSmallProps.front() << ") are under 2^-60 of the view's depth: "
+          << "float cannot shade them, their pixels may be black or missing.");
+    }
   }
   if (frame.Records.empty())
   {

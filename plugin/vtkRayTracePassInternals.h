@@ -65,6 +65,7 @@ struct vtkRayTracePass::Internals
   bool ColorsValid = true;
   std::size_t CheckedLimit = 0; ///< the texel limit the buffers were checked against
   std::vector<vtkrt::core::gpu::InstanceRecord> LastRecords; ///< the records on the GPU
+  std::vector<int> WarnedTooSmallProps; ///< what the last scale warning named
   vtkrt::pass::SceneBuffers Buffers;
   vtkrt::pass::ScenePlacements Places;
   vtkrt::pass::TopLevel Top;

@@ -72,7 +72,8 @@ ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* re
   int origin[2];
   ren->GetTiledSizeAndOrigin(size, size + 1, origin, origin + 1);
   const double pixels = static_cast<double>(std::max(1, size[1]));
-  // World radius per unit of view depth (perspective) or constant (parallel).
+  // Radius per unit of view depth (perspective) or constant (parallel), in
+  // shader units.
   const double perDepth =
     inst.PointSize * std::tan(vtkMath::RadiansFromDegrees(cam->GetViewAngle()) / 2.0) / pixels;
   const double constant = inst.PointSize * cam->GetParallelScale() * shaderScale / pixels;
@@ -193,6 +194,23 @@ void shaderBox(const Instance& inst, vtkMatrix4x4* toShader, double grow, core::
   }
 }
 
+/// An instance's half-size in shader units, from its local box through the
+/// largest entry of its linear part.
+double shaderHalfSize(const Instance& inst, vtkMatrix4x4* toShader)
+{
+  const Geometry& g = *inst.Geom;
+  double stretch = 0.0, half = 0.0;
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      stretch = std::max(stretch, std::abs(toShader->GetElement(r, c)));
+    }
+    half = std::max(half, 0.5 * (g.LocalBounds[2 * r + 1] - g.LocalBounds[2 * r]));
+  }
+  return stretch * half;
+}
+
 std::uint32_t instanceFlags(const Instance& inst, bool mirrored)
 {
   using namespace core::gpu;
@@ -212,19 +230,19 @@ std::uint32_t instanceFlags(const Instance& inst, bool mirrored)
 }
 } // namespace
 
-double SceneScale(const std::vector<Instance>& instances)
+double ViewScale(vtkCamera* cam)
 {
-  core::AABB<double> all;
-  for (const Instance& inst : instances)
+  double range[2] = { 0.0, 0.0 };
+  cam->GetClippingRange(range);
+  if (!(range[1] > 0.0) || !std::isfinite(range[1]))
   {
-    const core::AABB<double> b = worldBox(inst);
-    if (!b.isEmpty() && b.isFinite())
-    {
-      all.extend(b.min);
-      all.extend(b.max);
-    }
+    return 1.0;
   }
-  return core::ScaledFrame::of(all).scale;
+  int exponent = 0;
+  std::frexp(range[1], &exponent); // far in [0.5, 1) * 2^exponent
+  // The multiple of 16 that puts far * scale in [2^-8, 2^8).
+  const int power = 16 * static_cast<int>(std::ceil((-7 - exponent) / 16.0));
+  return std::ldexp(1.0, std::max(-1008, std::min(1008, power)));
 }
 
 double FrameRecords::DefaultOcclusionRadius() const
@@ -244,6 +262,7 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
 {
   out.Records.assign(instances.size(), core::gpu::InstanceRecord{});
   out.ClipPlanes.clear();
+  out.TooSmallProps.clear();
   out.WorldBoxes.resize(instances.size());
   double eyeInShader[3];
   camera.ToShader(camera.Eye, eyeInShader);
@@ -260,6 +279,13 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     localToShader(inst, camera, toShader);
     vtkNew<vtkMatrix4x4> shaderToLocal;
     vtkMatrix4x4::Invert(toShader, shaderToLocal);
+    const double size = shaderHalfSize(inst, toShader);
+    if (size > 0.0 && size < kSmallestShadedSize &&
+      std::find(out.TooSmallProps.begin(), out.TooSmallProps.end(), inst.PropIndex) ==
+        out.TooSmallProps.end())
+    {
+      out.TooSmallProps.push_back(inst.PropIndex);
+    }
     // Points drawn as spheres: radii from this frame's camera.
     const ScreenSphereRadii screen =
       ComputeScreenSphereRadii(inst, ren, toShader->GetData(), eyeInShader, camera.Scale);

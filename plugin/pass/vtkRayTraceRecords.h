@@ -18,6 +18,7 @@
 class vtkMatrix4x4;
 class vtkOpenGLCamera;
 class vtkOpenGLRenderer;
+class vtkCamera;
 class vtkRenderer;
 
 namespace vtkrt
@@ -33,9 +34,9 @@ struct CameraFrame
   /// The shader's origin: the eye (camera-relative) or the world origin
   /// (WORLD precision mode: plain float world values).
   double Origin[3] = { 0, 0, 0 };
-  /// Shader units per world unit: a power of two bringing the scene's size
-  /// near 1 (SceneScale), so float products of shader coordinates (lengths,
-  /// normals, lighting) neither overflow nor underflow.
+  /// Shader units per world unit (ViewScale): a power of two that keeps
+  /// what is drawn near 1, so float products of shader coordinates
+  /// (lengths, normals, lighting) neither overflow nor underflow.
   double Scale = 1.0;
   double Eye[3] = { 0, 0, 0 }; ///< in world coordinates
   double DirectionOfProjection[3] = { 0, 0, 1 };
@@ -54,9 +55,13 @@ struct CameraFrame
   }
 };
 
-/// The shader scale for these instances (CameraFrame::Scale): the power of
-/// two that brings the half-size of their world boxes' union near 1.
-double SceneScale(const std::vector<Instance>& instances);
+/// The shader scale for this camera (CameraFrame::Scale): the power of
+/// 2^16 that brings the far clipping distance into [2^-8, 2^8). Whatever
+/// is drawn lies within it, so float holds its shader coordinates and their
+/// squares; views of common sizes keep scale 1 (no constant of the shader
+/// moves) and only a zoom by orders of magnitude changes it (which
+/// rebuilds the top level, made in shader units).
+double ViewScale(vtkCamera* cam);
 
 /// Radii of screen-sized spheres (points drawn as spheres) for one frame.
 /// VTK draws such a point PointSize pixels wide whatever its distance, so
@@ -79,6 +84,11 @@ struct ScreenSphereRadii
 ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* ren,
   const double localToShader[16], const double eyeInShader[3], double shaderScale);
 
+/// The smallest instance size in shader units float can shade: 2^-60 (a
+/// normal's squared length in shader units grows as the inverse square of
+/// it times the mesh's resolution, and float ends at 2^128).
+constexpr double kSmallestShadedSize = 0x1p-60;
+
 /// The records of one frame, in instance order.
 struct FrameRecords
 {
@@ -87,6 +97,10 @@ struct FrameRecords
   /// World boxes of the instances (camera independent; grown by the largest
   /// screen-sphere radius rounded up to a power of two).
   std::vector<core::AABB<double>> WorldBoxes;
+  /// Prop indices of instances too small in the view for float to shade
+  /// (below kSmallestShadedSize: their normals' squared lengths leave
+  /// float's range), each once.
+  std::vector<int> TooSmallProps;
 
   /// A tenth of the diagonal of the world boxes' union.
   double DefaultOcclusionRadius() const;

@@ -95,139 +95,196 @@ std::vector<Segment> TestSegments(vtkPolyData* pd, Random& rng)
   segs.insert(segs.end(), random.begin(), random.end());
   return segs;
 }
+
+constexpr double kTolerance = 0.02;
+
+/// The queries and the answers at scale 1: the locator's, checked against
+/// VTK's own cells.
+struct Reference
+{
+  vtkSmartPointer<vtkPolyData> Mesh;
+  vtkNew<vtkBVHCellLocator> Locator;
+  std::vector<Segment> Segments;
+  std::vector<std::array<double, 3>> Queries;
+  std::vector<LineAnswer> Hits, TolHits;
+  std::vector<PointAnswer> ClosestAnswers;
+  int NumberOfHits = 0;
+
+  explicit Reference(vtkPolyData* mesh)
+    : Mesh(mesh)
+  {
+    Random rng(24);
+    this->Segments = TestSegments(mesh, rng);
+    for (int i = 0; i < 100; ++i)
+    {
+      this->Queries.push_back({ { rng.Next(-2, 2), rng.Next(-2, 2), rng.Next(-2, 2) } });
+    }
+    this->Locator->SetDataSet(mesh);
+    this->Locator->BuildLocator();
+    for (const auto& s : this->Segments)
+    {
+      this->Hits.push_back(Intersect(this->Locator, s.P1, s.P2, 0.0));
+      this->TolHits.push_back(Intersect(this->Locator, s.P1, s.P2, kTolerance));
+      const RefHit brute = BruteForceHit(mesh, s.P1, s.P2, 0.0);
+      LT_CHECK(this->Hits.back().Hit == brute.Hit);
+      LT_CHECK(!brute.Hit || std::abs(this->Hits.back().T - brute.T) < 1e-12);
+      this->NumberOfHits += this->Hits.back().Hit;
+    }
+    LT_CHECK(this->NumberOfHits > 150);
+    for (const auto& q : this->Queries)
+    {
+      this->ClosestAnswers.push_back(Closest(this->Locator, q.data()));
+      vtkIdType bruteCell;
+      const double d2 = BruteForceClosest(mesh, q.data(), bruteCell);
+      LT_CHECK(std::abs(this->ClosestAnswers.back().Dist2 - d2) <= 1e-12 * (1.0 + d2));
+    }
+  }
+};
+
+struct Case
+{
+  double Scale;
+  double Offset[3];
+  bool Exact; ///< a power of two, no offset: every answer is the reference's, scaled
+  const char* Name;
+};
+
+/// Largest coordinate difference of x from the reference's point mapped by
+/// the case, in units of the case's scale.
+double PointError(const double x[3], const double ref[3], const Case& c)
+{
+  double rx[3];
+  Map(ref, c.Scale, c.Offset, rx);
+  return std::max({ std::abs(x[0] - rx[0]), std::abs(x[1] - rx[1]), std::abs(x[2] - rx[2]) }) /
+    c.Scale;
+}
+
+/// The mapped segments against the reference: same hits (and, exactly,
+/// same cells along them and same hits with a tolerance).
+void CheckSegments(const Case& c, vtkBVHCellLocator* loc, const Reference& ref)
+{
+  int sameHit = 0, sameCell = 0, sameTol = 0;
+  for (size_t i = 0; i < ref.Segments.size(); ++i)
+  {
+    double p1[3], p2[3];
+    Map(ref.Segments[i].P1, c.Scale, c.Offset, p1);
+    Map(ref.Segments[i].P2, c.Scale, c.Offset, p2);
+    if (c.Exact)
+    {
+      vtkNew<vtkIdList> cells, refCells;
+      loc->FindCellsAlongLine(p1, p2, kTolerance * c.Scale, cells);
+      ref.Locator->FindCellsAlongLine(ref.Segments[i].P1, ref.Segments[i].P2, kTolerance, refCells);
+      LT_CHECK_MSG(ToVector(cells) == ToVector(refCells), c.Name << " cells along segment " << i);
+    }
+    const LineAnswer a = Intersect(loc, p1, p2, 0.0);
+    const LineAnswer& r = ref.Hits[i];
+    sameHit += a.Hit == r.Hit ? 1 : 0;
+    if (!(a.Hit && r.Hit))
+    {
+      continue;
+    }
+    sameCell += a.CellId == r.CellId ? 1 : 0;
+    const double xErr = PointError(a.X, r.X, c);
+    if (c.Exact)
+    {
+      LT_CHECK_MSG(a.CellId == r.CellId && a.T == r.T && xErr == 0.0,
+        c.Name << " segment " << i << ": t " << a.T << " vs " << r.T);
+      const LineAnswer at = Intersect(loc, p1, p2, kTolerance * c.Scale);
+      const LineAnswer& rt = ref.TolHits[i];
+      sameTol += at.Hit == rt.Hit && at.CellId == rt.CellId && at.T == rt.T ? 1 : 0;
+    }
+    else
+    {
+      LT_CHECK_MSG(std::abs(a.T - r.T) < 1e-9 && xErr < 1e-9,
+        c.Name << " segment " << i << ": t " << a.T << " vs " << r.T << ", x off by " << xErr);
+    }
+  }
+  std::cout << c.Name << ": " << sameHit << "/" << ref.Segments.size()
+            << " segments hit or miss alike, " << sameCell << "/" << ref.NumberOfHits
+            << " hits on the same cell" << std::endl;
+  LT_CHECK(sameHit == static_cast<int>(ref.Segments.size()));
+  // Rounding the mapped points and ends may move a random ray across a
+  // shared edge (never at a power of two).
+  LT_CHECK(c.Exact ? sameCell == ref.NumberOfHits : sameCell >= ref.NumberOfHits * 98 / 100);
+  LT_CHECK(!c.Exact || sameTol == ref.NumberOfHits);
+}
+
+/// The mapped closest-point queries against the reference.
+void CheckClosestPoints(const Case& c, vtkBVHCellLocator* loc, const Reference& ref)
+{
+  int sameClosest = 0;
+  for (size_t i = 0; i < ref.Queries.size(); ++i)
+  {
+    double q[3];
+    Map(ref.Queries[i].data(), c.Scale, c.Offset, q);
+    const PointAnswer a = Closest(loc, q);
+    const PointAnswer& r = ref.ClosestAnswers[i];
+    const double xErr = PointError(a.X, r.X, c);
+    sameClosest += a.CellId == r.CellId ? 1 : 0;
+    LT_CHECK_MSG(xErr < (c.Exact ? 0.0 : 1e-9) || xErr == 0.0,
+      c.Name << " closest point " << i << " off by " << xErr);
+    // The squared distance is a double too: inf above its range, 0 or
+    // subnormal below.
+    const double d2 = r.Dist2 * c.Scale * c.Scale;
+    if (std::isnormal(d2))
+    {
+      LT_CHECK_MSG(std::abs(a.Dist2 - d2) <= (c.Exact ? 0.0 : 1e-9) * d2,
+        c.Name << " dist2 " << a.Dist2 << " vs " << d2);
+    }
+    else
+    {
+      LT_CHECK_MSG(std::isinf(d2) ? std::isinf(a.Dist2) : a.Dist2 < 1e-300,
+        c.Name << " dist2 " << a.Dist2 << " vs " << d2);
+    }
+  }
+  std::cout << c.Name << ": " << sameClosest << "/" << ref.Queries.size()
+            << " closest points on the same cell" << std::endl;
+  LT_CHECK(!c.Exact || sameClosest == static_cast<int>(ref.Queries.size()));
+}
+
+/// A mesh at 1e-200 queried from 1e120 away: no double holds that in the
+/// mesh's frame (1e320 mesh sizes), so no answer, and one error a query.
+void CheckBeyondLocalFrame(vtkPolyData* base)
+{
+  const double zero[3] = { 0, 0, 0 };
+  auto tiny = Mapped(base, 1e-200, zero);
+  vtkNew<vtkBVHCellLocator> loc;
+  loc->SetDataSet(tiny);
+  loc->BuildLocator();
+  vtkNew<ErrorCatcher> catcher;
+  catcher->Watch(loc);
+  const double far1[3] = { -1e120, 0.0, 0.0 }, far2[3] = { 1e120, 0.0, 0.0 };
+  LT_CHECK(!Intersect(loc, far1, far2, 0.0).Hit);
+  LT_CHECK(Closest(loc, far2).CellId < 0);
+  LT_CHECK_MSG(catcher->Errors.size() == 2, catcher->Errors.size() << " errors (2)");
+  LT_CHECK(catcher->Errors.empty() || catcher->Errors[0].find("1e300") != std::string::npos);
+  // The same ray from 1e-190 away hits, silently.
+  const double near1[3] = { -1e-190, 0.0, 0.0 }, near2[3] = { 1e-190, 0.0, 0.0 };
+  LT_CHECK(Intersect(loc, near1, near2, 0.0).Hit);
+  LT_CHECK(catcher->Errors.size() == 2 && catcher->Warnings.empty());
+}
 } // namespace
 
 int TestRobustExtremeScales()
 {
   auto base = MakeBumpySphere(20);
-  Random rng(24);
-  const std::vector<Segment> segs = TestSegments(base, rng);
-  std::vector<std::array<double, 3>> queries;
-  for (int i = 0; i < 100; ++i)
-  {
-    queries.push_back({ { rng.Next(-2, 2), rng.Next(-2, 2), rng.Next(-2, 2) } });
-  }
-  const double tol = 0.02;
-
-  // The answers at scale 1: the locator's, checked against VTK's own cells.
-  vtkNew<vtkBVHCellLocator> ref;
-  ref->SetDataSet(base);
-  ref->BuildLocator();
-  std::vector<LineAnswer> refHits, refTolHits;
-  int hits = 0;
-  for (const auto& s : segs)
-  {
-    refHits.push_back(Intersect(ref, s.P1, s.P2, 0.0));
-    refTolHits.push_back(Intersect(ref, s.P1, s.P2, tol));
-    const RefHit brute = BruteForceHit(base, s.P1, s.P2, 0.0);
-    LT_CHECK(refHits.back().Hit == brute.Hit);
-    LT_CHECK(!brute.Hit || std::abs(refHits.back().T - brute.T) < 1e-12);
-    hits += refHits.back().Hit;
-  }
-  LT_CHECK(hits > 150);
-  std::vector<PointAnswer> refClosest;
-  for (const auto& q : queries)
-  {
-    refClosest.push_back(Closest(ref, q.data()));
-    vtkIdType bruteCell;
-    const double d2 = BruteForceClosest(base, q.data(), bruteCell);
-    LT_CHECK(std::abs(refClosest.back().Dist2 - d2) <= 1e-12 * (1.0 + d2));
-  }
-
-  struct Case
-  {
-    double Scale;
-    double Offset[3];
-    bool Exact; ///< a power of two, no offset: every answer is the reference's, scaled
-    const char* Name;
-  } cases[] = { { std::ldexp(1.0, 665), { 0, 0, 0 }, true, "2^665 (1e200)" },
+  const Reference ref(base);
+  const Case cases[] = { { std::ldexp(1.0, 665), { 0, 0, 0 }, true, "2^665 (1e200)" },
     { std::ldexp(1.0, -665), { 0, 0, 0 }, true, "2^-665 (1e-200)" },
     { std::ldexp(1.0, 1021), { 0, 0, 0 }, true, "2^1021 (2e307)" },
     { std::ldexp(1.0, -960), { 0, 0, 0 }, true, "2^-960 (1e-289)" },
     { 1e200, { 0, 0, 0 }, false, "1e200" }, { 1e-200, { 0, 0, 0 }, false, "1e-200" },
     { 1e196, { 3e200, -2e200, 1e200 }, false, "1e196 at 1e200" },
     { 1e-204, { -1e-200, 2e-200, 0.0 }, false, "1e-204 at 1e-200" } };
-  for (const auto& c : cases)
+  for (const Case& c : cases)
   {
     auto pd = Mapped(base, c.Scale, c.Offset);
     vtkNew<vtkBVHCellLocator> loc;
     loc->SetDataSet(pd);
     loc->BuildLocator();
-    int sameHit = 0, sameCell = 0, sameTol = 0;
-    for (size_t i = 0; i < segs.size(); ++i)
-    {
-      double p1[3], p2[3];
-      Map(segs[i].P1, c.Scale, c.Offset, p1);
-      Map(segs[i].P2, c.Scale, c.Offset, p2);
-      if (c.Exact)
-      {
-        vtkNew<vtkIdList> cells, refCells;
-        loc->FindCellsAlongLine(p1, p2, tol * c.Scale, cells);
-        ref->FindCellsAlongLine(segs[i].P1, segs[i].P2, tol, refCells);
-        LT_CHECK_MSG(ToVector(cells) == ToVector(refCells), c.Name << " cells along segment " << i);
-      }
-      const LineAnswer a = Intersect(loc, p1, p2, 0.0);
-      const LineAnswer& r = refHits[i];
-      sameHit += a.Hit == r.Hit ? 1 : 0;
-      if (!(a.Hit && r.Hit))
-      {
-        continue;
-      }
-      sameCell += a.CellId == r.CellId ? 1 : 0;
-      double rx[3];
-      Map(r.X, c.Scale, c.Offset, rx);
-      const double xErr = std::max({ std::abs(a.X[0] - rx[0]), std::abs(a.X[1] - rx[1]),
-                            std::abs(a.X[2] - rx[2]) }) / c.Scale;
-      if (c.Exact)
-      {
-        LT_CHECK_MSG(a.CellId == r.CellId && a.T == r.T && xErr == 0.0,
-          c.Name << " segment " << i << ": t " << a.T << " vs " << r.T);
-        const LineAnswer at = Intersect(loc, p1, p2, tol * c.Scale);
-        sameTol += at.Hit == refTolHits[i].Hit && at.CellId == refTolHits[i].CellId &&
-            at.T == refTolHits[i].T ? 1 : 0;
-      }
-      else
-      {
-        LT_CHECK_MSG(std::abs(a.T - r.T) < 1e-9 && xErr < 1e-9,
-          c.Name << " segment " << i << ": t " << a.T << " vs " << r.T << ", x off by " << xErr);
-      }
-    }
-    int sameClosest = 0;
-    for (size_t i = 0; i < queries.size(); ++i)
-    {
-      double q[3], rx[3];
-      Map(queries[i].data(), c.Scale, c.Offset, q);
-      const PointAnswer a = Closest(loc, q);
-      const PointAnswer& r = refClosest[i];
-      Map(r.X, c.Scale, c.Offset, rx);
-      const double xErr = std::max({ std::abs(a.X[0] - rx[0]), std::abs(a.X[1] - rx[1]),
-                            std::abs(a.X[2] - rx[2]) }) / c.Scale;
-      sameClosest += a.CellId == r.CellId ? 1 : 0;
-      LT_CHECK_MSG(xErr < (c.Exact ? 0.0 : 1e-9) || xErr == 0.0,
-        c.Name << " closest point " << i << " off by " << xErr);
-      // The squared distance is a double too: inf above its range, 0 or
-      // subnormal below.
-      const double d2 = r.Dist2 * c.Scale * c.Scale;
-      if (std::isnormal(d2))
-      {
-        LT_CHECK_MSG(std::abs(a.Dist2 - d2) <= (c.Exact ? 0.0 : 1e-9) * d2,
-          c.Name << " dist2 " << a.Dist2 << " vs " << d2);
-      }
-      else
-      {
-        LT_CHECK_MSG(std::isinf(d2) ? std::isinf(a.Dist2) : a.Dist2 < 1e-300,
-          c.Name << " dist2 " << a.Dist2 << " vs " << d2);
-      }
-    }
-    std::cout << c.Name << ": " << sameHit << "/" << segs.size() << " segments hit or miss alike, "
-              << sameCell << "/" << hits << " hits on the same cell, " << sameClosest << "/"
-              << queries.size() << " closest points on the same cell" << std::endl;
-    LT_CHECK(sameHit == static_cast<int>(segs.size()));
-    // Rounding the mapped points and ends may move a random ray across a
-    // shared edge (never at a power of two).
-    LT_CHECK(c.Exact ? sameCell == hits && sameClosest == static_cast<int>(queries.size())
-                     : sameCell >= hits * 98 / 100);
-    LT_CHECK(!c.Exact || sameTol == hits);
+    CheckSegments(c, loc, ref);
+    CheckClosestPoints(c, loc, ref);
   }
+  CheckBeyondLocalFrame(base);
   return 0;
 }

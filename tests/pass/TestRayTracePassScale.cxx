@@ -5,6 +5,8 @@
 //   GlyphScales  sphere glyphs with scale factors 1e12 and 1e19 (their
 //                centers scaled alike, or one sphere far larger than its
 //                center's coordinates): traced like raster
+//   ZoomedDetail a mesh 1e-20 the size of the one around it, seen closely
+//   TooSmallWarning  a mesh under 2^-60 of the view: one warning
 // TestRayTracePassScale <Case>.
 #include "vtkrtPassTestUtils.h"
 #include "vtkrtTestOutputWindow.h"
@@ -213,6 +215,54 @@ void TestGlyphScales()
   }
   NoVTKOutput("glyph scales");
 }
+/// A mesh 1e-20 the size of the one around it, the camera on the small
+/// one: traced like raster, no warning.
+void TestZoomedDetail()
+{
+  auto bunny = ReadPolyData("bunny.vtp");
+  const double zero[3] = { 0, 0, 0 };
+  auto win = MakeWindow(kSize, kSize);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  ren->SetBackground(0.1, 0.2, 0.3);
+  vtkSmartPointer<vtkActor> small = MeshActor(Mapped(bunny, 1e-12, zero));
+  ren->AddActor(small);
+  ren->AddActor(MeshActor(Mapped(bunny, 1e8, zero)));
+  ren->ResetCamera(small->GetBounds());
+  ren->ResetCameraClippingRange(small->GetBounds());
+  const RasterAndTraced frames = RenderRasterThenTraced(win, ren);
+  Matches(frames.Traced, frames.Raster, "a mesh 1e-20 of the scene, zoomed in: traced vs raster",
+    "zoomed");
+  NoVTKOutput("zoomed in");
+}
+
+/// A mesh under 2^-60 of the view: one warning (not one a frame) says
+/// float cannot shade it; without it the scene warns nothing.
+void TestTooSmallWarning()
+{
+  auto bunny = ReadPolyData("bunny.vtp");
+  const double zero[3] = { 0, 0, 0 };
+  auto win = MakeWindow(kSize, kSize);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  ren->AddActor(MeshActor(bunny));
+  vtkSmartPointer<vtkActor> tiny = MeshActor(Mapped(bunny, 1e-20, zero));
+  ren->AddActor(tiny);
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+  ren->ResetCamera();
+  win->Render();
+  win->Render();
+  std::ostringstream s;
+  s << "a mesh 1e-20 of the view: " << Output->GetNumberOfWarnings()
+    << " warning(s) over two frames (1), no error";
+  Check(Output->GetNumberOfWarnings() == 1 && Output->GetNumberOfErrors() == 0, s.str());
+  Output->Clear();
+  ren->RemoveActor(tiny);
+  win->Render();
+  NoVTKOutput("without the tiny mesh");
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
@@ -221,6 +271,8 @@ int main(int argc, char* argv[])
   const std::map<std::string, std::function<void()>> cases = {
     { "MeshScales", TestMeshScales },
     { "GlyphScales", TestGlyphScales },
+    { "ZoomedDetail", TestZoomedDetail },
+    { "TooSmallWarning", TestTooSmallWarning },
   };
   return RunCase(argc, argv, cases);
 }
