@@ -178,6 +178,7 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   f.Textures = this->Scene.HasTextures();
   f.FaceCulling = this->Scene.HasFaceCulling();
   f.BackfaceProperties = this->Scene.HasBackfaceProperties();
+  f.TextureCutOuts = this->Scene.HasTextureCutOuts();
   GLint major = 0;
   glGetIntegerv(GL_MAJOR_VERSION, &major);
   f.Fp64 = major >= 4;

@@ -40,6 +40,12 @@ uniform usamplerBuffer uNormals; // a Normal per point, or per VTK cell
 #ifdef VTKRT_HAS_TRIANGLE_VERTICES
 uniform usamplerBuffer uTriangleVertices; // TriangleVertices per triangle
 #endif
+#ifdef VTKRT_TEXTURE_CUTOUTS
+uvec3 triangleVertexIds(int tri)
+{
+  return fetchTriangleVertices(uTriangleVertices, tri).ids;
+}
+#endif
 #ifdef VTKRT_HAS_SPHERES
 uniform usamplerBuffer uSphereIds; // VTK point id per sphere, four per texel
 #endif
@@ -276,7 +282,7 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
   {
     return;
   }
-#ifdef VTKRT_FACE_CULLING
+#ifdef VTKRT_SKIPS_FACES
   float tEnd = t1;
 #endif
   vec4 r0 = instanceCameraToLocal(instance, 0);
@@ -307,12 +313,18 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
 #else
   bool hit = false;
 #endif
-#ifdef VTKRT_FACE_CULLING
-  // Camera rays only: shadow and occlusion rays meet a culled face too.
-  if (hit && !stopAtFirstHit && (flags & kInstanceSpheres) == 0u &&
-    (flags & (kInstanceCullBackfaces | kInstanceCullFrontfaces)) != 0u)
+#ifdef VTKRT_SKIPS_FACES
+  if (hit && (flags & kInstanceSpheres) == 0u &&
+    faceSkipped(instance, primitive, uv, localDir, flags, !stopAtFirstHit))
   {
-    hit = walkPastCulledFaces(root, localOrg, localDir, tEnd, t1, primitive, uv, flags);
+    if (stopAtFirstHit)
+    {
+      // Any hit is not the nearest: walk on from the nearest one.
+      t1 = tEnd;
+      hit = traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv, false);
+    }
+    hit = hit &&
+      walkPastSkippedFaces(instance, root, localOrg, localDir, tEnd, t1, primitive, uv, flags, !stopAtFirstHit);
   }
 #endif
   if (hit)

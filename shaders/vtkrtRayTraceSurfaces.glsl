@@ -1,7 +1,15 @@
 // Triangle surfaces beyond their material, included only in shaders of
 // scenes that use them: actor textures (a vtkTexture sampled as OpenGL
-// samples vtkOpenGLTexture's) and face culling (vtkProperty's
-// BackfaceCulling / FrontfaceCulling). Needs vtkrtRayTraceTriangles.
+// samples vtkOpenGLTexture's), the faces raster does not draw (vtkProperty's
+// BackfaceCulling / FrontfaceCulling, fully transparent texels). Needs
+// vtkrtRayTraceTriangles.
+
+#if defined(VTKRT_FACE_CULLING) || defined(VTKRT_TEXTURE_CUTOUTS)
+#define VTKRT_SKIPS_FACES
+#endif
+#ifdef VTKRT_TEXTURE_CUTOUTS
+uvec3 triangleVertexIds(int tri); // vtkrtRayTraceMain
+#endif
 
 #ifdef VTKRT_HAS_TEXTURES
 // Packed by vtkRayTraceTextures: per texture a header (width, height, mode
@@ -97,27 +105,49 @@ vec4 instanceTextureColor(int instance, uvec3 ids, vec2 uv)
 }
 #endif
 
-#ifdef VTKRT_FACE_CULLING
-// Whether the instance culls the side of triangle `tri` a ray along dir
-// (local) meets. Raster culls by winding in the window, which is the side
-// of the triangle's winding normal the eye is on (flipped by a mirroring
-// matrix); back-face culling wins when both are on, as in vtkOpenGLProperty.
-bool faceCulled(int tri, vec3 dir, uint flags)
+#ifdef VTKRT_SKIPS_FACES
+const uint kInstanceSkipsFaces = kInstanceCullBackfaces | kInstanceCullFrontfaces |
+  kInstanceTextureCutOuts;
+
+// Whether raster leaves out the hit (tri, uv) of the instance by a ray along
+// dir (local): a side it culls (camera rays only: shadow and occlusion rays
+// meet a culled face), or a fully transparent texel, which raster discards.
+// Raster culls by winding in the window, which is the side of the
+// triangle's winding normal the eye is on (flipped by a mirroring matrix);
+// back-face culling wins when both are on, as in vtkOpenGLProperty.
+bool faceSkipped(int instance, int tri, vec2 uv, vec3 dir, uint flags, bool cameraRay)
 {
+  if ((flags & kInstanceSkipsFaces) == 0u)
+  {
+    return false;
+  }
   Triangle t = fetchTriangle(uTriangles, tri);
   float facing = dot(cross(t.v1 - t.v0, t.v2 - t.v0), dir);
   bool front = (flags & kInstanceMirrored) != 0u ? facing > 0.0 : facing < 0.0;
-  return (flags & kInstanceCullBackfaces) != 0u ? !front : front;
+#ifdef VTKRT_FACE_CULLING
+  if (cameraRay && (flags & (kInstanceCullBackfaces | kInstanceCullFrontfaces)) != 0u &&
+    ((flags & kInstanceCullBackfaces) != 0u ? !front : front))
+  {
+    return true;
+  }
+#endif
+#ifdef VTKRT_TEXTURE_CUTOUTS
+  if ((flags & kInstanceTextureCutOuts) != 0u && (front || (flags & kInstanceTextureOnBackface) != 0u))
+  {
+    return instanceTextureColor(instance, triangleVertexIds(tri), uv).a <= 0.0;
+  }
+#endif
+  return false;
 }
 
-// After a closest hit at t of a triangle (tri, uv) of the BVH at root: the
-// first hit up to tEnd that the instance does not cull, as raster shows
-// what lies behind a culled face.
-bool walkPastCulledFaces(int root, vec3 org, vec3 dir, float tEnd, inout float t, inout int tri,
-  inout vec2 uv, uint flags)
+// After a closest hit at t of a triangle (tri, uv) of the instance's BVH at
+// root: the first hit up to tEnd that raster draws, as it shows what lies
+// behind a culled face or a cut-out texel.
+bool walkPastSkippedFaces(int instance, int root, vec3 org, vec3 dir, float tEnd, inout float t,
+  inout int tri, inout vec2 uv, uint flags, bool cameraRay)
 {
   bool hit = true;
-  while (hit && faceCulled(tri, dir, flags))
+  while (hit && faceSkipped(instance, tri, uv, dir, flags, cameraRay))
   {
     float tmin = uintBitsToFloat(floatBitsToUint(t) + 1u);
     t = tEnd;

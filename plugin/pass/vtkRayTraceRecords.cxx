@@ -1,6 +1,7 @@
 #include "vtkRayTraceRecords.h"
 
 #include "vtkRayTracePacker.h"
+#include "vtkRayTraceTextures.h"
 
 #include "vtkCamera.h"
 #include "vtkMath.h"
@@ -193,6 +194,7 @@ std::uint32_t instanceFlags(const Instance& inst, bool mirrored)
   flags |= mirrored ? kInstanceMirrored : 0u;
   flags |= inst.Texture ? kInstanceTextured : 0u;
   flags |= inst.Texture && inst.TextureOnBackface ? kInstanceTextureOnBackface : 0u;
+  flags |= inst.Texture && inst.Texture->CutOuts ? kInstanceTextureCutOuts : 0u;
   flags |= inst.BackfaceProperty ? kInstanceBackfaceProperty : 0u;
   flags |= inst.CullBackfaces ? kInstanceCullBackfaces : 0u;
   flags |= inst.CullFrontfaces ? kInstanceCullFrontfaces : 0u;

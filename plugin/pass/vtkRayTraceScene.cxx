@@ -437,6 +437,12 @@ bool Scene::HasBackfaceProperties() const
     [](const Instance& i) { return !i.Geom->Spheres && i.BackfaceProperty; });
 }
 
+bool Scene::HasTextureCutOuts() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.Texture && i.Texture->CutOuts; });
+}
+
 core::BuildOptions Scene::Options() const
 {
   core::BuildOptions options;

@@ -90,6 +90,7 @@ public:
   bool HasTextures() const;
   bool HasFaceCulling() const;
   bool HasBackfaceProperties() const;
+  bool HasTextureCutOuts() const;
 
   /// The actors' texture images and texture coordinates.
   const TextureCache& GetTextures() const { return this->Textures; }

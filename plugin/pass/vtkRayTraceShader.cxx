@@ -33,7 +33,8 @@ std::string Features::Key() const
     << this->AmbientOcclusionSamples << "M" << this->MaximumTraversalSteps << "W"
     << this->WorldCoordinates << "Q" << this->ScreenSpheres << "E" << this->Ellipsoids << "X"
     << this->ColorTexture << "K" << this->SelectIds << "F" << this->CellNormals << "U"
-    << this->Textures << "B" << this->FaceCulling << "Y" << this->BackfaceProperties;
+    << this->Textures << "B" << this->FaceCulling << "Y" << this->BackfaceProperties << "Z"
+    << this->TextureCutOuts;
   return s.str();
 }
 
@@ -57,6 +58,7 @@ std::string AssembleShader(const Features& f)
   define(f.Triangles && (f.VertexNormals || f.Colors || f.Textures), "VTKRT_HAS_TRIANGLE_VERTICES");
   define(f.Triangles && f.Textures, "VTKRT_HAS_TEXTURES");
   define(f.Triangles && f.FaceCulling, "VTKRT_FACE_CULLING");
+  define(f.Triangles && f.Textures && f.TextureCutOuts, "VTKRT_TEXTURE_CUTOUTS");
   define(f.Triangles && f.BackfaceProperties, "VTKRT_BACKFACE_PROPERTIES");
   define(f.IdMode, "VTKRT_ID_MODE");
   define(f.SelectIds, "VTKRT_SELECT_IDS");

@@ -195,11 +195,7 @@ const TextureEntry* TextureCache::GetImage(vtkTexture* texture)
   for (std::size_t i = 0; i < texels; ++i)
   {
     const std::uint32_t texel = packTexel(colors + i * stride, comps);
-    if ((texel >> 24) == 0u)
-    {
-      // Raster discards fully transparent fragments: cut-outs stay with it.
-        return nullptr;
-    }
+    entry->CutOuts = entry->CutOuts || (texel >> 24) == 0u;
     entry->Packed.push_back(texel);
   }
   entry->SourceTime = imageTime(texture); // mapping may have set its table's range

@@ -33,6 +33,7 @@ struct TextureEntry
   /// Image: width, height, mode (TextureModeBits), border RGBA8, then the
   /// RGBA8 texels row by row. Coordinates: (s, t) float bits per point.
   std::vector<std::uint32_t> Packed;
+  bool CutOuts = false; ///< image: some texels fully transparent (raster discards them)
   bool Used = false;
   vtkSmartPointer<vtkObject> Keep;
 };
@@ -69,7 +70,7 @@ public:
 
   /// The texture's image, made when it changed; null when the shader
   /// cannot sample it as raster does (no scalars, 3D, 16-bit or float
-  /// colors, fully transparent texels that raster discards).
+  /// colors).
   const TextureEntry* GetImage(vtkTexture* texture);
   /// The polydata's 1- or 2-component texture coordinates; null when it
   /// has none (raster then draws it untextured).

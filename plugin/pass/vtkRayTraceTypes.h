@@ -146,6 +146,7 @@ struct Features
   bool Textures = false;         ///< some triangles carry an actor texture
   bool FaceCulling = false;      ///< some triangles are culled on one side
   bool BackfaceProperties = false; ///< some triangles have a back-face material
+  bool TextureCutOuts = false;   ///< some textures have fully transparent texels
 
   std::string Key() const;
 };

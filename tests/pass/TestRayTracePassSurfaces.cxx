@@ -4,8 +4,8 @@
 //                     repeat, clamp to edge, mirrored repeat and clamp to
 //                     border, interpolate on and off, texture x property
 //                     color and x scalar colors
-//   TextureRGBA       an opaque RGBA texture; one with cut-out texels is left
-//                     to raster
+//   TextureRGBA       an opaque RGBA texture, and one with cut-out texels
+//                     (raster discards them: rays pass through)
 //   TextureBadInput   a texture without texture coordinates (drawn
 //                     untextured, as raster), with 3-component coordinates,
 //                     or without an image: no crash, as raster
@@ -13,7 +13,8 @@
 //                     once; a camera move uploads nothing; no texture code
 //                     in the shader of a scene without textures
 //   TextureShadow     a traced sphere over a traced textured floor, shadows
-//                     on: the shadow darkens the floor's texture
+//                     on: the shadow darkens the floor's texture; light
+//                     passes the cut-out texels of a textured plane
 //   Culling           back-face and front-face culling of open and closed
 //                     meshes (also mirrored by the actor matrix)
 //   BackfaceProperty  a back-face material on an open mesh, and on planes
@@ -40,7 +41,6 @@
 #include "vtkTexturedSphereSource.h"
 #include "vtkUnsignedCharArray.h"
 
-#include <cstdlib>
 #include <sstream>
 #include <string>
 
@@ -164,7 +164,7 @@ struct Scene
     s << label << ": " << frames.Pass->GetNumberOfTracedProps() << " traced props (want "
       << traced << "), RGB RMSE vs raster " << rmse << " (bound " << bound << ")";
     Check(frames.Pass->GetNumberOfTracedProps() == traced && rmse <= bound, s.str());
-    if (rmse > bound || std::getenv("VTKRT_DUMP"))
+    if (rmse > bound)
     {
       static int written = 0;
       const std::string name = "surfaces-" + std::to_string(written++);
@@ -241,9 +241,14 @@ void TestTextureRGBA()
     auto plane = TexturedActor(
       WidePlane(0.0, 0.0), MakeTexture(PatternImage(8, 8, 4, cutOuts), vtkTexture::Repeat, false));
     scene.Renderer->AddActor(plane);
+    // Behind it, seen through the cut-outs.
+    scene.Renderer->AddActor(SphereActor(0.2, 0.1, -0.8, 0.5));
     scene.View(-20, 30);
-    // Raster discards fully transparent texels; the pass leaves those to it.
-    scene.Compare(cutOuts ? "RGBA with cut-outs (raster)" : "opaque RGBA", cutOuts ? 0 : 1, 3.0);
+    RasterAndTraced frames =
+      scene.Compare(cutOuts ? "RGBA with cut-out texels" : "opaque RGBA", 2, 3.0);
+    const bool cutOutCode = std::string(frames.Pass->GetLastFragmentShaderSource())
+                              .find("#define VTKRT_TEXTURE_CUTOUTS") != std::string::npos;
+    Check(cutOutCode == cutOuts, "cut-out code only for a texture with cut-outs");
   }
   NoVTKOutput("RGBA");
 }
@@ -394,6 +399,31 @@ void TestTextureShadow()
     brighter += b[i] > a[i] + 2;
   }
   Check(brighter == 0, "shadows only darken the textured floor");
+
+  // A plane above the floor, textured opaque, then with cut-outs: light
+  // passes the cut-out texels (any-hit rays walk past them too).
+  ball->SetVisibility(false);
+  long shadowedPixels[2] = { 0, 0 };
+  for (int cutOuts = 0; cutOuts < 2; ++cutOuts)
+  {
+    auto roof = TexturedActor(
+      WidePlane(0.0, 0.0), MakeTexture(PatternImage(2, 2, 4, cutOuts == 1), vtkTexture::Repeat, false));
+    roof->SetOrientation(-90, 0, 0);
+    roof->SetPosition(0.0, 0.4, 0.0);
+    roof->SetScale(0.8);
+    scene.Renderer->AddActor(roof);
+    pass->SetShadows(false);
+    scene.Window->Render();
+    auto unshadowed = Grab(scene.Window);
+    pass->SetShadows(true);
+    scene.Window->Render();
+    shadowedPixels[cutOuts] = CountDifferingPixels(unshadowed, Grab(scene.Window), 20);
+    scene.Renderer->RemoveActor(roof);
+  }
+  std::ostringstream c;
+  c << "shadow of a textured plane (half its texels cut out): " << shadowedPixels[0]
+    << " floor pixels opaque, " << shadowedPixels[1] << " with cut-outs (fewer, not none)";
+  Check(shadowedPixels[1] > 0 && shadowedPixels[1] < shadowedPixels[0] * 4 / 5, c.str());
   NoGLError(scene.Window, "shadow");
   NoVTKOutput("shadow");
 }

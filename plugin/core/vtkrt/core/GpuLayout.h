@@ -198,7 +198,8 @@ enum class Indexing
   X(TextureOnBackface, 1024u)                                                                      \
   X(BackfaceProperty, 2048u)                                                                       \
   X(CullBackfaces, 4096u)                                                                          \
-  X(CullFrontfaces, 8192u)
+  X(CullFrontfaces, 8192u)                                                                         \
+  X(TextureCutOuts, 16384u)
 
 enum InstanceFlags : std::uint32_t
 {
