@@ -1,7 +1,8 @@
 // vtkrtBenchPass: frame times of vtkRayTracePass against VTK's raster peers,
 // measured in one run, in one EGL window, MultiSamples 0, malloc tuned for
 // large buffers (the same for every side).
-//   quad:      a full-screen quad (two triangles), pass vs vtkPolyDataMapper
+//   quad:      a full-screen quad (two triangles), pass vs vtkPolyDataMapper,
+//              plain and with a 256x256 interpolated, repeated texture
 //   triangles: pass vs vtkPolyDataMapper, 100k and 1M (4M with --large)
 //   spheres:   pass (analytic) vs vtkGlyph3DMapper (triangulated 16x16
 //              spheres), RenderPointsAsSpheres and vtkOpenGLSphereMapper
@@ -23,8 +24,10 @@
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
+#include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkGlyph3DMapper.h"
+#include "vtkImageData.h"
 #include "vtkMinimalStandardRandomSequence.h"
 #include "vtkNew.h"
 #include "vtkOpenGLSphereMapper.h"
@@ -37,6 +40,7 @@
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
+#include "vtkTexture.h"
 
 #include <algorithm>
 #include <cmath>
@@ -318,15 +322,47 @@ void PhaseRow(std::ostream& out, const std::string& scene, int size, const Timin
   out << os.str();
 }
 
-/// A quad filling the view (two triangles): the per-pixel cost alone.
+/// A 256x256 RGB texture, interpolated and repeated (4 x 4 over the quad).
+vtkSmartPointer<vtkTexture> QuadTexture()
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(256, 256, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  auto* texels = static_cast<unsigned char*>(image->GetScalarPointer());
+  for (int i = 0; i < 256 * 256; ++i)
+  {
+    texels[3 * i] = static_cast<unsigned char>(i % 256);
+    texels[3 * i + 1] = static_cast<unsigned char>(i / 256);
+    texels[3 * i + 2] = static_cast<unsigned char>(((i % 256) / 16 + (i / 4096)) % 2 ? 220 : 40);
+  }
+  auto texture = vtkSmartPointer<vtkTexture>::New();
+  texture->SetInputData(image);
+  texture->InterpolateOn();
+  texture->RepeatOn();
+  return texture;
+}
+
+/// A quad filling the view (two triangles): the per-pixel cost alone, then
+/// with a texture (the cost of sampling it).
 void RunQuad(vtkRenderWindow* win, int size, const Options& opt, std::ostream& phases)
 {
   vtkNew<vtkPlaneSource> plane;
   plane->Update();
+  vtkNew<vtkPolyData> tiled;
+  tiled->DeepCopy(plane->GetOutput());
+  vtkDataArray* tcoords = tiled->GetPointData()->GetTCoords();
+  for (vtkIdType i = 0; i < tcoords->GetNumberOfTuples(); ++i)
+  {
+    tcoords->SetComponent(i, 0, 4.0 * tcoords->GetComponent(i, 0));
+    tcoords->SetComponent(i, 1, 4.0 * tcoords->GetComponent(i, 1));
+  }
+  vtkSmartPointer<vtkTexture> texture = QuadTexture();
+  bool textured = false;
   auto setup = [&](vtkRenderer* ren) {
     vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputData(plane->GetOutput());
-    AddActor(ren, mapper);
+    mapper->SetInputData(textured ? tiled.Get() : plane->GetOutput());
+    vtkActor* actor = AddActor(ren, mapper);
+    actor->SetTexture(textured ? texture.Get() : nullptr);
   };
   // Facing the camera, zoomed until the quad covers the view at any roll.
   const Camera fill = { [](vtkRenderer* ren) {
@@ -334,10 +370,15 @@ void RunQuad(vtkRenderWindow* win, int size, const Options& opt, std::ostream& p
                          ren->GetActiveCamera()->Zoom(3.0);
                        },
     [](vtkRenderer* ren, int frames) { ren->GetActiveCamera()->Roll(360.0 / frames); } };
-  const Timing pass = Measure(win, setup, true, opt.Frames, fill);
-  const Timing raster = Measure(win, setup, false, opt.Frames, fill);
-  Row("full-screen quad", size, "vtkPolyDataMapper", pass, raster);
-  PhaseRow(phases, "full-screen quad", size, pass, raster);
+  for (bool withTexture : { false, true })
+  {
+    textured = withTexture;
+    const std::string scene = withTexture ? "textured quad" : "full-screen quad";
+    const Timing pass = Measure(win, setup, true, opt.Frames, fill);
+    const Timing raster = Measure(win, setup, false, opt.Frames, fill);
+    Row(scene, size, "vtkPolyDataMapper", pass, raster);
+    PhaseRow(phases, scene, size, pass, raster);
+  }
 }
 
 /// Triangles: the pass against vtkPolyDataMapper.

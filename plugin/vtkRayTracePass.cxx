@@ -214,7 +214,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   }
   in.Upload(*this, win);
-  if (!in.GeometryValid || !in.ColorsValid)
+  if (!in.GeometryValid || !in.ColorsValid || !in.TexturesValid)
   {
     in.LeaveTracedToRaster(s);
   }

@@ -12,9 +12,18 @@
  *
  * Traced (everything else falls back to the delegate):
  * - vtkActor + vtkPolyDataMapper / vtkCompositePolyDataMapper(2), opaque,
- *   surface representation, no texture, no edge visibility, no culling, no
- *   PBR, no backface property: polygons (fan triangulated, like VTK),
- *   triangle strips; composite block visibility and colors (inherited).
+ *   surface representation, no edge visibility, no PBR: polygons (fan
+ *   triangulated, like VTK), triangle strips; composite block visibility
+ *   and colors (inherited); an actor texture (SetTexture: one 2D texture of
+ *   8-bit colors, or scalars through its table, any wrap mode, nearest or
+ *   interpolated, no mipmaps, transform or sRGB) at the data's texture
+ *   coordinates, times the lit color as vtkOpenGLPolyDataMapper (not shown
+ *   on back faces with ShowTexturesOnBackface off; without coordinates:
+ *   untextured, as raster; fully transparent texels let rays through, as
+ *   raster discards them); BackfaceCulling / FrontfaceCulling (camera rays
+ *   pass culled triangles; shadow and occlusion rays do not); an opaque
+ *   BackfaceProperty (its colors on back faces of actors without scalar
+ *   colors).
  *   An actor whose data also has lines, vertices without
  *   RenderPointsAsSpheres, or a translucent block falls back whole.
  * - Points of such an actor with RenderPointsAsSpheres (vertices, or every

@@ -119,6 +119,32 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
       vtkErrorWithObjectMacro(&pass, << error);
     }
   }
+  this->UploadTextures(pass, win, limit, limitChanged);
+}
+
+void vtkRayTracePass::Internals::UploadTextures(
+  const vtkRayTracePass& pass, vtkOpenGLRenderWindow* win, std::size_t limit, bool limitChanged)
+{
+  vtkrt::pass::TextureCache& textures = this->Scene.GetTextures();
+  if (!textures.Changed() && this->TexturesOnGpu && (this->TexturesValid || !limitChanged))
+  {
+    return;
+  }
+  auto start = std::chrono::steady_clock::now();
+  vtkrt::pass::PackedTextures packed = textures.Pack();
+  textures.MarkPacked();
+  this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
+  start = std::chrono::steady_clock::now();
+  std::string error;
+  this->Counters.GeometryBytesUploaded +=
+    this->Buffers.UploadTextures(win, packed, limit, this->TexturesValid, error);
+  this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(start);
+  this->Places.TextureBases = std::move(packed.Bases);
+  this->TexturesOnGpu = true;
+  if (!this->TexturesValid)
+  {
+    vtkErrorWithObjectMacro(&pass, << error);
+  }
 }
 
 Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
@@ -149,6 +175,10 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   f.WorldCoordinates = pass.PrecisionMode == WORLD;
   f.ScreenSpheres = this->Scene.HasScreenSpheres();
   f.Ellipsoids = this->Scene.HasEllipsoids();
+  f.Textures = this->Scene.HasTextures();
+  f.FaceCulling = this->Scene.HasFaceCulling();
+  f.BackfaceProperties = this->Scene.HasBackfaceProperties();
+  f.TextureCutOuts = this->Scene.HasTextureCutOuts();
   GLint major = 0;
   glGetIntegerv(GL_MAJOR_VERSION, &major);
   f.Fp64 = major >= 4;

@@ -61,8 +61,10 @@ struct vtkRayTracePass::Internals
   unsigned long WindowDeleteObserver = 0;
   bool GeometryOnGpu = false;
   bool ColorsOnGpu = false;
+  bool TexturesOnGpu = false;
   bool GeometryValid = true;
   bool ColorsValid = true;
+  bool TexturesValid = true;
   std::size_t CheckedLimit = 0; ///< the texel limit the buffers were checked against
   std::vector<vtkrt::core::gpu::InstanceRecord> LastRecords; ///< the records on the GPU
   std::vector<int> WarnedTooSmallProps; ///< what the last scale warning named
@@ -92,6 +94,7 @@ struct vtkRayTracePass::Internals
     this->Buffers.Release(w);
     this->GeometryOnGpu = false;
     this->ColorsOnGpu = false;
+    this->TexturesOnGpu = false;
     this->Top.Clear();
   }
 
@@ -150,8 +153,10 @@ struct vtkRayTracePass::Internals
     this->Counters.TracedPrimitives = 0;
     this->Counters.TracedInstances = 0;
   }
-  /// Packs and uploads the geometry and colors that changed.
+  /// Packs and uploads the geometry, colors and textures that changed.
   void Upload(const vtkRayTracePass& pass, vtkOpenGLRenderWindow* win);
+  void UploadTextures(
+    const vtkRayTracePass& pass, vtkOpenGLRenderWindow* win, std::size_t limit, bool limitChanged);
   /// Records (of the props `traced` says, all when null), top level,
   /// lights and shader (the selection ids variant when `selectIds`): the
   /// tracer ready, its uniforms set, its samplers bound; false when it

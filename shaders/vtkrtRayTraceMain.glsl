@@ -1,7 +1,8 @@
 // vtkrt ray tracing fragment shader, main part. The pass prepends the
 // #version line, the feature #defines and the kernel chunks
 // (vtkrtRayTraceKernels, and vtkrtRayTraceTriangles / vtkrtRayTraceSpheres
-// only when the scene has such primitives).
+// only when the scene has such primitives, vtkrtRayTraceSurfaces when it
+// has textured or culled triangles).
 //
 // Coordinates: everything the shader sees is camera-relative world space
 // (world minus the eye position, computed in double on the CPU), so a scene
@@ -38,6 +39,12 @@ uniform usamplerBuffer uNormals; // a Normal per point, or per VTK cell
 #endif
 #ifdef VTKRT_HAS_TRIANGLE_VERTICES
 uniform usamplerBuffer uTriangleVertices; // TriangleVertices per triangle
+#endif
+#ifdef VTKRT_TEXTURE_CUTOUTS
+uvec3 triangleVertexIds(int tri)
+{
+  return fetchTriangleVertices(uTriangleVertices, tri).ids;
+}
 #endif
 #ifdef VTKRT_HAS_SPHERES
 uniform usamplerBuffer uSphereIds; // VTK point id per sphere, four per texel
@@ -275,6 +282,9 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
   {
     return;
   }
+#ifdef VTKRT_SKIPS_FACES
+  float tEnd = t1;
+#endif
   vec4 r0 = instanceCameraToLocal(instance, 0);
   vec4 r1 = instanceCameraToLocal(instance, 1);
   vec4 r2 = instanceCameraToLocal(instance, 2);
@@ -302,6 +312,20 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
     radiusPlane, grow, (flags & kInstanceEllipsoids) != 0u);
 #else
   bool hit = false;
+#endif
+#ifdef VTKRT_SKIPS_FACES
+  if (hit && (flags & kInstanceSpheres) == 0u &&
+    faceSkipped(instance, primitive, uv, localDir, flags, !stopAtFirstHit))
+  {
+    if (stopAtFirstHit)
+    {
+      // Any hit is not the nearest: walk on from the nearest one.
+      t1 = tEnd;
+      hit = traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv, false);
+    }
+    hit = hit &&
+      walkPastSkippedFaces(instance, root, localOrg, localDir, tEnd, t1, primitive, uv, flags, !stopAtFirstHit);
+  }
 #endif
   if (hit)
   {
@@ -472,6 +496,9 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
   vec3 geometricNormal = vec3(0.0, 0.0, 1.0);
   uint vtkId = 0u;
   vec4 scalarColor = vec4(-1.0);
+#ifdef VTKRT_HAS_TEXTURES
+  uvec3 textureIds = uvec3(0u);
+#endif
   float mirror = (flags & kInstanceMirrored) != 0u ? -1.0 : 1.0;
 #ifdef VTKRT_HAS_SPHERES
   if ((flags & kInstanceSpheres) != 0u)
@@ -524,9 +551,12 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
     vtkId = triangle.cellId;
     float w0 = 1.0 - hitUV.x - hitUV.y;
 #ifdef VTKRT_HAS_TRIANGLE_VERTICES
-    if ((flags & (kInstanceVertexNormals | kInstancePointColors)) != 0u)
+    if ((flags & (kInstanceVertexNormals | kInstancePointColors | kInstanceTextured)) != 0u)
     {
       uvec3 ids = fetchTriangleVertices(uTriangleVertices, hitPrimitive).ids;
+#ifdef VTKRT_HAS_TEXTURES
+      textureIds = ids;
+#endif
       int i0 = int(ids.x);
       int i1 = int(ids.y);
       int i2 = int(ids.z);
@@ -608,20 +638,44 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 
   vec3 ambientColor = instanceAmbient(hitInstance);
   vec3 diffuseColor = instanceDiffuse(hitInstance);
+  vec3 specularColor = instanceSpecular(hitInstance);
+  float specularPower = instanceSpecularPower(hitInstance);
   if (scalarColor.x >= 0.0)
   {
     ambientColor = instanceAmbientIntensity(hitInstance) * scalarColor.rgb;
     diffuseColor = instanceDiffuseIntensity(hitInstance) * scalarColor.rgb;
   }
+#if defined(VTKRT_BACKFACE_PROPERTIES) || defined(VTKRT_HAS_TEXTURES)
+  // Raster's gl_FrontFacing: the ray meets the side its winding faces.
+  bool frontFacing = dot(ng, dir) <= 0.0;
+#endif
+#ifdef VTKRT_BACKFACE_PROPERTIES
+  // As vtkOpenGLPolyDataMapper: the BackfaceProperty's colors on back faces
+  // of actors without scalar colors.
+  if (!frontFacing && (flags & kInstanceBackfaceProperty) != 0u && scalarColor.x < 0.0)
+  {
+    ambientColor = instanceBackAmbient(hitInstance);
+    diffuseColor = instanceBackDiffuse(hitInstance);
+    specularColor = instanceBackSpecular(hitInstance);
+    specularPower = instanceBackSpecularPower(hitInstance);
+  }
+#endif
   // Unit geometric normal on the viewer's side (secondary ray offsets).
   vec3 ngView = normalize(ng);
   if (dot(ngView, dir) > 0.0)
   {
     ngView = -ngView;
   }
-  vec3 color = shadeLikeVTK(p, n, ngView, ambientColor, diffuseColor, instanceSpecular(hitInstance),
-    instanceSpecularPower(hitInstance),
+  vec3 color = shadeLikeVTK(p, n, ngView, ambientColor, diffuseColor, specularColor, specularPower,
     (flags & kInstanceLit) != 0u);
+#ifdef VTKRT_HAS_TEXTURES
+  // As vtkOpenGLPolyDataMapper: the lit color times the texture's, on back
+  // faces too unless ShowTexturesOnBackface is off.
+  if ((flags & kInstanceTextured) != 0u && (frontFacing || (flags & kInstanceTextureOnBackface) != 0u))
+  {
+    color *= instanceTextureColor(hitInstance, textureIds, hitUV).rgb;
+  }
+#endif
   outColor = vec4(clamp(color, 0.0, 1.0), 1.0);
 #endif
   return true;

@@ -1,6 +1,7 @@
 #include "vtkRayTraceBuffers.h"
 
 #include "vtkRayTracePacker.h"
+#include "vtkRayTraceTextures.h"
 
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -105,6 +106,22 @@ std::size_t SceneBuffers::UploadColors(vtkOpenGLRenderWindow* win, const PackedC
   return this->Colors.Upload(win, packed.Words);
 }
 
+std::size_t SceneBuffers::UploadTextures(vtkOpenGLRenderWindow* win, const PackedTextures& packed,
+  std::size_t limit, bool& fits, std::string& error)
+{
+  const std::size_t texels = texelsIn(packed.Words);
+  fits = texels <= limit;
+  if (!fits)
+  {
+    std::ostringstream s;
+    s << "The ray-traced scene's textures need " << texels << " texels, more than the limit of "
+      << limit << ": nothing is traced.";
+    error = s.str();
+    return 0;
+  }
+  return this->Textures.Upload(win, packed.Words);
+}
+
 std::vector<vtkTextureObject*> SceneBuffers::Bind(vtkShaderProgram* program)
 {
   std::vector<vtkTextureObject*> active;
@@ -112,7 +129,8 @@ std::vector<vtkTextureObject*> SceneBuffers::Bind(vtkShaderProgram* program)
     { "uTriangles", &this->Triangles }, { "uTriangleVertices", &this->TriangleVertices },
     { "uSpheres", &this->Spheres }, { "uSphereIds", &this->SphereIds },
     { "uNormals", &this->Normals }, { "uColors", &this->Colors },
-    { "uInstances", &this->Instances }, { "uTopNodes", &this->TopNodes } };
+    { "uInstances", &this->Instances }, { "uTopNodes", &this->TopNodes },
+    { "uTextures", &this->Textures } };
   for (const auto& sampler : samplers)
   {
     if (program->IsUniformUsed(sampler.first))
@@ -130,7 +148,7 @@ void SceneBuffers::Release(vtkWindow* w)
 {
   for (TextureBuffer* b : { &this->Nodes, &this->Triangles, &this->TriangleVertices,
          &this->Spheres, &this->SphereIds, &this->Normals, &this->Colors, &this->Instances,
-         &this->TopNodes })
+         &this->TopNodes, &this->Textures })
   {
     b->Release(w);
   }

@@ -24,6 +24,7 @@ namespace pass
 {
 struct PackedColors;
 struct PackedGeometry;
+struct PackedTextures;
 
 /// One texture buffer of 16-byte texels.
 class TextureBuffer
@@ -57,7 +58,7 @@ class SceneBuffers
 {
 public:
   TextureBuffer Nodes, Triangles, TriangleVertices, Spheres, SphereIds, Normals, Colors, Instances,
-    TopNodes;
+    TopNodes, Textures;
 
   /// Uploads the packed geometry when it fits `limit` texels per buffer;
   /// otherwise `error` says which is too large and nothing is uploaded.
@@ -65,6 +66,8 @@ public:
   std::size_t UploadGeometry(vtkOpenGLRenderWindow* win, const PackedGeometry& packed,
     std::size_t limit, bool& fits, std::string& error);
   std::size_t UploadColors(vtkOpenGLRenderWindow* win, const PackedColors& packed,
+    std::size_t limit, bool& fits, std::string& error);
+  std::size_t UploadTextures(vtkOpenGLRenderWindow* win, const PackedTextures& packed,
     std::size_t limit, bool& fits, std::string& error);
 
   /// Activates the textures of the samplers `program` uses and points them

@@ -13,13 +13,14 @@
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkScalarsToColors.h"
+#include "vtkTexture.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cstring>
 
-// The materials and scalar colors of traced instances, as the raster mapper
-// computes them.
+// The materials, scalar colors and textures of traced instances, as the
+// raster mapper computes them.
 namespace vtkrt
 {
 namespace pass
@@ -77,6 +78,19 @@ void Scene::FillMaterial(vtkActor* actor, vtkMapper* mapper, Instance& inst) con
   inst.Lit = p->GetLighting();
   inst.AmbientIntensity = static_cast<float>(p->GetAmbient());
   inst.DiffuseIntensity = static_cast<float>(p->GetDiffuse());
+  inst.CullBackfaces = p->GetBackfaceCulling();
+  inst.CullFrontfaces = p->GetFrontfaceCulling();
+  if (vtkProperty* back = actor->GetBackfaceProperty())
+  {
+    inst.BackfaceProperty = true;
+    for (int k = 0; k < 3; ++k)
+    {
+      inst.BackAmbient[k] = static_cast<float>(back->GetAmbient() * back->GetAmbientColor()[k]);
+      inst.BackDiffuse[k] = static_cast<float>(back->GetDiffuse() * back->GetDiffuseColor()[k]);
+      inst.BackSpecular[k] = static_cast<float>(back->GetSpecular() * back->GetSpecularColor()[k]);
+    }
+    inst.BackSpecularPower = static_cast<float>(back->GetSpecularPower());
+  }
   vtkMatrix4x4* m = actor->GetMatrix();
   for (int i = 0; i < 16; ++i)
   {
@@ -94,6 +108,45 @@ void Scene::FillMaterial(vtkActor* actor, vtkMapper* mapper, Instance& inst) con
       inst.ClipPlanes.push_back({ { n[0], n[1], n[2], -vtkMath::Dot(n, o) } });
     }
   }
+}
+
+bool Scene::AddTexture(vtkActor* actor, vtkPolyData* poly, Instance& inst)
+{
+  vtkTexture* texture = actor->GetTexture();
+  if (!texture)
+  {
+    return true;
+  }
+  // Raster samples the texture at the color texture's coordinates then.
+  if (inst.Color && inst.Color->Texture)
+  {
+    return false;
+  }
+  // Without 1- or 2-component texture coordinates raster draws no texture.
+  const TextureEntry* coordinates = this->Textures.GetCoordinates(poly);
+  if (!coordinates)
+  {
+    return true;
+  }
+  // Raster crashes on a texture without an image (VTK 9.1): drawn untextured.
+  if (!TextureCache::HasImage(texture))
+  {
+    if (this->Textures.FirstWarning(texture))
+    {
+      vtkGenericWarningMacro("vtkRayTracePass: an actor's texture has no image (no input or no "
+                             "scalars); the actor is traced untextured.");
+    }
+    return true;
+  }
+  const TextureEntry* image = this->Textures.GetImage(texture);
+  if (!image)
+  {
+    return false;
+  }
+  inst.Texture = image;
+  inst.TextureCoordinates = coordinates;
+  inst.TextureOnBackface = actor->GetProperty()->GetShowTexturesOnBackface();
+  return true;
 }
 
 Colors* Scene::GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time)

@@ -53,6 +53,7 @@ struct ScenePlacements
 {
   std::map<const Geometry*, GeometryPlacement> GeometryPlaces;
   std::map<const Colors*, std::uint32_t> ColorBases;
+  std::map<const TextureEntry*, std::uint32_t> TextureBases; ///< first words in uTextures
 };
 
 PackedGeometry PackGeometry(const Scene& scene);

@@ -1,6 +1,7 @@
 #include "vtkRayTraceRecords.h"
 
 #include "vtkRayTracePacker.h"
+#include "vtkRayTraceTextures.h"
 
 #include "vtkCamera.h"
 #include "vtkMath.h"
@@ -226,6 +227,12 @@ std::uint32_t instanceFlags(const Instance& inst, bool mirrored)
     flags |= inst.Color->Texture ? kInstanceColorTexture : 0u;
   }
   flags |= mirrored ? kInstanceMirrored : 0u;
+  flags |= inst.Texture ? kInstanceTextured : 0u;
+  flags |= inst.Texture && inst.TextureOnBackface ? kInstanceTextureOnBackface : 0u;
+  flags |= inst.Texture && inst.Texture->CutOuts ? kInstanceTextureCutOuts : 0u;
+  flags |= inst.BackfaceProperty ? kInstanceBackfaceProperty : 0u;
+  flags |= inst.CullBackfaces ? kInstanceCullBackfaces : 0u;
+  flags |= inst.CullFrontfaces ? kInstanceCullFrontfaces : 0u;
   return flags;
 }
 } // namespace
@@ -271,7 +278,11 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     const Instance& inst = instances[i];
     const auto place = places.GeometryPlaces.find(inst.Geom);
     const auto colorBase = inst.Color ? places.ColorBases.find(inst.Color) : places.ColorBases.end();
-    if (place == places.GeometryPlaces.end() || (inst.Color && colorBase == places.ColorBases.end()))
+    const auto textureBase = places.TextureBases.find(inst.Texture);
+    const auto coordinateBase = places.TextureBases.find(inst.TextureCoordinates);
+    if (place == places.GeometryPlaces.end() || (inst.Color && colorBase == places.ColorBases.end()) ||
+      (inst.Texture &&
+        (textureBase == places.TextureBases.end() || coordinateBase == places.TextureBases.end())))
     {
       return false;
     }
@@ -329,6 +340,15 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     {
       rec.screenRadiusPlane[k] = static_cast<float>(screen.Plane[k]);
     }
+    for (int k = 0; k < 3; ++k)
+    {
+      rec.backAmbient[k] = inst.BackAmbient[k];
+      rec.backDiffuse[k] = inst.BackDiffuse[k];
+      rec.backSpecular[k] = inst.BackSpecular[k];
+    }
+    rec.backSpecularPower = inst.BackSpecularPower;
+    rec.textureBase = inst.Texture ? textureBase->second : 0u;
+    rec.textureCoordinateBase = inst.Texture ? coordinateBase->second : 0u;
     for (const auto& pl : inst.ClipPlanes)
     {
       const double d = (pl[3] + pl[0] * camera.Origin[0] + pl[1] * camera.Origin[1] +

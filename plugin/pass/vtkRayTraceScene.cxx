@@ -157,14 +157,24 @@ bool Scene::IsTraceable(vtkProp* prop)
     return false;
   }
   vtkProperty* property = actor->GetProperty();
-  if (property->GetOpacity() < 1.0 || actor->GetTexture() || property->GetNumberOfTextures() > 0 ||
-    property->GetEdgeVisibility() || actor->GetBackfaceProperty() ||
-    property->GetBackfaceCulling() || property->GetFrontfaceCulling() ||
+  if (property->GetOpacity() < 1.0 || property->GetEdgeVisibility() ||
     property->GetInterpolation() == VTK_PBR)
   {
     return false;
   }
   const int representation = property->GetRepresentation();
+  // Textures, culling and back-face colors: on polygonal surfaces (a
+  // translucent back face is left to raster, as a translucent front).
+  vtkProperty* back = actor->GetBackfaceProperty();
+  const bool surfaceLooks = actor->GetTexture() || property->GetNumberOfTextures() > 0 || back ||
+    property->GetBackfaceCulling() || property->GetFrontfaceCulling();
+  if (surfaceLooks &&
+    (glyphs || (back && back->GetOpacity() < 1.0) ||
+      !TextureCache::Untraceable(actor).empty() ||
+      (actor->GetTexture() && representation != VTK_SURFACE)))
+  {
+    return false;
+  }
   if (representation == VTK_WIREFRAME ||
     (representation == VTK_POINTS && (glyphs || !property->GetRenderPointsAsSpheres())))
   {
@@ -218,6 +228,10 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
       // normals, else the geometric normal.
       tri.UseVertexNormals = !entry->Normals.empty() && property->GetInterpolation() != VTK_FLAT;
       tri.UseCellNormals = !tri.UseVertexNormals && !entry->CellNormals.empty();
+      if (!this->AddTexture(actor, poly, tri))
+      {
+        return false;
+      }
       this->Instances.push_back(tri);
     }
   }
@@ -294,8 +308,11 @@ bool Scene::AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& cou
     for (const Piece& piece : pieces)
     {
       const std::size_t first = this->Instances.size();
-      this->AddPolyData(actor, mapper, piece.Poly, propIndex, counters,
-        piece.HasColor ? piece.Color.data() : nullptr);
+      if (!this->AddPolyData(actor, mapper, piece.Poly, propIndex, counters,
+            piece.HasColor ? piece.Color.data() : nullptr))
+      {
+        return false;
+      }
       for (std::size_t i = first; i < this->Instances.size(); ++i)
       {
         this->Instances[i].CompositeIndex = piece.FlatIndex;
@@ -315,6 +332,7 @@ void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkPro
   markUnused(this->SphereCache);
   markUnused(this->ColorCache);
   markUnused(this->GlyphSourceCache);
+  this->Textures.BeginFrame();
 
   for (int i = 0; i < count; ++i)
   {
@@ -354,6 +372,7 @@ void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkPro
   this->GeometryDirty = this->GeometryDirty || trianglesDropped || spheresDropped;
   this->ColorsDirty = dropUnused(this->ColorCache) || this->ColorsDirty;
   dropUnused(this->GlyphSourceCache);
+  this->Textures.EndFrame();
   counters.TracedInstances = static_cast<int>(this->Instances.size());
   for (const Instance& inst : this->Instances)
   {
@@ -402,6 +421,28 @@ bool Scene::HasColorTexture() const
     [](const Instance& i) { return i.Color != nullptr && i.Color->Texture; });
 }
 
+bool Scene::HasTextures() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.Texture != nullptr; });
+}
+bool Scene::HasFaceCulling() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return !i.Geom->Spheres && (i.CullBackfaces || i.CullFrontfaces); });
+}
+bool Scene::HasBackfaceProperties() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return !i.Geom->Spheres && i.BackfaceProperty; });
+}
+
+bool Scene::HasTextureCutOuts() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.Texture && i.Texture->CutOuts; });
+}
+
 core::BuildOptions Scene::Options() const
 {
   core::BuildOptions options;
@@ -429,6 +470,7 @@ void Scene::Clear()
   this->SphereCache.clear();
   this->ColorCache.clear();
   this->GlyphSourceCache.clear();
+  this->Textures.Clear();
   this->Instances.clear();
   this->GeometryDirty = true;
   this->ColorsDirty = true;

@@ -6,6 +6,7 @@
 #define vtkRayTraceScene_h
 
 #include "vtkRayTraceGlyphs.h"
+#include "vtkRayTraceTextures.h"
 #include "vtkRayTraceTypes.h"
 
 #include "vtkrt/core/BVH.h"
@@ -86,6 +87,14 @@ public:
   bool HasCellNormals() const;
   bool HasColors() const;
   bool HasColorTexture() const;
+  bool HasTextures() const;
+  bool HasFaceCulling() const;
+  bool HasBackfaceProperties() const;
+  bool HasTextureCutOuts() const;
+
+  /// The actors' texture images and texture coordinates.
+  const TextureCache& GetTextures() const { return this->Textures; }
+  TextureCache& GetTextures() { return this->Textures; }
 
   void Clear();
 
@@ -119,6 +128,9 @@ private:
     const GlyphSet& set, int propIndex, FrameCounters& counters);
   Colors* GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time);
   void FillMaterial(vtkActor* actor, vtkMapper* mapper, Instance& inst) const;
+  /// The actor's texture on a triangle instance; false (left to raster)
+  /// when raster samples it in a way the shader does not.
+  bool AddTexture(vtkActor* actor, vtkPolyData* poly, Instance& inst);
 
   core::BuildOptions Options() const;
   core::BuildOptions SphereOptions() const; ///< Options() tuned for cheap sphere tests
@@ -139,6 +151,7 @@ private:
     bool Used = false;
   };
   std::map<const void*, GlyphSourceShape> GlyphSourceCache;
+  TextureCache Textures;
   std::vector<Instance> Instances;
   bool GeometryDirty = true;
   bool ColorsDirty = true;

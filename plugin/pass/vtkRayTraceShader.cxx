@@ -10,6 +10,7 @@
 #include "vtkrtRayTraceResolve.h"
 #include "vtkrtRayTraceSelect.h"
 #include "vtkrtRayTraceSpheres.h"
+#include "vtkrtRayTraceSurfaces.h"
 #include "vtkrtRayTraceTriangles.h"
 
 #include "vtkrt/core/BVH.h"
@@ -31,7 +32,9 @@ std::string Features::Key() const
     << this->TopLevel << "A" << this->SamplesPerPixel << "H" << this->Shadows << "O"
     << this->AmbientOcclusionSamples << "M" << this->MaximumTraversalSteps << "W"
     << this->WorldCoordinates << "Q" << this->ScreenSpheres << "E" << this->Ellipsoids << "X"
-    << this->ColorTexture << "K" << this->SelectIds << "F" << this->CellNormals;
+    << this->ColorTexture << "K" << this->SelectIds << "F" << this->CellNormals << "U"
+    << this->Textures << "B" << this->FaceCulling << "Y" << this->BackfaceProperties << "Z"
+    << this->TextureCutOuts;
   return s.str();
 }
 
@@ -52,7 +55,11 @@ std::string AssembleShader(const Features& f)
   define(f.CellNormals, "VTKRT_HAS_CELL_NORMALS");
   define(f.Colors, "VTKRT_HAS_COLORS");
   define(f.ColorTexture, "VTKRT_HAS_COLOR_TEXTURE");
-  define(f.Triangles && (f.VertexNormals || f.Colors), "VTKRT_HAS_TRIANGLE_VERTICES");
+  define(f.Triangles && (f.VertexNormals || f.Colors || f.Textures), "VTKRT_HAS_TRIANGLE_VERTICES");
+  define(f.Triangles && f.Textures, "VTKRT_HAS_TEXTURES");
+  define(f.Triangles && f.FaceCulling, "VTKRT_FACE_CULLING");
+  define(f.Triangles && f.Textures && f.TextureCutOuts, "VTKRT_TEXTURE_CUTOUTS");
+  define(f.Triangles && f.BackfaceProperties, "VTKRT_BACKFACE_PROPERTIES");
   define(f.IdMode, "VTKRT_ID_MODE");
   define(f.SelectIds, "VTKRT_SELECT_IDS");
   define(f.TopLevel, "VTKRT_HAS_TOP_LEVEL");
@@ -79,6 +86,10 @@ std::string AssembleShader(const Features& f)
   if (f.Spheres)
   {
     s << vtkrtRayTraceSpheres << "\n";
+  }
+  if (f.Triangles && (f.Textures || f.FaceCulling))
+  {
+    s << vtkrtRayTraceSurfaces << "\n";
   }
   s << vtkrtRayTraceMain;
   return s.str();

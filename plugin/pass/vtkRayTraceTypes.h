@@ -22,6 +22,7 @@ namespace vtkrt
 {
 namespace pass
 {
+struct TextureEntry;
 
 /// Seconds of the steady clock since `start`.
 inline double SecondsSince(std::chrono::steady_clock::time_point start)
@@ -108,6 +109,19 @@ struct Instance
   bool UseCellNormals = false; ///< one normal per cell (none per point, or flat)
   double PointSize = 0.0; ///< > 0: screen-sized spheres this many pixels wide
   std::vector<std::array<double, 4>> ClipPlanes; ///< world: n.x + d >= 0 kept
+  /// The actor's texture and the data's texture coordinates (both or neither).
+  const TextureEntry* Texture = nullptr;
+  const TextureEntry* TextureCoordinates = nullptr;
+  bool TextureOnBackface = true; ///< vtkProperty::ShowTexturesOnBackface
+  /// The actor's BackfaceProperty: colors for back faces, each weighted by
+  /// its coefficient (as the front ones).
+  bool BackfaceProperty = false;
+  std::array<float, 3> BackAmbient{ { 0, 0, 0 } };
+  std::array<float, 3> BackDiffuse{ { 0, 0, 0 } };
+  std::array<float, 3> BackSpecular{ { 0, 0, 0 } };
+  float BackSpecularPower = 1.0f;
+  bool CullBackfaces = false;  ///< vtkProperty::BackfaceCulling (wins over front, as raster)
+  bool CullFrontfaces = false; ///< vtkProperty::FrontfaceCulling
 };
 
 /// What a frame needs from the shader; also the program cache key.
@@ -133,6 +147,10 @@ struct Features
   bool WorldCoordinates = false; ///< vtkRayTracePass::WORLD precision mode
   bool ScreenSpheres = false;    ///< points drawn as spheres (per-frame radii)
   bool Ellipsoids = false;       ///< sphere glyphs scaled per component
+  bool Textures = false;         ///< some triangles carry an actor texture
+  bool FaceCulling = false;      ///< some triangles are culled on one side
+  bool BackfaceProperties = false; ///< some triangles have a back-face material
+  bool TextureCutOuts = false;   ///< some textures have fully transparent texels
 
   std::string Key() const;
 };

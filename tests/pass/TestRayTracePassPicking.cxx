@@ -22,12 +22,15 @@
 #include "vtkMath.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
+#include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
+#include "vtkTexture.h"
+#include "vtkTransform.h"
 #include "vtkUnsignedCharArray.h"
 
 #include "vtkrt/core/Core.h"
@@ -328,7 +331,37 @@ void TestClassification()
   raster.emplace_back("edge visibility", edges);
   auto culled = meshActor(mesh);
   culled->GetProperty()->BackfaceCullingOn();
-  raster.emplace_back("backface culling", culled);
+  traced.emplace_back("backface culling", culled);
+  auto backProperty = meshActor(mesh);
+  vtkNew<vtkProperty> back;
+  backProperty->SetBackfaceProperty(back);
+  traced.emplace_back("backface property", backProperty);
+  auto translucentBack = meshActor(mesh);
+  vtkNew<vtkProperty> translucentBackProperty;
+  translucentBackProperty->SetOpacity(0.5);
+  translucentBack->SetBackfaceProperty(translucentBackProperty);
+  raster.emplace_back("translucent backface property", translucentBack);
+  // An RGB texture on a mesh with texture coordinates; one moved by a
+  // texture transform stays with raster.
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(2, 2, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  std::fill_n(static_cast<unsigned char*>(image->GetScalarPointer()), 12, 200);
+  vtkNew<vtkPlaneSource> plane;
+  plane->Update();
+  vtkNew<vtkTexture> texture;
+  texture->SetInputData(image);
+  auto textured = meshActor(plane->GetOutput());
+  textured->SetTexture(texture);
+  traced.emplace_back("texture", textured);
+  vtkNew<vtkTexture> moved;
+  moved->SetInputData(image);
+  vtkNew<vtkTransform> shift;
+  shift->Translate(0.5, 0.0, 0.0);
+  moved->SetTransform(shift);
+  auto transformed = meshActor(plane->GetOutput());
+  transformed->SetTexture(moved);
+  raster.emplace_back("texture transform", transformed);
   auto points = meshActor(mesh);
   points->GetProperty()->SetRepresentationToPoints();
   raster.emplace_back("points without RenderPointsAsSpheres", points);

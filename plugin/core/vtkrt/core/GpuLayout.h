@@ -135,6 +135,12 @@ struct InstanceRecord
   float sphereGrow;
   float unused9;
   vec4 screenRadiusPlane;
+  vec3 backAmbient;            ///< BackfaceProperty colors, weighted by its intensities
+  std::uint32_t textureBase;   ///< Textured: first word of the texture's header
+  vec3 backDiffuse;
+  std::uint32_t textureCoordinateBase; ///< Textured: first word of the points' (s, t)
+  vec3 backSpecular;
+  float backSpecularPower;
 };
 #define VTKRT_GPU_INSTANCE_FIELDS(FIELD, PAD)                                                      \
   FIELD(InstanceRecord, cameraToLocal) FIELD(InstanceRecord, boxMin) FIELD(InstanceRecord, root)   \
@@ -145,7 +151,12 @@ struct InstanceRecord
             FIELD(InstanceRecord, clipPlaneCount) FIELD(InstanceRecord, propIndex)                 \
               FIELD(InstanceRecord, compositeIndex) FIELD(InstanceRecord, ambientIntensity)          \
                 FIELD(InstanceRecord, diffuseIntensity) FIELD(InstanceRecord, sphereGrow)          \
-                  PAD(InstanceRecord, unused9) FIELD(InstanceRecord, screenRadiusPlane)
+                  PAD(InstanceRecord, unused9) FIELD(InstanceRecord, screenRadiusPlane)    \
+                    FIELD(InstanceRecord, backAmbient) FIELD(InstanceRecord, textureBase)      \
+                      FIELD(InstanceRecord, backDiffuse)                                       \
+                        FIELD(InstanceRecord, textureCoordinateBase)                           \
+                          FIELD(InstanceRecord, backSpecular)                                  \
+                            FIELD(InstanceRecord, backSpecularPower)
 
 /// How the shader indexes a record's buffer: record i is texels
 /// i * texels + k (ByRecord), or starts at texel i (ByTexel: ellipsoids,
@@ -182,7 +193,13 @@ enum class Indexing
   X(Mirrored, 32u)                                                                                 \
   X(Ellipsoids, 64u)                                                                               \
   X(ColorTexture, 128u)                                                                            \
-  X(CellNormals, 256u)
+  X(CellNormals, 256u)                                                                             \
+  X(Textured, 512u)                                                                                \
+  X(TextureOnBackface, 1024u)                                                                      \
+  X(BackfaceProperty, 2048u)                                                                       \
+  X(CullBackfaces, 4096u)                                                                          \
+  X(CullFrontfaces, 8192u)                                                                         \
+  X(TextureCutOuts, 16384u)
 
 enum InstanceFlags : std::uint32_t
 {
