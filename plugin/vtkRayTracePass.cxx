@@ -117,8 +117,8 @@ struct PresetKnobs
 
 const PresetKnobs Presets[] = {
   { vtkRayTracePass::INTERACTIVE, "Interactive", 0, 4, 1, true, false, 0 },
-  { vtkRayTracePass::BALANCED, "Balanced", 1, 4, 1, true, true, 1 },
-  { vtkRayTracePass::EXACT, "Exact", 2, 4, 4, true, true, 4 },
+  { vtkRayTracePass::BALANCED, "Balanced", 1, 4, 1, true, true, 2 },
+  { vtkRayTracePass::EXACT, "Exact", 1, 4, 4, true, true, 4 },
 };
 }
 

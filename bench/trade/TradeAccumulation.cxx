@@ -77,9 +77,10 @@ void AccumulationRows(const Accumulated& acc, bool ao, double triangles, const S
     row.ImageS = acc.Images[i].first * perFrameMin;
     MeasureAgainst(exact, st, row, acc.Images[i].second);
     rows.push_back(row);
-    std::printf("  %-26s %3d frames: %7.0f ms in all (%.1f ms a frame)  rmse %6.2f  diff %7.1f\n",
+    std::printf("  %-26s %3d frames: %7.0f ms in all (%.1f ms a frame)  rmse %6.2f  diff %7.1f  "
+                "vs EXACT rmse %6.2f\n",
       row.Knob.c_str(), acc.Images[i].first, 1e3 * acc.Totals[i], 1e3 * perFrame, row.ImageRMSE,
-      row.ImageDiff);
+      row.ImageDiff, row.ExactRMSE);
   }
 }
 }

@@ -19,7 +19,7 @@
 // generates one of about N triangles. --frames: the still frames of the
 // presets (and of the reference). --sections: only these of builder,
 // passbuilder, knobs, shadows, accumulation, lod, precision (the presets
-// always run).
+// always run: "--sections presets" runs them alone).
 #include "TradeMesh.h"
 #include "TradeSections.h"
 

@@ -275,6 +275,9 @@ void PlotPresets(PlotFolder& out, const std::vector<TradeRow>& trade)
     std::copy(colors[p], colors[p] + 3, s.Color);
     curves.push_back(s);
   }
+  // Sections left out of the run (--sections) leave their curves empty.
+  curves.erase(std::remove_if(curves.begin(), curves.end(), [](const Series& c) { return c.X.empty(); }),
+    curves.end());
   out.Write("trade_presets.png",
     "Every setting against the EXACT preset's converged image: time vs error",
     Log("time to the image, scene loaded (ms): one steady frame, or k accumulated frames"),

@@ -30,14 +30,14 @@ struct Expected
 
 const Expected Presets[] = {
   { vtkRayTracePass::INTERACTIVE, "Interactive", 0, 4, 1, true, false, 0 },
-  { vtkRayTracePass::BALANCED, "Balanced", 1, 4, 1, true, true, 1 },
-  { vtkRayTracePass::EXACT, "Exact", 2, 4, 4, true, true, 4 },
+  { vtkRayTracePass::BALANCED, "Balanced", 1, 4, 1, true, true, 2 },
+  { vtkRayTracePass::EXACT, "Exact", 1, 4, 4, true, true, 4 },
 };
 
 /// Knobs away from every preset's values, as a user might have left them.
 void Scramble(vtkRayTracePass* pass)
 {
-  pass->SetBuildQuality(1);
+  pass->SetBuildQuality(2);
   pass->SetLeafSize(16);
   pass->SetSamplesPerPixel(8);
   pass->SetProgressiveAccumulation(false);
@@ -108,7 +108,7 @@ void TestKnobOverrides()
   pass->SetShadows(false);
   Check(!pass->GetShadows(), "Shadows set after EXACT wins");
   Check(pass->GetSamplesPerPixel() == 4 && pass->GetAmbientOcclusionSamples() == 4 &&
-      pass->GetBuildQuality() == 2,
+      pass->GetBuildQuality() == 1,
     "the other EXACT knobs stay");
   Check(pass->GetQualityPreset() == vtkRayTracePass::CUSTOM, "EXACT without shadows is CUSTOM");
   pass->SetShadows(true);
