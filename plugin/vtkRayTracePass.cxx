@@ -46,6 +46,7 @@ vtkRenderPass* vtkRayTracePass::GetDelegatePass()
 void vtkRayTracePass::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "QualityPreset: " << this->GetQualityPresetAsString() << "\n";
   os << indent << "IdMode: " << this->IdMode << "\n";
   os << indent << "BuildQuality: " << this->BuildQuality << "\n";
   os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
@@ -97,6 +98,81 @@ vtkProp* vtkRayTracePass::GetTracedProp(int index) const
 const char* vtkRayTracePass::GetPrecisionModeAsString() const
 {
   return this->PrecisionMode == WORLD ? "World" : "CameraRelative";
+}
+
+namespace
+{
+/// The knobs a quality preset sets (docs/trade.md says why these values).
+struct PresetKnobs
+{
+  int Preset;
+  const char* Name;
+  int BuildQuality;
+  int LeafSize;
+  int SamplesPerPixel;
+  bool ProgressiveAccumulation;
+  bool Shadows;
+  int AmbientOcclusionSamples;
+};
+
+const PresetKnobs Presets[] = {
+  { vtkRayTracePass::INTERACTIVE, "Interactive", 0, 4, 1, true, false, 0 },
+  { vtkRayTracePass::BALANCED, "Balanced", 1, 4, 1, true, true, 2 },
+  { vtkRayTracePass::EXACT, "Exact", 1, 4, 4, true, true, 4 },
+};
+}
+
+void vtkRayTracePass::SetQualityPreset(int preset)
+{
+  if (preset == CUSTOM)
+  {
+    return;
+  }
+  for (const PresetKnobs& p : Presets)
+  {
+    if (p.Preset == preset)
+    {
+      this->SetBuildQuality(p.BuildQuality);
+      this->SetLeafSize(p.LeafSize);
+      this->SetSamplesPerPixel(p.SamplesPerPixel);
+      this->SetProgressiveAccumulation(p.ProgressiveAccumulation);
+      this->SetShadows(p.Shadows);
+      this->SetAmbientOcclusionSamples(p.AmbientOcclusionSamples);
+      this->SetMaximumTraversalSteps(0);
+      this->SetPrecisionMode(CAMERA_RELATIVE);
+      return;
+    }
+  }
+  vtkErrorMacro("No quality preset " << preset << ": expected CUSTOM, INTERACTIVE, BALANCED or EXACT.");
+}
+
+int vtkRayTracePass::GetQualityPreset() const
+{
+  for (const PresetKnobs& p : Presets)
+  {
+    if (this->BuildQuality == p.BuildQuality && this->LeafSize == p.LeafSize &&
+      this->SamplesPerPixel == p.SamplesPerPixel &&
+      this->ProgressiveAccumulation == p.ProgressiveAccumulation && this->Shadows == p.Shadows &&
+      this->AmbientOcclusionSamples == p.AmbientOcclusionSamples &&
+      this->MaximumTraversalSteps == 0 && this->PrecisionMode == CAMERA_RELATIVE)
+    {
+      return p.Preset;
+    }
+  }
+  return CUSTOM;
+}
+
+const char* vtkRayTracePass::GetQualityPresetAsString() const
+{
+  const int preset = this->GetQualityPreset();
+  for (const PresetKnobs& p : Presets)
+  {
+    if (p.Preset == preset)
+    {
+      return p.Name;
+    }
+  }
+  return "Custom";
 }
 
 int vtkRayTracePass::GetAccumulatedFrames() const

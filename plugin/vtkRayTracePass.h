@@ -320,6 +320,49 @@ public:
   const char* GetPrecisionModeAsString() const;
   ///@}
 
+  /**
+   * Named settings of the speed/accuracy knobs (see SetQualityPreset).
+   */
+  enum QualityPresets
+  {
+    CUSTOM = 0,      ///< the knobs as set one by one (no preset)
+    INTERACTIVE = 1, ///< cheapest frames that stay right; converges while the view is still
+    BALANCED = 2,    ///< shadows and ambient occlusion at a few times the cost, converging when still
+    EXACT = 3        ///< every effect, converging to the reference image the others are measured against
+  };
+
+  ///@{
+  /**
+   * Sets the knobs the trade benchmark (vtkrtBenchTrade, docs/trade.md)
+   * recommends for a preset in one call: BuildQuality, LeafSize,
+   * SamplesPerPixel, ProgressiveAccumulation, Shadows,
+   * AmbientOcclusionSamples, MaximumTraversalSteps (0 in every preset) and
+   * PrecisionMode (CAMERA_RELATIVE in every preset); the other settings
+   * (AmbientOcclusionRadius, IdMode, ...) are left as they are. CUSTOM sets
+   * nothing. A knob set after a preset overrides that preset's value.
+   * GetQualityPreset() says which preset the knobs hold now: the preset
+   * last set until a knob is changed to another value, then CUSTOM (and
+   * the preset again if the knob is set back). A new pass is CUSTOM: its
+   * defaults are none of the presets.
+   *
+   * - INTERACTIVE: BuildQuality 0 (fast build), LeafSize 4, 1 sample per
+   *   pixel with ProgressiveAccumulation, no shadows, no ambient occlusion:
+   *   the cheapest frame, anti-aliased over still frames.
+   * - BALANCED: BuildQuality 1, LeafSize 4, 1 sample per pixel with
+   *   ProgressiveAccumulation, shadows, 2 ambient occlusion rays per sample:
+   *   about 3x an INTERACTIVE frame, near EXACT after a few still frames.
+   * - EXACT: BuildQuality 1, LeafSize 4, 4 samples per pixel with
+   *   ProgressiveAccumulation, shadows, 4 ambient occlusion rays per sample:
+   *   the reference the benchmark measures every other setting against.
+   */
+  void SetQualityPreset(int preset);
+  int GetQualityPreset() const;
+  void SetQualityPresetToInteractive() { this->SetQualityPreset(INTERACTIVE); }
+  void SetQualityPresetToBalanced() { this->SetQualityPreset(BALANCED); }
+  void SetQualityPresetToExact() { this->SetQualityPreset(EXACT); }
+  const char* GetQualityPresetAsString() const;
+  ///@}
+
 protected:
   vtkRayTracePass();
   ~vtkRayTracePass() override;

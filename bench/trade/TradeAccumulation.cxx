@@ -51,8 +51,10 @@ bool Accumulate(Stage& st, int maxFrames, Accumulated& acc)
   return true;
 }
 
-/// One row per image, against the last (most accumulated) one.
-void AccumulationRows(const Accumulated& acc, bool ao, double triangles, std::vector<TradeRow>& rows)
+/// One row per image, against the last (most accumulated) one and against
+/// the run's reference (with `st`'s depth, that of its first frame).
+void AccumulationRows(const Accumulated& acc, bool ao, double triangles, const Stage& st,
+  const Reference& exact, std::vector<TradeRow>& rows)
 {
   const double perFrame = Median(acc.Times);
   const double perFrameMin =
@@ -72,10 +74,13 @@ void AccumulationRows(const Accumulated& acc, bool ao, double triangles, std::ve
     row.SteadyMinS = perFrameMin;
     row.ImageRMSE = ImageRMSE(reference, acc.Images[i].second);
     row.ImageDiff = ImageDifference(reference, acc.Images[i].second);
+    row.ImageS = acc.Images[i].first * perFrameMin;
+    MeasureAgainst(exact, st, row, acc.Images[i].second);
     rows.push_back(row);
-    std::printf("  %-26s %3d frames: %7.0f ms in all (%.1f ms a frame)  rmse %6.2f  diff %7.1f\n",
+    std::printf("  %-26s %3d frames: %7.0f ms in all (%.1f ms a frame)  rmse %6.2f  diff %7.1f  "
+                "vs EXACT rmse %6.2f\n",
       row.Knob.c_str(), acc.Images[i].first, 1e3 * acc.Totals[i], 1e3 * perFrame, row.ImageRMSE,
-      row.ImageDiff);
+      row.ImageDiff, row.ExactRMSE);
   }
 }
 }
@@ -83,7 +88,8 @@ void AccumulationRows(const Accumulated& acc, bool ao, double triangles, std::ve
 /// One window, 1 sample per frame, the image after k accumulated frames
 /// against the last (most accumulated) one; plain shading (anti-aliasing
 /// only) and with one ambient occlusion ray per frame.
-bool RunAccumulation(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::vector<TradeRow>& rows)
+bool RunAccumulation(vtkPolyData* mesh, const Scene& scene, const Options& opt,
+  const Reference& exact, std::vector<TradeRow>& rows)
 {
   const int maxFrames = opt.Quick ? 8 : 64;
   const Point zero{ { 0, 0, 0 } };
@@ -104,7 +110,7 @@ bool RunAccumulation(vtkPolyData* mesh, const Scene& scene, const Options& opt, 
     {
       return false;
     }
-    AccumulationRows(acc, ao != 0, mesh->GetNumberOfCells(), rows);
+    AccumulationRows(acc, ao != 0, mesh->GetNumberOfCells(), *st, exact, rows);
   }
   return true;
 }

@@ -104,7 +104,8 @@ Picks SweepPicks(vtkBVHCellLocator* locator, const std::vector<Segment>& segment
 }
 
 /// Always succeeds: the bool matches the other sections'.
-bool RunBuilder(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::vector<TradeRow>& rows)
+bool RunBuilder(vtkPolyData* mesh, const Scene& scene, const Options& opt,
+  const Reference& /*exact: the locator draws no image*/, std::vector<TradeRow>& rows)
 {
   const std::vector<Segment> segments = BuilderSegments(mesh, scene, opt.BuilderRays);
   const std::vector<BuilderSetting> settings = BuilderSettings(opt);
@@ -148,7 +149,8 @@ bool RunBuilder(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::
   return true;
 }
 
-bool RunPassBuilder(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::vector<TradeRow>& rows)
+bool RunPassBuilder(vtkPolyData* mesh, const Scene& scene, const Options& opt,
+  const Reference& exact, std::vector<TradeRow>& rows)
 {
   const Point zero{ { 0, 0, 0 } };
   const char* names[] = { "FAST", "SAH", "HIGH" };
@@ -168,6 +170,7 @@ bool RunPassBuilder(vtkPolyData* mesh, const Scene& scene, const Options& opt, s
       StageRow("pass builder", names[q], "vtkRayTracePass", q, mesh->GetNumberOfCells(), *st, ref);
     row.DepthErr = de.Mean;
     row.Coverage = de.Coverage;
+    MeasureAgainst(exact, *st, row);
     rows.push_back(row);
     std::printf("  pass BuildQuality %-4s first %6.0f ms  frame %6.1f ms (min %6.1f)  rmse %.3g  "
                 "depth %.3g\n",

@@ -24,6 +24,9 @@ struct Options
   std::string Out = "results";
   std::string Mesh; // empty: bunny.ply (vtkrtDataFile) when found, else generated
   int Size = 384;
+  int Triangles = 0;     // > 0: the generated mesh with about this many triangles
+  std::vector<std::string> Sections; // empty: all; else these (names in TradeMain.cxx)
+  int ReferenceFrames = 32; // frames the EXACT reference accumulates (presets: the still frames)
   int Frames = 7;        // steady frames timed (median and minimum reported)
   int Repeats = 3;       // builder: best of this many builds and ray sweeps
   int PickGrid = 24;     // LOD picks: PickGrid^2 pixels over the object

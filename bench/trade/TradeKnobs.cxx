@@ -50,7 +50,8 @@ std::string SettingName(const Knob& knob, int v, bool reference)
 }
 
 /// Each knob against its own highest-quality setting (listed first).
-bool RunPassKnobs(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::vector<TradeRow>& rows)
+bool RunPassKnobs(vtkPolyData* mesh, const Scene& scene, const Options& opt,
+  const Reference& exact, std::vector<TradeRow>& rows)
 {
   Options fewer = opt;
   fewer.Frames = std::min(opt.Frames, 3); // many-sample frames are slow on llvmpipe
@@ -73,11 +74,12 @@ bool RunPassKnobs(vtkPolyData* mesh, const Scene& scene, const Options& opt, std
         mesh->GetNumberOfCells(), *st, ref);
       row.DepthErr = de.Mean;
       row.Coverage = de.Coverage;
+      MeasureAgainst(exact, *st, row);
       rows.push_back(row);
       std::printf("  %-25s %-18s first %6.0f ms  frame %7.1f ms (min %7.1f)  rmse %6.2f  "
-                  "diff %7.1f  coverage %.3g\n",
+                  "diff %7.1f  coverage %.3g  vs EXACT rmse %6.2f\n",
         knob.Name.c_str(), row.Setting.c_str(), 1e3 * st->FirstSeconds, 1e3 * st->SteadySeconds,
-        1e3 * st->SteadyMinSeconds, row.ImageRMSE, row.ImageDiff, de.Coverage);
+        1e3 * st->SteadyMinSeconds, row.ImageRMSE, row.ImageDiff, de.Coverage, row.ExactRMSE);
       if (!reference)
       {
         reference = std::move(st);

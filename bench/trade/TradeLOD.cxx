@@ -58,7 +58,8 @@ vtkSmartPointer<vtkPolyData> Decimated(vtkPolyData* mesh, double ratio, double& 
 
 /// The rows of one reduction, traced and raster, against the full mesh's
 /// stages of the same method.
-void LevelRows(double ratio, const LODLevel& level, const LODReference& ref, std::vector<TradeRow>& rows)
+void LevelRows(double ratio, const LODLevel& level, const LODReference& ref, const Reference& exact,
+  std::vector<TradeRow>& rows)
 {
   for (int m = 0; m < 2; ++m)
   {
@@ -80,6 +81,7 @@ void LevelRows(double ratio, const LODLevel& level, const LODReference& ref, std
     row.PickMiss = level.Pick.Miss;
     row.GeomMean = level.Geom.Mean;
     row.GeomMax = level.Geom.Max;
+    MeasureAgainst(exact, st, row);
     rows.push_back(row);
     std::printf("  lod %.2f %-6s %8lld tris  decimate %6.0f ms  first %6.0f ms  frame %6.1f ms  "
                 "rmse %6.2f  diff %7.1f  depth %.3g  pick %.3g  geom %.3g/%.3g\n",
@@ -90,7 +92,7 @@ void LevelRows(double ratio, const LODLevel& level, const LODReference& ref, std
 }
 
 /// Renderer knob: raster against traced at full resolution.
-void RendererRows(const LODLevel& full, std::vector<TradeRow>& rows)
+void RendererRows(const LODLevel& full, const Reference& exact, std::vector<TradeRow>& rows)
 {
   const DepthError de = CompareDepth(*full.Traced, *full.Raster);
   for (int m = 0; m < 2; ++m)
@@ -101,13 +103,15 @@ void RendererRows(const LODLevel& full, std::vector<TradeRow>& rows)
       *full.Traced);
     row.DepthErr = m == 0 ? 0.0 : de.Mean;
     row.Coverage = m == 0 ? 0.0 : de.Coverage;
+    MeasureAgainst(exact, st, row);
     rows.push_back(row);
   }
 }
 }
 
 /// The first reduction (0: the full mesh) is the reference of the others.
-bool RunLOD(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::vector<TradeRow>& rows)
+bool RunLOD(vtkPolyData* mesh, const Scene& scene, const Options& opt,
+  const Reference& exact, std::vector<TradeRow>& rows)
 {
   const Point zero{ { 0, 0, 0 } };
   LODReference ref;
@@ -150,10 +154,10 @@ bool RunLOD(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::vect
     level.Pick = ComparePicks(ref.Picked, level.Picked);
     level.Geom = SurfaceDistance(ref.Locator, ref.Samples, locator, samples);
 
-    LevelRows(ratio, level, ref, rows);
+    LevelRows(ratio, level, ref, exact, rows);
     if (first)
     {
-      RendererRows(level, rows);
+      RendererRows(level, exact, rows);
       ref.Traced = std::move(level.Traced);
       ref.Raster = std::move(level.Raster);
     }

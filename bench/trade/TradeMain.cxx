@@ -5,13 +5,21 @@
 // progressive accumulation, level of detail (decimation, traced and
 // raster, and the renderer knob), precision far from the origin.
 //
+// The quality presets run first: EXACT's converged image is the one
+// reference every traced setting is also measured against.
+//
 // Output: DIR/trade.csv, DIR/precision.csv and PNG plots in DIR (default
 // ./results). A timing never decides anything here beyond being reported.
 //
 // Usage: vtkrtBenchTrade [--quick] [--out DIR] [--size PIXELS]
 //                        [--mesh FILE.ply|.obj|.stl|.vtp|generated]
+//                        [--triangles N] [--frames N] [--sections a,b,..]
 // The default mesh is bunny.ply from $VTKRT_DATA_DIR or the project's data/
-// (vtkrtDataFile.h); --quick defaults to the generated one.
+// (vtkrtDataFile.h); --quick defaults to the generated one; --triangles N
+// generates one of about N triangles. --frames: the still frames of the
+// presets (and of the reference). --sections: only these of builder,
+// passbuilder, knobs, shadows, accumulation, lod, precision (the presets
+// always run: "--sections presets" runs them alone).
 #include "TradeMesh.h"
 #include "TradeSections.h"
 
@@ -22,9 +30,11 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <sstream>
 #include <utility>
 
 namespace vtkrtTrade
@@ -52,10 +62,28 @@ bool ParseArgs(int argc, char* argv[], Options& opt)
     {
       opt.Size = std::max(32, std::atoi(argv[++i]));
     }
+    else if (a == "--triangles" && i + 1 < argc)
+    {
+      opt.Triangles = std::max(100, std::atoi(argv[++i]));
+      opt.Mesh = "generated";
+    }
+    else if (a == "--frames" && i + 1 < argc)
+    {
+      opt.ReferenceFrames = std::max(2, std::atoi(argv[++i]));
+    }
+    else if (a == "--sections" && i + 1 < argc)
+    {
+      std::stringstream list(argv[++i]);
+      for (std::string name; std::getline(list, name, ',');)
+      {
+        opt.Sections.push_back(name);
+      }
+    }
     else
     {
       std::cerr << "usage: vtkrtBenchTrade [--quick] [--out DIR] [--size PIXELS] "
-                   "[--mesh FILE.ply|.obj|.stl|.vtp|generated]\n";
+                   "[--mesh FILE.ply|.obj|.stl|.vtp|generated] [--triangles N] [--frames N] "
+                   "[--sections builder,passbuilder,knobs,shadows,accumulation,lod,precision]\n";
       return false;
     }
   }
@@ -71,6 +99,7 @@ bool ParseArgs(int argc, char* argv[], Options& opt)
     opt.Ratios = { 0.0, 0.5, 0.9 };
     opt.Translations = { 0.0, 1e4, 1e8 };
     opt.Leaves = { 1, 4, 16 };
+    opt.ReferenceFrames = std::min(opt.ReferenceFrames, 8);
     if (opt.Mesh.empty())
     {
       opt.Mesh = "generated";
@@ -91,31 +120,62 @@ vtkSmartPointer<vtkPolyData> LoadMesh(Options& opt, std::string& name)
   if (opt.Mesh == "generated")
   {
     name = "generated bumpy sphere";
-    return BumpySphere(opt.Quick ? 70 : 320);
+    // A sphere source of resolution r has about 2 r^2 triangles.
+    const int res = opt.Triangles > 0 ? static_cast<int>(std::sqrt(0.5 * opt.Triangles) + 0.5)
+                                      : (opt.Quick ? 70 : 320);
+    return BumpySphere(res);
   }
   name = vtksys::SystemTools::GetFilenameName(opt.Mesh);
   return ReadMesh(opt.Mesh);
 }
 
-/// Every section in turn, printing its title first; false when one failed.
+bool Selected(const Options& opt, const std::string& name)
+{
+  return opt.Sections.empty() ||
+    std::find(opt.Sections.begin(), opt.Sections.end(), name) != opt.Sections.end();
+}
+
+/// The presets (which make the reference), then every selected section in
+/// turn, printing its title first; false when one failed.
 bool RunSections(vtkPolyData* mesh, const Scene& scene, const Options& opt,
   std::vector<TradeRow>& trade, std::vector<PrecisionRow>& precision)
 {
-  const std::pair<const char*, TradeSection> sections[] = {
-    { "builder (vtkBVHCellLocator, reference HIGH/leaf1)", RunBuilder },
-    { "pass builder (vtkRayTracePass BuildQuality, reference HIGH)", RunPassBuilder },
-    { "pass knobs (vtkRayTracePass, each against its best setting)", RunPassKnobs },
-    { "shadows per scene light count (vtkRayTracePass)", RunShadowLights },
-    { "progressive accumulation (vtkRayTracePass, 1 sample a frame)", RunAccumulation },
-    { "level of detail (vtkOpenMeshDecimation, reference full mesh)", RunLOD },
-  };
-  for (const auto& section : sections)
+  std::printf("quality presets (vtkRayTracePass, reference EXACT after %d still frames):\n",
+    std::max(2, opt.ReferenceFrames));
+  Reference exact;
+  if (!RunPresets(mesh, scene, opt, exact, trade))
   {
-    std::printf("%s:\n", section.first);
-    if (!section.second(mesh, scene, opt, trade))
+    return false;
+  }
+  struct Section
+  {
+    const char* Name;
+    const char* Title;
+    TradeSection Run;
+  };
+  const Section sections[] = {
+    { "builder", "builder (vtkBVHCellLocator, reference HIGH/leaf1)", RunBuilder },
+    { "passbuilder", "pass builder (vtkRayTracePass BuildQuality, reference HIGH)", RunPassBuilder },
+    { "knobs", "pass knobs (vtkRayTracePass, each against its best setting)", RunPassKnobs },
+    { "shadows", "shadows per scene light count (vtkRayTracePass)", RunShadowLights },
+    { "accumulation", "progressive accumulation (vtkRayTracePass, 1 sample a frame)", RunAccumulation },
+    { "lod", "level of detail (vtkOpenMeshDecimation, reference full mesh)", RunLOD },
+  };
+  for (const Section& section : sections)
+  {
+    if (!Selected(opt, section.Name))
+    {
+      continue;
+    }
+    std::printf("%s:\n", section.Title);
+    if (!section.Run(mesh, scene, opt, exact, trade))
     {
       return false;
     }
+  }
+  if (!Selected(opt, "precision"))
+  {
+    return true;
   }
   std::printf("precision (scene translated, reference untranslated):\n");
   return RunPrecision(mesh, scene, opt, precision);
@@ -127,6 +187,7 @@ int main(int argc, char* argv[])
 {
   using namespace vtkrtTrade;
   vtkEGLHeadlessRenderWindow::TuneMallocForLargeBuffers();
+  std::setvbuf(stdout, nullptr, _IOLBF, 0); // each line as it comes, also into a file
   Options opt;
   if (!ParseArgs(argc, argv, opt))
   {

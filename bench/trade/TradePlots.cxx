@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace vtkrtTrade
 {
@@ -29,6 +30,11 @@ struct PlotFolder
   void Write(const std::string& name, const std::string& title, const vtkrtPlot::Axis& x,
     const vtkrtPlot::Axis& y, const Curves& curves, LegendCorner legend = LegendCorner::OutsideRight)
   {
+    // A section left out of the run (--sections) leaves its charts empty.
+    if (std::all_of(curves.begin(), curves.end(), [](const Series& s) { return s.X.empty(); }))
+    {
+      return;
+    }
     const std::string path = this->Dir + "/" + name;
     if (vtkrtPlot::WritePNG(path, title, x, y, curves, legend))
     {
@@ -202,6 +208,82 @@ void PlotShadowLights(PlotFolder& out, const std::vector<TradeRow>& trade)
     LegendCorner::TopLeft);
 }
 
+/// The settings no other setting beats in both time and error, by time.
+Series ParetoFront(const std::vector<TradeRow>& trade)
+{
+  std::vector<const TradeRow*> points;
+  for (const TradeRow& r : trade)
+  {
+    if (std::isfinite(r.ImageS) && std::isfinite(r.ExactRMSE))
+    {
+      points.push_back(&r);
+    }
+  }
+  std::sort(points.begin(), points.end(), [](const TradeRow* a, const TradeRow* b) {
+    return a->ImageS < b->ImageS || (a->ImageS == b->ImageS && a->ExactRMSE < b->ExactRMSE);
+  });
+  Series front;
+  front.Name = "Pareto front";
+  front.Dashed = true;
+  front.Color[0] = front.Color[1] = front.Color[2] = 130; // grey: no curve of the palette
+  double best = std::numeric_limits<double>::infinity();
+  for (const TradeRow* r : points)
+  {
+    if (r->ExactRMSE < best)
+    {
+      best = r->ExactRMSE;
+      front.X.push_back(1e3 * r->ImageS);
+      front.Y.push_back(r->ExactRMSE);
+    }
+  }
+  return front;
+}
+
+/// Every traced or raster setting measured against the EXACT reference:
+/// time to its image against its image error, each knob a curve, the Pareto
+/// front, and each preset from one frame (moving view) to its still frames.
+void PlotPresets(PlotFolder& out, const std::vector<TradeRow>& trade)
+{
+  const char* knobs[][2] = { { "pass samples per pixel", "samples per pixel" },
+    { "pass max traversal steps", "max traversal steps" }, { "pass shadows", "shadows off/on" },
+    { "pass AO samples", "AO samples" }, { "pass leaf size", "leaf size" },
+    { "pass builder", "BuildQuality" }, { "pass accumulation", "progressive, frames" },
+    { "pass accumulation (AO 1)", "progressive + 1 AO ray, frames" } };
+  Curves curves;
+  for (const auto& k : knobs)
+  {
+    const std::vector<TradeRow> rows =
+      SortedRows(trade, k[0], [](const TradeRow& r) { return r.ImageS; });
+    curves.push_back(Curve(k[1], rows, k[0], "", &TradeRow::ImageS, &TradeRow::ExactRMSE, 1e3));
+  }
+  for (const std::string method : { "traced", "raster" })
+  {
+    curves.push_back(Curve("LOD reductions, " + method, trade, "lod", method, &TradeRow::ImageS,
+      &TradeRow::ExactRMSE, 1e3));
+  }
+  curves.push_back(ParetoFront(trade));
+  // Colors outside the palette of the knob curves.
+  const int colors[3][3] = { { 0, 170, 0 }, { 140, 70, 0 }, { 204, 0, 0 } };
+  const char* presets[] = { "INTERACTIVE", "BALANCED", "EXACT" };
+  for (int p = 0; p < 3; ++p)
+  {
+    const std::string name = presets[p];
+    Series s = SeriesOf("preset " + name + ": 1 frame, then still", trade,
+      [&](const TradeRow& r) { return r.Knob == "preset" && r.Setting.rfind(name, 0) == 0; },
+      [](const TradeRow& r) { return 1e3 * r.ImageS; },
+      [](const TradeRow& r) { return r.ExactRMSE; });
+    std::copy(colors[p], colors[p] + 3, s.Color);
+    curves.push_back(s);
+  }
+  // Sections left out of the run (--sections) leave their curves empty.
+  curves.erase(std::remove_if(curves.begin(), curves.end(), [](const Series& c) { return c.X.empty(); }),
+    curves.end());
+  out.Write("trade_presets.png",
+    "Every setting against the EXACT preset's converged image: time vs error",
+    Log("time to the image, scene loaded (ms): one steady frame, or k accumulated frames"),
+    Log("image RMSE vs EXACT converged (0-255; 0 drawn at 0.01)", 0.01), curves);
+}
+
 /// `method`'s translated rows, translation against `y`.
 template <class Y>
 Series TranslationCurve(const std::string& name, const std::vector<PrecisionRow>& precision,
@@ -256,6 +338,7 @@ bool WritePlots(const std::string& dir, const std::vector<TradeRow>& trade,
   const std::vector<PrecisionRow>& precision, double diagonal, std::vector<std::string>& written)
 {
   PlotFolder out{ dir, written };
+  PlotPresets(out, trade);
   PlotLODFrame(out, trade);
   PlotLODError(out, trade, diagonal);
   PlotBuilder(out, trade);

@@ -35,6 +35,7 @@ TradeRow StageRow(const std::string& knob, const std::string& setting, const std
   row.FirstFrameS = st.FirstSeconds;
   row.SteadyFrameS = st.SteadySeconds;
   row.SteadyMinS = st.SteadyMinSeconds;
+  row.ImageS = st.SteadyMinSeconds;
   row.ImageRMSE = ImageRMSE(ref.Image, st.Image);
   row.ImageDiff = ImageDifference(ref.Image, st.Image);
   return row;
@@ -45,7 +46,8 @@ bool WriteTradeCSV(const std::string& path, const std::vector<TradeRow>& rows, d
   std::ofstream f(path);
   f << "knob,setting,method,value,triangles,prep_s,build_s,first_frame_s,steady_frame_s,steady_frame_min_s,pick_us,"
        "image_rmse,image_diff,depth_err,coverage_err,pick_err_mean,pick_err_max,pick_miss,"
-       "geom_mean,geom_max,nodes,sah_cost,memory_mb,diagonal\n";
+       "geom_mean,geom_max,nodes,sah_cost,memory_mb,diagonal,image_s,exact_rmse,exact_diff,"
+       "exact_depth_err,exact_coverage_err,exact_pick_mean,exact_pick_miss,steady_cpu_s\n";
   for (const TradeRow& r : rows)
   {
     f << r.Knob << ',' << r.Setting << ',' << r.Method << ',' << Cell(r.Value) << ','
@@ -55,7 +57,9 @@ bool WriteTradeCSV(const std::string& path, const std::vector<TradeRow>& rows, d
       << Cell(r.Coverage) << ',' << Cell(r.PickMean) << ',' << Cell(r.PickMax) << ','
       << Cell(r.PickMiss) << ',' << Cell(r.GeomMean) << ',' << Cell(r.GeomMax) << ','
       << Cell(r.Nodes) << ',' << Cell(r.SAHCost) << ',' << Cell(r.MemoryMB) << ','
-      << Cell(diagonal) << '\n';
+      << Cell(diagonal) << ',' << Cell(r.ImageS) << ',' << Cell(r.ExactRMSE) << ','
+      << Cell(r.ExactDiff) << ',' << Cell(r.ExactDepth) << ',' << Cell(r.ExactCoverage) << ','
+      << Cell(r.ExactPickMean) << ',' << Cell(r.ExactPickMiss) << ',' << Cell(r.SteadyCpuS) << '\n';
   }
   return static_cast<bool>(f);
 }

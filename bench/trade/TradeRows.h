@@ -22,6 +22,14 @@ struct TradeRow
   double PickMean = kNaN, PickMax = kNaN, PickMiss = kNaN;
   double GeomMean = kNaN, GeomMax = kNaN;
   double Nodes = kNaN, SAHCost = kNaN, MemoryMB = kNaN;
+  // Time to this image with the scene loaded: one steady frame, or k of
+  // them for k accumulated frames.
+  double ImageS = kNaN;
+  double SteadyCpuS = kNaN; // process CPU (every llvmpipe thread) of a steady frame, median
+  // Errors against the run's one reference, the EXACT preset's converged
+  // image, depth and depth picks (see Reference in TradeSections.h).
+  double ExactRMSE = kNaN, ExactDiff = kNaN, ExactDepth = kNaN, ExactCoverage = kNaN;
+  double ExactPickMean = kNaN, ExactPickMiss = kNaN;
 };
 
 struct PrecisionRow

@@ -36,7 +36,8 @@ void TimeAlternately(std::unique_ptr<Stage> (&stages)[2], int frames)
 /// difference of two frame times, which a changing load on the machine
 /// disturbs most: the two windows' frames are timed alternately (same load
 /// for both), fastest of opt.Frames each.
-bool RunShadowLights(vtkPolyData* mesh, const Scene& scene, const Options& opt, std::vector<TradeRow>& rows)
+bool RunShadowLights(vtkPolyData* mesh, const Scene& scene, const Options& opt,
+  const Reference& /*exact: other lights than its*/, std::vector<TradeRow>& rows)
 {
   Options first = opt;
   first.Frames = 0;

@@ -121,6 +121,11 @@ void AddSceneLights(vtkRenderer* ren, const Scene& s, const Point& offset, int c
 vtkSmartPointer<vtkRayTracePass> MakePass(const PassSettings& knobs)
 {
   auto pass = vtkSmartPointer<vtkRayTracePass>::New();
+  if (knobs.Preset != vtkRayTracePass::CUSTOM)
+  {
+    pass->SetQualityPreset(knobs.Preset);
+    return pass;
+  }
   if (knobs.Quality >= 0)
   {
     pass->SetBuildQuality(knobs.Quality);

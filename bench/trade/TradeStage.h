@@ -41,6 +41,7 @@ void SetupCamera(vtkCamera* camera, const Scene& s, const Point& offset);
 /// Pass knobs of one traced stage (defaults: the pass's own).
 struct PassSettings
 {
+  int Preset = vtkRayTracePass::CUSTOM; // a quality preset instead of the knobs below
   int Quality = -1; // BuildQuality; -1 keeps the default
   int SamplesPerPixel = 1;
   int MaximumTraversalSteps = 0;

@@ -12,7 +12,14 @@
 # - pass leaf sizes all draw the reference image; progressive accumulation
 #   error never grows with the number of frames and is 0 for the reference;
 #   shadow rows for at least two light counts, shadows on and off;
-# - ten PNG plots exist, are PNG files, and are neither empty nor huge.
+# - the quality presets: INTERACTIVE, BALANCED and EXACT each have a
+#   one-frame row and a still row with first and steady frame times and
+#   errors against the one reference, EXACT's converged image; EXACT still
+#   is that reference (every error 0); accumulating never makes a preset
+#   worse; EXACT's first frame is nearer the reference than INTERACTIVE's;
+#   every pass knob, builder, accumulation and LOD row is measured against
+#   the reference too (exact_rmse set, 0 only where the image is EXACT's);
+# - eleven PNG plots exist, are PNG files, and are neither empty nor huge.
 # Usage: cmake -DBENCH=<vtkrtBenchTrade> -DOUT=<dir> -P CheckBenchTrade.cmake
 cmake_minimum_required(VERSION 3.16)
 
@@ -185,6 +192,68 @@ if (shadow_rows LESS 4)
   fail("${shadow_rows} pass shadow lights rows, expected at least 4")
 endif ()
 
+foreach (preset INTERACTIVE BALANCED EXACT)
+  set(moving "")
+  set(still "")
+  foreach (r RANGE ${last})
+    if (NOT t_${r}_knob STREQUAL "preset")
+      continue ()
+    endif ()
+    if (t_${r}_setting STREQUAL "${preset}")
+      set(moving ${r})
+    elseif (t_${r}_setting STREQUAL "${preset} still")
+      set(still ${r})
+    endif ()
+  endforeach ()
+  if (moving STREQUAL "" OR still STREQUAL "")
+    fail("preset ${preset}: no one-frame or no still row")
+    continue ()
+  endif ()
+  foreach (r ${moving} ${still})
+    foreach (col first_frame_s steady_frame_s steady_frame_min_s image_s)
+      if (NOT t_${r}_${col} GREATER 0)
+        fail("preset ${t_${r}_setting}: no ${col}")
+      endif ()
+    endforeach ()
+    foreach (col exact_rmse exact_diff exact_depth_err exact_pick_mean exact_pick_miss)
+      if ("${t_${r}_${col}}" STREQUAL "")
+        fail("preset ${t_${r}_setting}: no ${col}")
+      endif ()
+    endforeach ()
+  endforeach ()
+  if (NOT t_${still}_value GREATER t_${moving}_value)
+    fail("preset ${preset}: the still row accumulates ${t_${still}_value} frames, not more than 1")
+  endif ()
+  expect_le("${t_${still}_exact_rmse}" "${t_${moving}_exact_rmse}"
+    "preset ${preset}: still frames against the reference (not worse than one frame)")
+  set(${preset}_moving_rmse "${t_${moving}_exact_rmse}")
+  if (preset STREQUAL "EXACT")
+    foreach (col exact_rmse exact_diff exact_depth_err exact_coverage_err exact_pick_mean exact_pick_miss)
+      expect_le("${t_${still}_${col}}" 0 "EXACT still against itself (the reference): ${col}")
+    endforeach ()
+    if (NOT t_${moving}_exact_rmse GREATER 0)
+      fail("EXACT's first frame is the converged image (rmse ${t_${moving}_exact_rmse}): nothing accumulated")
+    endif ()
+  endif ()
+endforeach ()
+if (NOT "${EXACT_moving_rmse}" LESS "${INTERACTIVE_moving_rmse}")
+  fail("EXACT's first frame (rmse ${EXACT_moving_rmse}) is not nearer the reference than INTERACTIVE's (${INTERACTIVE_moving_rmse})")
+endif ()
+set(measured 0)
+foreach (r RANGE ${last})
+  if (t_${r}_knob MATCHES "^(pass |lod|renderer)" AND NOT t_${r}_knob STREQUAL "pass shadow lights")
+    math(EXPR measured "${measured} + 1")
+    if ("${t_${r}_exact_rmse}" STREQUAL "" OR "${t_${r}_image_s}" STREQUAL "")
+      fail("${t_${r}_knob} ${t_${r}_setting} ${t_${r}_method}: not measured against the reference")
+    elseif (NOT t_${r}_exact_rmse GREATER 0)
+      fail("${t_${r}_knob} ${t_${r}_setting} ${t_${r}_method}: rmse 0 against the EXACT reference, which has shadows and occlusion")
+    endif ()
+  endif ()
+endforeach ()
+if (measured LESS 20)
+  fail("only ${measured} rows measured against the reference")
+endif ()
+
 #------------------------------------------------------------------------------
 read_csv("${OUT}/precision.csv" p)
 math(EXPR last "${p_rows} - 1")
@@ -224,7 +293,7 @@ if ("${far_world}" STREQUAL "" OR NOT far_world GREATER 1)
 endif ()
 
 #------------------------------------------------------------------------------
-foreach (png trade_lod_frame trade_lod_error trade_builder trade_pass_builder trade_pass_knobs
+foreach (png trade_presets trade_lod_frame trade_lod_error trade_builder trade_pass_builder trade_pass_knobs
     trade_accumulation trade_pass_leaf trade_shadow_lights precision_pick precision_image)
   set(path "${OUT}/${png}.png")
   if (NOT EXISTS "${path}")

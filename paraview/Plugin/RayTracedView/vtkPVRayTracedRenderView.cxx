@@ -76,6 +76,9 @@ double idAt(vtkDataArray* a, vtkIdType i, vtkIdType fallback)
 struct vtkPVRayTracedRenderView::Internals
 {
   vtkNew<vtkRayTracePass> Pass;
+  // The knob properties' values (never rendered with): the pass takes them
+  // under the CUSTOM preset.
+  vtkNew<vtkRayTracePass> Knobs;
   struct CachedLocator
   {
     vtkSmartPointer<vtkBVHCellLocator> Locator;
@@ -132,6 +135,7 @@ void vtkPVRayTracedRenderView::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "EnableRayTracing: " << this->EnableRayTracing << "\n";
+  os << indent << "QualityPreset: " << this->QualityPreset << "\n";
   os << indent << "LastSelectionRays: " << this->LastSelectionRays << "\n";
   os << indent << "LastSelectionLocatorBuilds: " << this->LastSelectionLocatorBuilds << "\n";
   os << indent << "RayTracePass:\n";
@@ -154,16 +158,43 @@ void vtkPVRayTracedRenderView::SetEnableRayTracing(bool enable)
   this->Modified();
 }
 
+void vtkPVRayTracedRenderView::SetQualityPreset(int preset)
+{
+  if (preset != this->QualityPreset)
+  {
+    this->QualityPreset = preset;
+    this->ApplyKnobs();
+    this->Modified();
+  }
+}
+
+void vtkPVRayTracedRenderView::ApplyKnobs()
+{
+  vtkRayTracePass* pass = this->Internal->Pass;
+  vtkRayTracePass* knobs = this->Internal->Knobs;
+  pass->SetSamplesPerPixel(knobs->GetSamplesPerPixel());
+  pass->SetProgressiveAccumulation(knobs->GetProgressiveAccumulation());
+  pass->SetShadows(knobs->GetShadows());
+  pass->SetAmbientOcclusionSamples(knobs->GetAmbientOcclusionSamples());
+  pass->SetAmbientOcclusionRadius(knobs->GetAmbientOcclusionRadius());
+  pass->SetBuildQuality(knobs->GetBuildQuality());
+  pass->SetMaximumTraversalSteps(knobs->GetMaximumTraversalSteps());
+  pass->SetLeafSize(knobs->GetLeafSize());
+  pass->SetPrecisionMode(knobs->GetPrecisionMode());
+  pass->SetQualityPreset(this->QualityPreset);
+}
+
 #define vtkrtForwardKnob(Name, Type)                                                                \
   void vtkPVRayTracedRenderView::Set##Name(Type value)                                              \
   {                                                                                                 \
-    if (this->Internal->Pass->Get##Name() != value)                                                 \
+    if (this->Internal->Knobs->Get##Name() != value)                                                \
     {                                                                                               \
-      this->Internal->Pass->Set##Name(value);                                                       \
+      this->Internal->Knobs->Set##Name(value);                                                      \
+      this->ApplyKnobs();                                                                           \
       this->Modified();                                                                             \
     }                                                                                               \
   }                                                                                                 \
-  Type vtkPVRayTracedRenderView::Get##Name() { return this->Internal->Pass->Get##Name(); }
+  Type vtkPVRayTracedRenderView::Get##Name() { return this->Internal->Knobs->Get##Name(); }
 
 vtkrtForwardKnob(SamplesPerPixel, int);
 vtkrtForwardKnob(ProgressiveAccumulation, bool);

@@ -9,8 +9,9 @@
  * widgets, text, selection highlights, volumes, translucent geometry) is
  * drawn by its raster delegate, i.e. ParaView's usual passes.
  *
- * The pass's knobs are view properties (see the server-manager XML
- * "RayTracedRenderView"). EnableRayTracing off gives ParaView's raster
+ * The pass's knobs and its quality preset are view properties (see the
+ * server-manager XML "RayTracedRenderView"; a preset other than Custom
+ * rules the knobs it sets). EnableRayTracing off gives ParaView's raster
  * rendering back in the same view.
  *
  * Selection (SelectCells / SelectPoints, i.e. a click or a rubber band in the
@@ -54,7 +55,22 @@ public:
 
   ///@{
   /**
-   * The pass's knobs (see vtkRayTracePass).
+   * The pass's quality preset (vtkRayTracePass::QualityPresets; default
+   * CUSTOM). Under CUSTOM the pass takes the knobs below; under another
+   * preset it takes the preset's knobs whatever the knob properties say
+   * (except AmbientOcclusionRadius, which no preset sets). Unlike
+   * vtkRayTracePass, where a knob set after a preset wins, the view does
+   * not depend on the order its properties arrive in: ParaView pushes a
+   * state's or an Apply's properties together, in no set order.
+   */
+  void SetQualityPreset(int preset);
+  vtkGetMacro(QualityPreset, int);
+  ///@}
+
+  ///@{
+  /**
+   * The pass's knobs (see vtkRayTracePass), in effect under the CUSTOM
+   * quality preset; the getters return the property values.
    */
   void SetSamplesPerPixel(int samples);
   int GetSamplesPerPixel();
@@ -134,7 +150,13 @@ protected:
 
   void SelectWithLocator(int fieldAssociation, int region[4], const char* array);
 
+  /**
+   * Sets the pass's knobs from the knob properties, then the preset's.
+   */
+  void ApplyKnobs();
+
   bool EnableRayTracing = true;
+  int QualityPreset = 0;
   vtkIdType LastSelectionRays = 0;
   int LastSelectionLocatorBuilds = 0;
 
