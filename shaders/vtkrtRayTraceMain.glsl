@@ -270,8 +270,10 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
     return;
   }
 #endif
+  // The branch-free test: it accepts a superset of the boxes the ray
+  // meets, which never changes a hit (t0 >= 0 as it needs).
   float tnear;
-  if (!intersectRayAABB(org, invDir, boxMin, boxMax, t0, t1, tnear))
+  if (!intersectRayBoxConservative(org, invDir, parallelAxisBias(invDir), boxMin, boxMax, t0, t1, tnear))
   {
     return;
   }

@@ -721,7 +721,8 @@ void testTopLevel()
                          int& hitInstance, int& hitPrimitive, vec2& hitUV, bool stopAtFirstHit) {
     const InstanceScene::Record& r = scene.records[std::size_t(instance)];
     float t1 = tBest, tnear;
-    if (!gpu::intersectRayAABB(org, invDir, r.boxMin, r.boxMax, 0.0f, t1, tnear))
+    if (!gpu::intersectRayBoxConservative(
+          org, invDir, gpu::parallelAxisBias(invDir), r.boxMin, r.boxMax, 0.0f, t1, tnear))
     {
       return;
     }

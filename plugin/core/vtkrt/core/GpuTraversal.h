@@ -112,12 +112,11 @@ struct ShaderInputs
   bool hasEllipsoids = false;    ///< VTKRT_HAS_ELLIPSOIDS
 };
 
-/// The shader's bvhStackIndex, bvhStackCount and bvhStackNear.
+/// The shader's bvhStack: entries (index, count, the bits of the entry
+/// distance).
 struct BvhStack
 {
-  std::uint32_t index[kMaxStackSize] = {};
-  std::uint32_t count[kMaxStackSize] = {};
-  float tnear[kMaxStackSize] = {};
+  uvec3 entry[kMaxStackSize] = {};
 };
 
 /// One interior step (see the shader): the farther child is written above
@@ -129,9 +128,8 @@ inline bool bvhInteriorStep(BvhStack& stack, const Node& n0, bool h0, float t0, 
 {
   assert(sp >= 0 && sp + 1 < static_cast<int>(kMaxStackSize));
   const bool nearIs1 = h1 && (!h0 || t1 < t0);
-  stack.index[sp] = nearIs1 ? n0.index : n1.index;
-  stack.count[sp] = nearIs1 ? n0.count : n1.count;
-  stack.tnear[sp] = nearIs1 ? t0 : t1;
+  stack.entry[sp] = nearIs1 ? uvec3(n0.index, n0.count, glm::floatBitsToUint(t0))
+                            : uvec3(n1.index, n1.count, glm::floatBitsToUint(t1));
   const bool anyHit = h0 || h1;
   if (!anyHit && sp == 0)
   {
@@ -139,12 +137,11 @@ inline bool bvhInteriorStep(BvhStack& stack, const Node& n0, bool h0, float t0, 
   }
   sp += h0 && h1 ? 1 : 0;
   const int top = anyHit ? sp : std::max(sp - 1, 0);
-  culled = !anyHit && stack.tnear[top] > tmax;
-  const std::uint32_t popIndex = stack.index[top];
-  const std::uint32_t popCount = stack.count[top];
+  const uvec3 popped = stack.entry[top];
+  culled = !anyHit && glm::uintBitsToFloat(popped.z) > tmax;
   sp = top;
-  index = anyHit ? (nearIs1 ? n1.index : n0.index) : (culled ? 0u : popIndex);
-  count = anyHit ? (nearIs1 ? n1.count : n0.count) : (culled ? 0u : popCount);
+  index = anyHit ? (nearIs1 ? n1.index : n0.index) : (culled ? 0u : popped.x);
+  count = anyHit ? (nearIs1 ? n1.count : n0.count) : (culled ? 0u : popped.y);
   return true;
 }
 
@@ -158,9 +155,10 @@ inline bool bvhPopAfterLeaf(
     return false;
   }
   --sp;
-  culled = stack.tnear[sp] > tmax;
-  index = culled ? 0u : stack.index[sp];
-  count = culled ? 0u : stack.count[sp];
+  const uvec3 popped = stack.entry[sp];
+  culled = glm::uintBitsToFloat(popped.z) > tmax;
+  index = culled ? 0u : popped.x;
+  count = culled ? 0u : popped.y;
   return true;
 }
 
@@ -206,13 +204,9 @@ inline void whileWhileWalk(const ShaderInputs& u, int root, const vec3& org, con
   const vec3 invDir = safeInverse(dir);
   const vec3 parallelBias = parallelAxisBias(invDir);
   const vec3 growBy = vec3(grow);
-  float tnear;
+  // No test of the root's box: the caller (the shader's traceInstance) has
+  // tested the instance's box, which bounds it.
   const Node rootNode = fetchNode(u.uNodes, root);
-  if (!intersectRayAABB(org, invDir, Grow ? rootNode.lo - growBy : rootNode.lo,
-        Grow ? rootNode.hi + growBy : rootNode.hi, tmin, tmax, tnear))
-  {
-    return;
-  }
   BvhStack stack;
   int sp = 0;
   int steps = 0;
