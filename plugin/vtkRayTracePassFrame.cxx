@@ -1,5 +1,7 @@
 #include "vtkRayTracePassInternals.h"
 
+#include "vtkrt/core/GpuTraversal.h"
+
 using vtkrt::pass::Features;
 using vtkrt::pass::Instance;
 
@@ -162,6 +164,15 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   f.WorldCoordinates = pass.PrecisionMode == WORLD;
   f.ScreenSpheres = this->Scene.HasScreenSpheres();
   f.Ellipsoids = this->Scene.HasEllipsoids();
+  // The stack as deep as the deepest bottom-level tree needs; the top-level
+  // walk shares it, so with one it is the largest.
+  std::uint32_t depth = 0;
+  for (const Instance& inst : this->Scene.GetInstances())
+  {
+    depth = std::max(depth, inst.Geom->MaxDepth);
+  }
+  f.StackSize = static_cast<int>(
+    topLevel ? vtkrt::core::kMaxStackSize : vtkrt::core::gpu::stackSizeForDepth(depth));
   GLint major = 0;
   glGetIntegerv(GL_MAJOR_VERSION, &major);
   f.Fp64 = major >= 4;

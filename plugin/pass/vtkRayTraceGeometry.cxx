@@ -32,6 +32,9 @@ namespace
 std::optional<Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh)
 {
   g.SkippedPrimitives = bvh.stats.skippedPrimitives;
+  // A tree of more than a root whose depth says 0 did not count it: the
+  // deepest any may be.
+  g.MaxDepth = bvh.nodes.size() > 1 && bvh.stats.maxDepth == 0 ? core::kMaxDepth : bvh.stats.maxDepth;
   if (bvh.empty())
   {
     return std::nullopt;

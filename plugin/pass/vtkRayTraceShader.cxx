@@ -31,7 +31,8 @@ std::string Features::Key() const
     << this->TopLevel << "A" << this->SamplesPerPixel << "H" << this->Shadows << "O"
     << this->AmbientOcclusionSamples << "M" << this->MaximumTraversalSteps << "W"
     << this->WorldCoordinates << "Q" << this->ScreenSpheres << "E" << this->Ellipsoids << "X"
-    << this->ColorTexture << "K" << this->SelectIds << "F" << this->CellNormals;
+    << this->ColorTexture << "K" << this->SelectIds << "F" << this->CellNormals << "Z"
+    << this->StackSize;
   return s.str();
 }
 
@@ -69,7 +70,7 @@ std::string AssembleShader(const Features& f)
   s << "#define VTKRT_NUMBER_OF_CLIP_PLANES " << f.ClipPlanes << "\n";
   s << "#define VTKRT_NUMBER_OF_LIGHTS " << f.Lights << "\n";
   s << "#define VTKRT_LIGHT_COMPLEXITY " << f.LightComplexity << "\n";
-  s << "#define VTKRT_STACK_SIZE " << core::kMaxStackSize << "\n";
+  s << "#define VTKRT_STACK_SIZE " << f.StackSize << "\n";
   s << core::gpu::glslLayout();
   s << vtkrtRayTraceKernels << "\n";
   if (f.Triangles)

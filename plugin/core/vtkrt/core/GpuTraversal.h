@@ -110,13 +110,34 @@ struct ShaderInputs
   int maximumTraversalSteps = 0; ///< VTKRT_MAXIMUM_TRAVERSAL_STEPS (0: no cap)
   bool screenSpheres = false;    ///< VTKRT_SCREEN_SPHERES
   bool hasEllipsoids = false;    ///< VTKRT_HAS_ELLIPSOIDS
+  /// Not the shader's: the deepest stack entry the walks have touched so far
+  /// (what VTKRT_STACK_SIZE must hold; see stackSizeForDepth).
+  mutable int deepestStackEntry = -1;
 };
+
+/// The entries of the shader's walk stack (VTKRT_STACK_SIZE) for bottom-level
+/// trees no deeper than maxDepth (root depth 0): an interior step at depth d
+/// writes entry sp <= d and reads the entry above, so entries 0..maxDepth;
+/// rounded up to a power of two (at least 8) so that few shader variants
+/// exist. llvmpipe clears the whole stack for every group of pixels: a
+/// smaller stack is a cheaper pixel.
+inline std::uint32_t stackSizeForDepth(std::uint32_t maxDepth)
+{
+  const std::uint32_t needed = std::min(maxDepth, kMaxDepth) + 1;
+  std::uint32_t size = 8;
+  while (size < needed)
+  {
+    size *= 2;
+  }
+  return std::min(size, kMaxStackSize);
+}
 
 /// The shader's bvhStack: entries (index, count, the bits of the entry
 /// distance).
 struct BvhStack
 {
   uvec3 entry[kMaxStackSize] = {};
+  int deepest = -1; ///< not the shader's: the deepest entry touched
 };
 
 /// One interior step (see the shader): the farther child is written above
@@ -130,6 +151,7 @@ inline bool bvhInteriorStep(BvhStack& stack, const Node& n0, bool h0, float t0, 
   const bool nearIs1 = h1 && (!h0 || t1 < t0);
   stack.entry[sp] = nearIs1 ? uvec3(n0.index, n0.count, glm::floatBitsToUint(t0))
                             : uvec3(n1.index, n1.count, glm::floatBitsToUint(t1));
+  stack.deepest = std::max(stack.deepest, sp);
   const bool anyHit = h0 || h1;
   if (!anyHit && sp == 0)
   {
@@ -137,6 +159,7 @@ inline bool bvhInteriorStep(BvhStack& stack, const Node& n0, bool h0, float t0, 
   }
   sp += h0 && h1 ? 1 : 0;
   const int top = anyHit ? sp : std::max(sp - 1, 0);
+  stack.deepest = std::max(stack.deepest, top);
   const uvec3 popped = stack.entry[top];
   culled = !anyHit && glm::uintBitsToFloat(popped.z) > tmax;
   sp = top;
@@ -208,6 +231,12 @@ inline void whileWhileWalk(const ShaderInputs& u, int root, const vec3& org, con
   // tested the instance's box, which bounds it.
   const Node rootNode = fetchNode(u.uNodes, root);
   BvhStack stack;
+  struct RecordDeepest
+  {
+    const ShaderInputs& u;
+    const BvhStack& stack;
+    ~RecordDeepest() { u.deepestStackEntry = std::max(u.deepestStackEntry, stack.deepest); }
+  } recordDeepest{ u, stack };
   int sp = 0;
   int steps = 0;
   std::uint32_t index = rootNode.index;
