@@ -152,8 +152,9 @@ uvec3 bvhStack[VTKRT_STACK_SIZE];
 // Branch free (llvmpipe would run every branch, masked): the farther child
 // is written above the stack top every step and kept only when both
 // children are hit; the top entry is read every step and used only at a
-// dead end. sp never exceeds the depth of the node at hand, below kMaxDepth
-// <= VTKRT_STACK_SIZE (core/BVH.h): no bound check.
+// dead end. sp never exceeds the depth of the node at hand, and the entry
+// read is at most one above: VTKRT_STACK_SIZE holds entries 0 to the depth
+// of the scene's deepest tree (core::gpu::stackSizeForDepth): no bound check.
 bool bvhInteriorStep(Node n0, bool h0, float t0, Node n1, bool h1, float t1, float tmax,
   inout int sp, inout uint index, inout uint count, inout bool culled)
 {

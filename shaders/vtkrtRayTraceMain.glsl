@@ -324,7 +324,8 @@ uniform vec3 uCameraToAnchor;
 // The walk is core's nearer-first walk (core::detail::OrderedWalk: descend,
 // pop) with the node at hand carried as its Node; its C++ twin is
 // core::gpu::traceTopLevel (core/GpuTraversal.h). The stack never overflows
-// (depth <= kMaxDepth < VTKRT_STACK_SIZE, core/BVH.h).
+// (depth <= kMaxDepth < VTKRT_STACK_SIZE, which is kMaxStackSize with a top
+// level, core/BVH.h).
 void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int hitInstance,
   inout int hitPrimitive, inout vec2 hitUV, bool stopAtFirstHit)
 {
