@@ -1,5 +1,7 @@
 #include "vtkRayTracePassInternals.h"
 
+#include "vtkrt/core/GpuTraversal.h"
+
 using vtkrt::pass::Features;
 using vtkrt::pass::Instance;
 
@@ -30,6 +32,19 @@ void appendAsFloats(std::vector<float>& out, const std::vector<T>& values)
   {
     std::memcpy(out.data() + first, values.data(), values.size() * sizeof(T));
   }
+}
+
+/// Narrows drawing to the window rectangle `rect` within the scissor box
+/// (or, with no scissor test on, the viewport) in effect.
+void ScissorTo(vtkOpenGLState* ostate, const int rect[4])
+{
+  int box[4];
+  ostate->vtkglGetIntegerv(ostate->GetEnumState(GL_SCISSOR_TEST) ? GL_SCISSOR_BOX : GL_VIEWPORT, box);
+  ostate->vtkglEnable(GL_SCISSOR_TEST);
+  const int x0 = std::max(rect[0], box[0]), y0 = std::max(rect[1], box[1]);
+  const int x1 = std::min(rect[0] + rect[2], box[0] + box[2]);
+  const int y1 = std::min(rect[1] + rect[3], box[1] + box[3]);
+  ostate->vtkglScissor(x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0));
 }
 } // namespace
 
@@ -179,6 +194,15 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   f.FaceCulling = this->Scene.HasFaceCulling();
   f.BackfaceProperties = this->Scene.HasBackfaceProperties();
   f.TextureCutOuts = this->Scene.HasTextureCutOuts();
+  // The stack as deep as the deepest bottom-level tree needs; the top-level
+  // walk shares it, so with one it is the largest.
+  std::uint32_t depth = 0;
+  for (const Instance& inst : this->Scene.GetInstances())
+  {
+    depth = std::max(depth, inst.Geom->MaxDepth);
+  }
+  f.StackSize = static_cast<int>(
+    topLevel ? vtkrt::core::kMaxStackSize : vtkrt::core::gpu::stackSizeForDepth(depth));
   GLint major = 0;
   glGetIntegerv(GL_MAJOR_VERSION, &major);
   f.Fp64 = major >= 4;
@@ -338,22 +362,19 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRen
   ostate->vtkglDepthFunc(GL_ALWAYS);
   ostate->vtkglDepthMask(GL_TRUE);
   ostate->vtkglDisable(GL_BLEND);
+  // Rays only where the traced instances can be: the rest keeps VTK's clear
+  // (under IceT, each rank traces its own piece's share). The footprint is
+  // a pixel wider than the boxes' projections, so it holds every sub-pixel
+  // sample that can hit too.
+  vtkOpenGLState::ScopedglScissor scissor(ostate);
+  vtkOpenGLState::ScopedglEnableDisable scissorTest(ostate, GL_SCISSOR_TEST);
+  int footprint[4];
+  const bool narrowed = vtkrt::pass::TracedFootprint(p.Camera, p.Frame, ren, footprint);
   if (p.F.SamplesPerPixel == 0)
   {
-    // Rays only where the traced instances can be: the rest keeps VTK's
-    // clear (under IceT, each rank traces its own piece's share).
-    vtkOpenGLState::ScopedglScissor scissor(ostate);
-    vtkOpenGLState::ScopedglEnableDisable scissorTest(ostate, GL_SCISSOR_TEST);
-    int footprint[4];
-    if (vtkrt::pass::TracedFootprint(p.Camera, p.Frame, ren, footprint))
+    if (narrowed)
     {
-      int box[4];
-      ostate->vtkglGetIntegerv(ostate->GetEnumState(GL_SCISSOR_TEST) ? GL_SCISSOR_BOX : GL_VIEWPORT, box);
-      ostate->vtkglEnable(GL_SCISSOR_TEST);
-      const int x0 = std::max(footprint[0], box[0]), y0 = std::max(footprint[1], box[1]);
-      const int x1 = std::min(footprint[0] + footprint[2], box[0] + box[2]);
-      const int y1 = std::min(footprint[1] + footprint[3], box[1] + box[3]);
-      ostate->vtkglScissor(x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0));
+      ScissorTo(ostate, footprint);
     }
     tracer->Render();
   }
@@ -371,13 +392,18 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRen
     signature.insert(signature.end(), key.begin(), key.end());
     const bool restart = !pass.ProgressiveAccumulation || this->Counters.GeometryBytesUploaded > 0 ||
       this->Counters.ShaderCompiles > 0;
-    this->Accumulated.Trace(
-      win, ren, tracer, std::move(signature), restart, framesBefore, pass.SamplesPerPixel);
+    this->Accumulated.Trace(win, ren, tracer, std::move(signature), restart, framesBefore,
+      pass.SamplesPerPixel, narrowed ? footprint : nullptr);
     for (vtkTextureObject* t : p.Active)
     {
       t->Deactivate();
     }
     p.Active.clear();
+    // Outside the footprint the accumulation holds no hit: nothing to resolve.
+    if (narrowed)
+    {
+      ScissorTo(ostate, footprint);
+    }
     if (!this->Accumulated.Resolve(win, pass.SamplesPerPixel, this->Counters))
     {
       vtkErrorWithObjectMacro(&pass, "vtkRayTracePass: the accumulation resolve shader failed to compile.");

@@ -139,10 +139,11 @@ uint fetchPacked(usamplerBuffer buffer, int i)
 // nothing. A popped node that the best hit already prunes is "culled": the
 // next step treats it as a dead end (no nested pop loop, which llvmpipe
 // would run every step). One walk at a time uses this stack (shading and
-// occlusion rays walk one after another, never one inside another).
-uint bvhStackIndex[VTKRT_STACK_SIZE];
-uint bvhStackCount[VTKRT_STACK_SIZE];
-float bvhStackNear[VTKRT_STACK_SIZE];
+// occlusion rays walk one after another, never one inside another). An
+// entry is (index, count, the bits of its entry distance) in one array, so a
+// push or a pop is one indexed access (llvmpipe gathers and scatters each
+// lane's element of an indexed array one by one).
+uvec3 bvhStack[VTKRT_STACK_SIZE];
 
 // One interior step: the children of the node at hand are n0 and n1, h0/h1
 // say whether the ray meets their boxes (false for both when the node is
@@ -151,15 +152,15 @@ float bvhStackNear[VTKRT_STACK_SIZE];
 // Branch free (llvmpipe would run every branch, masked): the farther child
 // is written above the stack top every step and kept only when both
 // children are hit; the top entry is read every step and used only at a
-// dead end. sp never exceeds the depth of the node at hand, below kMaxDepth
-// <= VTKRT_STACK_SIZE (core/BVH.h): no bound check.
+// dead end. sp never exceeds the depth of the node at hand, and the entry
+// read is at most one above: VTKRT_STACK_SIZE holds entries 0 to the depth
+// of the scene's deepest tree (core::gpu::stackSizeForDepth): no bound check.
 bool bvhInteriorStep(Node n0, bool h0, float t0, Node n1, bool h1, float t1, float tmax,
   inout int sp, inout uint index, inout uint count, inout bool culled)
 {
   bool nearIs1 = h1 && (!h0 || t1 < t0);
-  bvhStackIndex[sp] = nearIs1 ? n0.index : n1.index;
-  bvhStackCount[sp] = nearIs1 ? n0.count : n1.count;
-  bvhStackNear[sp] = nearIs1 ? t0 : t1;
+  bvhStack[sp] = nearIs1 ? uvec3(n0.index, n0.count, floatBitsToUint(t0))
+                         : uvec3(n1.index, n1.count, floatBitsToUint(t1));
   bool anyHit = h0 || h1;
   if (!anyHit && sp == 0)
   {
@@ -167,12 +168,11 @@ bool bvhInteriorStep(Node n0, bool h0, float t0, Node n1, bool h1, float t1, flo
   }
   sp += h0 && h1 ? 1 : 0;
   int top = anyHit ? sp : max(sp - 1, 0);
-  culled = !anyHit && bvhStackNear[top] > tmax;
-  uint popIndex = bvhStackIndex[top];
-  uint popCount = bvhStackCount[top];
+  uvec3 popped = bvhStack[top];
+  culled = !anyHit && uintBitsToFloat(popped.z) > tmax;
   sp = top;
-  index = anyHit ? (nearIs1 ? n1.index : n0.index) : (culled ? 0u : popIndex);
-  count = anyHit ? (nearIs1 ? n1.count : n0.count) : (culled ? 0u : popCount);
+  index = anyHit ? (nearIs1 ? n1.index : n0.index) : (culled ? 0u : popped.x);
+  count = anyHit ? (nearIs1 ? n1.count : n0.count) : (culled ? 0u : popped.y);
   return true;
 }
 
@@ -186,9 +186,10 @@ bool bvhPopAfterLeaf(float tmax, inout int sp, inout uint index, inout uint coun
     return false;
   }
   --sp;
-  culled = bvhStackNear[sp] > tmax;
-  index = culled ? 0u : bvhStackIndex[sp];
-  count = culled ? 0u : bvhStackCount[sp];
+  uvec3 popped = bvhStack[sp];
+  culled = uintBitsToFloat(popped.z) > tmax;
+  index = culled ? 0u : popped.x;
+  count = culled ? 0u : popped.y;
   return true;
 }
 

@@ -277,8 +277,10 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
     return;
   }
 #endif
+  // The branch-free test: it accepts a superset of the boxes the ray
+  // meets, which never changes a hit (t0 >= 0 as it needs).
   float tnear;
-  if (!intersectRayAABB(org, invDir, boxMin, boxMax, t0, t1, tnear))
+  if (!intersectRayBoxConservative(org, invDir, parallelAxisBias(invDir), boxMin, boxMax, t0, t1, tnear))
   {
     return;
   }
@@ -346,7 +348,8 @@ uniform vec3 uCameraToAnchor;
 // The walk is core's nearer-first walk (core::detail::OrderedWalk: descend,
 // pop) with the node at hand carried as its Node; its C++ twin is
 // core::gpu::traceTopLevel (core/GpuTraversal.h). The stack never overflows
-// (depth <= kMaxDepth < VTKRT_STACK_SIZE, core/BVH.h).
+// (depth <= kMaxDepth < VTKRT_STACK_SIZE, which is kMaxStackSize with a top
+// level, core/BVH.h).
 void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int hitInstance,
   inout int hitPrimitive, inout vec2 hitUV, bool stopAtFirstHit)
 {

@@ -85,12 +85,9 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
   vec3 invDir = safeInverse(dir);
   vec3 parallelBias = parallelAxisBias(invDir);
   vec3 growBy = vec3(grow);
-  float tnear;
+  // No test of the root's box: traceInstance has tested the instance's
+  // box, which bounds it.
   Node rootNode = fetchNode(uNodes, root);
-  if (!intersectRayAABB(org, invDir, rootNode.lo - growBy, rootNode.hi + growBy, tmin, tmax, tnear))
-  {
-    return false;
-  }
   int sp = 0;
   int steps = 0;
   uint index = rootNode.index;

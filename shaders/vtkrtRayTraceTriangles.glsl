@@ -110,12 +110,9 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
   uv = vec2(0.0);
   vec3 invDir = safeInverse(dir);
   vec3 parallelBias = parallelAxisBias(invDir);
-  float tnear;
+  // No test of the root's box: traceInstance has tested the instance's
+  // box, which bounds it.
   Node rootNode = fetchNode(uNodes, root);
-  if (!intersectRayAABB(org, invDir, rootNode.lo, rootNode.hi, tmin, tmax, tnear))
-  {
-    return false;
-  }
   RayTrianglePrecomputed pre = precomputeRayTriangle(org, dir);
   int sp = 0;
   int steps = 0;

@@ -46,7 +46,8 @@ void Accumulation::Allocate(vtkOpenGLRenderWindow* win, int width, int height)
 }
 
 void Accumulation::Trace(vtkOpenGLRenderWindow* win, vtkRenderer* ren, vtkOpenGLQuadHelper* tracer,
-  std::vector<float> signature, bool restart, int framesBefore, int samplesPerPixel)
+  std::vector<float> signature, bool restart, int framesBefore, int samplesPerPixel,
+  const int* footprint)
 {
   vtkOpenGLState* ostate = win->GetState();
   int width = 0, height = 0, originX = 0, originY = 0;
@@ -67,6 +68,7 @@ void Accumulation::Trace(vtkOpenGLRenderWindow* win, vtkRenderer* ren, vtkOpenGL
   this->FBO->ActivateDrawBuffers(1);
   vtkOpenGLState::ScopedglViewport viewport(ostate);
   vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglScissor scissorBox(ostate);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
   ostate->vtkglViewport(0, 0, width, height);
   ostate->vtkglDisable(GL_SCISSOR_TEST);
@@ -75,6 +77,12 @@ void Accumulation::Trace(vtkOpenGLRenderWindow* win, vtkRenderer* ren, vtkOpenGL
     vtkOpenGLState::ScopedglClearColor clearColor(ostate);
     ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
     ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  }
+  if (footprint)
+  {
+    // The buffer's pixel (0, 0) is the renderer's lower left corner.
+    ostate->vtkglEnable(GL_SCISSOR_TEST);
+    ostate->vtkglScissor(footprint[0] - originX, footprint[1] - originY, footprint[2], footprint[3]);
   }
   // The depth is the first frame's; later frames only add colors.
   ostate->vtkglDepthMask(restart ? GL_TRUE : GL_FALSE);

@@ -39,9 +39,12 @@ public:
   /// samplers bound) into the buffer. It restarts when `restart`, when the
   /// viewport was resized, when nothing was accumulated before
   /// (`framesBefore` 0) or when `signature` (what the image is traced from)
-  /// changed; else it continues the sample sequence.
+  /// changed; else it continues the sample sequence. With a `footprint`
+  /// (window x, y, width, height; see TracedFootprint) only its pixels are
+  /// traced: none outside it can hold a hit.
   void Trace(vtkOpenGLRenderWindow* win, vtkRenderer* ren, vtkOpenGLQuadHelper* tracer,
-    std::vector<float> signature, bool restart, int framesBefore, int samplesPerPixel);
+    std::vector<float> signature, bool restart, int framesBefore, int samplesPerPixel,
+    const int* footprint);
 
   /// Draws the average into the bound framebuffer; false when the resolve
   /// shader does not compile.

@@ -52,6 +52,9 @@ core::ScaledFrame buildFrame(std::size_t count, const std::function<core::AABB<d
 std::optional<Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh, const core::ScaledFrame& frame)
 {
   g.SkippedPrimitives = bvh.stats.skippedPrimitives;
+  // A tree of more than a root whose depth says 0 did not count it: the
+  // deepest any may be.
+  g.MaxDepth = bvh.nodes.size() > 1 && bvh.stats.maxDepth == 0 ? core::kMaxDepth : bvh.stats.maxDepth;
   if (bvh.empty())
   {
     return std::nullopt;

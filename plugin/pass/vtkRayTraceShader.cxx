@@ -34,7 +34,7 @@ std::string Features::Key() const
     << this->WorldCoordinates << "Q" << this->ScreenSpheres << "E" << this->Ellipsoids << "X"
     << this->ColorTexture << "K" << this->SelectIds << "F" << this->CellNormals << "U"
     << this->Textures << "B" << this->FaceCulling << "Y" << this->BackfaceProperties << "Z"
-    << this->TextureCutOuts;
+    << this->TextureCutOuts << "S" << this->StackSize;
   return s.str();
 }
 
@@ -76,7 +76,7 @@ std::string AssembleShader(const Features& f)
   s << "#define VTKRT_NUMBER_OF_CLIP_PLANES " << f.ClipPlanes << "\n";
   s << "#define VTKRT_NUMBER_OF_LIGHTS " << f.Lights << "\n";
   s << "#define VTKRT_LIGHT_COMPLEXITY " << f.LightComplexity << "\n";
-  s << "#define VTKRT_STACK_SIZE " << core::kMaxStackSize << "\n";
+  s << "#define VTKRT_STACK_SIZE " << f.StackSize << "\n";
   s << core::gpu::glslLayout();
   s << vtkrtRayTraceKernels << "\n";
   if (f.Triangles)

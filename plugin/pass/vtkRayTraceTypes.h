@@ -8,6 +8,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
+#include "vtkrt/core/BVH.h"
 #include "vtkrt/core/GpuLayout.h"
 
 #include <array>
@@ -59,6 +60,7 @@ struct Geometry
   std::uint32_t MaximumId = 0; ///< the largest VTK cell (triangles) or point (spheres) id
   std::size_t VertexCount = 0;
   std::size_t SkippedPrimitives = 0; ///< NaN or degenerate, never traced
+  std::uint32_t MaxDepth = core::kMaxDepth; ///< its BVH's deepest node (the root: 0)
   double TriangulationSeconds = 0.0; ///< what making it took: points and triangles
   double BuildSeconds = 0.0;         ///< and the BVH with its records
   bool Used = false;
@@ -151,6 +153,7 @@ struct Features
   bool FaceCulling = false;      ///< some triangles are culled on one side
   bool BackfaceProperties = false; ///< some triangles have a back-face material
   bool TextureCutOuts = false;   ///< some textures have fully transparent texels
+  int StackSize = static_cast<int>(core::kMaxStackSize); ///< entries of the shader's BVH stacks (VTKRT_STACK_SIZE)
 
   std::string Key() const;
 };

@@ -57,6 +57,11 @@ void testConstants()
   VTKRT_CHECK(gpu::safeInverse(1e-40f) == 0.0f); // subnormal: inverse overflows
   const vec3 bias = gpu::parallelAxisBias(gpu::safeInverse(vec3(0.0f, 2.0f, -0.0f)));
   VTKRT_CHECK(bias == vec3(3.0e38f, 0.0f, 3.0e38f));
+  // Entries 0..depth, a power of two, never above kMaxStackSize.
+  VTKRT_CHECK(gpu::stackSizeForDepth(0) == 8 && gpu::stackSizeForDepth(7) == 8);
+  VTKRT_CHECK(gpu::stackSizeForDepth(8) == 16 && gpu::stackSizeForDepth(31) == 32);
+  VTKRT_CHECK(gpu::stackSizeForDepth(kMaxDepth) == kMaxStackSize);
+  VTKRT_CHECK(gpu::stackSizeForDepth(kMaxDepth) > kMaxDepth);
 }
 
 /// The shader's box test without the far scale: what the conservative
@@ -379,6 +384,11 @@ void checkTriangleWalk(const MeshData& mesh, int rayCount, std::uint64_t seed)
     }
   }
   VTKRT_CHECK(cmp.clearMatches > rayCount / 4 && cmp.exactMatches > rayCount / 4);
+  // The shader's stack, sized from the tree's depth, holds every entry the
+  // walk touched.
+  VTKRT_CHECK_MSG(u.deepestStackEntry >= 0 &&
+      u.deepestStackEntry < static_cast<int>(gpu::stackSizeForDepth(bvh.stats.maxDepth)),
+    "deepest entry %d, depth %u", u.deepestStackEntry, bvh.stats.maxDepth);
 }
 
 /// The step cap counts interior steps and leaves: a root over two leaves
@@ -518,6 +528,11 @@ void checkSphereWalk(int count, int rayCount, bool screenSized, std::uint64_t se
     VTKRT_CHECK(!found || dfound || grazes);
   }
   VTKRT_CHECK(cmp.clearMatches > rayCount / 4 && cmp.exactMatches > rayCount / 4);
+  // The shader's stack, sized from the tree's depth, holds every entry the
+  // walk touched.
+  VTKRT_CHECK_MSG(u.deepestStackEntry >= 0 &&
+      u.deepestStackEntry < static_cast<int>(gpu::stackSizeForDepth(bvh.stats.maxDepth)),
+    "deepest entry %d, depth %u", u.deepestStackEntry, bvh.stats.maxDepth);
 }
 
 /// Ellipsoids: three texels each, the rows of the affine map onto their unit
@@ -721,7 +736,8 @@ void testTopLevel()
                          int& hitInstance, int& hitPrimitive, vec2& hitUV, bool stopAtFirstHit) {
     const InstanceScene::Record& r = scene.records[std::size_t(instance)];
     float t1 = tBest, tnear;
-    if (!gpu::intersectRayAABB(org, invDir, r.boxMin, r.boxMax, 0.0f, t1, tnear))
+    if (!gpu::intersectRayBoxConservative(
+          org, invDir, gpu::parallelAxisBias(invDir), r.boxMin, r.boxMax, 0.0f, t1, tnear))
     {
       return;
     }

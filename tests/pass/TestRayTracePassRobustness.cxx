@@ -231,6 +231,44 @@ void TestTooLarge()
     "limit lifted: the scene is traced");
   NoVTKOutput("too large");
 }
+
+/// Pixels inside `one`'s objects (the pixel and its eight neighbors not
+/// black) whose color in `other` differs by more than `tolerance`: a
+/// sampled image keeps every such pixel, only silhouettes soften.
+long CountInteriorPixelsChanged(vtkImageData* one, vtkImageData* other, int tolerance)
+{
+  int dims[3];
+  one->GetDimensions(dims);
+  const int comps = one->GetNumberOfScalarComponents();
+  const auto* a = static_cast<const unsigned char*>(one->GetScalarPointer());
+  const auto* b = static_cast<const unsigned char*>(other->GetScalarPointer());
+  auto lit = [&](int x, int y) {
+    const unsigned char* p = a + (static_cast<long>(y) * dims[0] + x) * comps;
+    return p[0] + p[1] + p[2] > 0;
+  };
+  long changed = 0;
+  for (int y = 1; y + 1 < dims[1]; ++y)
+  {
+    for (int x = 1; x + 1 < dims[0]; ++x)
+    {
+      bool interior = true;
+      for (int k = 0; k < 9; ++k)
+      {
+        interior = interior && lit(x + k % 3 - 1, y + k / 3 - 1);
+      }
+      const long at = (static_cast<long>(y) * dims[0] + x) * comps;
+      for (int c = 0; interior && c < 3; ++c)
+      {
+        if (std::abs(int(a[at + c]) - int(b[at + c])) > tolerance)
+        {
+          ++changed;
+          break;
+        }
+      }
+    }
+  }
+  return changed;
+}
 } // namespace
 
 /// The pass traces only the pixels around its instances' projected boxes:
@@ -254,8 +292,21 @@ void TestFootprint()
     vtkNew<vtkRayTracePass> pass;
     ren->SetPass(pass);
     win->Render();
-    const long off = CountDifferingPixels(raster, Grab(win), 48);
+    auto traced = Grab(win);
+    const long off = CountDifferingPixels(raster, traced, 48);
     Check(off <= 40, "footprint, " + what + ": " + std::to_string(off) + " pixels off raster");
+    // Sub-pixel samples, traced into the accumulation buffer within the
+    // same footprint, keep every pixel of the objects.
+    vtkNew<vtkRayTracePass> sampled;
+    sampled->SetSamplesPerPixel(4);
+    ren->SetPass(sampled);
+    win->Render();
+    auto soft = Grab(win);
+    const long lost = CountInteriorPixelsChanged(traced, soft, 48);
+    const long kept = CountDifferingPixels(raster, soft, 128);
+    Check(lost == 0 && kept <= 80,
+      "footprint, sampled, " + what + ": " + std::to_string(lost) + " object pixels changed, " +
+        std::to_string(kept) + " pixels far off raster");
   };
   compare("whole scene in view");
   ren->GetActiveCamera()->Zoom(3.0);

@@ -110,14 +110,34 @@ struct ShaderInputs
   int maximumTraversalSteps = 0; ///< VTKRT_MAXIMUM_TRAVERSAL_STEPS (0: no cap)
   bool screenSpheres = false;    ///< VTKRT_SCREEN_SPHERES
   bool hasEllipsoids = false;    ///< VTKRT_HAS_ELLIPSOIDS
+  /// Not the shader's: the deepest stack entry the walks have touched so far
+  /// (what VTKRT_STACK_SIZE must hold; see stackSizeForDepth).
+  mutable int deepestStackEntry = -1;
 };
 
-/// The shader's bvhStackIndex, bvhStackCount and bvhStackNear.
+/// The entries of the shader's walk stack (VTKRT_STACK_SIZE) for bottom-level
+/// trees no deeper than maxDepth (root depth 0): an interior step at depth d
+/// writes entry sp <= d and reads the entry above, so entries 0..maxDepth;
+/// rounded up to a power of two (at least 8) so that few shader variants
+/// exist. llvmpipe clears the whole stack for every group of pixels: a
+/// smaller stack is a cheaper pixel.
+inline std::uint32_t stackSizeForDepth(std::uint32_t maxDepth)
+{
+  const std::uint32_t needed = std::min(maxDepth, kMaxDepth) + 1;
+  std::uint32_t size = 8;
+  while (size < needed)
+  {
+    size *= 2;
+  }
+  return std::min(size, kMaxStackSize);
+}
+
+/// The shader's bvhStack: entries (index, count, the bits of the entry
+/// distance).
 struct BvhStack
 {
-  std::uint32_t index[kMaxStackSize] = {};
-  std::uint32_t count[kMaxStackSize] = {};
-  float tnear[kMaxStackSize] = {};
+  uvec3 entry[kMaxStackSize] = {};
+  int deepest = -1; ///< not the shader's: the deepest entry touched
 };
 
 /// One interior step (see the shader): the farther child is written above
@@ -129,9 +149,9 @@ inline bool bvhInteriorStep(BvhStack& stack, const Node& n0, bool h0, float t0, 
 {
   assert(sp >= 0 && sp + 1 < static_cast<int>(kMaxStackSize));
   const bool nearIs1 = h1 && (!h0 || t1 < t0);
-  stack.index[sp] = nearIs1 ? n0.index : n1.index;
-  stack.count[sp] = nearIs1 ? n0.count : n1.count;
-  stack.tnear[sp] = nearIs1 ? t0 : t1;
+  stack.entry[sp] = nearIs1 ? uvec3(n0.index, n0.count, glm::floatBitsToUint(t0))
+                            : uvec3(n1.index, n1.count, glm::floatBitsToUint(t1));
+  stack.deepest = std::max(stack.deepest, sp);
   const bool anyHit = h0 || h1;
   if (!anyHit && sp == 0)
   {
@@ -139,12 +159,12 @@ inline bool bvhInteriorStep(BvhStack& stack, const Node& n0, bool h0, float t0, 
   }
   sp += h0 && h1 ? 1 : 0;
   const int top = anyHit ? sp : std::max(sp - 1, 0);
-  culled = !anyHit && stack.tnear[top] > tmax;
-  const std::uint32_t popIndex = stack.index[top];
-  const std::uint32_t popCount = stack.count[top];
+  stack.deepest = std::max(stack.deepest, top);
+  const uvec3 popped = stack.entry[top];
+  culled = !anyHit && glm::uintBitsToFloat(popped.z) > tmax;
   sp = top;
-  index = anyHit ? (nearIs1 ? n1.index : n0.index) : (culled ? 0u : popIndex);
-  count = anyHit ? (nearIs1 ? n1.count : n0.count) : (culled ? 0u : popCount);
+  index = anyHit ? (nearIs1 ? n1.index : n0.index) : (culled ? 0u : popped.x);
+  count = anyHit ? (nearIs1 ? n1.count : n0.count) : (culled ? 0u : popped.y);
   return true;
 }
 
@@ -158,9 +178,10 @@ inline bool bvhPopAfterLeaf(
     return false;
   }
   --sp;
-  culled = stack.tnear[sp] > tmax;
-  index = culled ? 0u : stack.index[sp];
-  count = culled ? 0u : stack.count[sp];
+  const uvec3 popped = stack.entry[sp];
+  culled = glm::uintBitsToFloat(popped.z) > tmax;
+  index = culled ? 0u : popped.x;
+  count = culled ? 0u : popped.y;
   return true;
 }
 
@@ -206,14 +227,16 @@ inline void whileWhileWalk(const ShaderInputs& u, int root, const vec3& org, con
   const vec3 invDir = safeInverse(dir);
   const vec3 parallelBias = parallelAxisBias(invDir);
   const vec3 growBy = vec3(grow);
-  float tnear;
+  // No test of the root's box: the caller (the shader's traceInstance) has
+  // tested the instance's box, which bounds it.
   const Node rootNode = fetchNode(u.uNodes, root);
-  if (!intersectRayAABB(org, invDir, Grow ? rootNode.lo - growBy : rootNode.lo,
-        Grow ? rootNode.hi + growBy : rootNode.hi, tmin, tmax, tnear))
-  {
-    return;
-  }
   BvhStack stack;
+  struct RecordDeepest
+  {
+    const ShaderInputs& u;
+    const BvhStack& stack;
+    ~RecordDeepest() { u.deepestStackEntry = std::max(u.deepestStackEntry, stack.deepest); }
+  } recordDeepest{ u, stack };
   int sp = 0;
   int steps = 0;
   std::uint32_t index = rootNode.index;
