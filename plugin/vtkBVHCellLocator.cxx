@@ -11,7 +11,6 @@
 #include "vtkPolyData.h"
 
 #include "vtkBVHCellLocatorInternals.h"
-#include "vtkrt/core/WidePointQueries.h" // kWidePointReach
 
 #include <algorithm>
 #include <atomic>
@@ -266,12 +265,6 @@ void vtkBVHCellLocator::BuildTree()
   {
     this->Internals->Data.Lazy->buildAll();
     this->Internals->Data.DropExtractionArrays();
-  }
-  if (!(this->Internals->Data.Extent <= vtkrt::core::detail::kWidePointReach))
-  {
-    // Boxes beyond float's reach: every query walks the binary tree, so it
-    // is built now rather than by the first of them.
-    this->Internals->Data.EnsureTree();
   }
 
   this->Internals->Data.BuildSeconds =

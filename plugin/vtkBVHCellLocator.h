@@ -45,8 +45,9 @@
  * Modified()) is never read: the query rebuilds, or with
  * UseExistingSearchStructure reports an error and finds nothing.
  * ForceBuildLocator() always rebuilds. The FAST build of a surface leaves
- * most of its picking tree to the picks that reach it (PickingTreeOnDemand),
- * and the binary tree of the other queries to the first of them.
+ * most of its picking tree to the queries that reach it
+ * (PickingTreeOnDemand); every query walks that tree, so none builds more
+ * than the parts it reaches.
  *
  * Thread safety: once built (and while the dataset is unmodified) all queries
  * may run concurrently from several threads: they only read shared state,
@@ -109,14 +110,14 @@ public:
   /**
    * FAST build of a polygonal surface (all cells triangulated): build each
    * part of the picking tree (the subtree over one cell of a coarse grid)
-   * when a closest-hit query first reaches it. On (the default),
+   * when a query first reaches it. On (the default),
    * BuildLocator() returns once the levels above those parts are built, so
    * that a first pick waits for little more than reading the mesh; the
    * parts a query reaches are built then, once, and safely from several
    * threads. Off: BuildLocator() builds the whole tree, and every query
    * takes its steady time from the first one. The same tree either way.
-   * Point, box and all-hits queries, GenerateRepresentation() and the tree
-   * statistics first complete the tree.
+   * GenerateRepresentation() and the tree statistics first complete the
+   * tree (and build a binary one over it).
    */
   vtkSetMacro(PickingTreeOnDemand, bool);
   vtkGetMacro(PickingTreeOnDemand, bool);

@@ -210,9 +210,10 @@ public:
   TriangleArray<std::uint8_t> TriFlags;
   std::vector<vtkIdType> GenCell;        ///< original cell id per general primitive
   std::vector<Box> GenBox;               ///< its bounds, local, slightly widened
-  /// The binary tree of the point, box and all-hits queries (and of the
-  /// closest hit where the float picking path cannot run). The fast build
-  /// leaves it to the first query that needs it: EnsureTree().
+  /// The binary tree: what the queries walk where float cannot be trusted
+  /// (a flush-to-zero FPU mode), and what GenerateRepresentation and the
+  /// statistics read. The fast build leaves it to the first of those:
+  /// EnsureTree().
   mutable core::BVH Tree;
   /// The picking tree, eight children a node (core/WideNode.h). The fast
   /// build writes it directly over triangles (Lazy); the others re-lay the

@@ -714,8 +714,10 @@ vtkIdType BVHCellLocatorData::FindCell(const double xw[3], double tol2, vtkDataS
   const Vec3d tol(this->ToLocalLength(std::sqrt(tol2)));
   const Box q(x - tol, x + tol);
   // Candidates (cell id, primitive) in cell id order: a VTK_TRIANGLE cell
-  // is filled from its kept point ids, not looked up in the dataset.
-  std::vector<std::pair<vtkIdType, std::uint32_t>> candidates;
+  // is filled from its kept point ids, not looked up in the dataset. The
+  // list is the thread's own, kept between queries (no allocation a query).
+  thread_local std::vector<std::pair<vtkIdType, std::uint32_t>> candidates;
+  candidates.clear();
   auto overlap = [&](std::uint32_t prim) {
     if (this->PrimitiveBox(prim).overlaps(q))
     {

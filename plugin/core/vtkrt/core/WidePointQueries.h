@@ -107,6 +107,23 @@ inline int boxDistances8(const QuantizedBoxPack8& b, const float xlo[3], const f
 /// the query box).
 inline int boxOverlaps8(const QuantizedBoxPack8& b, const float qlo[3], const float qhi[3])
 {
+#if VTKRT_CORE_SSE
+  int mask = 0;
+  for (int half = 0; half < 2; ++half)
+  {
+    __m128 overlap = _mm_castsi128_ps(_mm_set1_epi32(-1));
+    for (int a = 0; a < 3; ++a)
+    {
+      const __m128 origin = _mm_set1_ps(b.origin[a]), step = _mm_set1_ps(b.step(a));
+      const __m128 lo = decodeRow4(b, 8 * a, 4 * half, origin, step);
+      const __m128 hi = decodeRow4(b, 8 * (3 + a), 4 * half, origin, step);
+      overlap = _mm_and_ps(overlap,
+        _mm_and_ps(_mm_cmple_ps(lo, _mm_set1_ps(qhi[a])), _mm_cmple_ps(_mm_set1_ps(qlo[a]), hi)));
+    }
+    mask |= _mm_movemask_ps(overlap) << (4 * half);
+  }
+  return mask & b.valid;
+#else
   int mask = b.valid;
   for (int i = 0; i < 8 && mask; ++i)
   {
@@ -121,6 +138,7 @@ inline int boxOverlaps8(const QuantizedBoxPack8& b, const float qlo[3], const fl
     }
   }
   return mask;
+#endif
 }
 
 /// A child slot of a wide node while a walk waits to visit it.
