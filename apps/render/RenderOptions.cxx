@@ -35,7 +35,7 @@ struct Words
   std::vector<std::string> Picks;
   std::string Scalars, Comp, Range, Colormap;
   std::string Up, Position, FocalPoint, ViewUp, ViewAngle, Zoom;
-  std::string Ao, Progressive, Precision;
+  std::string Ao, Progressive, Precision, Preset;
   std::string Color, Opacity, PointSize, Background;
 };
 
@@ -166,6 +166,10 @@ void DeclareOptions(CLI::App& app, Words& w, Options& opt)
       "raytrace: frames accumulated before writing (progressive accumulation)")
     ->type_name("N");
   app
+    .add_option("--preset", w.Preset,
+      "raytrace: quality preset; the knobs given beside it override it")
+    ->type_name("interactive|balanced|exact");
+  app
     .add_option("--precision", w.Precision,
       "raytrace: GPU coordinates relative to the eye (default) or plain world floats")
     ->type_name("camera|world");
@@ -293,6 +297,15 @@ void CheckRenderWords(const CLI::App& app, const Words& w, Options& opt)
   if (app.count("--progressive"))
   {
     opt.Trace.Progressive = IntIn("--progressive", w.Progressive, 0, 100000);
+  }
+  if (app.count("--preset"))
+  {
+    opt.Trace.Preset = w.Preset;
+    if (w.Preset != "interactive" && w.Preset != "balanced" && w.Preset != "exact")
+    {
+      throw UsageError{ "--preset expects interactive, balanced or exact (got '" + w.Preset +
+        "')" };
+    }
   }
   if (app.count("--precision"))
   {

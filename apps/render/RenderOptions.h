@@ -44,6 +44,7 @@ struct TraceOptions
   int AmbientOcclusion = -1; // rays per sample; -1 not given
   int Progressive = 0;       // frames accumulated before writing; 0 not given
   std::string Precision;     // "camera" or "world"; empty not given
+  std::string Preset;        // "interactive", "balanced" or "exact"; empty not given
 };
 
 // Surface appearance and background.

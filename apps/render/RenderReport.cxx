@@ -105,7 +105,8 @@ void PrintReport(const Options& opt, const Scene& scene, vtkEGLHeadlessRenderWin
     std::cout << "  tracing:      " << pass->GetSamplesPerPixel() << " ray(s) per pixel, shadows "
               << (pass->GetShadows() ? "on" : "off") << ", ambient occlusion "
               << pass->GetAmbientOcclusionSamples() << " ray(s), precision "
-              << pass->GetPrecisionModeAsString() << "\n";
+              << pass->GetPrecisionModeAsString() << ", preset "
+              << pass->GetQualityPresetAsString() << "\n";
   }
   std::cout << "  device:       " << window->GetGLRenderer() << " (" << window->GetGLVersion()
             << "; " << window->GetDeviceDescription() << ")\n"

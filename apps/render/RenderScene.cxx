@@ -192,6 +192,12 @@ bool UseRayTracing(vtkRenderer* renderer, const Options& opt)
   vtkNew<vtkRayTracePass> pass;
   // Only the knobs given on the command line: the rest keep the pass's own.
   const TraceOptions& trace = opt.Trace;
+  if (!trace.Preset.empty())
+  {
+    pass->SetQualityPreset(trace.Preset == "interactive" ? vtkRayTracePass::INTERACTIVE
+        : trace.Preset == "balanced"                     ? vtkRayTracePass::BALANCED
+                                                         : vtkRayTracePass::EXACT);
+  }
   if (opt.Samples > 0)
   {
     pass->SetSamplesPerPixel(opt.Samples);

@@ -480,6 +480,14 @@ void TestTraceKnobs()
       "ambient occlusion darkens the bunny (mean " + std::to_string(before) + " -> " +
         std::to_string(after) + ")");
   }
+  Render(bunny + " --preset exact", "exact.png", &r);
+  Check(Contains(r.Output,
+          "tracing: +4 ray\\(s\\) per pixel, shadows on, ambient occlusion 4 ray\\(s\\), "
+          "precision CameraRelative, preset Exact"),
+    "--preset exact sets the pass's EXACT knobs");
+  Render(bunny + " --preset exact --samples 1", "exact1.png", &r);
+  Check(Contains(r.Output, "tracing: +1 ray\\(s\\) per pixel, shadows on, .*preset Custom"),
+    "a knob given beside --preset overrides it");
   Render(bunny + " --mode raster --samples 4", "msaa.png", &r);
   Check(Contains(r.Output, "raster 200x160, MultiSamples 4") && !Contains(r.Output, "tracing:"),
     "--mode raster --samples 4: MSAA, no tracing");
@@ -598,6 +606,8 @@ void TestBadInput()
     { vtu + " --camera-view-up 0,0,x", "--camera-view-up expects three numbers" },
     { vtu + " --bg-color 1,1,2", "--bg-color expects R,G,B in \\[0, 1\\]" },
     { vtu + " --range 5,1", "--range expects MIN,MAX with MIN < MAX" },
+    { vtu + " --preset fastest",
+      "--preset expects interactive, balanced or exact \\(got 'fastest'\\)" },
     { vtu + " --up W", "--up expects one of \\+X -X \\+Y -Y \\+Z -Z" },
     { vtu + " --resolution 100x100", "--resolution expects W,H" },
     { "'" + Data + "/bunny.vtp' --output x.gif", "--output 'x.gif': unknown image type" },
@@ -616,7 +626,7 @@ void TestBadInput()
     { "--resolution W,H", "--up ", "--scalars\\[=NAME\\]", "--cells", "--comp N", "--range MIN,MAX",
       "--bar", "--colormap", "--camera-position X,Y,Z", "--camera-focal-point", "--camera-view-up",
       "--camera-view-angle", "--samples N", "--point-size", "--edges", "--bg-color", "--color",
-      "--opacity", "--shadows", "--ao N", "--progressive N", "--precision" })
+      "--opacity", "--shadows", "--ao N", "--progressive N", "--precision", "--preset" })
   {
     Check(
       Contains(help.Output, std::string("\n +") + option), std::string("--help lists ") + option);
