@@ -281,16 +281,17 @@ private:
       });
       return;
     }
+    // Own threads, each taking the next task until none is left.
+    const unsigned threads = Options.numThreads ? Options.numThreads : std::thread::hardware_concurrency();
+    const std::size_t workers = std::min<std::size_t>(tasks.size(), std::max(1u, threads));
     std::atomic<std::size_t> next{ 0 };
-    parallelChunks(std::min<std::size_t>(tasks.size(), Options.numThreads ? Options.numThreads : std::thread::hardware_concurrency()),
-      Options.numThreads ? Options.numThreads : 0u,
-      [&](std::size_t, std::size_t) {
-        for (std::size_t i = next++; i < tasks.size(); i = next++)
-        {
-          buildTask(tasks[order[i]]);
-        }
-      },
-      Refs.size());
+    auto work = [&](std::size_t, std::size_t) {
+      for (std::size_t i = next++; i < tasks.size(); i = next++)
+      {
+        buildTask(tasks[order[i]]);
+      }
+    };
+    parallelChunks(workers, threads, work, Refs.size());
   }
 
   /// The top nodes, then each task's nodes but its root (which replaces
