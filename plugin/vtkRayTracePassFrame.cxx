@@ -102,15 +102,26 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
   std::string error;
   if (this->Scene.GeometryChanged() || !this->GeometryOnGpu || (!this->GeometryValid && limitChanged))
   {
+    // Packed straight into the mapped GPU buffers: no copy of the scene
+    // on the way.
     auto start = std::chrono::steady_clock::now();
-    vtkrt::pass::PackedGeometry packed = vtkrt::pass::PackGeometry(this->Scene);
+    vtkrt::pass::GeometryLayout layout = vtkrt::pass::LayOutGeometry(this->Scene);
     this->Scene.MarkGeometryPacked();
-    this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
-    start = std::chrono::steady_clock::now();
-    this->Counters.GeometryBytesUploaded +=
-      this->Buffers.UploadGeometry(win, packed, limit, this->GeometryValid, error);
-    this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(start);
-    this->Places.GeometryPlaces = std::move(packed.Placements);
+    this->GeometryValid = vtkrt::pass::SceneBuffers::Fits(layout, limit, error);
+    if (this->GeometryValid)
+    {
+      this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
+      start = std::chrono::steady_clock::now();
+      const vtkrt::pass::GeometryTargets targets = this->Buffers.MapGeometry(layout);
+      const double mapSeconds = vtkrt::pass::SecondsSince(start);
+      start = std::chrono::steady_clock::now();
+      vtkrt::pass::WriteGeometry(this->Scene, layout, targets);
+      this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
+      start = std::chrono::steady_clock::now();
+      this->Counters.GeometryBytesUploaded += this->Buffers.UnmapGeometry(win);
+      this->Counters.UploadSeconds += mapSeconds + vtkrt::pass::SecondsSince(start);
+    }
+    this->Places.GeometryPlaces = std::move(layout.Placements);
     this->GeometryOnGpu = true;
     if (!this->GeometryValid)
     {
@@ -120,14 +131,19 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
   if (this->Scene.ColorsChanged() || !this->ColorsOnGpu || (!this->ColorsValid && limitChanged))
   {
     auto start = std::chrono::steady_clock::now();
-    vtkrt::pass::PackedColors packed = vtkrt::pass::PackColors(this->Scene);
+    vtkrt::pass::ColorsLayout layout = vtkrt::pass::LayOutColors(this->Scene);
     this->Scene.MarkColorsPacked();
-    this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
-    start = std::chrono::steady_clock::now();
-    this->Counters.GeometryBytesUploaded +=
-      this->Buffers.UploadColors(win, packed, limit, this->ColorsValid, error);
-    this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(start);
-    this->Places.ColorBases = std::move(packed.Bases);
+    this->ColorsValid = vtkrt::pass::SceneBuffers::Fits(layout, limit, error);
+    if (this->ColorsValid)
+    {
+      auto* words = static_cast<std::uint32_t*>(this->Buffers.Colors.Map(layout.Words / 4));
+      vtkrt::pass::WriteColors(this->Scene, layout, words);
+      this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
+      start = std::chrono::steady_clock::now();
+      this->Counters.GeometryBytesUploaded += this->Buffers.Colors.Unmap(win);
+      this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(start);
+    }
+    this->Places.ColorBases = std::move(layout.Bases);
     this->ColorsOnGpu = true;
     if (!this->ColorsValid)
     {

@@ -9,6 +9,7 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include <cstring>
 #include <sstream>
 #include <utility>
 
@@ -44,6 +45,55 @@ std::size_t TextureBuffer::Upload(vtkOpenGLRenderWindow* win, const void* data, 
   return core::gpu::kTexelBytes * n;
 }
 
+void* TextureBuffer::Map(std::size_t texels)
+{
+  const std::size_t n = texels == 0 ? 1 : texels;
+  const std::size_t bytes = core::gpu::kTexelBytes * n;
+  this->Texels = n;
+  this->Mapped = false;
+  void* storage = nullptr;
+  if (this->Buffer->GenerateBuffer(vtkOpenGLBufferObject::TextureBuffer) && this->Buffer->Bind())
+  {
+    glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(bytes), nullptr, GL_STATIC_DRAW);
+    storage = glMapBufferRange(GL_TEXTURE_BUFFER, 0, static_cast<GLsizeiptr>(bytes),
+      GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT);
+    this->Buffer->Release();
+    this->Mapped = storage != nullptr;
+  }
+  if (!storage)
+  {
+    this->Staging.reset(new unsigned char[bytes]);
+    storage = this->Staging.get();
+  }
+  if (texels == 0)
+  {
+    std::memset(storage, 0, bytes);
+  }
+  return storage;
+}
+
+std::size_t TextureBuffer::Unmap(vtkOpenGLRenderWindow* win)
+{
+  const std::size_t n = this->Texels;
+  if (this->Mapped)
+  {
+    this->Buffer->Bind();
+    glUnmapBuffer(GL_TEXTURE_BUFFER);
+    this->Buffer->Release();
+    this->Mapped = false;
+  }
+  else
+  {
+    this->Buffer->Upload(
+      reinterpret_cast<const float*>(this->Staging.get()), 4 * n, vtkOpenGLBufferObject::TextureBuffer);
+    this->Staging.reset();
+  }
+  this->Texture->SetContext(win);
+  this->Texture->SetInternalFormat(GL_RGBA32UI);
+  this->Texture->CreateTextureBuffer(static_cast<unsigned int>(n), 4, VTK_UNSIGNED_INT, this->Buffer);
+  return core::gpu::kTexelBytes * n;
+}
+
 void TextureBuffer::Release(vtkWindow* w)
 {
   this->Texture->ReleaseGraphicsResources(w);
@@ -53,73 +103,79 @@ void TextureBuffer::Release(vtkWindow* w)
 
 namespace
 {
+/// Texels of `count` records.
 template <class Record>
-std::size_t texelsIn(const std::vector<Record>& records)
+std::size_t texelsFor(std::size_t count)
 {
-  return records.size() * sizeof(Record) / core::gpu::kTexelBytes;
+  return count * core::gpu::texelsOf<Record>();
+}
+
+bool fitsLimit(std::size_t texels, std::size_t limit, const char* what, std::string& error)
+{
+  if (texels <= limit)
+  {
+    return true;
+  }
+  std::ostringstream s;
+  s << "The ray-traced scene" << what << " needs a texture buffer of " << texels
+    << " texels, more than the limit of " << limit
+    << " (GL_MAX_TEXTURE_BUFFER_SIZE or MaximumTextureBufferTexels): nothing is traced.";
+  error = s.str();
+  return false;
 }
 } // namespace
 
-std::size_t SceneBuffers::UploadGeometry(vtkOpenGLRenderWindow* win, const PackedGeometry& packed,
-  std::size_t limit, bool& fits, std::string& error)
+bool SceneBuffers::Fits(const GeometryLayout& layout, std::size_t limit, std::string& error)
 {
-  const std::size_t sizes[] = { texelsIn(packed.Nodes), texelsIn(packed.Triangles),
-    texelsIn(packed.TriangleVertices), texelsIn(packed.Spheres), texelsIn(packed.SphereIds),
-    texelsIn(packed.Normals) };
-  fits = true;
+  using namespace core::gpu;
+  const std::size_t sizes[] = { texelsFor<Node>(layout.Nodes), texelsFor<Triangle>(layout.Triangles),
+    texelsFor<core::gpu::TriangleVertices>(layout.Triangles), layout.SphereTexels, layout.SphereIdWords / 4,
+    texelsFor<Normal>(layout.Normals) };
   for (std::size_t texels : sizes)
   {
-    if (texels > limit)
+    if (!fitsLimit(texels, limit, "", error))
     {
-      std::ostringstream s;
-      s << "The ray-traced scene needs a texture buffer of " << texels
-        << " texels, more than the limit of " << limit
-        << " (GL_MAX_TEXTURE_BUFFER_SIZE or MaximumTextureBufferTexels): nothing is traced.";
-      error = s.str();
-      fits = false;
-      return 0;
+      return false;
     }
   }
-  std::size_t bytes = 0;
-  bytes += this->Nodes.Upload(win, packed.Nodes);
-  bytes += this->Triangles.Upload(win, packed.Triangles);
-  bytes += this->TriangleVertices.Upload(win, packed.TriangleVertices);
-  bytes += this->Spheres.Upload(win, packed.Spheres);
-  bytes += this->SphereIds.Upload(win, packed.SphereIds);
-  bytes += this->Normals.Upload(win, packed.Normals);
-  return bytes;
+  return true;
 }
 
-std::size_t SceneBuffers::UploadColors(vtkOpenGLRenderWindow* win, const PackedColors& packed,
-  std::size_t limit, bool& fits, std::string& error)
+bool SceneBuffers::Fits(const ColorsLayout& layout, std::size_t limit, std::string& error)
 {
-  const std::size_t texels = texelsIn(packed.Words);
-  fits = texels <= limit;
-  if (!fits)
+  return fitsLimit(layout.Words / 4, limit, "'s colors", error);
+}
+
+GeometryTargets SceneBuffers::MapGeometry(const GeometryLayout& layout)
+{
+  using namespace core::gpu;
+  GeometryTargets out;
+  out.Nodes = static_cast<Node*>(this->Nodes.Map(texelsFor<Node>(layout.Nodes)));
+  out.Triangles = static_cast<Triangle*>(this->Triangles.Map(texelsFor<Triangle>(layout.Triangles)));
+  out.TriangleVertices = static_cast<core::gpu::TriangleVertices*>(
+    this->TriangleVertices.Map(texelsFor<core::gpu::TriangleVertices>(layout.Triangles)));
+  out.Spheres = static_cast<Texel*>(this->Spheres.Map(layout.SphereTexels));
+  out.SphereIds = static_cast<std::uint32_t*>(this->SphereIds.Map(layout.SphereIdWords / 4));
+  out.Normals = static_cast<Normal*>(this->Normals.Map(texelsFor<Normal>(layout.Normals)));
+  return out;
+}
+
+std::size_t SceneBuffers::UnmapGeometry(vtkOpenGLRenderWindow* win)
+{
+  std::size_t bytes = 0;
+  for (TextureBuffer* b : { &this->Nodes, &this->Triangles, &this->TriangleVertices, &this->Spheres,
+         &this->SphereIds, &this->Normals })
   {
-    std::ostringstream s;
-    s << "The ray-traced scene's colors need " << texels << " texels, more than the limit of "
-      << limit << ": nothing is traced.";
-    error = s.str();
-    return 0;
+    bytes += b->Unmap(win);
   }
-  return this->Colors.Upload(win, packed.Words);
+  return bytes;
 }
 
 std::size_t SceneBuffers::UploadTextures(vtkOpenGLRenderWindow* win, const PackedTextures& packed,
   std::size_t limit, bool& fits, std::string& error)
 {
-  const std::size_t texels = texelsIn(packed.Words);
-  fits = texels <= limit;
-  if (!fits)
-  {
-    std::ostringstream s;
-    s << "The ray-traced scene's textures need " << texels << " texels, more than the limit of "
-      << limit << ": nothing is traced.";
-    error = s.str();
-    return 0;
-  }
-  return this->Textures.Upload(win, packed.Words);
+  fits = fitsLimit(packed.Words.size() / 4, limit, "'s textures", error);
+  return fits ? this->Textures.Upload(win, packed.Words) : 0;
 }
 
 std::vector<vtkTextureObject*> SceneBuffers::Bind(vtkShaderProgram* program)

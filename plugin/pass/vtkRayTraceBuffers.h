@@ -9,6 +9,7 @@
 #include "vtkrt/core/GpuLayout.h"
 
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,8 +23,9 @@ namespace vtkrt
 {
 namespace pass
 {
-struct PackedColors;
-struct PackedGeometry;
+struct ColorsLayout;
+struct GeometryLayout;
+struct GeometryTargets;
 struct PackedTextures;
 
 /// One texture buffer of 16-byte texels.
@@ -43,6 +45,13 @@ public:
   {
     return this->Upload(win, records.data(), records.size() * sizeof(Record) / core::gpu::kTexelBytes);
   }
+  /// Storage for `texels` texels (an empty array gets one zero texel) to
+  /// write in place before Unmap(): the buffer's own memory mapped, or a
+  /// staging array when it does not map.
+  void* Map(std::size_t texels);
+  /// Makes what Map() gave the texture buffer's contents. Returns the bytes
+  /// uploaded.
+  std::size_t Unmap(vtkOpenGLRenderWindow* win);
   void Release(vtkWindow* w);
   std::size_t GetTexels() const { return this->Texels; }
   vtkTextureObject* GetTexture() const { return this->Texture; }
@@ -51,6 +60,8 @@ private:
   vtkOpenGLBufferObject* Buffer;
   vtkTextureObject* Texture;
   std::size_t Texels = 0;
+  bool Mapped = false;
+  std::unique_ptr<unsigned char[]> Staging; ///< Map()'s storage when the buffer does not map
 };
 
 /// The scene's buffers, named as the shader's samplers.
@@ -60,13 +71,17 @@ public:
   TextureBuffer Nodes, Triangles, TriangleVertices, Spheres, SphereIds, Normals, Colors, Instances,
     TopNodes, Textures;
 
-  /// Uploads the packed geometry when it fits `limit` texels per buffer;
-  /// otherwise `error` says which is too large and nothing is uploaded.
-  /// Returns the bytes uploaded.
-  std::size_t UploadGeometry(vtkOpenGLRenderWindow* win, const PackedGeometry& packed,
-    std::size_t limit, bool& fits, std::string& error);
-  std::size_t UploadColors(vtkOpenGLRenderWindow* win, const PackedColors& packed,
-    std::size_t limit, bool& fits, std::string& error);
+  /// Whether every buffer of the layout fits `limit` texels; if not,
+  /// `error` says which is too large.
+  static bool Fits(const GeometryLayout& layout, std::size_t limit, std::string& error);
+  static bool Fits(const ColorsLayout& layout, std::size_t limit, std::string& error);
+
+  /// The geometry buffers' storage for the layout, for WriteGeometry; then
+  /// UnmapGeometry, which returns the bytes uploaded.
+  GeometryTargets MapGeometry(const GeometryLayout& layout);
+  std::size_t UnmapGeometry(vtkOpenGLRenderWindow* win);
+  /// Uploads the packed textures when they fit `limit` texels; otherwise
+  /// `error` says so and nothing is uploaded. Returns the bytes uploaded.
   std::size_t UploadTextures(vtkOpenGLRenderWindow* win, const PackedTextures& packed,
     std::size_t limit, bool& fits, std::string& error);
 

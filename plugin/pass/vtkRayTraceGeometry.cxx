@@ -7,13 +7,18 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkTypeFloat32Array.h"
+#include "vtkTypeFloat64Array.h"
 
 #include "vtkrt/core/BVHBuild.h"
 #include "vtkrt/core/LocalFrame.h"
 #include "vtkrt/core/Mesh.h"
 
 #include <algorithm>
+#include <atomic>
 #include <functional>
+#include <numeric>
 #include <limits>
 #include <optional>
 
@@ -26,6 +31,14 @@ using core::Vec3;
 
 namespace
 {
+/// fn(begin, end) over [0, n) on VTK's SMP pool.
+template <class Fn>
+void smpFor(std::size_t n, Fn&& fn)
+{
+  vtkSMPTools::For(0, static_cast<vtkIdType>(n),
+    [&fn](vtkIdType b, vtkIdType e) { fn(static_cast<std::size_t>(b), static_cast<std::size_t>(e)); });
+}
+
 /// The frame the primitives are built in: that of the finite boxes' union
 /// (model coordinates), so the BVH and every GPU record are in units near 1
 /// whatever the data's size and offset.
@@ -69,43 +82,139 @@ std::optional<Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh, const co
     g.LocalBounds[2 * k] = b.min[k] - origin[k];
     g.LocalBounds[2 * k + 1] = b.max[k] - origin[k];
   }
-  g.Nodes = core::packGpuNodes(bvh.nodes, origin);
+  g.Nodes.resize(bvh.nodes.size());
+  smpFor(bvh.nodes.size(), [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i)
+    {
+      g.Nodes[i] = core::packGpuNode(bvh.nodes[i], origin);
+    }
+  });
   return origin;
 }
 
-/// The fan triangulation of polys and the triangles of strips, as point id
-/// triples with their VTK cell ids.
-void triangulate(vtkPolyData* poly, std::vector<std::uint32_t>& indices, std::vector<std::uint32_t>& cellIds)
+/// The triangles a cell of `npts` points makes (fan or strip).
+template <class T>
+std::size_t trianglesOf(T npts)
 {
-  vtkIdType cellId = poly->GetNumberOfVerts() + poly->GetNumberOfLines();
-  vtkIdType npts;
-  const vtkIdType* pts;
-  auto polys = vtk::TakeSmartPointer(poly->GetPolys()->NewIterator());
-  for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell(), ++cellId)
+  return npts > 2 ? static_cast<std::size_t>(npts - 2) : 0;
+}
+
+/// fn(offsets, connectivity) with the cell array's own storage.
+template <class Fn>
+void withCellStorage(vtkCellArray* cells, Fn&& fn)
+{
+  if (cells->IsStorage64Bit())
   {
-    polys->GetCurrentCell(npts, pts);
-    for (vtkIdType k = 1; k + 1 < npts; ++k)
-    {
-      indices.insert(indices.end(), { std::uint32_t(pts[0]), std::uint32_t(pts[k]), std::uint32_t(pts[k + 1]) });
-      cellIds.push_back(std::uint32_t(cellId));
-    }
+    fn(cells->GetOffsetsArray64()->GetPointer(0), cells->GetConnectivityArray64()->GetPointer(0));
   }
-  auto strips = vtk::TakeSmartPointer(poly->GetStrips()->NewIterator());
-  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell(), ++cellId)
+  else
   {
-    strips->GetCurrentCell(npts, pts);
-    for (vtkIdType i = 0; i + 2 < npts; ++i)
-    {
-      indices.insert(indices.end(),
-        { std::uint32_t(pts[i]), std::uint32_t(pts[i + 1 + i % 2]), std::uint32_t(pts[i + 1 + (i + 1) % 2]) });
-      cellIds.push_back(std::uint32_t(cellId));
-    }
+    fn(cells->GetOffsetsArray32()->GetPointer(0), cells->GetConnectivityArray32()->GetPointer(0));
   }
+}
+
+/// One cell array's triangles (polys: fans as VTK's raster; strips: VTK's
+/// winding), counted per chunk of cells first, so that they are then written
+/// in parallel, each chunk at its place.
+class CellTriangles
+{
+public:
+  CellTriangles(vtkCellArray* cells, bool strips)
+    : Cells(cells)
+    , Strips(strips)
+    , CellCount(cells->GetNumberOfCells())
+  {
+    const vtkIdType chunks = std::min<vtkIdType>(kChunks, this->CellCount);
+    this->ChunkFirst.assign(static_cast<std::size_t>(chunks) + 1, 0);
+    withCellStorage(cells, [&](const auto* offsets, const auto*) {
+      vtkSMPTools::For(0, chunks, 1, [&](vtkIdType cb, vtkIdType ce) {
+        for (vtkIdType c = cb; c < ce; ++c)
+        {
+          std::size_t count = 0;
+          for (vtkIdType i = this->FirstCell(c), e = this->FirstCell(c + 1); i < e; ++i)
+          {
+            count += trianglesOf(offsets[i + 1] - offsets[i]);
+          }
+          this->ChunkFirst[static_cast<std::size_t>(c) + 1] = count;
+        }
+      });
+    });
+    std::partial_sum(this->ChunkFirst.begin(), this->ChunkFirst.end(), this->ChunkFirst.begin());
+  }
+
+  std::size_t Count() const { return this->ChunkFirst.back(); }
+  vtkIdType NumberOfCells() const { return this->CellCount; }
+
+  /// Writes the triangles' point ids (three each) and cell ids (numbered
+  /// from firstCellId) from indices and cellIds on.
+  void Write(std::uint32_t firstCellId, std::uint32_t* indices, std::uint32_t* cellIds) const
+  {
+    const vtkIdType chunks = static_cast<vtkIdType>(this->ChunkFirst.size()) - 1;
+    withCellStorage(this->Cells, [&](const auto* offsets, const auto* connectivity) {
+      vtkSMPTools::For(0, chunks, 1, [&](vtkIdType cb, vtkIdType ce) {
+        for (vtkIdType c = cb; c < ce; ++c)
+        {
+          std::size_t t = this->ChunkFirst[static_cast<std::size_t>(c)];
+          for (vtkIdType i = this->FirstCell(c), e = this->FirstCell(c + 1); i < e; ++i)
+          {
+            const auto* pts = connectivity + offsets[i];
+            const std::size_t n = trianglesOf(offsets[i + 1] - offsets[i]);
+            for (std::size_t k = 0; k < n; ++k, ++t)
+            {
+              std::uint32_t* tri = indices + 3 * t;
+              if (this->Strips)
+              {
+                tri[0] = std::uint32_t(pts[k]);
+                tri[1] = std::uint32_t(pts[k + 1 + k % 2]);
+                tri[2] = std::uint32_t(pts[k + 1 + (k + 1) % 2]);
+              }
+              else
+              {
+                tri[0] = std::uint32_t(pts[0]);
+                tri[1] = std::uint32_t(pts[k + 1]);
+                tri[2] = std::uint32_t(pts[k + 2]);
+              }
+              cellIds[t] = firstCellId + static_cast<std::uint32_t>(i);
+            }
+          }
+        }
+      });
+    });
+  }
+
+private:
+  static constexpr vtkIdType kChunks = 256;
+  vtkCellArray* Cells;
+  bool Strips;
+  vtkIdType CellCount;
+  std::vector<std::size_t> ChunkFirst; ///< triangles before each chunk
+
+  vtkIdType FirstCell(vtkIdType chunk) const
+  {
+    const vtkIdType chunks = static_cast<vtkIdType>(this->ChunkFirst.size()) - 1;
+    return chunks > 0 ? this->CellCount * chunk / chunks : 0;
+  }
+};
+
+/// The fan triangulation of polys and the triangles of strips, as point id
+/// triples with their VTK cell ids, in arrays of exactly their size.
+void triangulate(vtkPolyData* poly, core::NoFillArray<std::uint32_t>& indices,
+  core::NoFillArray<std::uint32_t>& cellIds)
+{
+  const CellTriangles polys(poly->GetPolys(), false);
+  const CellTriangles strips(poly->GetStrips(), true);
+  const std::size_t n = polys.Count() + strips.Count();
+  indices.resize(3 * n);
+  cellIds.resize(n);
+  const auto firstPoly = static_cast<std::uint32_t>(poly->GetNumberOfVerts() + poly->GetNumberOfLines());
+  polys.Write(firstPoly, indices.data(), cellIds.data());
+  strips.Write(firstPoly + static_cast<std::uint32_t>(polys.NumberOfCells()), indices.data() + 3 * polys.Count(),
+    cellIds.data() + polys.Count());
 }
 
 /// `normals` as GPU records when it holds `count` vectors (one per point, or
 /// per cell); else nothing.
-void readNormals(vtkDataArray* normals, std::size_t count, std::vector<core::gpu::Normal>& out)
+void readNormals(vtkDataArray* normals, std::size_t count, core::NoFillArray<core::gpu::Normal>& out)
 {
   if (!normals || normals->GetNumberOfComponents() != 3 ||
     normals->GetNumberOfTuples() != static_cast<vtkIdType>(count))
@@ -113,44 +222,73 @@ void readNormals(vtkDataArray* normals, std::size_t count, std::vector<core::gpu
     return;
   }
   out.resize(count);
-  double nv[3];
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    normals->GetTuple(static_cast<vtkIdType>(i), nv);
-    out[i] = { { static_cast<float>(nv[0]), static_cast<float>(nv[1]), static_cast<float>(nv[2]) }, 0.0f };
-  }
+  smpFor(count, [&](std::size_t b, std::size_t e) {
+    double nv[3];
+    for (std::size_t i = b; i < e; ++i)
+    {
+      normals->GetTuple(static_cast<vtkIdType>(i), nv);
+      out[i] = { { static_cast<float>(nv[0]), static_cast<float>(nv[1]), static_cast<float>(nv[2]) }, 0.0f };
+    }
+  });
 }
 } // namespace
 
-void ReadPoints(vtkPoints* pts, std::vector<Vec3<double>>& out)
+void ReadPoints(vtkPoints* pts, core::NoFillArray<Vec3<double>>& out)
 {
   const vtkIdType n = pts ? pts->GetNumberOfPoints() : 0;
   out.resize(static_cast<std::size_t>(n));
-  for (vtkIdType i = 0; i < n; ++i)
+  if (n == 0)
   {
-    pts->GetPoint(i, &out[static_cast<std::size_t>(i)].x);
+    return;
   }
+  vtkDataArray* data = pts->GetData();
+  auto* floats = vtkTypeFloat32Array::FastDownCast(data);
+  auto* doubles = vtkTypeFloat64Array::FastDownCast(data);
+  smpFor(out.size(), [&](std::size_t b, std::size_t e) {
+    if (floats || doubles)
+    {
+      for (std::size_t i = b; i < e; ++i)
+      {
+        out[i] = floats ? Vec3<double>(floats->GetPointer(0)[3 * i], floats->GetPointer(0)[3 * i + 1],
+                            floats->GetPointer(0)[3 * i + 2])
+                        : Vec3<double>(doubles->GetPointer(0)[3 * i], doubles->GetPointer(0)[3 * i + 1],
+                            doubles->GetPointer(0)[3 * i + 2]);
+      }
+      return;
+    }
+    for (std::size_t i = b; i < e; ++i)
+    {
+      data->GetTuple(static_cast<vtkIdType>(i), &out[i].x);
+    }
+  });
 }
 
 std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOptions& options)
 {
   auto g = std::make_unique<Geometry>();
   const auto start = std::chrono::steady_clock::now();
-  std::vector<Vec3<double>> points;
+  core::NoFillArray<Vec3<double>> points;
   ReadPoints(poly->GetPoints(), points);
   const core::ScaledFrame frame = buildFrame(
     points.size(), [&](std::size_t i) { return core::AABB<double>(points[i], points[i]); });
-  for (Vec3<double>& p : points)
-  {
-    p = frame.toLocal(p);
-  }
-  std::vector<std::uint32_t> indices;
-  std::vector<std::uint32_t> cellIds;
+  smpFor(points.size(), [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i)
+    {
+      points[i] = frame.toLocal(points[i]);
+    }
+  });
+  core::NoFillArray<std::uint32_t> indices;
+  core::NoFillArray<std::uint32_t> cellIds;
   triangulate(poly, indices, cellIds);
   g->TriangulationSeconds = SecondsSince(start);
 
-  core::TriangleMesh<double> mesh(points, indices);
-  core::BVH bvh = core::buildTriangleBVH(mesh, options);
+  core::TriangleMesh<double> mesh;
+  mesh.vertices = points.data();
+  mesh.vertexCount = points.size();
+  mesh.indices = indices.data();
+  mesh.triangleCount = cellIds.size();
+  const core::BVH bvh = core::buildBVHConcurrentBounds(
+    mesh.triangleCount, [&mesh](std::size_t i) { return core::triangleBox(mesh, i); }, options);
   g->Spheres = false;
   g->VertexCount = points.size();
   const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh, frame);
@@ -158,27 +296,39 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
   {
     return g;
   }
-  const std::vector<Vec3<float>> rel = core::relativeFloatPoints(points.data(), points.size(), *adopted);
+  core::NoFillArray<Vec3<float>> rel(points.size());
+  smpFor(points.size(), [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i)
+    {
+      rel[i] = Vec3<float>(points[i] - *adopted);
+    }
+  });
   const std::size_t n = bvh.primIndex.size();
   g->PrimitiveCount = n;
   g->Triangles.resize(n);
   g->TriangleVertices.resize(n);
-  for (std::size_t k = 0; k < n; ++k)
-  {
-    const std::uint32_t tri = bvh.primIndex[k];
-    core::gpu::Triangle& t = g->Triangles[k];
-    core::gpu::vec3* corners[3] = { &t.v0, &t.v1, &t.v2 };
-    for (int v = 0; v < 3; ++v)
+  std::atomic<std::uint32_t> maximumId{ 0 };
+  smpFor(n, [&](std::size_t b, std::size_t e) {
+    std::uint32_t chunkMaximum = 0;
+    for (std::size_t k = b; k < e; ++k)
     {
-      const std::uint32_t vi = indices[3 * tri + v];
-      *corners[v] = rel[vi];
-      g->TriangleVertices[k].ids[v] = vi;
+      const std::uint32_t tri = bvh.primIndex[k];
+      const std::uint32_t* ids = &indices[3 * tri];
+      core::gpu::Triangle& t = g->Triangles[k];
+      t.v0 = rel[ids[0]];
+      t.v1 = rel[ids[1]];
+      t.v2 = rel[ids[2]];
+      t.cellId = cellIds[tri];
+      t.unused1 = t.unused2 = 0.0f;
+      g->TriangleVertices[k] = { { ids[0], ids[1], ids[2] }, 0u };
+      chunkMaximum = std::max(chunkMaximum, t.cellId);
     }
-    t.cellId = cellIds[tri];
-    g->MaximumId = std::max(g->MaximumId, t.cellId);
-    t.unused1 = t.unused2 = 0.0f;
-    g->TriangleVertices[k].unused = 0;
-  }
+    std::uint32_t seen = maximumId.load();
+    while (seen < chunkMaximum && !maximumId.compare_exchange_weak(seen, chunkMaximum))
+    {
+    }
+  });
+  g->MaximumId = maximumId.load();
   readNormals(poly->GetPointData()->GetNormals(), points.size(), g->Normals);
   readNormals(poly->GetCellData()->GetNormals(), static_cast<std::size_t>(poly->GetNumberOfCells()),
     g->CellNormals);
@@ -233,7 +383,7 @@ std::unique_ptr<Geometry> BuildSpheres(const std::vector<Vec3<double>>& modelCen
 std::unique_ptr<Geometry> BuildScreenSpheres(
   vtkPolyData* poly, bool everyCellPoint, const core::BuildOptions& options)
 {
-  std::vector<Vec3<double>> all;
+  core::NoFillArray<Vec3<double>> all;
   ReadPoints(poly->GetPoints(), all);
   std::vector<char> used(all.size(), 0);
   vtkIdType npts;

@@ -7,6 +7,7 @@
 
 #include "vtkrt/core/AABB.h"
 #include "vtkrt/core/BVH.h"
+#include "vtkrt/core/HugePageArray.h"
 
 #include <memory>
 
@@ -19,7 +20,7 @@ namespace pass
 {
 
 /// The points as double vectors (empty for null points).
-void ReadPoints(vtkPoints* pts, std::vector<core::Vec3<double>>& out);
+void ReadPoints(vtkPoints* pts, core::NoFillArray<core::Vec3<double>>& out);
 
 /// Triangles of polys (fan, as VTK's raster) and strips (VTK's winding),
 /// with their VTK cell ids, point normals when the data has them, and the

@@ -2,6 +2,9 @@
 
 #include "vtkRayTraceScene.h"
 
+#include "vtkSMPTools.h"
+
+#include <algorithm>
 #include <cstring>
 
 namespace vtkrt
@@ -11,72 +14,113 @@ namespace pass
 
 namespace
 {
-/// Appends records of any texel-sized type to a texel buffer.
+/// Records per chunk of a parallel copy.
+constexpr vtkIdType kCopyGrain = 1 << 16;
+
+/// Copies n records to dst, in parallel chunks on VTK's SMP pool.
 template <class Record>
-void appendTexels(std::vector<core::gpu::Texel>& out, const std::vector<Record>& records)
+void copyRecords(const Record* src, std::size_t n, Record* dst)
 {
-  static_assert(sizeof(Record) % core::gpu::kTexelBytes == 0, "records are whole texels");
-  const std::size_t first = out.size();
-  out.resize(first + records.size() * core::gpu::texelsOf<Record>());
-  if (!records.empty())
-  {
-    std::memcpy(out.data() + first, records.data(), records.size() * sizeof(Record));
-  }
+  vtkSMPTools::For(0, static_cast<vtkIdType>(n), kCopyGrain, [=](vtkIdType b, vtkIdType e) {
+    std::memcpy(dst + b, src + b, static_cast<std::size_t>(e - b) * sizeof(Record));
+  });
 }
 
-/// Pads a word buffer to whole texels (four words each).
-void padToTexels(std::vector<std::uint32_t>& words)
+/// Words to whole texels (four words each).
+std::size_t paddedWords(std::size_t words)
 {
-  words.resize((words.size() + 3) / 4 * 4, 0u);
+  return (words + 3) / 4 * 4;
+}
+
+/// Zeros the words from `used` up to whole texels.
+void padWords(std::uint32_t* words, std::size_t used)
+{
+  std::fill(words + used, words + paddedWords(used), 0u);
 }
 } // namespace
 
-PackedGeometry PackGeometry(const Scene& scene)
+GeometryLayout LayOutGeometry(const Scene& scene)
 {
-  PackedGeometry out;
+  GeometryLayout out;
   scene.ForEachGeometry([&out](const Geometry& g) {
     GeometryPlacement& place = out.Placements[&g];
-    const auto nodeBase = static_cast<std::uint32_t>(out.Nodes.size());
-    std::uint32_t primitiveBase = 0;
-    place.Root = nodeBase;
+    place.Root = static_cast<std::uint32_t>(out.Nodes);
+    out.Nodes += g.Nodes.size();
     if (g.Spheres)
     {
-      primitiveBase = static_cast<std::uint32_t>(out.Spheres.size());
-      appendTexels(out.Spheres, g.SphereRecords);
-      appendTexels(out.Spheres, g.EllipsoidRecords);
-      out.SphereIds.insert(out.SphereIds.end(), g.SphereIds.begin(), g.SphereIds.end());
+      place.PrimitiveBase = static_cast<std::uint32_t>(out.SphereTexels);
+      out.SphereTexels += g.SphereRecords.size() * core::gpu::texelsOf<core::gpu::Sphere>() +
+        g.EllipsoidRecords.size() * core::gpu::texelsOf<core::gpu::Ellipsoid>();
+      out.SphereIdWords += g.SphereIds.size();
     }
     else
     {
-      primitiveBase = static_cast<std::uint32_t>(out.Triangles.size());
-      out.Triangles.insert(out.Triangles.end(), g.Triangles.begin(), g.Triangles.end());
-      out.TriangleVertices.insert(
-        out.TriangleVertices.end(), g.TriangleVertices.begin(), g.TriangleVertices.end());
-      place.NormalBase = static_cast<std::uint32_t>(out.Normals.size());
-      out.Normals.insert(out.Normals.end(), g.Normals.begin(), g.Normals.end());
-      place.CellNormalBase = static_cast<std::uint32_t>(out.Normals.size());
-      out.Normals.insert(out.Normals.end(), g.CellNormals.begin(), g.CellNormals.end());
-    }
-    // Local child / primitive indices become global ones.
-    for (core::gpu::Node node : g.Nodes)
-    {
-      node.index += node.count == 0 ? nodeBase : primitiveBase;
-      out.Nodes.push_back(node);
+      place.PrimitiveBase = static_cast<std::uint32_t>(out.Triangles);
+      out.Triangles += g.Triangles.size();
+      place.NormalBase = static_cast<std::uint32_t>(out.Normals);
+      place.CellNormalBase = static_cast<std::uint32_t>(out.Normals + g.Normals.size());
+      out.Normals += g.Normals.size() + g.CellNormals.size();
     }
   });
-  padToTexels(out.SphereIds);
+  out.SphereIdWords = paddedWords(out.SphereIdWords);
   return out;
 }
 
-PackedColors PackColors(const Scene& scene)
+void WriteGeometry(const Scene& scene, const GeometryLayout& layout, const GeometryTargets& out)
 {
-  PackedColors out;
-  scene.ForEachColors([&out](const Colors& c) {
-    out.Bases[&c] = static_cast<std::uint32_t>(out.Words.size());
-    out.Words.insert(out.Words.end(), c.Packed.begin(), c.Packed.end());
+  std::size_t sphereIds = 0;
+  scene.ForEachGeometry([&](const Geometry& g) {
+    const GeometryPlacement& place = layout.Placements.at(&g);
+    if (g.Spheres)
+    {
+      auto* spheres = reinterpret_cast<core::gpu::Sphere*>(out.Spheres + place.PrimitiveBase);
+      copyRecords(g.SphereRecords.data(), g.SphereRecords.size(), spheres);
+      copyRecords(g.EllipsoidRecords.data(), g.EllipsoidRecords.size(),
+        reinterpret_cast<core::gpu::Ellipsoid*>(spheres + g.SphereRecords.size()));
+      copyRecords(g.SphereIds.data(), g.SphereIds.size(), out.SphereIds + sphereIds);
+      sphereIds += g.SphereIds.size();
+    }
+    else
+    {
+      copyRecords(g.Triangles.data(), g.Triangles.size(), out.Triangles + place.PrimitiveBase);
+      copyRecords(
+        g.TriangleVertices.data(), g.TriangleVertices.size(), out.TriangleVertices + place.PrimitiveBase);
+      copyRecords(g.Normals.data(), g.Normals.size(), out.Normals + place.NormalBase);
+      copyRecords(g.CellNormals.data(), g.CellNormals.size(), out.Normals + place.CellNormalBase);
+    }
+    // Local child / primitive indices become global ones.
+    core::gpu::Node* nodes = out.Nodes + place.Root;
+    vtkSMPTools::For(0, static_cast<vtkIdType>(g.Nodes.size()), kCopyGrain, [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        core::gpu::Node node = g.Nodes[static_cast<std::size_t>(i)];
+        node.index += node.count == 0 ? place.Root : place.PrimitiveBase;
+        nodes[i] = node;
+      }
+    });
   });
-  padToTexels(out.Words);
+  padWords(out.SphereIds, sphereIds);
+}
+
+ColorsLayout LayOutColors(const Scene& scene)
+{
+  ColorsLayout out;
+  scene.ForEachColors([&out](const Colors& c) {
+    out.Bases[&c] = static_cast<std::uint32_t>(out.Words);
+    out.Words += c.Packed.size();
+  });
+  out.Words = paddedWords(out.Words);
   return out;
+}
+
+void WriteColors(const Scene& scene, const ColorsLayout& layout, std::uint32_t* out)
+{
+  std::size_t used = 0;
+  scene.ForEachColors([&](const Colors& c) {
+    copyRecords(c.Packed.data(), c.Packed.size(), out + layout.Bases.at(&c));
+    used += c.Packed.size();
+  });
+  padWords(out, used);
 }
 
 } // namespace pass

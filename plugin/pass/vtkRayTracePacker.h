@@ -1,7 +1,7 @@
 // Private to vtkRayTracePass: the scene's cached geometry and colors
 // concatenated into the buffers the shader reads, in the GPU's layout
-// (core/GpuLayout.h), with each geometry's and colors entry's place in them.
-// No GL here.
+// (core/GpuLayout.h): first where each geometry and colors entry goes, then
+// the records written straight into the storage given. No GL here.
 #ifndef vtkRayTracePacker_h
 #define vtkRayTracePacker_h
 
@@ -22,28 +22,41 @@ struct GeometryPlacement
   std::uint32_t Root = 0;           ///< its root node
   std::uint32_t NormalBase = 0;     ///< its first point normal
   std::uint32_t CellNormalBase = 0; ///< its first cell normal (after its point normals)
+  std::uint32_t PrimitiveBase = 0;  ///< its first triangle, or sphere texel
 };
 
-/// Every traced geometry in the upload layout. Node indices are global:
-/// interior nodes index nodes, leaves index their buffer's primitive slots
-/// (triangles, or texels of the sphere buffer, which holds spheres and
-/// ellipsoids).
-struct PackedGeometry
+/// Where every traced geometry goes in the upload layout, and each
+/// buffer's size. Node indices are global: interior nodes index nodes,
+/// leaves index their buffer's primitive slots (triangles, or texels of the
+/// sphere buffer, which holds spheres and ellipsoids).
+struct GeometryLayout
 {
-  std::vector<core::gpu::Node> Nodes;
-  std::vector<core::gpu::Triangle> Triangles;
-  std::vector<core::gpu::TriangleVertices> TriangleVertices;
-  std::vector<core::gpu::Texel> Spheres;
-  std::vector<std::uint32_t> SphereIds; ///< one per sphere texel, padded to whole texels
-  std::vector<core::gpu::Normal> Normals;
+  std::size_t Nodes = 0;
+  std::size_t Triangles = 0; ///< and triangle vertex records
+  std::size_t SphereTexels = 0;
+  std::size_t SphereIdWords = 0; ///< padded to whole texels
+  std::size_t Normals = 0;
   std::map<const Geometry*, GeometryPlacement> Placements;
 };
 
-/// Every colors entry, four RGBA8 (or texture header/coordinate) words per
-/// texel, with each entry's first word.
-struct PackedColors
+/// Storage of a layout's sizes that WriteGeometry fills in place (the GPU
+/// buffers themselves): nothing is packed twice.
+struct GeometryTargets
 {
-  std::vector<std::uint32_t> Words; ///< padded to whole texels
+  core::gpu::Node* Nodes = nullptr;
+  core::gpu::Triangle* Triangles = nullptr;
+  core::gpu::TriangleVertices* TriangleVertices = nullptr;
+  core::gpu::Texel* Spheres = nullptr;
+  std::uint32_t* SphereIds = nullptr;
+  core::gpu::Normal* Normals = nullptr;
+};
+
+/// Every colors entry, four RGBA8 (or texture header/coordinate) words per
+/// texel: each entry's first word and the words in all, padded to whole
+/// texels.
+struct ColorsLayout
+{
+  std::size_t Words = 0;
   std::map<const Colors*, std::uint32_t> Bases;
 };
 
@@ -56,8 +69,13 @@ struct ScenePlacements
   std::map<const TextureEntry*, std::uint32_t> TextureBases; ///< first words in uTextures
 };
 
-PackedGeometry PackGeometry(const Scene& scene);
-PackedColors PackColors(const Scene& scene);
+GeometryLayout LayOutGeometry(const Scene& scene);
+/// Writes every record of the layout, padding included.
+void WriteGeometry(const Scene& scene, const GeometryLayout& layout, const GeometryTargets& out);
+
+ColorsLayout LayOutColors(const Scene& scene);
+/// Writes layout.Words words, padding included.
+void WriteColors(const Scene& scene, const ColorsLayout& layout, std::uint32_t* out);
 
 } // namespace pass
 } // namespace vtkrt

@@ -15,8 +15,10 @@
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
+#include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <functional>
 #include <sstream>
 
 namespace vtkrt
@@ -450,6 +452,14 @@ core::BuildOptions Scene::Options() const
     ? core::BuildQuality::Fast
     : (this->BuildQuality == 2 ? core::BuildQuality::High : core::BuildQuality::Medium);
   options.maxLeafSize = this->LeafSize;
+  // The builder's parallel work goes to VTK's SMP pool, as the locator's:
+  // threads of its own would compete with the pool's spinning workers.
+  options.parallelFor = [](std::size_t n, const std::function<void(std::size_t, std::size_t)>& body) {
+    // Few large items (subtrees, chunks) one at a time; many by VTK's grain.
+    const vtkIdType grain = n <= 256 ? 1 : 0;
+    vtkSMPTools::For(0, static_cast<vtkIdType>(n), grain,
+      [&body](vtkIdType b, vtkIdType e) { body(static_cast<std::size_t>(b), static_cast<std::size_t>(e)); });
+  };
   return options;
 }
 

@@ -10,6 +10,7 @@
 
 #include "vtkrt/core/BVH.h"
 #include "vtkrt/core/GpuLayout.h"
+#include "vtkrt/core/HugePageArray.h"
 
 #include <array>
 #include <chrono>
@@ -48,14 +49,15 @@ struct Geometry
   std::array<double, 3> Origin{ { 0, 0, 0 } }; ///< local origin (model coordinates)
   double Scale = 1.0;                          ///< local units per model unit
   std::array<double, 6> LocalBounds{ { 0, 0, 0, 0, 0, 0 } }; ///< local coordinates
-  std::vector<core::gpu::Node> Nodes;
-  std::vector<core::gpu::Triangle> Triangles; ///< leaf order
-  std::vector<core::gpu::TriangleVertices> TriangleVertices;
-  std::vector<core::gpu::Sphere> SphereRecords;       ///< leaf order
-  std::vector<core::gpu::Ellipsoid> EllipsoidRecords; ///< leaf order
-  std::vector<std::uint32_t> SphereIds; ///< VTK point id per sphere texel (leaf order)
-  std::vector<core::gpu::Normal> Normals; ///< per point, empty if none
-  std::vector<core::gpu::Normal> CellNormals; ///< per VTK cell id, empty if none
+  // Filled right after they are sized: no zero fill first.
+  core::NoFillArray<core::gpu::Node> Nodes;
+  core::NoFillArray<core::gpu::Triangle> Triangles; ///< leaf order
+  core::NoFillArray<core::gpu::TriangleVertices> TriangleVertices;
+  core::NoFillArray<core::gpu::Sphere> SphereRecords;       ///< leaf order
+  core::NoFillArray<core::gpu::Ellipsoid> EllipsoidRecords; ///< leaf order
+  core::NoFillArray<std::uint32_t> SphereIds; ///< VTK point id per sphere texel (leaf order)
+  core::NoFillArray<core::gpu::Normal> Normals; ///< per point, empty if none
+  core::NoFillArray<core::gpu::Normal> CellNormals; ///< per VTK cell id, empty if none
   std::size_t PrimitiveCount = 0;
   std::uint32_t MaximumId = 0; ///< the largest VTK cell (triangles) or point (spheres) id
   std::size_t VertexCount = 0;

@@ -160,28 +160,34 @@ inline float relativeUpper(double x, double origin)
 }
 } // namespace detail
 
-/// Float GPU copy of the nodes (gpu::Node, see GpuLayout.h), boxes relative
-/// to `origin` (use the same origin for the vertices, see LocalFrame.h) and
-/// rounded outward so float traversal never misses what double traversal
-/// would hit. Triangle vertices rounded to nearest float always lie inside
-/// these boxes; a sphere whose float center and radius both round outward
-/// can poke out by about one float ulp (a sub-ulp silhouette difference, no
-/// missing geometry).
+/// Float GPU copy of one node (gpu::Node, see GpuLayout.h), its box
+/// relative to `origin` (use the same origin for the vertices, see
+/// LocalFrame.h) and rounded outward so float traversal never misses what
+/// double traversal would hit. Triangle vertices rounded to nearest float
+/// always lie inside these boxes; a sphere whose float center and radius
+/// both round outward can poke out by about one float ulp (a sub-ulp
+/// silhouette difference, no missing geometry).
+inline gpu::Node packGpuNode(const BVHNode& n, const Vec3<double>& origin = Vec3<double>(0.0))
+{
+  gpu::Node o;
+  for (int k = 0; k < 3; ++k)
+  {
+    o.lo[k] = detail::relativeLower(n.min[k], origin[k]);
+    o.hi[k] = detail::relativeUpper(n.max[k], origin[k]);
+  }
+  o.index = n.index;
+  o.count = n.count;
+  return o;
+}
+
+/// packGpuNode of every node.
 inline std::vector<gpu::Node> packGpuNodes(
   const std::vector<BVHNode>& nodes, const Vec3<double>& origin = Vec3<double>(0.0))
 {
   std::vector<gpu::Node> out(nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i)
   {
-    const BVHNode& n = nodes[i];
-    gpu::Node& o = out[i];
-    for (int k = 0; k < 3; ++k)
-    {
-      o.lo[k] = detail::relativeLower(n.min[k], origin[k]);
-      o.hi[k] = detail::relativeUpper(n.max[k], origin[k]);
-    }
-    o.index = n.index;
-    o.count = n.count;
+    out[i] = packGpuNode(nodes[i], origin);
   }
   return out;
 }

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <mutex>
 #include <new>
 #include <vector>
 
@@ -59,7 +60,6 @@ private:
     std::uint32_t bin = 0;
   };
 
-  std::uint32_t expectedLeafSize() const { return Options.maxLeafSize; }
   const BuildRef& refAt(std::uint32_t pos) const { return Refs[pos]; }
   void prepare() {}
   void finish() {}
@@ -118,26 +118,61 @@ private:
   }
 
   /// Empties bins.nb bins per axis, then bins [begin, end) on all three
-  /// axes in one pass over the primitives (scale and active in locals: the
-  /// pass writes bins, and so never reloads them).
+  /// axes in one pass over the primitives (in parallel chunks for a large
+  /// range of the top phase, each into bins of its own, merged after).
   void fillBins(Bins& bins, std::uint32_t begin, std::uint32_t end, const AABB<double>& centroids) const
   {
-    const std::uint32_t nb = bins.nb;
-    double scale[3];
-    bool active[3];
     for (int axis = 0; axis < 3; ++axis)
     {
       const double extent = centroids.max[axis] - centroids.min[axis];
-      active[axis] = extent > 0.0;
-      scale[axis] = active[axis] ? nb / extent : 0.0;
+      bins.active[axis] = extent > 0.0;
+      bins.scale[axis] = bins.active[axis] ? bins.nb / extent : 0.0;
+    }
+    clearBins(bins);
+    std::mutex merge;
+    forChunks(begin, end, [&](std::uint32_t b, std::uint32_t e) {
+      if (b == begin && e == end)
+      {
+        binRange(bins, b, e, centroids);
+        return;
+      }
+      Bins chunk;
+      chunk.nb = bins.nb;
+      std::copy(bins.scale, bins.scale + 3, chunk.scale);
+      std::copy(bins.active, bins.active + 3, chunk.active);
+      clearBins(chunk);
+      binRange(chunk, b, e, centroids);
+      std::lock_guard<std::mutex> lock(merge);
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        for (std::uint32_t k = 0; k < bins.nb; ++k)
+        {
+          bins.axis(axis)[k].box.extend(chunk.axis(axis)[k].box);
+          bins.axis(axis)[k].count += chunk.axis(axis)[k].count;
+        }
+      }
+    });
+  }
+
+  static void clearBins(Bins& bins)
+  {
+    for (int axis = 0; axis < 3; ++axis)
+    {
       Bin* axisBins = bins.axis(axis);
-      for (std::uint32_t b = 0; b < nb; ++b)
+      for (std::uint32_t b = 0; b < bins.nb; ++b)
       {
         new (&axisBins[b]) Bin{ AABB<double>(), 0u };
       }
-      bins.scale[axis] = scale[axis];
-      bins.active[axis] = active[axis];
     }
+  }
+
+  /// Bins [begin, end) into `bins` (scale and active in locals: the pass
+  /// writes bins, and so never reloads them).
+  void binRange(Bins& bins, std::uint32_t begin, std::uint32_t end, const AABB<double>& centroids) const
+  {
+    const std::uint32_t nb = bins.nb;
+    const double scale[3] = { bins.scale[0], bins.scale[1], bins.scale[2] };
+    const bool active[3] = { bins.active[0], bins.active[1], bins.active[2] };
     for (std::uint32_t i = begin; i < end; ++i)
     {
       const BuildRef& r = Refs[i];

@@ -44,10 +44,6 @@ private:
   std::vector<std::uint64_t> Codes; ///< Morton codes by position, ascending
   std::vector<std::uint32_t> Perm;  ///< Refs index at each position
 
-  /// Leaves hold about half of the leaf size: the split is at Morton bits,
-  /// not counts.
-  std::uint32_t expectedLeafSize() const { return std::max<std::uint32_t>(1, Options.maxLeafSize / 2); }
-
   /// The refs themselves never move (a permutation of large refs costs
   /// random writes over the whole array): positions go through Perm.
   const BuildRef& refAt(std::uint32_t pos) const { return Refs[Perm[pos]]; }

@@ -38,7 +38,6 @@ private:
   std::vector<std::uint8_t> Side;      ///< 1 = goes left in the current split
   std::vector<std::uint32_t> Scratch;  ///< partition buffer (disjoint ranges per task)
 
-  std::uint32_t expectedLeafSize() const { return Options.maxLeafSize; }
 
   /// Through Order[0] during the build; Refs themselves once finish() has
   /// put them in leaf order.

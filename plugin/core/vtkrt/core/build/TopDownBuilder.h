@@ -1,23 +1,29 @@
 // The top-down recursion every builder shares: split a range of references
-// in two, build both halves, in parallel near the root. A builder derives
-// from TopDownBuilder<Itself> (no virtual calls in the recursion) and says
-// where to split (see "What a builder provides" below).
+// in two, build both halves. A builder derives from TopDownBuilder<Itself>
+// (no virtual calls in the recursion) and says where to split (see "What a
+// builder provides" below).
 //
-// Determinism: the tree depends only on the input, never on the thread count.
-// Subtrees with at least kTaskPrimitives primitives are laid out after the
-// parent's smaller children; when two such siblings run on two threads, each
-// is built into its own node array and spliced, which appends exactly the
-// nodes, in the order, that building both on the calling thread appends.
+// Parallelism in two phases. The top phase splits the ranges larger than
+// the task size on the calling thread, each pass over a large range
+// (bounds, bins) in parallel chunks; every range it leaves at or under the
+// task size becomes a task. The tasks' subtrees are then built at once, each
+// into its own array, and appended after the top nodes in task order: one
+// copy of each node, into an array of exactly the tree's size.
+//
+// Determinism: the tree depends only on the input, never on the thread
+// count: the task size depends on the primitive count only, and the
+// parallel passes merge bounds and counts (exact in any order).
 #ifndef vtkrt_core_build_TopDownBuilder_h
 #define vtkrt_core_build_TopDownBuilder_h
 
 #include "vtkrt/core/BVH.h"
 #include "vtkrt/core/build/BuildRef.h"
+#include "vtkrt/core/build/Parallel.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
-#include <system_error>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -38,7 +44,6 @@ inline std::uint32_t ceilLog2(std::uint64_t x)
 /// What a builder provides (private, with TopDownBuilder<Builder> a friend):
 ///   static constexpr bool kBottomUpBounds: boxes merged from the children
 ///     instead of a pass over each range before its split;
-///   std::uint32_t expectedLeafSize() const: for sizing the node array;
 ///   void prepare(), void finish(): before and after the recursion;
 ///   const BuildRef& refAt(pos) const: the primitive at position pos;
 ///   void prefetchAfter(pos) const: optional, fetch refAt(pos + a few) early;
@@ -49,8 +54,11 @@ template <class Builder>
 class TopDownBuilder
 {
 public:
-  static constexpr std::uint32_t kTaskPrimitives = 16384;
-  static constexpr std::uint32_t kPooledDepth = 4;
+  /// The smallest task size: smaller subtrees are not worth a task.
+  static constexpr std::size_t kTaskPrimitives = 16384;
+  /// The top phase stops at ranges of 1/kTopTasks of the primitives, enough
+  /// tasks to balance any thread count this runs on.
+  static constexpr std::size_t kTopTasks = 64;
 
   TopDownBuilder(std::vector<BuildRef>& refs, const BuildOptions& options)
     : Refs(refs)
@@ -60,8 +68,6 @@ public:
     {
       Options.maxLeafSize = 1;
     }
-    unsigned threads = Options.numThreads ? Options.numThreads : std::thread::hardware_concurrency();
-    FreeThreads = static_cast<int>(std::max(1u, threads)) - 1;
   }
 
   /// The id of the primitive at leaf position pos (after build()).
@@ -75,11 +81,16 @@ public:
       return nodes;
     }
     self().prepare();
-    nodes.reserve(nodeEstimate(Refs.size()));
-    nodes.resize(1);
-    buildNode(nodes, 0, 0, static_cast<std::uint32_t>(Refs.size()), 0);
+    const std::size_t n = Refs.size();
+    TaskSize = std::max(kTaskPrimitives, n / kTopTasks);
+    std::vector<Task> tasks;
+    std::vector<BVHNode> top(1);
+    TopPhase = true;
+    buildTop(top, 0, 0, static_cast<std::uint32_t>(n), 0, tasks);
+    TopPhase = false;
+    runTasks(tasks);
+    nodes = joinTasks(top, tasks);
     self().finish();
-    nodes.shrink_to_fit(); // splices grow it geometrically
     return nodes;
   }
 
@@ -89,30 +100,58 @@ protected:
 
   void prefetchAfter(std::uint32_t) const {}
 
+  /// fn(b, e) over [begin, end): in parallel chunks (any split) for a large
+  /// range of the top phase, else once on this thread. fn must merge its
+  /// results commutatively and exactly (bounds, counts) and be safe to run
+  /// concurrently.
+  template <class Fn>
+  void forChunks(std::uint32_t begin, std::uint32_t end, Fn&& fn) const
+  {
+    if (!TopPhase || end - begin < 4 * kMinChunk)
+    {
+      fn(begin, end);
+      return;
+    }
+    parallelChunks(end - begin, Options,
+      [&](std::size_t b, std::size_t e) { fn(begin + static_cast<std::uint32_t>(b), begin + static_cast<std::uint32_t>(e)); });
+  }
+
+  /// The box of [begin, end), with the box of its centroids in `centroids`.
   AABB<double> rangeBounds(std::uint32_t begin, std::uint32_t end, AABB<double>& centroids) const
   {
     AABB<double> box;
-    for (std::uint32_t i = begin; i < end; ++i)
-    {
-      self().prefetchAfter(i);
-      const BuildRef& r = self().refAt(i);
-      box.extend(r.box);
-      centroids.extend(r.centroid());
-    }
+    std::mutex merge;
+    forChunks(begin, end, [&](std::uint32_t b, std::uint32_t e) {
+      AABB<double> chunkBox, chunkCentroids;
+      for (std::uint32_t i = b; i < e; ++i)
+      {
+        self().prefetchAfter(i);
+        const BuildRef& r = self().refAt(i);
+        chunkBox.extend(r.box);
+        chunkCentroids.extend(r.centroid());
+      }
+      std::lock_guard<std::mutex> lock(merge);
+      box.extend(chunkBox);
+      centroids.extend(chunkCentroids);
+    });
     return box;
   }
 
 private:
-  using Ranges = std::uint32_t[2][2]; ///< the two children's [begin, end)
+  /// A subtree built apart: its range, where its root goes in the top
+  /// nodes, and its own nodes (root first, child indices into them).
+  struct Task
+  {
+    std::size_t slot;
+    std::uint32_t begin, end, depth;
+    std::vector<BVHNode> nodes;
+  };
 
-  std::atomic<int> FreeThreads{ 0 };
+  std::size_t TaskSize = kTaskPrimitives;
+  bool TopPhase = false;
 
   Builder& self() { return static_cast<Builder&>(*this); }
   const Builder& self() const { return static_cast<const Builder&>(*this); }
-
-  /// Room for the nodes over `count` primitives. Too little costs a
-  /// reallocation of the whole array; the build shrinks it to size at the end.
-  std::size_t nodeEstimate(std::size_t count) const { return 2 * count / self().expectedLeafSize() + 1; }
 
   /// Where to split [begin, end), or `end` for a leaf.
   std::uint32_t chooseSplit(std::uint32_t begin, std::uint32_t end, std::uint32_t depth,
@@ -139,10 +178,11 @@ private:
     return self().split(begin, end, box, centroids);
   }
 
-  /// Builds the subtree of [begin, end) into nodes[slot] and nodes appended
-  /// to `nodes`.
-  void buildNode(std::vector<BVHNode>& nodes, std::size_t slot, std::uint32_t begin, std::uint32_t end,
-    std::uint32_t depth)
+  /// Splits [begin, end) into nodes[slot] and, when it is an interior node,
+  /// appends its two children; returns the split (`end` for a leaf, whose
+  /// node is then complete).
+  std::uint32_t splitNode(std::vector<BVHNode>& nodes, std::size_t slot, std::uint32_t begin,
+    std::uint32_t end, std::uint32_t depth)
   {
     constexpr bool bottomUp = Builder::kBottomUpBounds;
     AABB<double> centroids;
@@ -151,153 +191,158 @@ private:
     {
       box = rangeBounds(begin, end, centroids);
     }
-    const std::uint32_t mid = chooseSplit(begin, end, depth, box, centroids);
-    if (mid == end || mid == begin)
+    std::uint32_t mid = chooseSplit(begin, end, depth, box, centroids);
+    mid = mid == begin ? end : mid;
+    if (mid == end && bottomUp)
     {
-      if (bottomUp)
-      {
-        box = rangeBounds(begin, end, centroids);
-      }
-      nodes[slot].setBounds(box);
-      nodes[slot].index = begin;
-      nodes[slot].count = end - begin;
-      return;
+      box = rangeBounds(begin, end, centroids);
     }
     nodes[slot].setBounds(box);
+    if (mid == end)
+    {
+      nodes[slot].index = begin;
+      nodes[slot].count = end - begin;
+      return end;
+    }
     const std::size_t first = nodes.size();
     nodes.resize(first + 2);
     nodes[slot].index = static_cast<std::uint32_t>(first);
     nodes[slot].count = 0;
-    const Ranges ranges = { { begin, mid }, { mid, end } };
-    buildChildren(nodes, first, ranges, depth);
-    if (bottomUp)
+    return mid;
+  }
+
+  /// Builds the subtree of [begin, end) into nodes[slot] and nodes appended
+  /// to `nodes` (depth first), on this thread.
+  void buildNode(std::vector<BVHNode>& nodes, std::size_t slot, std::uint32_t begin, std::uint32_t end,
+    std::uint32_t depth)
+  {
+    const std::uint32_t mid = splitNode(nodes, slot, begin, end, depth);
+    if (mid == end)
     {
-      box = nodes[first].bounds();
-      box.extend(nodes[first + 1].bounds());
-      nodes[slot].setBounds(box);
+      return;
+    }
+    const std::size_t first = nodes[slot].index;
+    buildNode(nodes, first, begin, mid, depth + 1);
+    buildNode(nodes, first + 1, mid, end, depth + 1);
+    if (Builder::kBottomUpBounds)
+    {
+      mergeChildBounds(nodes, slot);
     }
   }
 
-  /// Builds the two children of a node at `depth` into nodes[first] and
-  /// nodes[first + 1]: the small ones first, on this thread; two task
-  /// children each into its own array, in parallel, then spliced in order.
-  /// Every other task child is built straight into `nodes`: its nodes are
-  /// appended in exactly the order a splice would put them (same layout, no
-  /// copy of the subtree).
-  void buildChildren(std::vector<BVHNode>& nodes, std::size_t first, const Ranges& ranges, std::uint32_t depth)
+  /// The top phase: splits ranges over the task size into `top`; each
+  /// range at or under it becomes a task whose root goes in top[slot].
+  void buildTop(std::vector<BVHNode>& top, std::size_t slot, std::uint32_t begin, std::uint32_t end,
+    std::uint32_t depth, std::vector<Task>& tasks)
   {
-    bool isTask[2];
-    for (int c = 0; c < 2; ++c)
+    if (end - begin <= TaskSize)
     {
-      isTask[c] = ranges[c][1] - ranges[c][0] >= kTaskPrimitives;
-      if (!isTask[c])
-      {
-        buildNode(nodes, first + c, ranges[c][0], ranges[c][1], depth + 1);
-      }
+      tasks.push_back(Task{ slot, begin, end, depth, {} });
+      return;
     }
-    if (isTask[0] && isTask[1])
+    const std::uint32_t mid = splitNode(top, slot, begin, end, depth);
+    if (mid == end)
     {
-      // Through the pool only near the root: each pooled level copies its
-      // subtrees once more in the splices, and a few levels make enough tasks.
-      if (Options.parallelFor && depth < kPooledDepth)
-      {
-        buildPooled(nodes, first, ranges, depth);
-        return;
-      }
-      if (buildOnTwoThreads(nodes, first, ranges, depth))
-      {
-        return;
-      }
+      return;
     }
-    for (int c = 0; c < 2; ++c)
-    {
-      if (isTask[c])
-      {
-        buildNode(nodes, first + c, ranges[c][0], ranges[c][1], depth + 1);
-      }
-    }
+    const std::size_t first = top[slot].index;
+    buildTop(top, first, begin, mid, depth + 1, tasks);
+    buildTop(top, first + 1, mid, end, depth + 1, tasks);
   }
 
-  /// Both children through the options' parallelFor.
-  void buildPooled(std::vector<BVHNode>& nodes, std::size_t first, const Ranges& ranges, std::uint32_t depth)
+  void buildTask(Task& task)
   {
-    std::vector<BVHNode> sub[2];
-    // Storage from this thread: a pool worker's malloc arena hands large
-    // blocks back to the system, which faults them in again next build.
-    for (int c = 0; c < 2; ++c)
+    // At most 2 count - 1 nodes: no reallocation; untouched capacity
+    // costs no memory pages.
+    task.nodes.reserve(2 * std::size_t(task.end - task.begin));
+    task.nodes.resize(1);
+    buildNode(task.nodes, 0, task.begin, task.end, task.depth);
+  }
+
+  /// Builds every task, in parallel (options.parallelFor, else up to
+  /// numThreads threads taking the next task), largest first.
+  void runTasks(std::vector<Task>& tasks)
+  {
+    std::vector<std::size_t> order(tasks.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
     {
-      sub[c].reserve(nodeEstimate(ranges[c][1] - ranges[c][0]));
+      order[i] = i;
     }
-    Options.parallelFor(2, [this, &sub, &ranges, depth](std::size_t b, std::size_t e) {
-      for (std::size_t c = b; c < e; ++c)
-      {
-        sub[c].resize(1);
-        buildNode(sub[c], 0, ranges[c][0], ranges[c][1], depth + 1);
-      }
+    std::stable_sort(order.begin(), order.end(), [&tasks](std::size_t a, std::size_t b) {
+      return tasks[a].end - tasks[a].begin > tasks[b].end - tasks[b].begin;
     });
-    splice(nodes, first, sub[0]);
-    splice(nodes, first + 1, sub[1]);
-  }
-
-  /// The first child on a thread of its own, the second on this one, when
-  /// the thread budget and the system give a thread; false (nothing built)
-  /// when not.
-  bool buildOnTwoThreads(std::vector<BVHNode>& nodes, std::size_t first, const Ranges& ranges, std::uint32_t depth)
-  {
-    if (FreeThreads.fetch_sub(1) <= 0)
+    if (Options.parallelFor && tasks.size() > 1)
     {
-      FreeThreads.fetch_add(1);
-      return false;
-    }
-    std::vector<BVHNode> sub[2];
-    std::thread worker;
-    try
-    {
-      worker = std::thread([this, &sub, &ranges, depth]() {
-        sub[0].resize(1);
-        buildNode(sub[0], 0, ranges[0][0], ranges[0][1], depth + 1);
+      Options.parallelFor(tasks.size(), [&](std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i)
+        {
+          buildTask(tasks[order[i]]);
+        }
       });
+      return;
     }
-    catch (const std::system_error&)
-    {
-      // No thread available from the system: the caller builds inline (same output).
-      FreeThreads.fetch_add(1);
-      return false;
-    }
-    sub[1].resize(1);
-    buildNode(sub[1], 0, ranges[1][0], ranges[1][1], depth + 1);
-    worker.join();
-    FreeThreads.fetch_add(1);
-    splice(nodes, first, sub[0]);
-    splice(nodes, first + 1, sub[1]);
-    return true;
+    // Own threads, each taking the next task until none is left.
+    const unsigned threads = Options.numThreads ? Options.numThreads : std::thread::hardware_concurrency();
+    const std::size_t workers = std::min<std::size_t>(tasks.size(), std::max(1u, threads));
+    std::atomic<std::size_t> next{ 0 };
+    auto work = [&](std::size_t, std::size_t) {
+      for (std::size_t i = next++; i < tasks.size(); i = next++)
+      {
+        buildTask(tasks[order[i]]);
+      }
+    };
+    parallelChunks(workers, threads, work, Refs.size());
   }
 
-  /// Moves a subtree built with its root at sub[0] into nodes[slot] (root)
-  /// and the end of `nodes` (the rest), renumbering child indices.
-  static void splice(std::vector<BVHNode>& nodes, std::size_t slot, std::vector<BVHNode>& sub)
+  /// The top nodes, then each task's nodes but its root (which replaces
+  /// its slot), child indices renumbered; the tasks' arrays are freed.
+  std::vector<BVHNode> joinTasks(std::vector<BVHNode>& top, std::vector<Task>& tasks) const
   {
-    const std::size_t base = nodes.size();
-    auto remap = [base](BVHNode n) {
-      if (!n.isLeaf())
+    std::size_t total = top.size();
+    for (const Task& t : tasks)
+    {
+      total += t.nodes.size() - 1;
+    }
+    std::vector<BVHNode> nodes;
+    nodes.reserve(total);
+    nodes.insert(nodes.end(), top.begin(), top.end());
+    for (Task& t : tasks)
+    {
+      const std::size_t base = nodes.size();
+      auto remap = [base](BVHNode node) {
+        if (!node.isLeaf())
+        {
+          node.index = static_cast<std::uint32_t>(base + node.index - 1);
+        }
+        return node;
+      };
+      nodes[t.slot] = remap(t.nodes[0]);
+      for (std::size_t i = 1; i < t.nodes.size(); ++i)
       {
-        n.index = static_cast<std::uint32_t>(base + n.index - 1);
+        nodes.push_back(remap(t.nodes[i]));
       }
-      return n;
-    };
-    nodes[slot] = remap(sub[0]);
-    // Grow geometrically: reserving the exact size at every splice would
-    // copy the whole array once per task.
-    const std::size_t needed = base + sub.size() - 1;
-    if (nodes.capacity() < needed)
-    {
-      nodes.reserve(std::max(needed, 2 * nodes.capacity()));
+      std::vector<BVHNode>().swap(t.nodes);
     }
-    for (std::size_t i = 1; i < sub.size(); ++i)
+    if (Builder::kBottomUpBounds)
     {
-      nodes.push_back(remap(sub[i]));
+      // The top's boxes from their children, which come after them.
+      for (std::size_t i = top.size(); i-- > 0;)
+      {
+        if (!nodes[i].isLeaf())
+        {
+          mergeChildBounds(nodes, i);
+        }
+      }
     }
-    std::vector<BVHNode>().swap(sub);
+    return nodes;
+  }
+
+  static void mergeChildBounds(std::vector<BVHNode>& nodes, std::size_t slot)
+  {
+    const std::size_t first = nodes[slot].index;
+    AABB<double> box = nodes[first].bounds();
+    box.extend(nodes[first + 1].bounds());
+    nodes[slot].setBounds(box);
   }
 };
 
