@@ -13,6 +13,7 @@
 #include "vtkTextProperty.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <sstream>
 #include <vector>
@@ -61,9 +62,19 @@ vtkDataArray* FindArray(const SceneMesh& mesh, const ScalarOptions& options)
   auto* attributes = static_cast<vtkDataSetAttributes*>(fields);
   vtkDataArray* array =
     options.Array.empty() ? attributes->GetScalars() : fields->GetArray(options.Array.c_str());
+  // No active scalars: the first numeric array that is not the normals or
+  // texture coordinates (whose colours mean nothing), else the first.
   for (int i = 0; !array && options.Array.empty() && i < fields->GetNumberOfArrays(); ++i)
   {
-    array = fields->GetArray(i); // no active scalars: the first numeric array
+    vtkDataArray* candidate = fields->GetArray(i);
+    if (candidate && candidate != attributes->GetNormals() && candidate != attributes->GetTCoords())
+    {
+      array = candidate;
+    }
+  }
+  for (int i = 0; !array && options.Array.empty() && i < fields->GetNumberOfArrays(); ++i)
+  {
+    array = fields->GetArray(i);
   }
   const std::string kind = options.Cells ? "cell" : "point";
   if (!array)
@@ -161,6 +172,13 @@ void ColorByScalars(Scene& scene, const ScalarOptions& options)
   if (options.RangeGiven)
   {
     std::copy(options.Range, options.Range + 2, range);
+  }
+  else if (range[1] - range[0] <= 1e-6 * std::max({ 1.0, std::abs(range[0]), std::abs(range[1]) }))
+  {
+    // A constant array (to rounding) gets the colormap's middle, not its noise.
+    const double mid = 0.5 * (range[0] + range[1]), half = 0.5 * std::max(1.0, std::abs(mid));
+    range[0] = mid - half;
+    range[1] = mid + half;
   }
   vtkSmartPointer<vtkLookupTable> table = NewColormap(options.Colormap);
   table->SetRange(range);

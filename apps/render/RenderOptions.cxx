@@ -307,6 +307,10 @@ void CheckRenderWords(const CLI::App& app, const Words& w, Options& opt)
         "')" };
     }
   }
+  if (!opt.Trace.Preset.empty() && opt.Trace.Preset != "interactive" && !app.count("--progressive"))
+  {
+    opt.Trace.Progressive = 16; // an image of a converging preset is its still view, converged
+  }
   if (app.count("--precision"))
   {
     opt.Trace.Precision = w.Precision;

@@ -253,6 +253,12 @@ void TestScalars()
     barCovered, barColourful);
   Check(barColourful > 500,
     "--bar: a coloured bar right of the sphere (" + std::to_string(barColourful) + " pixels)");
+
+  // Normals are the bunny's only array: coloured by them, a constant
+  // magnitude gets one colour, the colormap's middle, not rounding noise.
+  Render("'" + Data + "/bunny.vtp' --scalars --resolution 200,160", "normals.png", &r);
+  Check(Contains(r.Output, "point array 'Normals' \\(magnitude\\), range \\[0.5, 1.5\\]"),
+    "--scalars on unit normals alone: the constant magnitude's range is widened");
 }
 
 void TestUpAxis()
@@ -485,6 +491,8 @@ void TestTraceKnobs()
           "tracing: +4 ray\\(s\\) per pixel, shadows on, ambient occlusion 4 ray\\(s\\), "
           "precision CameraRelative, preset Exact"),
     "--preset exact sets the pass's EXACT knobs");
+  Check(Contains(r.Output, "accumulated: +16 frames in"),
+    "--preset exact writes a still image accumulated over 16 frames");
   Render(bunny + " --preset exact --samples 1", "exact1.png", &r);
   Check(Contains(r.Output, "tracing: +1 ray\\(s\\) per pixel, shadows on, .*preset Custom"),
     "a knob given beside --preset overrides it");

@@ -5,7 +5,9 @@ CASE: Mesh (an isosurface), Glyphs (sphere glyphs), Glyphs3D (the "3D
 Glyphs" representation with sphere glyphs, whose mapper gets composite
 data: traced, and against ParaView's own raster image of it), Distributed
 (mesh and glyphs, split over the ranks when run under mpiexec: the image
-must match the serial baseline).
+must match the serial baseline), Presets (the view's Quality Preset
+property reaches the pass: Exact's shadows and ambient occlusion darken
+the mesh, and under a preset the knobs it sets are not used).
 """
 import os
 import sys
@@ -74,10 +76,39 @@ elif case == "Distributed":
         check(0 < traced < total, "rank 0 traced only its piece (%d of %d primitives)" % (traced, total))
     else:
         check(traced == total, "all %d primitives traced (traced: %d)" % (total, traced))
+elif case == "Presets":
+    source, _ = mesh(view)
+    place_camera(view)
+    os.makedirs(TEMP_DIR, exist_ok=True)
+
+    def mean_brightness(name):
+        Render(view)
+        png = os.path.join(TEMP_DIR, "paraview_Presets_%s.png" % name)
+        SaveScreenshot(png, view, ImageResolution=VIEW_SIZE)
+        return mean_red(png)
+
+    view.QualityPreset = "Interactive"
+    interactive = mean_brightness("Interactive")
+    view.QualityPreset = "Exact"
+    exact = mean_brightness("Exact")
+    check(exact < interactive - 1.0,
+          "Exact (shadows, occlusion) is darker than Interactive (mean red %.2f < %.2f)"
+          % (exact, interactive))
+    # Under a preset its knobs are the preset's, whatever the widgets hold.
+    view.Shadows = 0
+    view.AmbientOcclusionSamples = 0
+    still_exact = mean_brightness("ExactKnobsOff")
+    check(abs(still_exact - exact) < 0.5,
+          "knobs set under Exact are not used (mean red %.2f, Exact %.2f)" % (still_exact, exact))
+    view.QualityPreset = "Custom"
+    custom = mean_brightness("Custom")
+    check(custom > exact + 1.0,
+          "Custom uses the knobs again: no shadows or occlusion (mean red %.2f > %.2f)"
+          % (custom, exact))
 else:
     raise SystemExit("unknown case " + case)
 
-if case != "Glyphs3D":  # compared with ParaView's raster image above
+if case not in ("Glyphs3D", "Presets"):  # compared with ParaView's raster image above
     png = os.path.join(TEMP_DIR, "paraview_%s_np%d.png" % (case, ranks))
     os.makedirs(TEMP_DIR, exist_ok=True)
     SaveScreenshot(png, view, ImageResolution=VIEW_SIZE)

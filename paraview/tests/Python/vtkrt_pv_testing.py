@@ -66,6 +66,13 @@ def _rgb(path):
     return image
 
 
+def mean_red(png):
+    """Mean red value (0..255) of a PNG's pixels."""
+    scalars = _rgb(png).GetPointData().GetScalars()
+    n = scalars.GetNumberOfTuples()
+    return sum(scalars.GetComponent(i, 0) for i in range(n)) / max(n, 1)
+
+
 def image_error(png, other_png):
     """Thresholded error between two PNGs of the same size (as above)."""
     diff = vtkImageDifference()
