@@ -35,11 +35,25 @@ case "$mode" in
     ;;
   *) echo "usage: $0 [asan|tsan]" >&2; exit 2 ;;
 esac
+# The sanitizer's runtime must start on this kernel and toolchain (TSan
+# refuses some address-space layouts); if it cannot, say so and stop.
+probe=$(mktemp -d)
+trap 'rm -rf "$probe"' EXIT
+echo 'int main() { return 0; }' >"$probe/probe.cxx"
+if ! "${CXX:-c++}" -fsanitize="$sanitize" "$probe/probe.cxx" -o "$probe/probe" 2>"$probe/log" ||
+  ! "$probe/probe" 2>>"$probe/log"; then
+  echo "== sanitize $mode SKIPPED: the $sanitize runtime does not start here:" >&2
+  cat "$probe/log" >&2
+  exit 0
+fi
+launchers=()
+if command -v ccache >/dev/null; then
+  launchers=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+fi
 build="build-$mode"
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DVTKRT_SANITIZE="$sanitize" \
   -DVTKRT_WRAP_PYTHON=OFF -DVTKRT_BUILD_FILTERS=OFF -DVTKRT_BUILD_APPS=OFF \
-  -DVTKRT_BUILD_BENCHMARKS=OFF -DVTKRT_BUILD_EXAMPLES=OFF \
-  -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache
+  -DVTKRT_BUILD_BENCHMARKS=OFF -DVTKRT_BUILD_EXAMPLES=OFF "${launchers[@]}"
 cmake --build "$build" -j "$jobs" --target "${targets[@]}"
 if [ -n "${VTKRT_SANITIZE_TESTS:-}" ]; then
   read -r -a tests <<<"$VTKRT_SANITIZE_TESTS"
