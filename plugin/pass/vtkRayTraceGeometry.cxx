@@ -4,12 +4,12 @@
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
-#include "vtkTypeFloat32Array.h"
-#include "vtkTypeFloat64Array.h"
 
 #include "vtkrt/core/BVHBuild.h"
 #include "vtkrt/core/LocalFrame.h"
@@ -242,8 +242,8 @@ void ReadPoints(vtkPoints* pts, core::NoFillArray<Vec3<double>>& out)
     return;
   }
   vtkDataArray* data = pts->GetData();
-  auto* floats = vtkTypeFloat32Array::FastDownCast(data);
-  auto* doubles = vtkTypeFloat64Array::FastDownCast(data);
+  auto* floats = vtkFloatArray::FastDownCast(data);
+  auto* doubles = vtkDoubleArray::FastDownCast(data);
   smpFor(out.size(), [&](std::size_t b, std::size_t e) {
     if (floats || doubles)
     {
