@@ -518,7 +518,7 @@ private:
   inline bool IntersectTriangle(std::uint32_t prim, const core::RayTrianglePrecomputed<double>& pre,
     const core::Ray<double>& ray, double tol, double& t, double& u, double& v) const;
   inline bool ProjectsInside(std::uint32_t prim, const Vec3d& x) const;
-  inline bool FartherThan(std::uint32_t prim, const Vec3d& x, double localTol, const double xw[3]) const;
+  inline bool FartherThan(std::uint32_t prim, const Vec3d& x, double far2) const;
 
   // Extraction
   void ComputeOrigin(vtkDataSet* ds);

@@ -260,25 +260,16 @@ inline bool BVHCellLocatorData::ProjectsInside(std::uint32_t prim, const Vec3d& 
 }
 
 //------------------------------------------------------------------------------
-/// Whether triangle prim is certainly farther than sqrt(tol2) from x (local;
-/// xw in world coordinates), so that vtkTriangle::EvaluatePosition could not
-/// give dist2 <= tol2 (inside, dist2 is the distance to the triangle). The
-/// margin dwarfs both computations' rounding (a few ulps of the squared
-/// coordinates).
-inline bool BVHCellLocatorData::FartherThan(
-  std::uint32_t prim, const Vec3d& x, double localTol, const double xw[3]) const
+/// Whether triangle prim is certainly farther from x (local) than the
+/// squared local distance far2 (FindCell's tolerance with VTK's world
+/// rounding allowed), so that vtkTriangle::EvaluatePosition could not give
+/// dist2 <= tol2. The margin dwarfs the local computation's rounding (a few
+/// ulps of the squared coordinates).
+inline bool BVHCellLocatorData::FartherThan(std::uint32_t prim, const Vec3d& x, double far2) const
 {
   const Vec3d v0 = this->Vertex(prim, 0);
   const Vec3d d = x - core::closestPointOnTriangle(x, v0, this->Vertex(prim, 1), this->Vertex(prim, 2));
-  // VTK evaluates the cell in world coordinates: allow its rounding there.
-  double m = 0.0;
-  for (int k = 0; k < 3; ++k)
-  {
-    m = std::max({ m, std::abs(xw[k]), std::abs(this->Origin[k]) });
-  }
-  const double slack = this->ToLocalLength(3e-6 * m);
-  return glm::dot(d, d) > localTol * localTol * (1.0 + 1e-9) + slack * slack +
-    1e-12 * (glm::dot(v0, v0) + this->Extent * this->Extent);
+  return glm::dot(d, d) > far2 + 1e-12 * (glm::dot(v0, v0) + this->Extent * this->Extent);
 }
 
 //------------------------------------------------------------------------------
@@ -713,6 +704,14 @@ vtkIdType BVHCellLocatorData::FindCell(const double xw[3], double tol2, vtkDataS
   const Vec3d x = this->ToLocal(xw);
   const Vec3d tol(this->ToLocalLength(std::sqrt(tol2)));
   const Box q(x - tol, x + tol);
+  // VTK evaluates the cells in world coordinates: allow its rounding there.
+  double m = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    m = std::max({ m, std::abs(xw[k]), std::abs(this->Origin[k]) });
+  }
+  const double slack = this->ToLocalLength(3e-6 * m);
+  const double far2 = tol.x * tol.x * (1.0 + 1e-9) + slack * slack;
   // Candidates (cell id, primitive) in cell id order: a VTK_TRIANGLE cell
   // is filled from its kept point ids, not looked up in the dataset. The
   // list is the thread's own, kept between queries (no allocation a query).
@@ -743,7 +742,7 @@ vtkIdType BVHCellLocatorData::FindCell(const double xw[3], double tol2, vtkDataS
     }
     if (static_cast<vtkIdType>(prim) < nTri && (this->TriangleFlags(prim) & WholeTriangle))
     {
-      if (this->FartherThan(prim, x, tol.x, xw))
+      if (this->FartherThan(prim, x, far2))
       {
         continue;
       }

@@ -325,6 +325,9 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
       rec.ambient[k] = inst.Ambient[k];
       rec.diffuse[k] = inst.Diffuse[k];
       rec.specular[k] = inst.Specular[k];
+      rec.backAmbient[k] = inst.BackAmbient[k];
+      rec.backDiffuse[k] = inst.BackDiffuse[k];
+      rec.backSpecular[k] = inst.BackSpecular[k];
     }
     rec.specularPower = inst.SpecularPower;
     rec.colorBase = inst.Color ? colorBase->second : 0u;
@@ -339,12 +342,6 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     for (int k = 0; k < 4; ++k)
     {
       rec.screenRadiusPlane[k] = static_cast<float>(screen.Plane[k]);
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      rec.backAmbient[k] = inst.BackAmbient[k];
-      rec.backDiffuse[k] = inst.BackDiffuse[k];
-      rec.backSpecular[k] = inst.BackSpecular[k];
     }
     rec.backSpecularPower = inst.BackSpecularPower;
     rec.textureBase = inst.Texture ? textureBase->second : 0u;

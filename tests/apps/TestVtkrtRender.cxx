@@ -565,31 +565,12 @@ void TestRaytraceMode()
 
 int main(int argc, char* argv[])
 {
-  vtkrtTestOutputWindow* output = vtkrtTestOutputWindow::Install();
-  const std::map<std::string, std::function<void()>> cases = {
+  return RunCase(argc, argv, "TestVtkrtRender", {
     { "Demo", TestDemo },
     { "Files", TestFiles },
     { "Pick", TestPick },
     { "BadArguments", TestBadArguments },
     { "BadFiles", TestBadFiles },
     { "RaytraceMode", TestRaytraceMode },
-  };
-  if (argc != 3 || cases.find(argv[2]) == cases.end())
-  {
-    std::cerr << "usage: " << argv[0] << " <vtkrt-render> <case>; cases:";
-    for (const auto& c : cases)
-    {
-      std::cerr << " " << c.first;
-    }
-    std::cerr << "\n";
-    return EXIT_FAILURE;
-  }
-  App = argv[1];
-  Tmp = std::string(VTKRT_TEMP_DIR) + "/TestVtkrtRender/" + argv[2];
-  vtksys::SystemTools::MakeDirectory(Tmp);
-  cases.at(argv[2])();
-  Check(output->GetNumberOfErrors() == 0 && output->GetNumberOfWarnings() == 0,
-    "no VTK error or warning in the driver");
-  std::cout << (Failures ? "FAILED: " : "passed: ") << Failures << " failure(s)\n";
-  return Failures ? EXIT_FAILURE : EXIT_SUCCESS;
+  });
 }

@@ -690,8 +690,7 @@ void TestWindow()
 
 int main(int argc, char* argv[])
 {
-  vtkrtTestOutputWindow* output = vtkrtTestOutputWindow::Install();
-  const std::map<std::string, std::function<void()>> cases = {
+  return RunCase(argc, argv, "TestVtkrtRenderViewer", {
     { "Scalars", TestScalars },
     { "UpAxis", TestUpAxis },
     { "Camera", TestCamera },
@@ -703,23 +702,5 @@ int main(int argc, char* argv[])
     { "Progress", TestProgress },
     { "BadInput", TestBadInput },
     { "Window", TestWindow },
-  };
-  if (argc != 3 || cases.find(argv[2]) == cases.end())
-  {
-    std::cerr << "usage: " << argv[0] << " <vtkrt-render> <case>; cases:";
-    for (const auto& c : cases)
-    {
-      std::cerr << " " << c.first;
-    }
-    std::cerr << "\n";
-    return EXIT_FAILURE;
-  }
-  App = argv[1];
-  Tmp = std::string(VTKRT_TEMP_DIR) + "/TestVtkrtRenderViewer/" + argv[2];
-  vtksys::SystemTools::MakeDirectory(Tmp);
-  cases.at(argv[2])();
-  Check(output->GetNumberOfErrors() == 0 && output->GetNumberOfWarnings() == 0,
-    "no VTK error or warning in the driver");
-  std::cout << (Failures ? "FAILED: " : "passed: ") << Failures << " failure(s)\n";
-  return Failures ? EXIT_FAILURE : EXIT_SUCCESS;
+  });
 }

@@ -7,12 +7,16 @@
 #include "vtkNew.h"
 #include "vtkPNGReader.h"
 #include "vtkSmartPointer.h"
+#include "vtkrtTestOutputWindow.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <functional>
 #include <iostream>
+#include <map>
 #include <regex>
 #include <string>
 
@@ -88,6 +92,32 @@ vtkSmartPointer<vtkImageData> ReadPNG(const std::string& path)
   reader->SetFileName(path.c_str());
   reader->Update();
   return reader->GetOutput();
+}
+// A driver's main: runs the case argv[2] against the vtkrt-render argv[1],
+// in its own directory under program's, and fails on any check or VTK
+// error or warning.
+int RunCase(int argc, char* argv[], const char* program,
+  const std::map<std::string, std::function<void()>>& cases)
+{
+  vtkrtTestOutputWindow* output = vtkrtTestOutputWindow::Install();
+  if (argc != 3 || cases.find(argv[2]) == cases.end())
+  {
+    std::cerr << "usage: " << argv[0] << " <vtkrt-render> <case>; cases:";
+    for (const auto& c : cases)
+    {
+      std::cerr << " " << c.first;
+    }
+    std::cerr << "\n";
+    return EXIT_FAILURE;
+  }
+  App = argv[1];
+  Tmp = std::string(VTKRT_TEMP_DIR) + "/" + program + "/" + argv[2];
+  vtksys::SystemTools::MakeDirectory(Tmp);
+  cases.at(argv[2])();
+  Check(output->GetNumberOfErrors() == 0 && output->GetNumberOfWarnings() == 0,
+    "no VTK error or warning in the driver");
+  std::cout << (Failures ? "FAILED: " : "passed: ") << Failures << " failure(s)\n";
+  return Failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }
 } // namespace
 

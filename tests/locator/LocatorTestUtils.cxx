@@ -379,4 +379,21 @@ void CheckAllHits(vtkDataSet* ds, vtkBVHCellLocator* bvh, vtkModifiedBSPTree* bs
             << total << " crossings); vtkModifiedBSPTree's list differs on " << bspDiffers
             << std::endl;
 }
+
+vtkSmartPointer<vtkPolyData> Transformed(vtkPolyData* pd, double scale, const double offset[3])
+{
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->DeepCopy(pd);
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(pd->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    pd->GetPoint(i, p);
+    pts->SetPoint(i, p[0] * scale + offset[0], p[1] * scale + offset[1], p[2] * scale + offset[2]);
+  }
+  out->SetPoints(pts);
+  return out;
+}
 } // namespace locatortest

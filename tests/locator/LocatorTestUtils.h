@@ -524,6 +524,9 @@ void CheckBoxAndLineLists(vtkDataSet* ds, vtkBVHCellLocator* bvh, vtkStaticCellL
 void CheckAllHits(vtkDataSet* ds, vtkBVHCellLocator* bvh, vtkModifiedBSPTree* bsp, double refTol,
   const char* name);
 
+/// Copy of pd with double points mapped by p -> p * scale + offset.
+vtkSmartPointer<vtkPolyData> Transformed(vtkPolyData* pd, double scale, const double offset[3]);
+
 inline int Finish(const char* name)
 {
   if (Failures() == 0)

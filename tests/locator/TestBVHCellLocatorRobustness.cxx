@@ -20,24 +20,6 @@ using namespace locatortest;
 
 namespace
 {
-/// Copy of pd with points mapped by p -> p * scale + offset.
-vtkSmartPointer<vtkPolyData> Transformed(vtkPolyData* pd, double scale, const double offset[3])
-{
-  auto out = vtkSmartPointer<vtkPolyData>::New();
-  out->DeepCopy(pd);
-  vtkNew<vtkPoints> pts;
-  pts->SetDataTypeToDouble();
-  pts->SetNumberOfPoints(pd->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
-  {
-    double p[3];
-    pd->GetPoint(i, p);
-    pts->SetPoint(i, p[0] * scale + offset[0], p[1] * scale + offset[1], p[2] * scale + offset[2]);
-  }
-  out->SetPoints(pts);
-  return out;
-}
-
 struct Answer
 {
   int Hit;

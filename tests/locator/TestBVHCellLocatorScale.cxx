@@ -12,24 +12,6 @@ using namespace locatortest;
 
 namespace
 {
-/// Copy of pd with points mapped by p -> p * scale + offset (double points).
-vtkSmartPointer<vtkPolyData> Mapped(vtkPolyData* pd, double scale, const double offset[3])
-{
-  auto out = vtkSmartPointer<vtkPolyData>::New();
-  out->DeepCopy(pd);
-  vtkNew<vtkPoints> pts;
-  pts->SetDataTypeToDouble();
-  pts->SetNumberOfPoints(pd->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
-  {
-    double p[3];
-    pd->GetPoint(i, p);
-    pts->SetPoint(i, p[0] * scale + offset[0], p[1] * scale + offset[1], p[2] * scale + offset[2]);
-  }
-  out->SetPoints(pts);
-  return out;
-}
-
 void Map(const double p[3], double scale, const double offset[3], double out[3])
 {
   for (int k = 0; k < 3; ++k)
@@ -247,7 +229,7 @@ void CheckClosestPoints(const Case& c, vtkBVHCellLocator* loc, const Reference& 
 void CheckBeyondLocalFrame(vtkPolyData* base)
 {
   const double zero[3] = { 0, 0, 0 };
-  auto tiny = Mapped(base, 1e-200, zero);
+  auto tiny = Transformed(base, 1e-200, zero);
   vtkNew<vtkBVHCellLocator> loc;
   loc->SetDataSet(tiny);
   loc->BuildLocator();
@@ -278,7 +260,7 @@ int TestRobustExtremeScales()
     { 1e-204, { -1e-200, 2e-200, 0.0 }, false, "1e-204 at 1e-200" } };
   for (const Case& c : cases)
   {
-    auto pd = Mapped(base, c.Scale, c.Offset);
+    auto pd = Transformed(base, c.Scale, c.Offset);
     vtkNew<vtkBVHCellLocator> loc;
     loc->SetDataSet(pd);
     loc->BuildLocator();
