@@ -27,9 +27,10 @@
  * for itself).
  *
  * Thread safety: Get() and Release() may be called from several threads at
- * once (one triangulates, others asking for the same polydata wait); a
- * triangulation is never changed once made (a modified polydata gets a new
- * one), so it is read without locks.
+ * once (one process-wide mutex: one thread looks up or triangulates at a
+ * time, the others wait); a triangulation is never changed once made (a
+ * modified polydata gets a new one at the next Get(), which replaces the
+ * kept one), so it is read without locks.
  */
 #ifndef vtkSurfaceTriangulation_h
 #define vtkSurfaceTriangulation_h
