@@ -110,19 +110,9 @@ vtkMTimeType vtkBVHCellLocator::GeometryMTime() const
   {
     return this->DataSet->GetMTime();
   }
-  // What vtkPolyData::GetMTime covers, less the point, cell and field data:
-  // attributes move no cell, and visiting every attribute array was a fifth
-  // of a pick's fixed cost. GetVerts() and the others never allocate (an
-  // empty polydata answers a shared empty array), so this is thread-safe.
-  vtkMTimeType t = pd->vtkObject::GetMTime();
-  if (vtkPoints* points = pd->GetPoints())
-  {
-    t = std::max(t, points->GetMTime());
-  }
-  t = std::max(t, pd->GetVerts()->GetMTime());
-  t = std::max(t, pd->GetLines()->GetMTime());
-  t = std::max(t, pd->GetPolys()->GetMTime());
-  return std::max(t, pd->GetStrips()->GetMTime());
+  // Attributes move no cell, and visiting every attribute array was a fifth
+  // of a pick's fixed cost.
+  return vtkSurfaceTriangulation::GetGeometryMTime(pd);
 }
 
 //------------------------------------------------------------------------------

@@ -11,7 +11,9 @@
  * Two paths share one tree:
  * - fast path (vtkPolyData triangles, quads, polygons and triangle strips):
  *   cells are triangulated once at build time, keeping the original cell id
- *   (and, for strips, the triangle index as subId); rays are tested with a
+ *   (and, for strips, the triangle index as subId); a polydata's
+ *   triangulation is vtkSurfaceTriangulation's, kept with the polydata and
+ *   shared with vtkRayTracePass drawing it; rays are tested with a
  *   watertight ray/triangle test, so a ray through a shared edge or vertex
  *   never slips between two triangles. No vtkCell and no virtual call is
  *   touched per candidate; the returned cell, pcoords and subId are those of

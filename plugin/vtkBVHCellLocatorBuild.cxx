@@ -57,7 +57,7 @@ void BVHCellLocatorData::Build(int quality, int leafSize)
         return this->GenBox[i - nTri];
       }
       // Non-finite or empty: the builder skips it.
-      return this->TriangleBox(&this->TriVerts[3 * i]);
+      return this->TriangleBox(this->SrcVerts + 3 * i);
     },
     options);
   this->Reorder(nTri);
@@ -133,7 +133,7 @@ void BVHCellLocatorData::BuildPickingTree(size_t nTri)
 
 //------------------------------------------------------------------------------
 /// The per-triangle arrays in leaf order, sized for nTri slots, and the
-/// extraction-order ones they are filled from (Src*, TriVerts), kept
+/// extraction-order ones they are filled from (Src*, SrcVerts), kept
 /// until every triangle is placed.
 void BVHCellLocatorData::MakeLeafOrderArrays(size_t nTri)
 {
@@ -156,6 +156,8 @@ void BVHCellLocatorData::MakeLeafOrderArrays(size_t nTri)
 void BVHCellLocatorData::DropExtractionArrays()
 {
   ExtractionArray<std::uint32_t>().swap(this->TriVerts);
+  this->SrcVerts = nullptr;
+  this->SharedTriangulation = nullptr; // the polydata keeps it for others
   TriangleArray<vtkIdType>().swap(this->SrcCell);
   TriangleArray<std::int32_t>().swap(this->SrcSub);
   TriangleArray<std::uint8_t>().swap(this->SrcFlags);

@@ -16,6 +16,7 @@
 #include "vtkUnstructuredGrid.h"
 
 #include "vtkrt/core/LocalFrame.h"
+#include "vtkrt/core/SurfaceTriangulation.h"
 
 #include <algorithm>
 #include <atomic>
@@ -50,8 +51,9 @@ void BVHCellLocatorData::Extract(vtkDataSet* ds)
 {
   if (auto* pd = vtkPolyData::SafeDownCast(ds))
   {
-    this->BindPoints(pd->GetPoints());
-    this->ExtractPolyData(pd);
+    const bool shared = this->ShareTriangles(pd);
+    this->BindPoints(pd->GetPoints(), this->SharedTriangulation);
+    this->ExtractPolyData(pd, shared);
   }
   else if (auto* ug = vtkUnstructuredGrid::SafeDownCast(ds))
   {
@@ -67,8 +69,67 @@ void BVHCellLocatorData::Extract(vtkDataSet* ds)
       this->GenCell.push_back(c);
     }
   }
+  if (!this->SharedTriangulation)
+  {
+    this->SrcVerts = this->TriVerts.data();
+  }
   this->WarmUpCellAccess(ds);
   this->ComputeGeneralBoxes(ds);
+}
+
+//------------------------------------------------------------------------------
+/// Takes the polydata's shared triangulation (vtkSurfaceTriangulation) when
+/// it gives exactly the triangles the extraction here would: every polygon
+/// and strip with three or more points, all of them in range, all points
+/// finite (cells of other input are kept, dropped or tested by VTK cell by
+/// cell here, as before). False, with caching off, or for such input.
+bool BVHCellLocatorData::ShareTriangles(vtkPolyData* pd)
+{
+  this->SharedTriangulation = nullptr;
+  vtkPoints* pts = pd->GetPoints();
+  const vtkIdType nPoints = pts ? pts->GetNumberOfPoints() : 0;
+  if (!vtkSurfaceTriangulation::GetCaching() || nPoints == 0 ||
+    static_cast<std::uint64_t>(nPoints) >= std::numeric_limits<std::uint32_t>::max() ||
+    pd->GetNumberOfPolys() + pd->GetNumberOfStrips() == 0)
+  {
+    return false;
+  }
+  vtkSmartPointer<vtkSurfaceTriangulation> shared = vtkSurfaceTriangulation::Get(pd);
+  if (shared->GetNumberOfTriangles() == 0 || shared->GetNumberOfDegenerateCells() > 0 ||
+    shared->GetNumberOfInvalidPointIdCells() > 0 || shared->GetNumberOfNonFinitePoints() > 0)
+  {
+    return false;
+  }
+  this->SharedTriangulation = shared;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+/// The shared triangles as the extraction's: point ids read in place, cell
+/// ids, subIds and flags copied (none for polys of triangles only, whose
+/// cell ids UniformCellBase gives).
+void BVHCellLocatorData::AdoptSharedTriangles()
+{
+  static_assert(int(FlipOrientation) == int(core::FlippedStripTriangle) &&
+      int(EvaluateInCell) == int(core::FanTriangle) && int(WholeTriangle) == int(core::WholeTriangle),
+    "the locator's triangle flags are the shared triangulation's parts");
+  static_assert(sizeof(vtkIdType) == sizeof(std::int64_t), "cell ids copy as they are");
+  const core::SurfaceTriangles& t = this->SharedTriangulation->GetTriangles();
+  this->SrcVerts = t.pointIds.data();
+  this->TriCell.resize(t.count); // unfilled when uniform: UniformCellBase gives the ids
+  if (t.uniform)
+  {
+    this->UniformCellBase = t.firstCellId;
+    return;
+  }
+  this->UniformCellBase = -1;
+  this->TriSub.resize(t.count);
+  this->TriFlags.resize(t.count);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(t.count), [&](vtkIdType b, vtkIdType e) {
+    std::copy(t.cellIds.data() + b, t.cellIds.data() + e, this->TriCell.data() + b);
+    std::copy(t.subIds.data() + b, t.subIds.data() + e, this->TriSub.data() + b);
+    std::copy(t.parts.data() + b, t.parts.data() + e, this->TriFlags.data() + b);
+  });
 }
 
 //------------------------------------------------------------------------------
@@ -76,9 +137,10 @@ void BVHCellLocatorData::Extract(vtkDataSet* ds)
 /// thread-safe) on a cell the locator keeps, before threads call them.
 void BVHCellLocatorData::WarmUpCellAccess(vtkDataSet* ds)
 {
-  const vtkIdType cellId = !this->GenCell.empty()
-    ? this->GenCell.front()
+  const vtkIdType firstTriangleCell = this->UniformCellBase >= 0
+    ? this->UniformCellBase
     : (this->TriCell.empty() ? vtkIdType(-1) : this->TriCell[0]);
+  const vtkIdType cellId = !this->GenCell.empty() ? this->GenCell.front() : firstTriangleCell;
   if (cellId < 0)
   {
     return;
@@ -123,8 +185,8 @@ void BVHCellLocatorData::SetLocalFrame(const Box& b)
 //------------------------------------------------------------------------------
 /// The points: double coordinates read in place (else a double copy of
 /// them), the local frame from their finite bounds (NaN/inf points would
-/// poison it).
-void BVHCellLocatorData::BindPoints(vtkPoints* pts)
+/// poison it), given by the shared triangulation when there is one.
+void BVHCellLocatorData::BindPoints(vtkPoints* pts, const vtkSurfaceTriangulation* shared)
 {
   const vtkIdType n = pts ? pts->GetNumberOfPoints() : 0;
   this->NumberOfPoints = n;
@@ -142,6 +204,15 @@ void BVHCellLocatorData::BindPoints(vtkPoints* pts)
   {
     this->PointsCopy.resize(static_cast<size_t>(n));
     this->CopyPoints(pts);
+  }
+  if (shared)
+  {
+    double sb[6];
+    shared->GetFinitePointBounds(sb);
+    const Box b = sb[0] <= sb[1] ? Box(Vec3d(sb[0], sb[2], sb[4]), Vec3d(sb[1], sb[3], sb[5])) : Box();
+    this->SetLocalFrame(b);
+    this->PointBounds = b.isEmpty() ? Box() : Box(this->ToLocal(b.min), this->ToLocal(b.max));
+    return;
   }
   const Vec3d* src = reinterpret_cast<const Vec3d*>(this->WorldCoords());
   // Bounds of the finite points, in fixed chunks (same result for any
@@ -387,13 +458,21 @@ void BVHCellLocatorData::AddPolygon(vtkIdType npts, const vtkIdType* pts, vtkIdT
 }
 
 //------------------------------------------------------------------------------
-void BVHCellLocatorData::ExtractPolyData(vtkPolyData* pd)
+void BVHCellLocatorData::ExtractPolyData(vtkPolyData* pd, bool shared)
 {
   const bool indexable = this->PointsIndexable();
   vtkIdType cellId = 0;
   vtkCellArray* arrays[4] = { pd->GetVerts(), pd->GetLines(), pd->GetPolys(), pd->GetStrips() };
-  this->ReserveTriangles(arrays[2], arrays[3]);
-  for (int a = 0; a < 4; ++a)
+  if (shared)
+  {
+    this->AdoptSharedTriangles();
+  }
+  else
+  {
+    this->ReserveTriangles(arrays[2], arrays[3]);
+  }
+  // Verts and lines cell by cell; polys and strips too unless shared.
+  for (int a = 0; a < (shared ? 2 : 4); ++a)
   {
     vtkCellArray* ca = arrays[a];
     if (!ca || ca->GetNumberOfCells() == 0)

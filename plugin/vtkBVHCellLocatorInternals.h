@@ -17,6 +17,7 @@
 #include "vtkGenericCell.h"
 #include "vtkPoints.h"
 #include "vtkSmartPointer.h"
+#include "vtkSurfaceTriangulation.h"
 #include "vtkType.h"
 
 #include "vtkrt/core/AABB.h"
@@ -156,7 +157,13 @@ public:
   /// (double ones are read in place, DataSetCoords): fast path only.
   std::vector<Vec3d> PointsCopy;
   vtkIdType NumberOfPoints = 0;
-  ExtractionArray<std::uint32_t> TriVerts;   ///< 3 point ids per triangle, extraction order (until placed)
+  ExtractionArray<std::uint32_t> TriVerts;   ///< 3 point ids per triangle, extraction order, when extracted here
+  /// 3 point ids per triangle, extraction order (until placed): TriVerts, or
+  /// those of the polydata's shared triangulation (SharedTriangulation).
+  const std::uint32_t* SrcVerts = nullptr;
+  /// The polydata's triangulation (vtkSurfaceTriangulation), shared with
+  /// whoever draws it, when the triangles come from there (until placed).
+  vtkSmartPointer<vtkSurfaceTriangulation> SharedTriangulation;
   TriangleArray<vtkIdType> SrcCell;        ///< TriCell, TriSub, TriFlags in extraction order (until placed)
   TriangleArray<std::int32_t> SrcSub;
   TriangleArray<std::uint8_t> SrcFlags;
@@ -203,7 +210,9 @@ public:
     }
   };
   CopyTime CopiedCoordsTime;
-  TriangleArray<vtkIdType> TriCell;        ///< original cell id per triangle
+  /// Original cell id per triangle (in extraction order, sized but not
+  /// written when UniformCellBase gives the ids).
+  TriangleArray<vtkIdType> TriCell;
   /// subId and TriangleFlags per triangle (strips: subId is the triangle's
   /// index), in leaf order empty when UniformCellBase >= 0.
   TriangleArray<std::int32_t> TriSub;
@@ -289,7 +298,7 @@ public:
     BVHCellLocatorData* Data;
     Box bounds(std::uint32_t id) const
     {
-      return this->Data->TriangleBox(&this->Data->TriVerts[3 * static_cast<size_t>(id)]);
+      return this->Data->TriangleBox(this->Data->SrcVerts + 3 * static_cast<size_t>(id));
     }
     void placeLeaf(const std::uint32_t* ids, std::uint32_t begin, std::uint32_t end, float lo[3], float hi[3])
     {
@@ -314,7 +323,7 @@ public:
   /// Slots are written from several threads at once, each slot by one.
   Box PlaceTriangle(std::uint32_t p, std::uint32_t t)
   {
-    const std::uint32_t* v = &this->TriVerts[3 * static_cast<size_t>(p)];
+    const std::uint32_t* v = this->SrcVerts + 3 * static_cast<size_t>(p);
     std::copy(v, v + 3, &this->TriIds[3 * static_cast<size_t>(t)]);
     Box box;
     float* f = &this->TrianglesF[9 * static_cast<size_t>(t)];
@@ -346,7 +355,7 @@ public:
   void PrefetchTriangle(std::uint32_t p, int stage) const
   {
 #if VTKRT_CORE_SSE
-    const std::uint32_t* v = &this->TriVerts[3 * static_cast<size_t>(p)];
+    const std::uint32_t* v = this->SrcVerts + 3 * static_cast<size_t>(p);
     if (stage == 0)
     {
       _mm_prefetch(reinterpret_cast<const char*>(v), _MM_HINT_T0);
@@ -522,7 +531,7 @@ private:
 
   // Extraction
   void ComputeOrigin(vtkDataSet* ds);
-  void BindPoints(vtkPoints* pts);
+  void BindPoints(vtkPoints* pts, const vtkSurfaceTriangulation* shared = nullptr);
   /// PointsCopy from pts (sized already), and what PointsCopyStale compares.
   void CopyPoints(vtkPoints* pts);
   /// Whether every point id fits the 32-bit ids of the triangle arrays.
@@ -531,13 +540,15 @@ private:
     return static_cast<std::uint64_t>(this->NumberOfPoints) < std::numeric_limits<std::uint32_t>::max();
   }
   bool ExtractTrianglePolys(vtkCellArray* polys, vtkIdType cellBase);
+  bool ShareTriangles(vtkPolyData* pd);
+  void AdoptSharedTriangles();
   template <class IdT>
   bool ExtractTriangles(const IdT* offsets, const IdT* conn, vtkIdType n, vtkIdType cellBase);
   void AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cellId, int sub, std::uint8_t flags);
   bool AddSurfaceCell(int type, vtkIdType npts, const vtkIdType* pts, vtkIdType cellId);
   void AddQuad(const vtkIdType* pts, vtkIdType cellId);
   void AddPolygon(vtkIdType npts, const vtkIdType* pts, vtkIdType cellId);
-  void ExtractPolyData(vtkPolyData* pd);
+  void ExtractPolyData(vtkPolyData* pd, bool shared);
   void ReserveTriangles(vtkCellArray* polys, vtkCellArray* strips);
   void ExtractUnstructuredGrid(vtkUnstructuredGrid* ug);
   void WarmUpCellAccess(vtkDataSet* ds);

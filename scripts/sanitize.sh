@@ -14,7 +14,8 @@ case "$mode" in
   asan)
     sanitize="address,undefined"
     targets=(TestBVHCellLocator TestCoreKernels TestCoreBVHQueries TestCoreWatertight TestCoreExtremes
-      TestCoreBuild TestCoreTwoLevel TestCoreConservativeFloat TestCoreWideBVH TestCoreGpuTwins)
+      TestCoreBuild TestCoreTwoLevel TestCoreConservativeFloat TestCoreWideBVH TestCoreGpuTwins
+      TestCoreSurfaceTriangulation)
     default_tests=(-L 'core|locator')
     # Leak checking stays on; the suppressions may list third-party
     # libraries only.

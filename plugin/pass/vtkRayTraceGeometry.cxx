@@ -6,14 +6,18 @@
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
+#include "vtkMath.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+#include "vtkSurfaceTriangulation.h"
 
 #include "vtkrt/core/BVHBuild.h"
 #include "vtkrt/core/LocalFrame.h"
 #include "vtkrt/core/Mesh.h"
+#include "vtkrt/core/SurfaceTriangulation.h"
 
 #include <algorithm>
 #include <atomic>
@@ -92,126 +96,6 @@ std::optional<Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh, const co
   return origin;
 }
 
-/// The triangles a cell of `npts` points makes (fan or strip).
-template <class T>
-std::size_t trianglesOf(T npts)
-{
-  return npts > 2 ? static_cast<std::size_t>(npts - 2) : 0;
-}
-
-/// fn(offsets, connectivity) with the cell array's own storage.
-template <class Fn>
-void withCellStorage(vtkCellArray* cells, Fn&& fn)
-{
-  if (cells->IsStorage64Bit())
-  {
-    fn(cells->GetOffsetsArray64()->GetPointer(0), cells->GetConnectivityArray64()->GetPointer(0));
-  }
-  else
-  {
-    fn(cells->GetOffsetsArray32()->GetPointer(0), cells->GetConnectivityArray32()->GetPointer(0));
-  }
-}
-
-/// One cell array's triangles (polys: fans as VTK's raster; strips: VTK's
-/// winding), counted per chunk of cells first, so that they are then written
-/// in parallel, each chunk at its place.
-class CellTriangles
-{
-public:
-  CellTriangles(vtkCellArray* cells, bool strips)
-    : Cells(cells)
-    , Strips(strips)
-    , CellCount(cells->GetNumberOfCells())
-  {
-    const vtkIdType chunks = std::min<vtkIdType>(kChunks, this->CellCount);
-    this->ChunkFirst.assign(static_cast<std::size_t>(chunks) + 1, 0);
-    withCellStorage(cells, [&](const auto* offsets, const auto*) {
-      vtkSMPTools::For(0, chunks, 1, [&](vtkIdType cb, vtkIdType ce) {
-        for (vtkIdType c = cb; c < ce; ++c)
-        {
-          std::size_t count = 0;
-          for (vtkIdType i = this->FirstCell(c), e = this->FirstCell(c + 1); i < e; ++i)
-          {
-            count += trianglesOf(offsets[i + 1] - offsets[i]);
-          }
-          this->ChunkFirst[static_cast<std::size_t>(c) + 1] = count;
-        }
-      });
-    });
-    std::partial_sum(this->ChunkFirst.begin(), this->ChunkFirst.end(), this->ChunkFirst.begin());
-  }
-
-  std::size_t Count() const { return this->ChunkFirst.back(); }
-  vtkIdType NumberOfCells() const { return this->CellCount; }
-
-  /// Writes the triangles' point ids (three each) and cell ids (numbered
-  /// from firstCellId) from indices and cellIds on.
-  void Write(std::uint32_t firstCellId, std::uint32_t* indices, std::uint32_t* cellIds) const
-  {
-    const vtkIdType chunks = static_cast<vtkIdType>(this->ChunkFirst.size()) - 1;
-    withCellStorage(this->Cells, [&](const auto* offsets, const auto* connectivity) {
-      vtkSMPTools::For(0, chunks, 1, [&](vtkIdType cb, vtkIdType ce) {
-        for (vtkIdType c = cb; c < ce; ++c)
-        {
-          std::size_t t = this->ChunkFirst[static_cast<std::size_t>(c)];
-          for (vtkIdType i = this->FirstCell(c), e = this->FirstCell(c + 1); i < e; ++i)
-          {
-            const auto* pts = connectivity + offsets[i];
-            const std::size_t n = trianglesOf(offsets[i + 1] - offsets[i]);
-            for (std::size_t k = 0; k < n; ++k, ++t)
-            {
-              std::uint32_t* tri = indices + 3 * t;
-              if (this->Strips)
-              {
-                tri[0] = std::uint32_t(pts[k]);
-                tri[1] = std::uint32_t(pts[k + 1 + k % 2]);
-                tri[2] = std::uint32_t(pts[k + 1 + (k + 1) % 2]);
-              }
-              else
-              {
-                tri[0] = std::uint32_t(pts[0]);
-                tri[1] = std::uint32_t(pts[k + 1]);
-                tri[2] = std::uint32_t(pts[k + 2]);
-              }
-              cellIds[t] = firstCellId + static_cast<std::uint32_t>(i);
-            }
-          }
-        }
-      });
-    });
-  }
-
-private:
-  static constexpr vtkIdType kChunks = 256;
-  vtkCellArray* Cells;
-  bool Strips;
-  vtkIdType CellCount;
-  std::vector<std::size_t> ChunkFirst; ///< triangles before each chunk
-
-  vtkIdType FirstCell(vtkIdType chunk) const
-  {
-    const vtkIdType chunks = static_cast<vtkIdType>(this->ChunkFirst.size()) - 1;
-    return chunks > 0 ? this->CellCount * chunk / chunks : 0;
-  }
-};
-
-/// The fan triangulation of polys and the triangles of strips, as point id
-/// triples with their VTK cell ids, in arrays of exactly their size.
-void triangulate(vtkPolyData* poly, core::NoFillArray<std::uint32_t>& indices,
-  core::NoFillArray<std::uint32_t>& cellIds)
-{
-  const CellTriangles polys(poly->GetPolys(), false);
-  const CellTriangles strips(poly->GetStrips(), true);
-  const std::size_t n = polys.Count() + strips.Count();
-  indices.resize(3 * n);
-  cellIds.resize(n);
-  const auto firstPoly = static_cast<std::uint32_t>(poly->GetNumberOfVerts() + poly->GetNumberOfLines());
-  polys.Write(firstPoly, indices.data(), cellIds.data());
-  strips.Write(firstPoly + static_cast<std::uint32_t>(polys.NumberOfCells()), indices.data() + 3 * polys.Count(),
-    cellIds.data() + polys.Count());
-}
-
 /// `normals` as GPU records when it holds `count` vectors (one per point, or
 /// per cell); else nothing.
 void readNormals(vtkDataArray* normals, std::size_t count, core::NoFillArray<core::gpu::Normal>& out)
@@ -267,26 +151,29 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
 {
   auto g = std::make_unique<Geometry>();
   const auto start = std::chrono::steady_clock::now();
+  // Shared with vtkBVHCellLocator on the same polydata.
+  const vtkSmartPointer<vtkSurfaceTriangulation> shared = vtkSurfaceTriangulation::Get(poly);
+  const core::SurfaceTriangles& triangles = shared->GetTriangles();
+  double bounds[6];
+  shared->GetFinitePointBounds(bounds);
+  const core::ScaledFrame frame = core::ScaledFrame::of(vtkMath::AreBoundsInitialized(bounds)
+      ? core::AABB<double>(Vec3<double>(bounds[0], bounds[2], bounds[4]), Vec3<double>(bounds[1], bounds[3], bounds[5]))
+      : core::AABB<double>());
   core::NoFillArray<Vec3<double>> points;
   ReadPoints(poly->GetPoints(), points);
-  const core::ScaledFrame frame = buildFrame(
-    points.size(), [&](std::size_t i) { return core::AABB<double>(points[i], points[i]); });
   smpFor(points.size(), [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i)
     {
       points[i] = frame.toLocal(points[i]);
     }
   });
-  core::NoFillArray<std::uint32_t> indices;
-  core::NoFillArray<std::uint32_t> cellIds;
-  triangulate(poly, indices, cellIds);
   g->TriangulationSeconds = SecondsSince(start);
 
   core::TriangleMesh<double> mesh;
   mesh.vertices = points.data();
   mesh.vertexCount = points.size();
-  mesh.indices = indices.data();
-  mesh.triangleCount = cellIds.size();
+  mesh.indices = triangles.pointIds.data();
+  mesh.triangleCount = triangles.count;
   const core::BVH bvh = core::buildBVHConcurrentBounds(
     mesh.triangleCount, [&mesh](std::size_t i) { return core::triangleBox(mesh, i); }, options);
   g->Spheres = false;
@@ -313,14 +200,18 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
     for (std::size_t k = b; k < e; ++k)
     {
       const std::uint32_t tri = bvh.primIndex[k];
-      const std::uint32_t* ids = &indices[3 * tri];
+      // Odd strip triangles are drawn with their last two points swapped
+      // (VTK's winding).
+      const std::uint32_t* ids = &triangles.pointIds[3 * static_cast<std::size_t>(tri)];
+      const bool flip = (triangles.part(tri) & core::FlippedStripTriangle) != 0;
+      const std::uint32_t a = ids[0], b1 = flip ? ids[2] : ids[1], c = flip ? ids[1] : ids[2];
       core::gpu::Triangle& t = g->Triangles[k];
-      t.v0 = rel[ids[0]];
-      t.v1 = rel[ids[1]];
-      t.v2 = rel[ids[2]];
-      t.cellId = cellIds[tri];
+      t.v0 = rel[a];
+      t.v1 = rel[b1];
+      t.v2 = rel[c];
+      t.cellId = static_cast<std::uint32_t>(triangles.cellId(tri));
       t.unused1 = t.unused2 = 0.0f;
-      g->TriangleVertices[k] = { { ids[0], ids[1], ids[2] }, 0u };
+      g->TriangleVertices[k] = { { a, b1, c }, 0u };
       chunkMaximum = std::max(chunkMaximum, t.cellId);
     }
     std::uint32_t seen = maximumId.load();

@@ -5,6 +5,7 @@
 #include "vtkBVHCellLocator.h"
 #include "vtkSphereSource.h"
 #include "vtkStaticCellLocator.h"
+#include "vtkSurfaceTriangulation.h"
 #include "vtkTetra.h"
 #include "vtkUnstructuredGrid.h"
 
@@ -239,11 +240,58 @@ int RaceQueries(vtkBVHCellLocator* loc, const std::vector<Segment>& segs,
   }
   return mismatches;
 }
+
+/// `threads` fresh locators on pd, each first queried from its own thread,
+/// all released at once: their builds race into the polydata's shared
+/// triangulation (vtkSurfaceTriangulation::Get); mismatches against ref.
+int RaceLocators(vtkPolyData* pd, const std::vector<Segment>& segs,
+  const std::vector<ThreadAnswer>& ref, int threads)
+{
+  std::vector<vtkSmartPointer<vtkBVHCellLocator>> locators;
+  for (int w = 0; w < threads; ++w)
+  {
+    locators.push_back(vtkSmartPointer<vtkBVHCellLocator>::New());
+    locators.back()->SetDataSet(pd);
+  }
+  std::vector<ThreadAnswer> got(segs.size());
+  std::atomic<int> waiting{ threads };
+  std::vector<std::thread> workers;
+  for (int w = 0; w < threads; ++w)
+  {
+    workers.emplace_back([&, w]() {
+      vtkNew<vtkGenericCell> cell;
+      --waiting;
+      while (waiting.load() > 0)
+      {
+      }
+      for (size_t i = w; i < segs.size(); i += threads)
+      {
+        got[i] = Ask(locators[w], segs[i], cell);
+      }
+    });
+  }
+  for (auto& th : workers)
+  {
+    th.join();
+  }
+  int mismatches = 0;
+  for (size_t i = 0; i < segs.size(); ++i)
+  {
+    mismatches += (got[i].Hit != ref[i].Hit || got[i].T != ref[i].T ||
+                    got[i].HitCell != ref[i].HitCell || got[i].ClosestCell != ref[i].ClosestCell ||
+                    got[i].Dist2 != ref[i].Dist2)
+      ? 1
+      : 0;
+  }
+  return mismatches;
+}
 } // namespace
 
 /// A fresh, unbuilt locator (and one whose dataset was modified since its
 /// build) queried first from 4 threads at once: one builds, the others
 /// wait for the published tree; every answer is the single-threaded one.
+/// And 4 fresh locators on one modified polydata built from 4 threads at
+/// once, sharing its triangulation.
 int TestContractFreshLocatorThreads()
 {
   auto pd = MakeBumpySphere(60);
@@ -258,7 +306,7 @@ int TestContractFreshLocatorThreads()
   {
     ref.push_back(Ask(refLoc, s, cell));
   }
-  int mismatches = 0, staleMismatches = 0;
+  int mismatches = 0, staleMismatches = 0, sharedMismatches = 0, sharedTriangulations = 0;
   for (int round = 0; round < 8; ++round)
   {
     vtkNew<vtkBVHCellLocator> loc;
@@ -271,11 +319,18 @@ int TestContractFreshLocatorThreads()
     // Stale: the first queries after a Modified() race into the rebuild.
     pd->GetPoints()->Modified();
     staleMismatches += RaceQueries(loc, segs, ref, 4);
+    pd->GetPoints()->Modified();
+    const vtkIdType made = vtkSurfaceTriangulation::GetNumberOfTriangulations();
+    sharedMismatches += RaceLocators(pd, segs, ref, 4);
+    sharedTriangulations += static_cast<int>(vtkSurfaceTriangulation::GetNumberOfTriangulations() - made);
   }
   std::cout << "fresh locators, 4 threads: " << mismatches << " mismatches, after Modified(): "
-            << staleMismatches << ", over 8 x " << segs.size() << " queries each" << std::endl;
+            << staleMismatches << ", 4 locators on one polydata: " << sharedMismatches << ", over 8 x "
+            << segs.size() << " queries each" << std::endl;
   LT_CHECK(mismatches == 0);
   LT_CHECK(staleMismatches == 0);
+  LT_CHECK(sharedMismatches == 0);
+  LT_CHECK(sharedTriangulations == 8); // one a round: the four locators share it
   return 0;
 }
 
