@@ -214,7 +214,7 @@ void triangulate(vtkPolyData* poly, core::NoFillArray<std::uint32_t>& indices,
 
 /// `normals` as GPU records when it holds `count` vectors (one per point, or
 /// per cell); else nothing.
-void readNormals(vtkDataArray* normals, std::size_t count, core::NoFillArray<core::gpu::Normal>& out)
+void readNormals(vtkDataArray* normals, std::size_t count, core::HugePageArray<core::gpu::Normal>& out)
 {
   if (!normals || normals->GetNumberOfComponents() != 3 ||
     normals->GetNumberOfTuples() != static_cast<vtkIdType>(count))
@@ -296,7 +296,7 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
   {
     return g;
   }
-  core::NoFillArray<Vec3<float>> rel(points.size());
+  core::HugePageArray<Vec3<float>> rel(points.size());
   smpFor(points.size(), [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i)
     {
