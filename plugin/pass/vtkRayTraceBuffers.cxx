@@ -3,6 +3,8 @@
 #include "vtkRayTracePacker.h"
 #include "vtkRayTraceTextures.h"
 
+#include "vtkrt/core/HugePageArray.h"
+
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkShaderProgram.h"
@@ -14,9 +16,6 @@
 #include <sstream>
 #include <utility>
 
-#if defined(__linux__)
-#include <sys/mman.h> // madvise
-#endif
 
 namespace vtkrt
 {
@@ -61,39 +60,41 @@ PinnedStorage::~PinnedStorage()
 void* PinnedStorage::Allocate(std::size_t bytes)
 {
   this->Free();
-#if defined(__linux__)
+  const std::size_t total = bytes + kPinnedSlack;
   // Huge pages for large blocks: their first touch costs far less than
   // that of 4 KiB pages (docs/benchmarks.md).
-  constexpr std::size_t kHugePage = std::size_t(2) << 20;
-  const bool large = bytes >= 2 * kHugePage;
-  const std::size_t align = large ? kHugePage : 4096;
-  const std::size_t total = (bytes + kPinnedSlack + align - 1) / align * align;
-  if (posix_memalign(&this->Memory, align, total) != 0)
+  if (core::detail::usesHugePages(total))
+  {
+    this->Memory = core::detail::mapHugePages(total);
+  }
+#if defined(__linux__)
+  else if (posix_memalign(&this->Memory, 4096, total) != 0)
   {
     this->Memory = nullptr;
-    return nullptr;
-  }
-#if defined(MADV_HUGEPAGE)
-  if (large)
-  {
-    madvise(this->Memory, total, MADV_HUGEPAGE);
   }
 #endif
-#else
-  (void)bytes;
-#endif
+  this->Bytes = this->Memory ? total : 0;
   return this->Memory;
 }
 
 void PinnedStorage::Free()
 {
-  std::free(this->Memory);
+  if (this->Memory && core::detail::usesHugePages(this->Bytes))
+  {
+    core::detail::unmapHugePages(this->Memory, this->Bytes);
+  }
+  else
+  {
+    std::free(this->Memory);
+  }
   this->Memory = nullptr;
+  this->Bytes = 0;
 }
 
 void PinnedStorage::Swap(PinnedStorage& other) noexcept
 {
   std::swap(this->Memory, other.Memory);
+  std::swap(this->Bytes, other.Bytes);
 }
 
 TextureBuffer::TextureBuffer()

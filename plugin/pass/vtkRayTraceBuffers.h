@@ -45,6 +45,7 @@ public:
 
 private:
   void* Memory = nullptr;
+  std::size_t Bytes = 0;
 };
 
 /// One texture buffer of 16-byte texels.
