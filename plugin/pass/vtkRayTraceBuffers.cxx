@@ -3,20 +3,99 @@
 #include "vtkRayTracePacker.h"
 #include "vtkRayTraceTextures.h"
 
+#include "vtkrt/core/HugePageArray.h"
+
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include <cstdlib>
 #include <cstring>
 #include <sstream>
 #include <utility>
+
 
 namespace vtkrt
 {
 namespace pass
 {
+
+namespace
+{
+/// Bytes a pinned buffer has beyond its last texel: the renderer reads
+/// whole vectors of texels.
+constexpr std::size_t kPinnedSlack = 4096;
+
+/// Whether the current context renders on the CPU and takes memory of ours
+/// as a buffer's storage (llvmpipe with GL_AMD_pinned_memory). A GPU's
+/// driver would read such a buffer over the bus: only a CPU renderer pins.
+bool RendererPinsMemory()
+{
+  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  if (!renderer || !std::strstr(renderer, "llvmpipe"))
+  {
+    return false;
+  }
+  GLint count = 0;
+  glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+  for (GLint i = 0; i < count; ++i)
+  {
+    const char* extension = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
+    if (extension && std::strcmp(extension, "GL_AMD_pinned_memory") == 0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+} // namespace
+
+PinnedStorage::~PinnedStorage()
+{
+  this->Free();
+}
+
+void* PinnedStorage::Allocate(std::size_t bytes)
+{
+  this->Free();
+  const std::size_t total = bytes + kPinnedSlack;
+  // Huge pages for large blocks: their first touch costs far less than
+  // that of 4 KiB pages (docs/benchmarks.md).
+  if (core::detail::usesHugePages(total))
+  {
+    this->Memory = core::detail::mapHugePages(total);
+  }
+#if defined(__linux__)
+  else if (posix_memalign(&this->Memory, 4096, total) != 0)
+  {
+    this->Memory = nullptr;
+  }
+#endif
+  this->Bytes = this->Memory ? total : 0;
+  return this->Memory;
+}
+
+void PinnedStorage::Free()
+{
+  if (this->Memory && core::detail::usesHugePages(this->Bytes))
+  {
+    core::detail::unmapHugePages(this->Memory, this->Bytes);
+  }
+  else
+  {
+    std::free(this->Memory);
+  }
+  this->Memory = nullptr;
+  this->Bytes = 0;
+}
+
+void PinnedStorage::Swap(PinnedStorage& other) noexcept
+{
+  std::swap(this->Memory, other.Memory);
+  std::swap(this->Bytes, other.Bytes);
+}
 
 TextureBuffer::TextureBuffer()
   : Buffer(vtkOpenGLBufferObject::New())
@@ -36,6 +115,11 @@ std::size_t TextureBuffer::Upload(vtkOpenGLRenderWindow* win, const void* data, 
   const float* ptr = texels == 0 ? zero : static_cast<const float*>(data);
   const std::size_t n = texels == 0 ? 1 : texels;
   this->Buffer->Upload(ptr, 4 * n, vtkOpenGLBufferObject::TextureBuffer);
+  if (this->Pinned.Data())
+  {
+    glFinish(); // frames in flight may still read the pinned storage
+    this->Pinned.Free();
+  }
   this->Texture->SetContext(win);
   // RGBA32UI (read by a usamplerBuffer): integer fields come back bit
   // exact, floats are reinterpreted in the shader.
@@ -51,8 +135,8 @@ void* TextureBuffer::Map(std::size_t texels)
   const std::size_t bytes = core::gpu::kTexelBytes * n;
   this->Texels = n;
   this->Mapped = false;
-  void* storage = nullptr;
-  if (this->Buffer->GenerateBuffer(vtkOpenGLBufferObject::TextureBuffer) && this->Buffer->Bind())
+  void* storage = RendererPinsMemory() ? this->Pending.Allocate(bytes) : nullptr;
+  if (!storage && this->Buffer->GenerateBuffer(vtkOpenGLBufferObject::TextureBuffer) && this->Buffer->Bind())
   {
     glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(bytes), nullptr, GL_STATIC_DRAW);
     storage = glMapBufferRange(GL_TEXTURE_BUFFER, 0, static_cast<GLsizeiptr>(bytes),
@@ -75,7 +159,16 @@ void* TextureBuffer::Map(std::size_t texels)
 std::size_t TextureBuffer::Unmap(vtkOpenGLRenderWindow* win)
 {
   const std::size_t n = this->Texels;
-  if (this->Mapped)
+  if (this->Pending.Data())
+  {
+    if (!this->AdoptPending(core::gpu::kTexelBytes * n))
+    {
+      this->Buffer->Upload(
+        static_cast<const float*>(this->Pending.Data()), 4 * n, vtkOpenGLBufferObject::TextureBuffer);
+      this->Pending.Free();
+    }
+  }
+  else if (this->Mapped)
   {
     this->Buffer->Bind();
     glUnmapBuffer(GL_TEXTURE_BUFFER);
@@ -94,10 +187,40 @@ std::size_t TextureBuffer::Unmap(vtkOpenGLRenderWindow* win)
   return core::gpu::kTexelBytes * n;
 }
 
+bool TextureBuffer::AdoptPending(std::size_t bytes)
+{
+  if (!this->Buffer->GenerateBuffer(vtkOpenGLBufferObject::TextureBuffer))
+  {
+    return false;
+  }
+  glBindBuffer(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, static_cast<GLuint>(this->Buffer->GetHandle()));
+  glBufferData(
+    GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, static_cast<GLsizeiptr>(bytes), this->Pending.Data(), GL_STATIC_DRAW);
+  const bool adopted = glGetError() == GL_NO_ERROR;
+  glBindBuffer(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, 0);
+  if (!adopted)
+  {
+    return false;
+  }
+  if (this->Pinned.Data())
+  {
+    glFinish(); // frames in flight may still read the old storage
+  }
+  this->Pinned.Swap(this->Pending);
+  this->Pending.Free();
+  return true;
+}
+
 void TextureBuffer::Release(vtkWindow* w)
 {
   this->Texture->ReleaseGraphicsResources(w);
   this->Buffer->ReleaseGraphicsResources();
+  if (this->Pinned.Data())
+  {
+    glFinish(); // frames in flight may still read the pinned storage
+    this->Pinned.Free();
+  }
+  this->Pending.Free();
   this->Texels = 0;
 }
 

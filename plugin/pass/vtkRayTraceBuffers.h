@@ -28,6 +28,26 @@ struct GeometryLayout;
 struct GeometryTargets;
 struct PackedTextures;
 
+/// Page-aligned memory that a GL buffer may use as its own storage
+/// (GL_AMD_pinned_memory); large blocks on huge pages.
+class PinnedStorage
+{
+public:
+  PinnedStorage() = default;
+  ~PinnedStorage();
+  PinnedStorage(const PinnedStorage&) = delete;
+  PinnedStorage& operator=(const PinnedStorage&) = delete;
+  /// Frees what it held and allocates `bytes` (nullptr when that fails).
+  void* Allocate(std::size_t bytes);
+  void Free();
+  void* Data() const { return this->Memory; }
+  void Swap(PinnedStorage& other) noexcept;
+
+private:
+  void* Memory = nullptr;
+  std::size_t Bytes = 0;
+};
+
 /// One texture buffer of 16-byte texels.
 class TextureBuffer
 {
@@ -46,8 +66,10 @@ public:
     return this->Upload(win, records.data(), records.size() * sizeof(Record) / core::gpu::kTexelBytes);
   }
   /// Storage for `texels` texels (an empty array gets one zero texel) to
-  /// write in place before Unmap(): the buffer's own memory mapped, or a
-  /// staging array when it does not map.
+  /// write in place before Unmap(): on a CPU renderer that lends buffers
+  /// user memory (llvmpipe's GL_AMD_pinned_memory), memory of ours that
+  /// becomes the buffer; else the buffer's own memory mapped, or a staging
+  /// array when it does not map.
   void* Map(std::size_t texels);
   /// Makes what Map() gave the texture buffer's contents. Returns the bytes
   /// uploaded.
@@ -62,6 +84,11 @@ private:
   std::size_t Texels = 0;
   bool Mapped = false;
   std::unique_ptr<unsigned char[]> Staging; ///< Map()'s storage when the buffer does not map
+  PinnedStorage Pinned;  ///< the buffer's storage when it uses ours
+  PinnedStorage Pending; ///< Map()'s pinned storage until Unmap()
+
+  /// Makes Pending the buffer's storage; false when the driver refuses.
+  bool AdoptPending(std::size_t bytes);
 };
 
 /// The scene's buffers, named as the shader's samplers.

@@ -98,7 +98,7 @@ std::optional<Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh, const co
 
 /// `normals` as GPU records when it holds `count` vectors (one per point, or
 /// per cell); else nothing.
-void readNormals(vtkDataArray* normals, std::size_t count, core::NoFillArray<core::gpu::Normal>& out)
+void readNormals(vtkDataArray* normals, std::size_t count, core::HugePageArray<core::gpu::Normal>& out)
 {
   if (!normals || normals->GetNumberOfComponents() != 3 ||
     normals->GetNumberOfTuples() != static_cast<vtkIdType>(count))
@@ -183,7 +183,7 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
   {
     return g;
   }
-  core::NoFillArray<Vec3<float>> rel(points.size());
+  core::HugePageArray<Vec3<float>> rel(points.size());
   smpFor(points.size(), [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i)
     {

@@ -49,15 +49,16 @@ struct Geometry
   std::array<double, 3> Origin{ { 0, 0, 0 } }; ///< local origin (model coordinates)
   double Scale = 1.0;                          ///< local units per model unit
   std::array<double, 6> LocalBounds{ { 0, 0, 0, 0, 0, 0 } }; ///< local coordinates
-  // Filled right after they are sized: no zero fill first.
-  core::NoFillArray<core::gpu::Node> Nodes;
-  core::NoFillArray<core::gpu::Triangle> Triangles; ///< leaf order
-  core::NoFillArray<core::gpu::TriangleVertices> TriangleVertices;
-  core::NoFillArray<core::gpu::Sphere> SphereRecords;       ///< leaf order
-  core::NoFillArray<core::gpu::Ellipsoid> EllipsoidRecords; ///< leaf order
-  core::NoFillArray<std::uint32_t> SphereIds; ///< VTK point id per sphere texel (leaf order)
-  core::NoFillArray<core::gpu::Normal> Normals; ///< per point, empty if none
-  core::NoFillArray<core::gpu::Normal> CellNormals; ///< per VTK cell id, empty if none
+  // Filled right after they are sized: no zero fill first; large ones on
+  // huge pages, whose first touch costs less than that of 4 KiB pages.
+  core::HugePageArray<core::gpu::Node> Nodes;
+  core::HugePageArray<core::gpu::Triangle> Triangles; ///< leaf order
+  core::HugePageArray<core::gpu::TriangleVertices> TriangleVertices;
+  core::HugePageArray<core::gpu::Sphere> SphereRecords;       ///< leaf order
+  core::HugePageArray<core::gpu::Ellipsoid> EllipsoidRecords; ///< leaf order
+  core::HugePageArray<std::uint32_t> SphereIds; ///< VTK point id per sphere texel (leaf order)
+  core::HugePageArray<core::gpu::Normal> Normals; ///< per point, empty if none
+  core::HugePageArray<core::gpu::Normal> CellNormals; ///< per VTK cell id, empty if none
   std::size_t PrimitiveCount = 0;
   std::uint32_t MaximumId = 0; ///< the largest VTK cell (triangles) or point (spheres) id
   std::size_t VertexCount = 0;

@@ -27,6 +27,7 @@
 
 #include "vtkrt/core/AABB.h"
 #include "vtkrt/core/GpuLayout.h"
+#include "vtkrt/core/HugePageArray.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -63,6 +64,10 @@ struct BVHNode
     return min == o.min && max == o.max && index == o.index && count == o.count;
   }
 };
+
+/// A tree's nodes: read at random by every traversal, so on huge pages when
+/// large (HugePageArray.h); written in full by the builders, so no zero fill.
+using BVHNodes = HugePageArray<BVHNode>;
 
 /// Which builder: quality of the tree against build time.
 enum class BuildQuality
@@ -108,7 +113,7 @@ struct BuildStats
 
 struct BVH
 {
-  std::vector<BVHNode> nodes;
+  BVHNodes nodes;
   std::vector<std::uint32_t> primIndex;
   BuildStats stats;
 
@@ -181,8 +186,8 @@ inline gpu::Node packGpuNode(const BVHNode& n, const Vec3<double>& origin = Vec3
 }
 
 /// packGpuNode of every node.
-inline std::vector<gpu::Node> packGpuNodes(
-  const std::vector<BVHNode>& nodes, const Vec3<double>& origin = Vec3<double>(0.0))
+template <class Nodes>
+std::vector<gpu::Node> packGpuNodes(const Nodes& nodes, const Vec3<double>& origin = Vec3<double>(0.0))
 {
   std::vector<gpu::Node> out(nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i)
@@ -194,8 +199,8 @@ inline std::vector<gpu::Node> packGpuNodes(
 
 /// The same nodes as 8 floats each (lo.xyz, bits(index), hi.xyz,
 /// bits(count)): the view the float CPU traversal and the tests read.
-inline std::vector<float> packNodesForGpu(
-  const std::vector<BVHNode>& nodes, const Vec3<double>& origin = Vec3<double>(0.0))
+template <class Nodes>
+std::vector<float> packNodesForGpu(const Nodes& nodes, const Vec3<double>& origin = Vec3<double>(0.0))
 {
   const std::vector<gpu::Node> packed = packGpuNodes(nodes, origin);
   std::vector<float> out(packed.size() * 8);

@@ -29,7 +29,7 @@ namespace vtkrt::core
 namespace detail
 {
 /// The build from filled references (valid boxes only, ascending ids).
-inline BVH buildFromRefs(std::vector<BuildRef>& refs, std::size_t count, const BuildOptions& options,
+inline BVH buildFromRefs(BuildRefs& refs, std::size_t count, const BuildOptions& options,
   std::chrono::steady_clock::time_point start)
 {
   BVH bvh;
@@ -53,7 +53,7 @@ template <class BoundsFn>
 BVH buildBVH(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options = BuildOptions())
 {
   const auto start = std::chrono::steady_clock::now();
-  std::vector<detail::BuildRef> refs;
+  detail::BuildRefs refs;
   refs.reserve(count);
   for (std::size_t i = 0; i < count; ++i)
   {
@@ -74,7 +74,7 @@ template <class BoundsFn>
 BVH buildBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options = BuildOptions())
 {
   const auto start = std::chrono::steady_clock::now();
-  std::vector<detail::BuildRef> refs(count);
+  detail::BuildRefs refs(count);
   std::atomic<bool> allValid{ true };
   detail::parallelChunks(count, options, [&](std::size_t b, std::size_t e) {
     bool valid = true;

@@ -4,6 +4,7 @@
 #define vtkrt_core_HugePageArray_h
 
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <limits>
 #include <memory>
@@ -12,11 +13,77 @@
 #include <vector>
 
 #if defined(__linux__)
-#include <sys/mman.h> // madvise
+#include <sys/mman.h> // mmap, madvise
 #endif
 
 namespace vtkrt::core
 {
+
+namespace detail
+{
+/// Blocks of at least this size get huge pages.
+constexpr std::size_t kHugePageMinBytes = std::size_t(4) << 20;
+constexpr std::size_t kHugePage = std::size_t(2) << 20;
+
+inline std::size_t hugePageBytes(std::size_t bytes)
+{
+  return (bytes + kHugePage - 1) / kHugePage * kHugePage;
+}
+
+/// `bytes` (rounded up to whole huge pages) of fresh memory on a huge page
+/// boundary, in a mapping of its own with a transparent huge page hint, or
+/// nullptr. A mapping of its own: the hint leaves with it (unmapHugePages),
+/// instead of staying on heap memory that small allocations reuse (a huge
+/// page fault for a few bytes).
+inline void* mapHugePages(std::size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  const std::size_t size = hugePageBytes(bytes);
+  void* base = mmap(nullptr, size + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (base == MAP_FAILED)
+  {
+    return nullptr;
+  }
+  const std::uintptr_t b = reinterpret_cast<std::uintptr_t>(base);
+  const std::uintptr_t aligned = (b + kHugePage - 1) / kHugePage * kHugePage;
+  if (aligned > b)
+  {
+    munmap(base, aligned - b);
+  }
+  if (b + kHugePage > aligned)
+  {
+    munmap(reinterpret_cast<void*>(aligned + size), b + kHugePage - aligned);
+  }
+  madvise(reinterpret_cast<void*>(aligned), size, MADV_HUGEPAGE);
+  return reinterpret_cast<void*>(aligned);
+#else
+  (void)bytes;
+  return nullptr;
+#endif
+}
+
+/// Gives back what mapHugePages(bytes) returned.
+inline void unmapHugePages(void* p, std::size_t bytes) noexcept
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  munmap(p, hugePageBytes(bytes));
+#else
+  (void)p;
+  (void)bytes;
+#endif
+}
+
+/// Whether allocations of `bytes` go to mapHugePages.
+inline bool usesHugePages(std::size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  return bytes >= kHugePageMinBytes;
+#else
+  (void)bytes;
+  return false;
+#endif
+}
+} // namespace detail
 
 /// std::allocator whose resize() leaves new elements default-initialized
 /// (no zero fill): arrays written element by element right after need no
@@ -44,10 +111,11 @@ struct NoFillAllocator : std::allocator<T>
   {
     ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
-  /// Arrays of several MiB go on 2 MiB boundaries with a transparent huge
-  /// page hint (Linux; as Embree does for its BVH): read at random with 4 KiB
-  /// pages, nearly every read would also miss the TLB. Only a hint: memory
-  /// is the same, and elsewhere or with THP off this is plain malloc.
+  /// Arrays of several MiB go on 2 MiB boundaries, in mappings of their
+  /// own, with a transparent huge page hint (Linux; as Embree does for its
+  /// BVH): read at random with 4 KiB pages, nearly every read would also
+  /// miss the TLB. Only a hint: memory is the same, and elsewhere this is
+  /// plain malloc.
   T* allocate(std::size_t n)
   {
     if (n > std::numeric_limits<std::size_t>::max() / sizeof(T))
@@ -55,34 +123,39 @@ struct NoFillAllocator : std::allocator<T>
       throw std::bad_alloc();
     }
     const std::size_t bytes = n * sizeof(T);
-    void* p = nullptr;
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    constexpr std::size_t kHugePage = std::size_t(2) << 20;
-    if (HugePageHint && bytes >= 2 * kHugePage)
+    if (HugePageHint && detail::usesHugePages(bytes))
     {
-      if (posix_memalign(&p, kHugePage, bytes) != 0)
+      void* p = detail::mapHugePages(bytes);
+      if (!p)
       {
         throw std::bad_alloc();
       }
-      madvise(p, bytes, MADV_HUGEPAGE);
       return static_cast<T*>(p);
     }
-#endif
-    p = std::malloc(bytes ? bytes : 1);
+    void* p = std::malloc(bytes ? bytes : 1);
     if (!p)
     {
       throw std::bad_alloc();
     }
     return static_cast<T*>(p);
   }
-  void deallocate(T* p, std::size_t) noexcept { std::free(p); }
+  void deallocate(T* p, std::size_t n) noexcept
+  {
+    if (HugePageHint && detail::usesHugePages(n * sizeof(T)))
+    {
+      detail::unmapHugePages(p, n * sizeof(T));
+      return;
+    }
+    std::free(p);
+  }
 };
 
-/// An array read at random: no zero fill, huge pages when large.
+/// An array read at random, or large and written in full right after it is
+/// sized: no zero fill, huge pages when large (fewer TLB misses, and where
+/// page faults are dear a first touch far cheaper than that of 4 KiB pages).
 template <class T>
 using HugePageArray = std::vector<T, NoFillAllocator<T>>;
-/// An array written and read in order: no zero fill, no huge page hint
-/// (faulting huge pages in would cost time for nothing).
+/// An array written and read in order: no zero fill, no huge page hint.
 template <class T>
 using NoFillArray = std::vector<T, NoFillAllocator<T, false>>;
 

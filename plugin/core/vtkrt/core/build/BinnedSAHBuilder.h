@@ -22,7 +22,7 @@ class BinnedSAHBuilder : public TopDownBuilder<BinnedSAHBuilder>
 public:
   static constexpr std::uint32_t kMaxBins = 64;
 
-  BinnedSAHBuilder(std::vector<BuildRef>& refs, const BuildOptions& options)
+  BinnedSAHBuilder(BuildRefs& refs, const BuildOptions& options)
     : TopDownBuilder(refs, options)
   {
     Options.numBins = std::max<std::uint32_t>(2, std::min<std::uint32_t>(Options.numBins, kMaxBins));

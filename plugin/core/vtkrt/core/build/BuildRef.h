@@ -3,6 +3,7 @@
 #define vtkrt_core_build_BuildRef_h
 
 #include "vtkrt/core/AABB.h"
+#include "vtkrt/core/HugePageArray.h"
 
 #include <cstdint>
 
@@ -16,6 +17,11 @@ struct BuildRef
   std::uint32_t id;
   Vec3<double> centroid() const { return box.center(); }
 };
+
+/// The references of one build: no zero fill (every element is written
+/// before it is read), huge pages when large (fresh 4 KiB pages cost more
+/// than the builder's arithmetic on them).
+using BuildRefs = HugePageArray<BuildRef>;
 
 /// Total order on (centroid[axis], id): makes median splits and sorts
 /// independent of the input order's ties.

@@ -19,7 +19,7 @@ namespace vtkrt::core::detail
 /// bvh.nodes and bvh.primIndex from `refs` with the builder `Builder` (the
 /// refs may be reordered).
 template <class Builder>
-void buildWith(std::vector<BuildRef>& refs, const BuildOptions& options, BVH& bvh)
+void buildWith(BuildRefs& refs, const BuildOptions& options, BVH& bvh)
 {
   Builder builder(refs, options);
   bvh.nodes = builder.build();
@@ -33,7 +33,7 @@ void buildWith(std::vector<BuildRef>& refs, const BuildOptions& options, BVH& bv
 }
 
 /// buildWith the builder of options.quality (an unknown value: binned SAH).
-inline void buildWithDefaultBuilder(std::vector<BuildRef>& refs, const BuildOptions& options, BVH& bvh)
+inline void buildWithDefaultBuilder(BuildRefs& refs, const BuildOptions& options, BVH& bvh)
 {
   switch (options.quality)
   {

@@ -66,7 +66,7 @@ private:
   /// range).
   void finish()
   {
-    std::vector<BuildRef> sorted(Refs.size());
+    BuildRefs sorted(Refs.size());
     for (std::size_t i = 0; i < Refs.size(); ++i)
     {
       sorted[i] = Refs[Order[0][i]];

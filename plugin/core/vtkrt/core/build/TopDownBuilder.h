@@ -4,9 +4,9 @@
 // builder provides" below).
 //
 // Parallelism in two phases. The top phase splits the ranges larger than
-// the task size on the calling thread, each pass over a large range
-// (bounds, bins) in parallel chunks; every range it leaves at or under the
-// task size becomes a task. The tasks' subtrees are then built at once, each
+// the task size one level at a time, the ranges of a level at once, each
+// pass over a large range (bounds, bins) in parallel chunks too; every
+// range it leaves at or under the task size becomes a task. The tasks' subtrees are then built at once, each
 // into its own array, and appended after the top nodes in task order: one
 // copy of each node, into an array of exactly the tree's size.
 //
@@ -60,7 +60,7 @@ public:
   /// tasks to balance any thread count this runs on.
   static constexpr std::size_t kTopTasks = 64;
 
-  TopDownBuilder(std::vector<BuildRef>& refs, const BuildOptions& options)
+  TopDownBuilder(BuildRefs& refs, const BuildOptions& options)
     : Refs(refs)
     , Options(options)
   {
@@ -73,9 +73,9 @@ public:
   /// The id of the primitive at leaf position pos (after build()).
   std::uint32_t idAt(std::uint32_t pos) const { return self().refAt(pos).id; }
 
-  std::vector<BVHNode> build()
+  BVHNodes build()
   {
-    std::vector<BVHNode> nodes;
+    BVHNodes nodes;
     if (Refs.empty())
     {
       return nodes;
@@ -84,9 +84,9 @@ public:
     const std::size_t n = Refs.size();
     TaskSize = std::max(kTaskPrimitives, n / kTopTasks);
     std::vector<Task> tasks;
-    std::vector<BVHNode> top(1);
+    BVHNodes top(1);
     TopPhase = true;
-    buildTop(top, 0, 0, static_cast<std::uint32_t>(n), 0, tasks);
+    buildTop(top, tasks);
     TopPhase = false;
     runTasks(tasks);
     nodes = joinTasks(top, tasks);
@@ -95,7 +95,7 @@ public:
   }
 
 protected:
-  std::vector<BuildRef>& Refs;
+  BuildRefs& Refs;
   BuildOptions Options;
 
   void prefetchAfter(std::uint32_t) const {}
@@ -144,7 +144,7 @@ private:
   {
     std::size_t slot;
     std::uint32_t begin, end, depth;
-    std::vector<BVHNode> nodes;
+    BVHNodes nodes;
   };
 
   std::size_t TaskSize = kTaskPrimitives;
@@ -178,15 +178,14 @@ private:
     return self().split(begin, end, box, centroids);
   }
 
-  /// Splits [begin, end) into nodes[slot] and, when it is an interior node,
-  /// appends its two children; returns the split (`end` for a leaf, whose
-  /// node is then complete).
-  std::uint32_t splitNode(std::vector<BVHNode>& nodes, std::size_t slot, std::uint32_t begin,
-    std::uint32_t end, std::uint32_t depth)
+  /// Where [begin, end) splits (`end`: a leaf) and its box (empty for an
+  /// interior node when kBottomUpBounds). Safe to run concurrently on
+  /// disjoint ranges.
+  std::uint32_t splitRange(std::uint32_t begin, std::uint32_t end, std::uint32_t depth, AABB<double>& box)
   {
     constexpr bool bottomUp = Builder::kBottomUpBounds;
     AABB<double> centroids;
-    AABB<double> box;
+    box = AABB<double>();
     if (!bottomUp)
     {
       box = rangeBounds(begin, end, centroids);
@@ -197,23 +196,42 @@ private:
     {
       box = rangeBounds(begin, end, centroids);
     }
+    return mid;
+  }
+
+  /// nodes[slot] for [begin, end) split at mid with `box`: a leaf when mid
+  /// is `end`, else an interior node whose two children are appended.
+  static void setNode(BVHNodes& nodes, std::size_t slot, std::uint32_t begin, std::uint32_t mid,
+    std::uint32_t end, const AABB<double>& box)
+  {
     nodes[slot].setBounds(box);
     if (mid == end)
     {
       nodes[slot].index = begin;
       nodes[slot].count = end - begin;
-      return end;
+      return;
     }
     const std::size_t first = nodes.size();
     nodes.resize(first + 2);
     nodes[slot].index = static_cast<std::uint32_t>(first);
     nodes[slot].count = 0;
+  }
+
+  /// Splits [begin, end) into nodes[slot] and, when it is an interior node,
+  /// appends its two children; returns the split (`end` for a leaf, whose
+  /// node is then complete).
+  std::uint32_t splitNode(BVHNodes& nodes, std::size_t slot, std::uint32_t begin,
+    std::uint32_t end, std::uint32_t depth)
+  {
+    AABB<double> box;
+    const std::uint32_t mid = splitRange(begin, end, depth, box);
+    setNode(nodes, slot, begin, mid, end, box);
     return mid;
   }
 
   /// Builds the subtree of [begin, end) into nodes[slot] and nodes appended
   /// to `nodes` (depth first), on this thread.
-  void buildNode(std::vector<BVHNode>& nodes, std::size_t slot, std::uint32_t begin, std::uint32_t end,
+  void buildNode(BVHNodes& nodes, std::size_t slot, std::uint32_t begin, std::uint32_t end,
     std::uint32_t depth)
   {
     const std::uint32_t mid = splitNode(nodes, slot, begin, end, depth);
@@ -230,24 +248,57 @@ private:
     }
   }
 
-  /// The top phase: splits ranges over the task size into `top`; each
-  /// range at or under it becomes a task whose root goes in top[slot].
-  void buildTop(std::vector<BVHNode>& top, std::size_t slot, std::uint32_t begin, std::uint32_t end,
-    std::uint32_t depth, std::vector<Task>& tasks)
+  /// A range of the top phase waiting for its split, and where its node goes.
+  struct Range
   {
-    if (end - begin <= TaskSize)
+    std::size_t slot;
+    std::uint32_t begin, end, depth;
+  };
+
+  /// The top phase, one level at a time: the ranges of a level over the
+  /// task size are split at once (on the pool, each on one thread, its
+  /// passes in parallel chunks when large), their nodes then appended to
+  /// `top` in level order; each range at or under the task size becomes a
+  /// task whose root goes in top[slot].
+  void buildTop(BVHNodes& top, std::vector<Task>& tasks)
+  {
+    std::vector<Range> level{ Range{ 0, 0, static_cast<std::uint32_t>(Refs.size()), 0 } };
+    while (!level.empty())
     {
-      tasks.push_back(Task{ slot, begin, end, depth, {} });
-      return;
+      std::vector<Range> large;
+      std::size_t work = 0;
+      for (const Range& r : level)
+      {
+        if (r.end - r.begin <= TaskSize)
+        {
+          tasks.push_back(Task{ r.slot, r.begin, r.end, r.depth, {} });
+          continue;
+        }
+        large.push_back(r);
+        work += r.end - r.begin;
+      }
+      std::vector<std::uint32_t> mids(large.size());
+      std::vector<AABB<double>> boxes(large.size());
+      parallelChunks(large.size(), Options, [&](std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i)
+        {
+          mids[i] = splitRange(large[i].begin, large[i].end, large[i].depth, boxes[i]);
+        }
+      }, work);
+      std::vector<Range> next;
+      for (std::size_t i = 0; i < large.size(); ++i)
+      {
+        const Range& r = large[i];
+        setNode(top, r.slot, r.begin, mids[i], r.end, boxes[i]);
+        if (mids[i] != r.end)
+        {
+          const std::size_t first = top[r.slot].index;
+          next.push_back(Range{ first, r.begin, mids[i], r.depth + 1 });
+          next.push_back(Range{ first + 1, mids[i], r.end, r.depth + 1 });
+        }
+      }
+      level.swap(next);
     }
-    const std::uint32_t mid = splitNode(top, slot, begin, end, depth);
-    if (mid == end)
-    {
-      return;
-    }
-    const std::size_t first = top[slot].index;
-    buildTop(top, first, begin, mid, depth + 1, tasks);
-    buildTop(top, first + 1, mid, end, depth + 1, tasks);
   }
 
   void buildTask(Task& task)
@@ -296,14 +347,14 @@ private:
 
   /// The top nodes, then each task's nodes but its root (which replaces
   /// its slot), child indices renumbered; the tasks' arrays are freed.
-  std::vector<BVHNode> joinTasks(std::vector<BVHNode>& top, std::vector<Task>& tasks) const
+  BVHNodes joinTasks(BVHNodes& top, std::vector<Task>& tasks) const
   {
     std::size_t total = top.size();
     for (const Task& t : tasks)
     {
       total += t.nodes.size() - 1;
     }
-    std::vector<BVHNode> nodes;
+    BVHNodes nodes;
     nodes.reserve(total);
     nodes.insert(nodes.end(), top.begin(), top.end());
     for (Task& t : tasks)
@@ -321,7 +372,7 @@ private:
       {
         nodes.push_back(remap(t.nodes[i]));
       }
-      std::vector<BVHNode>().swap(t.nodes);
+      BVHNodes().swap(t.nodes);
     }
     if (Builder::kBottomUpBounds)
     {
@@ -337,7 +388,7 @@ private:
     return nodes;
   }
 
-  static void mergeChildBounds(std::vector<BVHNode>& nodes, std::size_t slot)
+  static void mergeChildBounds(BVHNodes& nodes, std::size_t slot)
   {
     const std::size_t first = nodes[slot].index;
     AABB<double> box = nodes[first].bounds();
