@@ -137,6 +137,33 @@ void TestShell()
   s << "Shell: depth as raster's (the opaque depth) at all but " << differ << " pixels, "
     << far << " far";
   Check(differ < W * H / 200 && far > W * H / 4, s.str());
+  // Sub-pixel samples: each adds its alpha, the resolve blends the sum.
+  frames.Pass->SetSamplesPerPixel(4);
+  scene.Window->Render();
+  const double sampled = RootMeanSquareError(frames.Raster, Grab(scene.Window));
+  std::ostringstream a;
+  a << "Shell, 4 samples per pixel: RGB RMSE " << sampled << " against raster (<= 3)";
+  Check(sampled <= 3.0, a.str());
+  NoVTKOutput("Shell, 4 samples per pixel");
+}
+
+/// Twelve translucent spheres over an opaque floor: the top-level walk
+/// (more than 8 instances) continues past each layer too.
+void TestManyActors()
+{
+  Scene scene;
+  for (int i = 0; i < 12; ++i)
+  {
+    auto ball = SphereActor(0.5 * (i % 4) - 0.75, 0.25 * (i / 4), 0.3 * (i % 3), 0.3, 32);
+    ball->GetProperty()->SetColor(0.2 + 0.06 * i, 0.9 - 0.05 * i, 0.5);
+    ball->GetProperty()->SetOpacity(0.3 + 0.05 * i);
+    scene.Renderer->AddActor(ball);
+  }
+  auto floor = FloorActor(1.5);
+  floor->SetPosition(0.0, -0.35, 0.0);
+  scene.Renderer->AddActor(floor);
+  scene.Frame(30, 1.2);
+  Compare("ManyActors", scene, 13, 3.0);
 }
 
 /// A sphere whose point scalars carry alpha (interpolated as raster does)
@@ -380,6 +407,9 @@ void TestFeature()
   Check(compiled() && pass->GetNumberOfTracedProps() == 2, "translucent actor: traced, composited");
   pass->SetShadows(true);
   Check(compiled(), "translucent actor with shadows: transmittance compiled");
+  pass->SetAmbientOcclusionSamples(4);
+  Check(compiled(), "translucent actor with ambient occlusion: compiled");
+  pass->SetAmbientOcclusionSamples(0);
   pass->TraceTranslucencyOff();
   Check(!compiled() && pass->GetNumberOfTracedProps() == 1, "TraceTranslucency off: left to raster");
   NoGLError(scene.Window, "Feature");
@@ -483,6 +513,6 @@ int main(int argc, char* argv[])
   Output = vtkrtTestOutputWindow::Install();
   return RunCase(argc, argv,
     { { "Shell", TestShell }, { "Scalars", TestScalars }, { "Texture", TestTexture },
-      { "Glyphs", TestGlyphs }, { "Shadow", TestShadow }, { "Feature", TestFeature },
+      { "Glyphs", TestGlyphs }, { "ManyActors", TestManyActors }, { "Shadow", TestShadow }, { "Feature", TestFeature },
       { "BadOpacity", TestBadOpacity }, { "Selection", TestSelection } });
 }
