@@ -707,6 +707,14 @@ vec4 shadeHit(vec3 org, vec3 dir, float tBest, int hitInstance, int hitPrimitive
 #endif
   }
 #endif
+#ifdef VTKRT_TRANSLUCENT
+  // A translucent layer is not clamped before blending, as raster's depth
+  // peeling blends its float layers (the composite is clamped).
+  if ((flags & kInstanceTranslucent) != 0u)
+  {
+    return vec4(max(color, 0.0), alpha);
+  }
+#endif
   outColor = vec4(clamp(color, 0.0, 1.0), alpha);
 #endif
   return outColor;

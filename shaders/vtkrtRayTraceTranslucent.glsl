@@ -58,7 +58,7 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, 
     }
     tMin = nextLayerTMin(t);
   }
-  outColor = accumulated;
+  outColor = vec4(min(accumulated.rgb, vec3(1.0)), accumulated.a);
   return hitAny;
 }
 
