@@ -11,8 +11,13 @@
 // compile) is reported separately. Ratios are peer time / pass time (> 1:
 // the pass is faster); the cpu columns are process CPU time per steady frame
 // (every llvmpipe thread counted), steadier than wall time on a shared machine.
+//   translucent (--translucent N,..): an opaque mesh of N triangles inside a
+//              translucent shell of N triangles, pass vs vtkPolyDataMapper
+//              with depth peeling (100 peels, occlusion ratio 0), and the pass
+//              with the shell opaque (what compositing the layers costs)
 // usage: vtkrtBenchPass [--large] [--frames N] [--sizes 512,1024]
 //          [--meshes quad,N,..] [--spheres N,..] [--peers glyphs,points,impostors]
+//          [--translucent N,..]
 // (--meshes / --spheres replace the default counts, 0 skips that kind,
 // "quad" in --meshes keeps the quad; the pass's first frame is also printed
 // by phase: extraction, triangulation, BVH build, packing, upload, compile;
@@ -208,6 +213,7 @@ struct Options
   std::vector<long> SphereCounts = { 10000, 100000 };
   std::string Peers = "glyphs,points,impostors";
   bool Quad = true; ///< the full-screen quad (off with --meshes not naming it)
+  std::vector<long> Translucent; ///< triangle counts of the translucent scene (none by default)
 };
 
 /// The positive numbers of a comma-separated list.
@@ -253,6 +259,10 @@ bool ParseArgs(int argc, char* argv[], Options& opt)
       spheresArg = ParseList(argv[++i]);
       spheresGiven = true;
     }
+    else if (a == "--translucent" && i + 1 < argc)
+    {
+      opt.Translucent = ParseList(argv[++i]);
+    }
     else if (a == "--peers" && i + 1 < argc)
     {
       opt.Peers = argv[++i];
@@ -272,7 +282,7 @@ bool ParseArgs(int argc, char* argv[], Options& opt)
       std::cerr << "usage: " << argv[0]
                 << " [--large] [--frames N] [--sizes 512,1024] [--meshes quad,N,..] "
                    "[--spheres N,..]"
-                   " [--peers glyphs,points,impostors]\n";
+                   " [--peers glyphs,points,impostors] [--translucent N,..]\n";
       return false;
     }
   }
@@ -401,6 +411,39 @@ void RunMeshes(vtkRenderWindow* win, int size, const Options& opt, std::ostream&
   }
 }
 
+/// An opaque mesh inside a translucent shell (opacity 0.4, both of n
+/// triangles): the pass against raster with depth peeling, and against the
+/// pass with the shell opaque.
+void RunTranslucent(vtkRenderWindow* win, int size, const Options& opt, std::ostream& phases)
+{
+  for (long n : opt.Translucent)
+  {
+    auto mesh = MeshOf(n);
+    double shellOpacity = 0.4;
+    auto setup = [&](vtkRenderer* ren) {
+      ren->SetUseDepthPeeling(true);
+      ren->SetMaximumNumberOfPeels(100);
+      ren->SetOcclusionRatio(0.0);
+      vtkNew<vtkPolyDataMapper> inner;
+      inner->SetInputData(mesh);
+      AddActor(ren, inner)->SetScale(0.6);
+      vtkNew<vtkPolyDataMapper> shell;
+      shell->SetInputData(mesh);
+      vtkActor* actor = AddActor(ren, shell);
+      actor->GetProperty()->SetOpacity(shellOpacity);
+      actor->GetProperty()->SetColor(0.4, 0.6, 1.0);
+    };
+    const Timing pass = Measure(win, setup, true, opt.Frames);
+    const Timing raster = Measure(win, setup, false, opt.Frames);
+    shellOpacity = 1.0;
+    const Timing opaque = Measure(win, setup, true, opt.Frames);
+    const std::string scene = std::to_string(mesh->GetNumberOfCells() / 1000) + "k in a shell";
+    Row(scene, size, "vtkPolyDataMapper, peeling", pass, raster);
+    Row(scene, size, "pass, shell opaque", pass, opaque);
+    PhaseRow(phases, scene, size, pass, raster);
+  }
+}
+
 /// Spheres: the pass against the sphere peers opt.Peers names.
 void RunSpheres(vtkRenderWindow* win, int size, const Options& opt)
 {
@@ -480,6 +523,7 @@ int main(int argc, char* argv[])
   vtkEGLHeadlessRenderWindow::TuneMallocForLargeBuffers();
   vtkNew<vtkEGLHeadlessRenderWindow> win;
   win->SetMultiSamples(0);
+  win->SetAlphaBitPlanes(opt.Translucent.empty() ? 0 : 1); // depth peeling needs them
   win->SetSize(64, 64);
   win->Render();
   PrintHeader(win, opt.Frames);
@@ -493,6 +537,7 @@ int main(int argc, char* argv[])
     }
     RunMeshes(win, size, opt, phases);
     RunSpheres(win, size, opt);
+    RunTranslucent(win, size, opt, phases);
     if (!phases.str().empty())
     {
       std::cout << "\nfirst frame by phase, ms (pass; rest: drawing and what VTK does around it):\n"

@@ -52,6 +52,7 @@ void vtkRayTracePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
   os << indent << "ProgressiveAccumulation: " << this->ProgressiveAccumulation << "\n";
   os << indent << "Shadows: " << this->Shadows << "\n";
+  os << indent << "TraceTranslucency: " << this->TraceTranslucency << "\n";
   os << indent << "AmbientOcclusionSamples: " << this->AmbientOcclusionSamples << "\n";
   os << indent << "AmbientOcclusionRadius: " << this->AmbientOcclusionRadius << "\n";
   os << indent << "MaximumTraversalSteps: " << this->MaximumTraversalSteps << "\n";

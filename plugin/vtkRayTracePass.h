@@ -1,8 +1,8 @@
 /**
  * @class   vtkRayTracePass
- * @brief   Ray traces a renderer's opaque geometry with a GLSL BVH tracer.
+ * @brief   Ray traces a renderer's polygonal geometry with a GLSL BVH tracer.
  *
- * `renderer->SetPass(pass)` makes the renderer's opaque polygonal geometry
+ * `renderer->SetPass(pass)` makes the renderer's polygonal geometry
  * ray traced; removing the pass gives raster back. The pass draws one
  * full-screen quad whose fragment shader builds each pixel's ray from the
  * inverse of VTK's own projection, walks a float copy of a two-level BVH
@@ -11,8 +11,8 @@
  * raster passes and composites by depth.
  *
  * Traced (everything else falls back to the delegate):
- * - vtkActor + vtkPolyDataMapper / vtkCompositePolyDataMapper(2), opaque,
- *   surface representation, no edge visibility, no PBR: polygons (fan
+ * - vtkActor + vtkPolyDataMapper / vtkCompositePolyDataMapper(2), opaque
+ *   or translucent (see SetTraceTranslucency), surface representation, no edge visibility, no PBR: polygons (fan
  *   triangulated, like VTK), triangle strips; composite block visibility
  *   and colors (inherited); an actor texture (SetTexture: one 2D texture of
  *   8-bit colors, or scalars through its table, any wrap mode, nearest or
@@ -247,6 +247,26 @@ public:
 
   ///@{
   /**
+   * Trace translucent actors (default on): vtkProperty::Opacity < 1, scalar
+   * colors with alpha, textures with translucent texels, on polygonal
+   * surfaces (not glyphs, points as spheres or actors with a
+   * BackfaceProperty, which stay with raster). Every layer a
+   * camera ray crosses is composited front to back with its alpha (opacity x
+   * scalar alpha x texel alpha), as depth peeling with no peel limit; both
+   * faces are drawn and lit as raster's two-sided lighting; shadow and
+   * occlusion rays let through the product of (1 - alpha) of the layers they
+   * cross. A pixel keeps the depth of the layer that made it opaque, or the
+   * far plane (translucent layers write no depth, as VTK's translucent pass).
+   * Off: they are left to the delegate's translucent pass, as before.
+   * Hardware selection and id mode see the nearest layer, as raster's.
+   */
+  vtkSetMacro(TraceTranslucency, bool);
+  vtkGetMacro(TraceTranslucency, bool);
+  vtkBooleanMacro(TraceTranslucency, bool);
+  ///@}
+
+  ///@{
+  /**
    * Ambient occlusion rays per sample (default 0: off; at most 64): the
    * ambient and diffuse terms of a lit hit are scaled by the fraction of
    * cosine-weighted hemisphere rays (about the geometric normal, on the
@@ -372,6 +392,7 @@ protected:
   int SamplesPerPixel = 1;
   bool ProgressiveAccumulation = false;
   bool Shadows = false;
+  bool TraceTranslucency = true;
   int AmbientOcclusionSamples = 0;
   double AmbientOcclusionRadius = 0.0;
   int MaximumTraversalSteps = 0;

@@ -53,6 +53,7 @@ void vtkRayTracePass::Internals::Extract(
 {
   this->Scene.SetBuildQuality(pass.BuildQuality);
   this->Scene.SetLeafSize(pass.LeafSize);
+  this->Scene.SetTraceTranslucency(pass.TraceTranslucency);
   if (pass.IdMode || (!pass.Shadows && pass.AmbientOcclusionSamples == 0))
   {
     this->Scene.Extract(
@@ -210,6 +211,8 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   f.FaceCulling = this->Scene.HasFaceCulling();
   f.BackfaceProperties = this->Scene.HasBackfaceProperties();
   f.TextureCutOuts = this->Scene.HasTextureCutOuts();
+  // Ids are the nearest layer's, translucent or not (as raster selection).
+  f.Translucent = !pass.IdMode && this->Scene.HasTranslucency();
   // The stack as deep as the deepest bottom-level tree needs; the top-level
   // walk shares it, so with one it is the largest.
   std::uint32_t depth = 0;
@@ -329,6 +332,7 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
     // Ids only: one centered ray a pixel, nothing shaded.
     p.F.SelectIds = true;
     p.F.IdMode = false;
+    p.F.Translucent = false;
     p.F.SamplesPerPixel = 0;
     p.F.Shadows = false;
     p.F.AmbientOcclusionSamples = 0;
@@ -374,10 +378,18 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRen
   vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
   vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
   ostate->vtkglEnable(GL_DEPTH_TEST);
   ostate->vtkglDepthFunc(GL_ALWAYS);
   ostate->vtkglDepthMask(GL_TRUE);
   ostate->vtkglDisable(GL_BLEND);
+  if (p.F.Translucent && p.F.SamplesPerPixel == 0)
+  {
+    // Premultiplied colors over VTK's background (the accumulation's
+    // resolve blends the same way).
+    ostate->vtkglEnable(GL_BLEND);
+    ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  }
   // Rays only where the traced instances can be: the rest keeps VTK's clear
   // (under IceT, each rank traces its own piece's share). The footprint is
   // a pixel wider than the boxes' projections, so it holds every sub-pixel

@@ -2,7 +2,8 @@
 // #version line, the feature #defines and the kernel chunks
 // (vtkrtRayTraceKernels, and vtkrtRayTraceTriangles / vtkrtRayTraceSpheres
 // only when the scene has such primitives, vtkrtRayTraceSurfaces when it
-// has textured or culled triangles).
+// has textured or culled triangles); vtkrtRayTraceTranslucent follows it
+// when the scene has translucent instances.
 //
 // Coordinates: everything the shader sees is camera-relative world space
 // (world minus the eye position, computed in double on the CPU), so a scene
@@ -64,6 +65,21 @@ uniform vec3 uLightCone[VTKRT_NUMBER_OF_LIGHTS]; // (cone angle, exponent, posit
 // Any hit of a ray from org along dir within (0, tmax] (the core's anyHit).
 bool anyHit(vec3 org, vec3 dir, float tmax);
 
+#ifdef VTKRT_TRANSLUCENT
+float rayTransmittance(vec3 org, vec3 dir, float tmax); // vtkrtRayTraceTranslucent
+#endif
+
+// The fraction of light that passes from org along dir within (0, tmax]:
+// 0 or 1, or with translucent surfaces the product of what each lets through.
+float rayVisibility(vec3 org, vec3 dir, float tmax)
+{
+#ifdef VTKRT_TRANSLUCENT
+  return rayTransmittance(org, dir, tmax);
+#else
+  return anyHit(org, dir, tmax) ? 0.0 : 1.0;
+#endif
+}
+
 // Wächter & Binder, "A Fast and Robust Method for Avoiding
 // Self-Intersection" (Ray Tracing Gems, ch. 6): moves a hit point off its
 // surface along the unit geometric normal n by a fixed number of float ulps
@@ -86,11 +102,12 @@ vec3 offsetRayOrigin(vec3 p, vec3 n)
 
 #ifdef VTKRT_SHADOWS
 // 1 when nothing lies between the surface point p (unit geometric normal ng)
-// and the light along toLight within tmax, else 0 (hard shadows).
+// and the light along toLight within tmax, else 0 (hard shadows; translucent
+// surfaces in between let their share through).
 float lightVisibility(vec3 p, vec3 ng, vec3 toLight, float tmax)
 {
   vec3 side = dot(ng, toLight) >= 0.0 ? ng : -ng;
-  return anyHit(offsetRayOrigin(p, side), toLight, tmax) ? 0.0 : 1.0;
+  return rayVisibility(offsetRayOrigin(p, side), toLight, tmax);
 }
 #endif
 
@@ -127,7 +144,7 @@ float ambientVisibility(vec3 p, vec3 ng)
     float r = sqrt(u1);
     float phi = 6.283185307179586 * u2;
     vec3 d = r * cos(phi) * tangent + r * sin(phi) * bitangent + sqrt(max(0.0, 1.0 - u1)) * ng;
-    unoccluded += anyHit(org, d * uAmbientOcclusionRadius, 1.0) ? 0.0 : 1.0;
+    unoccluded += rayVisibility(org, d * uAmbientOcclusionRadius, 1.0);
   }
   return unoccluded / float(VTKRT_AMBIENT_OCCLUSION_SAMPLES);
 }
@@ -252,14 +269,15 @@ vec4 lookupColorTexture(int base, vec2 st)
 #endif
 
 // Closest hit of the ray with one instance (its clip planes, its
-// camera-space box, then its bottom-level BVH); updates the best hit.
-void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tBest,
+// camera-space box, then its bottom-level BVH) within [tMin, tBest];
+// updates the best hit.
+void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, float tMin, inout float tBest,
   inout int hitInstance, inout int hitPrimitive, inout vec2 hitUV, bool stopAtFirstHit)
 {
   vec3 boxMin = instanceBoxMin(instance);
   vec3 boxMax = instanceBoxMax(instance);
   uint flags = instanceFlags(instance);
-  float t0 = 0.0;
+  float t0 = tMin;
   float t1 = tBest;
 #if VTKRT_NUMBER_OF_CLIP_PLANES > 0
   int firstPlane = int(instanceFirstClipPlane(instance));
@@ -350,8 +368,8 @@ uniform vec3 uCameraToAnchor;
 // core::gpu::traceTopLevel (core/GpuTraversal.h). The stack never overflows
 // (depth <= kMaxDepth < VTKRT_STACK_SIZE, which is kMaxStackSize with a top
 // level, core/BVH.h).
-void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int hitInstance,
-  inout int hitPrimitive, inout vec2 hitUV, bool stopAtFirstHit)
+void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, float tMin, inout float tBest,
+  inout int hitInstance, inout int hitPrimitive, inout vec2 hitUV, bool stopAtFirstHit)
 {
   vec3 anchorOrg = org + uCameraToAnchor;
   float tnear;
@@ -372,7 +390,7 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, inout float tBest, inout int
     {
       for (int i = index; i < index + count; ++i)
       {
-        traceInstance(i, org, dir, invDir, tBest, hitInstance, hitPrimitive, hitUV, stopAtFirstHit);
+        traceInstance(i, org, dir, invDir, tMin, tBest, hitInstance, hitPrimitive, hitUV, stopAtFirstHit);
         if (stopAtFirstHit && hitInstance >= 0)
         {
           return;
@@ -436,58 +454,55 @@ bool anyHit(vec3 org, vec3 dir, float tmax)
   int hitPrimitive = -1;
   vec2 hitUV = vec2(0.0);
 #ifdef VTKRT_HAS_TOP_LEVEL
-  traceTopLevel(org, dir, invDir, t, hitInstance, hitPrimitive, hitUV, true);
+  traceTopLevel(org, dir, invDir, 0.0, t, hitInstance, hitPrimitive, hitUV, true);
 #else
   for (int instance = 0; instance < uNumberOfInstances && hitInstance < 0; ++instance)
   {
-    traceInstance(instance, org, dir, invDir, t, hitInstance, hitPrimitive, hitUV, true);
+    traceInstance(instance, org, dir, invDir, 0.0, t, hitInstance, hitPrimitive, hitUV, true);
   }
 #endif
   return hitInstance >= 0;
 }
 #endif
 
-// Traces and shades the ray through a point of the viewport (normalized
-// device coordinates): false on a miss, else the shaded color (the encoded
-// id in id mode) and the hit's window depth.
+// Closest hit of a camera ray within [tMin, tBest] over every instance:
+// hitInstance stays -1 on a miss.
+void traceClosest(vec3 org, vec3 dir, vec3 invDir, float tMin, inout float tBest,
+  out int hitInstance, out int hitPrimitive, out vec2 hitUV)
+{
+  hitInstance = -1;
+  hitPrimitive = -1;
+  hitUV = vec2(0.0);
+#ifdef VTKRT_HAS_TOP_LEVEL
+  traceTopLevel(org, dir, invDir, tMin, tBest, hitInstance, hitPrimitive, hitUV, false);
+#else
+  for (int instance = 0; instance < uNumberOfInstances; ++instance)
+  {
+    traceInstance(instance, org, dir, invDir, tMin, tBest, hitInstance, hitPrimitive, hitUV, false);
+  }
+#endif
+}
+
 // Raster lines and points lying on a traced surface (VTK's pick outline,
 // wireframes, edges) pass the depth test as they do over raster's own
 // triangles: the traced depth is pushed back by a few steps of a 24-bit depth
 // buffer, more than the float error of the hit's depth.
 const float kCoincidentDepthBias = 16.0 / 16777216.0;
 
-bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
+// The window depth of the camera-relative point p.
+float windowDepth(vec3 p)
 {
-  outColor = vec4(0.0);
-  outDepth = 1.0;
-  vec4 nearPoint = uClipToCamera * vec4(ndc, -1.0, 1.0);
-  vec4 farPoint = uClipToCamera * vec4(ndc, 1.0, 1.0);
-  vec3 org = nearPoint.xyz / nearPoint.w;
-  vec3 dir = farPoint.xyz / farPoint.w - org;
-  vec3 invDir = safeInverse(dir);
-
-  float tBest = 1.0;
-  int hitInstance = -1;
-  int hitPrimitive = -1;
-  vec2 hitUV = vec2(0.0);
-#ifdef VTKRT_HAS_TOP_LEVEL
-  traceTopLevel(org, dir, invDir, tBest, hitInstance, hitPrimitive, hitUV, false);
-#else
-  for (int instance = 0; instance < uNumberOfInstances; ++instance)
-  {
-    traceInstance(instance, org, dir, invDir, tBest, hitInstance, hitPrimitive, hitUV, false);
-  }
-#endif
-
-  if (hitInstance < 0)
-  {
-    return false;
-  }
-
-  vec3 p = org + tBest * dir;
   vec4 clip = uCameraToClip * vec4(p, 1.0);
-  outDepth = clamp(0.5 * (clip.z / clip.w) + 0.5 + kCoincidentDepthBias, 0.0, 1.0);
+  return clamp(0.5 * (clip.z / clip.w) + 0.5 + kCoincidentDepthBias, 0.0, 1.0);
+}
 
+// The color of the hit (tBest, hitInstance, hitPrimitive, hitUV) of the
+// camera ray org + t dir: lit RGB and its alpha (1 unless the instance is
+// translucent), or the encoded id in id mode.
+vec4 shadeHit(vec3 org, vec3 dir, float tBest, int hitInstance, int hitPrimitive, vec2 hitUV)
+{
+  vec4 outColor = vec4(0.0);
+  vec3 p = org + tBest * dir;
   vec4 r0 = instanceCameraToLocal(hitInstance, 0);
   vec4 r1 = instanceCameraToLocal(hitInstance, 1);
   vec4 r2 = instanceCameraToLocal(hitInstance, 2);
@@ -671,17 +686,73 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
   }
   vec3 color = shadeLikeVTK(p, n, ngView, ambientColor, diffuseColor, specularColor, specularPower,
     (flags & kInstanceLit) != 0u);
+  float alpha = 1.0;
+#ifdef VTKRT_TRANSLUCENT
+  // As vtkOpenGLPolyDataMapper: the property's opacity times the scalar
+  // color's alpha (times the texel's, below).
+  if ((flags & kInstanceTranslucent) != 0u)
+  {
+    alpha = instanceOpacity(hitInstance) * (scalarColor.x >= 0.0 ? scalarColor.a : 1.0);
+  }
+#endif
 #ifdef VTKRT_HAS_TEXTURES
   // As vtkOpenGLPolyDataMapper: the lit color times the texture's, on back
   // faces too unless ShowTexturesOnBackface is off.
   if ((flags & kInstanceTextured) != 0u && (frontFacing || (flags & kInstanceTextureOnBackface) != 0u))
   {
-    color *= instanceTextureColor(hitInstance, textureIds, hitUV).rgb;
+    vec4 texel = instanceTextureColor(hitInstance, textureIds, hitUV);
+    color *= texel.rgb;
+#ifdef VTKRT_TRANSLUCENT
+    alpha *= (flags & kInstanceTranslucent) != 0u ? texel.a : 1.0;
+#endif
   }
 #endif
-  outColor = vec4(clamp(color, 0.0, 1.0), 1.0);
+#ifdef VTKRT_TRANSLUCENT
+  // A translucent layer is not clamped before blending, as raster's depth
+  // peeling blends its float layers (the composite is clamped).
+  if ((flags & kInstanceTranslucent) != 0u)
+  {
+    return vec4(max(color, 0.0), alpha);
+  }
 #endif
+  outColor = vec4(clamp(color, 0.0, 1.0), alpha);
+#endif
+  return outColor;
+}
+
+#ifdef VTKRT_TRANSLUCENT
+// Every layer along the camera ray, composited (vtkrtRayTraceTranslucent).
+bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, out float outDepth);
+#endif
+
+// Traces and shades the ray through a point of the viewport (normalized
+// device coordinates): false on a miss, else the shaded color (the encoded
+// id in id mode; premultiplied by its alpha) and the window depth.
+bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
+{
+  outColor = vec4(0.0);
+  outDepth = 1.0;
+  vec4 nearPoint = uClipToCamera * vec4(ndc, -1.0, 1.0);
+  vec4 farPoint = uClipToCamera * vec4(ndc, 1.0, 1.0);
+  vec3 org = nearPoint.xyz / nearPoint.w;
+  vec3 dir = farPoint.xyz / farPoint.w - org;
+  vec3 invDir = safeInverse(dir);
+#ifdef VTKRT_TRANSLUCENT
+  return traceTranslucentLayers(org, dir, invDir, outColor, outDepth);
+#else
+  float tBest = 1.0;
+  int hitInstance;
+  int hitPrimitive;
+  vec2 hitUV;
+  traceClosest(org, dir, invDir, 0.0, tBest, hitInstance, hitPrimitive, hitUV);
+  if (hitInstance < 0)
+  {
+    return false;
+  }
+  outDepth = windowDepth(org + tBest * dir);
+  outColor = shadeHit(org, dir, tBest, hitInstance, hitPrimitive, hitUV);
   return true;
+#endif
 }
 
 #ifdef VTKRT_SAMPLES_PER_PIXEL
@@ -689,7 +760,7 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 // k-th at the R2 low-discrepancy point k of the pixel square (point 0 is the
 // pixel center), k counting on from uFirstSample so successive accumulated
 // frames continue one sequence. The output is the sum of the hits' colors in
-// RGB and the number of hits in A (added into the pass's float accumulation
+// RGB (premultiplied) and the number of hits in A (their alphas' sum) (added into the pass's float accumulation
 // buffer); the depth is the nearest hit's.
 uniform int uFirstSample;
 uniform vec2 uPixelSize; // one pixel in normalized device coordinates
@@ -719,7 +790,7 @@ void main()
     if (shadeRay(pixelCorner + samplePoint(uFirstSample + s) * uPixelSize, color, depth))
     {
       sum += color.rgb;
-      hits += 1.0;
+      hits += color.a;
       nearest = min(nearest, depth);
     }
   }

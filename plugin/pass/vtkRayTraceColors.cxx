@@ -80,6 +80,11 @@ void Scene::FillMaterial(vtkActor* actor, vtkMapper* mapper, Instance& inst) con
   inst.DiffuseIntensity = static_cast<float>(p->GetDiffuse());
   inst.CullBackfaces = p->GetBackfaceCulling();
   inst.CullFrontfaces = p->GetFrontfaceCulling();
+  // vtkProperty clamps its opacity to [0, 1], which lets NaN through: that
+  // draws as opaque.
+  const double opacity = p->GetOpacity();
+  inst.Translucent = actor->HasTranslucentPolygonalGeometry() != 0;
+  inst.Opacity = opacity >= 0.0 ? static_cast<float>(std::min(opacity, 1.0)) : 1.0f;
   if (vtkProperty* back = actor->GetBackfaceProperty())
   {
     inst.BackfaceProperty = true;

@@ -233,6 +233,7 @@ std::uint32_t instanceFlags(const Instance& inst, bool mirrored)
   flags |= inst.BackfaceProperty ? kInstanceBackfaceProperty : 0u;
   flags |= inst.CullBackfaces ? kInstanceCullBackfaces : 0u;
   flags |= inst.CullFrontfaces ? kInstanceCullFrontfaces : 0u;
+  flags |= inst.Translucent ? kInstanceTranslucent : 0u;
   return flags;
 }
 } // namespace
@@ -339,6 +340,7 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     rec.ambientIntensity = inst.AmbientIntensity;
     rec.diffuseIntensity = inst.DiffuseIntensity;
     rec.sphereGrow = static_cast<float>(screen.MaxLocal);
+    rec.opacity = inst.Opacity;
     for (int k = 0; k < 4; ++k)
     {
       rec.screenRadiusPlane[k] = static_cast<float>(screen.Plane[k]);

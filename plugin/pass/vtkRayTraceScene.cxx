@@ -144,7 +144,7 @@ bool collectPieces(vtkDataObject* object, vtkCompositeDataDisplayAttributes* att
 
 } // namespace
 
-bool Scene::IsTraceable(vtkProp* prop)
+bool Scene::IsTraceable(vtkProp* prop, bool translucency)
 {
   vtkActor* actor = vtkActor::SafeDownCast(prop);
   if (!actor || !actor->GetVisibility() || !actor->GetMapper())
@@ -159,8 +159,16 @@ bool Scene::IsTraceable(vtkProp* prop)
     return false;
   }
   vtkProperty* property = actor->GetProperty();
-  if (property->GetOpacity() < 1.0 || property->GetEdgeVisibility() ||
-    property->GetInterpolation() == VTK_PBR)
+  if (property->GetEdgeVisibility() || property->GetInterpolation() == VTK_PBR)
+  {
+    return false;
+  }
+  // Translucent: polygonal surfaces. Not points as spheres (raster draws
+  // front-facing sprites, one layer), glyphs (raster's glyph mapper blends
+  // their layers unlike a mesh's, docs/pass.md) or a translucent back face
+  // (a property of its own).
+  if (actor->HasTranslucentPolygonalGeometry() &&
+    (!translucency || glyphs || property->GetRenderPointsAsSpheres() || actor->GetBackfaceProperty()))
   {
     return false;
   }
@@ -177,13 +185,8 @@ bool Scene::IsTraceable(vtkProp* prop)
   {
     return false;
   }
-  if (representation == VTK_WIREFRAME ||
-    (representation == VTK_POINTS && (glyphs || !property->GetRenderPointsAsSpheres())))
-  {
-    return false;
-  }
-  // Translucent scalars (colors with alpha) or a forced translucency.
-  return !actor->HasTranslucentPolygonalGeometry();
+  return representation != VTK_WIREFRAME &&
+    (representation != VTK_POINTS || (!glyphs && property->GetRenderPointsAsSpheres()));
 }
 
 bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
@@ -339,13 +342,19 @@ void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkPro
   for (int i = 0; i < count; ++i)
   {
     vtkProp* prop = props[i];
-    if (!IsTraceable(prop))
+    if (!IsTraceable(prop, this->TraceTranslucency))
     {
       others.push_back(prop);
       continue;
     }
     vtkActor* actor = vtkActor::SafeDownCast(prop);
     vtkMapper* mapper = actor->GetMapper();
+    if (actor->HasTranslucentPolygonalGeometry() && actor->GetProperty()->GetOpacity() <= 0.0)
+    {
+      // Invisible, and never selected (vtkOpenGLActor): traced as nothing.
+      traced.push_back(prop);
+      continue;
+    }
     const int propIndex = static_cast<int>(traced.size());
     const std::size_t firstInstance = this->Instances.size();
     bool ok = false;
@@ -437,6 +446,12 @@ bool Scene::HasBackfaceProperties() const
 {
   return std::any_of(this->Instances.begin(), this->Instances.end(),
     [](const Instance& i) { return !i.Geom->Spheres && i.BackfaceProperty; });
+}
+
+bool Scene::HasTranslucency() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.Translucent; });
 }
 
 bool Scene::HasTextureCutOuts() const

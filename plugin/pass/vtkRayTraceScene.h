@@ -91,6 +91,7 @@ public:
   bool HasFaceCulling() const;
   bool HasBackfaceProperties() const;
   bool HasTextureCutOuts() const;
+  bool HasTranslucency() const;
 
   /// The actors' texture images and texture coordinates.
   const TextureCache& GetTextures() const { return this->Textures; }
@@ -107,8 +108,12 @@ public:
   /// use; sphere BVHs keep their own leaf size.
   void SetLeafSize(int size) { this->LeafSize = static_cast<std::uint32_t>(size < 1 ? 1 : size); }
 
-  /// Whether this prop would be traced (public for documentation/tests).
-  static bool IsTraceable(vtkProp* prop);
+  /// Whether translucent actors are traced (default) or left to raster.
+  void SetTraceTranslucency(bool trace) { this->TraceTranslucency = trace; }
+
+  /// Whether this prop would be traced (public for documentation/tests);
+  /// `translucency`: whether translucent actors can be.
+  static bool IsTraceable(vtkProp* prop, bool translucency = true);
 
 private:
   bool AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
@@ -136,6 +141,7 @@ private:
   core::BuildOptions SphereOptions() const; ///< Options() tuned for cheap sphere tests
 
   int BuildQuality = 1;
+  bool TraceTranslucency = true;
   std::uint32_t LeafSize = 4;
   std::map<const void*, std::unique_ptr<Geometry>> TriangleCache;
   /// Points as spheres: (polydata, null); glyphs: (mapper, dataset).

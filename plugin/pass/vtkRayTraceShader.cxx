@@ -11,6 +11,7 @@
 #include "vtkrtRayTraceSelect.h"
 #include "vtkrtRayTraceSpheres.h"
 #include "vtkrtRayTraceSurfaces.h"
+#include "vtkrtRayTraceTranslucent.h"
 #include "vtkrtRayTraceTriangles.h"
 
 #include "vtkrt/core/BVH.h"
@@ -34,7 +35,7 @@ std::string Features::Key() const
     << this->WorldCoordinates << "Q" << this->ScreenSpheres << "E" << this->Ellipsoids << "X"
     << this->ColorTexture << "K" << this->SelectIds << "F" << this->CellNormals << "U"
     << this->Textures << "B" << this->FaceCulling << "Y" << this->BackfaceProperties << "Z"
-    << this->TextureCutOuts << "S" << this->StackSize;
+    << this->TextureCutOuts << "S" << this->StackSize << "R" << this->Translucent;
   return s.str();
 }
 
@@ -63,6 +64,7 @@ std::string AssembleShader(const Features& f)
   define(f.IdMode, "VTKRT_ID_MODE");
   define(f.SelectIds, "VTKRT_SELECT_IDS");
   define(f.TopLevel, "VTKRT_HAS_TOP_LEVEL");
+  define(f.Translucent, "VTKRT_TRANSLUCENT");
   if (f.SamplesPerPixel > 0)
   {
     s << "#define VTKRT_SAMPLES_PER_PIXEL " << f.SamplesPerPixel << "\n";
@@ -92,6 +94,10 @@ std::string AssembleShader(const Features& f)
     s << vtkrtRayTraceSurfaces << "\n";
   }
   s << vtkrtRayTraceMain;
+  if (f.Translucent)
+  {
+    s << "\n" << vtkrtRayTraceTranslucent;
+  }
   return s.str();
 }
 

@@ -127,6 +127,10 @@ struct Instance
   float BackSpecularPower = 1.0f;
   bool CullBackfaces = false;  ///< vtkProperty::BackfaceCulling (wins over front, as raster)
   bool CullFrontfaces = false; ///< vtkProperty::FrontfaceCulling
+  /// VTK draws the actor in its translucent pass (!vtkActor::GetIsOpaque()):
+  /// its layers are composited with alpha Opacity x scalar alpha x texel alpha.
+  bool Translucent = false;
+  float Opacity = 1.0f; ///< vtkProperty::Opacity, in [0, 1]
 };
 
 /// What a frame needs from the shader; also the program cache key.
@@ -156,6 +160,7 @@ struct Features
   bool FaceCulling = false;      ///< some triangles are culled on one side
   bool BackfaceProperties = false; ///< some triangles have a back-face material
   bool TextureCutOuts = false;   ///< some textures have fully transparent texels
+  bool Translucent = false;      ///< some instances are translucent (layers composited)
   int StackSize = static_cast<int>(core::kMaxStackSize); ///< entries of the shader's BVH stacks (VTKRT_STACK_SIZE)
 
   std::string Key() const;

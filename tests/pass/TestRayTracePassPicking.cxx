@@ -322,7 +322,7 @@ void TestClassification()
   traced.emplace_back("opaque mesh", meshActor(mesh));
   auto translucent = meshActor(mesh);
   translucent->GetProperty()->SetOpacity(0.5);
-  raster.emplace_back("translucent property", translucent);
+  traced.emplace_back("translucent property", translucent);
   auto wire = meshActor(mesh);
   wire->GetProperty()->SetRepresentationToWireframe();
   raster.emplace_back("wireframe", wire);
@@ -369,7 +369,7 @@ void TestClassification()
   spheres->GetProperty()->SetRepresentationToPoints();
   spheres->GetProperty()->RenderPointsAsSpheresOn();
   traced.emplace_back("points with RenderPointsAsSpheres", spheres);
-  // Scalars with alpha make the actor translucent in VTK.
+  // Scalars with alpha make the actor translucent in VTK (traced too).
   auto alphaMesh = vtkSmartPointer<vtkPolyData>::New();
   alphaMesh->DeepCopy(mesh);
   vtkNew<vtkUnsignedCharArray> rgba;
@@ -382,7 +382,7 @@ void TestClassification()
   alphaMesh->GetPointData()->SetScalars(rgba);
   auto alpha = meshActor(alphaMesh);
   vtkPolyDataMapper::SafeDownCast(alpha->GetMapper())->SetColorModeToDirectScalars();
-  raster.emplace_back("scalars with alpha", alpha);
+  traced.emplace_back("scalars with alpha", alpha);
   // Lines cannot be traced: the whole actor falls back.
   vtkNew<vtkConeSource> cone;
   cone->Update();

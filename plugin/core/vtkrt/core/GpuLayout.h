@@ -133,7 +133,7 @@ struct InstanceRecord
   float ambientIntensity;
   float diffuseIntensity;
   float sphereGrow;
-  float unused9;
+  float opacity;               ///< vtkProperty::Opacity (Translucent instances)
   vec4 screenRadiusPlane;
   vec3 backAmbient;            ///< BackfaceProperty colors, weighted by its intensities
   std::uint32_t textureBase;   ///< Textured: first word of the texture's header
@@ -151,7 +151,7 @@ struct InstanceRecord
             FIELD(InstanceRecord, clipPlaneCount) FIELD(InstanceRecord, propIndex)                 \
               FIELD(InstanceRecord, compositeIndex) FIELD(InstanceRecord, ambientIntensity)          \
                 FIELD(InstanceRecord, diffuseIntensity) FIELD(InstanceRecord, sphereGrow)          \
-                  PAD(InstanceRecord, unused9) FIELD(InstanceRecord, screenRadiusPlane)    \
+                  FIELD(InstanceRecord, opacity) FIELD(InstanceRecord, screenRadiusPlane)    \
                     FIELD(InstanceRecord, backAmbient) FIELD(InstanceRecord, textureBase)      \
                       FIELD(InstanceRecord, backDiffuse)                                       \
                         FIELD(InstanceRecord, textureCoordinateBase)                           \
@@ -199,7 +199,8 @@ enum class Indexing
   X(BackfaceProperty, 2048u)                                                                       \
   X(CullBackfaces, 4096u)                                                                          \
   X(CullFrontfaces, 8192u)                                                                         \
-  X(TextureCutOuts, 16384u)
+  X(TextureCutOuts, 16384u)                                                                        \
+  X(Translucent, 32768u)
 
 enum InstanceFlags : std::uint32_t
 {

@@ -1,0 +1,174 @@
+// Translucent surfaces (VTKRT_TRANSLUCENT), appended after
+// vtkrtRayTraceMain only in shaders of scenes with translucent instances:
+// camera rays composite every layer they cross front to back, with no layer
+// limit (raster's depth peeling is the same sum, capped at its peel count),
+// and shadow and occlusion rays let through the product of what each layer
+// transmits. The C++ twins (core/GpuTranslucency.h) have the same names.
+
+// Accumulated alpha from which what lies behind adds under 1/1024: the ray stops.
+const float kOpaqueAlpha = 1.0 - 1.0 / 1024.0;
+// The next layer starts this many float ulps of t past a hit: the triangles
+// about a shared edge or vertex, which the watertight test may hit at t a few
+// ulps apart, count as one layer (a strict interval above the hit).
+const uint kLayerGapUlps = 64u;
+
+// The smallest t of the layer after a hit at t (t >= 0).
+float nextLayerTMin(float t)
+{
+  return max(uintBitsToFloat(floatBitsToUint(t) + kLayerGapUlps), 1.0e-30);
+}
+
+// Front-to-back compositing ("under"): the layer (color, alpha) behind what
+// is accumulated (premultiplied RGB, alpha) shows through what is left.
+void compositeLayer(inout vec4 accumulated, vec3 color, float alpha)
+{
+  float weight = (1.0 - accumulated.a) * alpha;
+  accumulated.rgb += weight * color;
+  accumulated.a += weight;
+}
+
+// Every hit of the camera ray in depth order, shaded and composited: the
+// premultiplied color and, as VTK's translucent pass leaves the opaque depth
+// in the depth buffer, the depth of the layer that made the pixel opaque (the
+// far plane if the ray leaves the scene). False when the ray hits nothing.
+bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, out float outDepth)
+{
+  vec4 accumulated = vec4(0.0);
+  outDepth = 1.0;
+  bool hitAny = false;
+  float tMin = 0.0;
+  for (;;)
+  {
+    float t = 1.0;
+    int hitInstance;
+    int hitPrimitive;
+    vec2 hitUV;
+    traceClosest(org, dir, invDir, tMin, t, hitInstance, hitPrimitive, hitUV);
+    if (hitInstance < 0)
+    {
+      break;
+    }
+    hitAny = true;
+    vec4 layer = shadeHit(org, dir, t, hitInstance, hitPrimitive, hitUV);
+    compositeLayer(accumulated, layer.rgb, layer.a);
+    if (accumulated.a >= kOpaqueAlpha)
+    {
+      outDepth = windowDepth(org + t * dir);
+      break;
+    }
+    tMin = nextLayerTMin(t);
+  }
+  outColor = vec4(min(accumulated.rgb, vec3(1.0)), accumulated.a);
+  return hitAny;
+}
+
+#ifdef VTKRT_HAS_COLORS
+// The scalar color of a hit of the instance (as shadeHit fetches it), or
+// vec4(-1) when the instance has none.
+vec4 hitScalarColor(int instance, uint flags, int primitive, vec2 uv)
+{
+  if ((flags & (kInstancePointColors | kInstanceCellColors)) == 0u)
+  {
+    return vec4(-1.0);
+  }
+  int cb = int(instanceColorBase(instance));
+#ifdef VTKRT_HAS_SPHERES
+  if ((flags & kInstanceSpheres) != 0u)
+  {
+    int id = int(fetchPacked(uSphereIds, primitive));
+#ifdef VTKRT_HAS_COLOR_TEXTURE
+    if ((flags & kInstanceColorTexture) != 0u)
+    {
+      return lookupColorTexture(cb, fetchColorCoordinate(cb, id));
+    }
+#endif
+    return fetchColor(cb + id);
+  }
+#endif
+#ifdef VTKRT_HAS_TRIANGLES
+  if ((flags & kInstanceCellColors) != 0u)
+  {
+    return fetchColor(cb + int(fetchTriangle(uTriangles, primitive).cellId));
+  }
+  uvec3 ids = fetchTriangleVertices(uTriangleVertices, primitive).ids;
+  float w0 = 1.0 - uv.x - uv.y;
+#ifdef VTKRT_HAS_COLOR_TEXTURE
+  if ((flags & kInstanceColorTexture) != 0u)
+  {
+    vec2 st = w0 * fetchColorCoordinate(cb, int(ids.x)) + uv.x * fetchColorCoordinate(cb, int(ids.y)) +
+      uv.y * fetchColorCoordinate(cb, int(ids.z));
+    return lookupColorTexture(cb, st);
+  }
+#endif
+  return w0 * fetchColor(cb + int(ids.x)) + uv.x * fetchColor(cb + int(ids.y)) +
+    uv.y * fetchColor(cb + int(ids.z));
+#else
+  return vec4(-1.0);
+#endif
+}
+#endif
+
+// The alpha shadeHit gives the hit (primitive, uv) of the instance by a ray
+// along dir (camera-relative), without shading it.
+float surfaceOpacity(int instance, int primitive, vec2 uv, vec3 dir)
+{
+  uint flags = instanceFlags(instance);
+  if ((flags & kInstanceTranslucent) == 0u)
+  {
+    return 1.0;
+  }
+  float alpha = instanceOpacity(instance);
+#ifdef VTKRT_HAS_COLORS
+  vec4 scalarColor = hitScalarColor(instance, flags, primitive, uv);
+  alpha *= scalarColor.x >= 0.0 ? scalarColor.a : 1.0;
+#endif
+#ifdef VTKRT_HAS_TEXTURES
+  if ((flags & kInstanceTextured) != 0u)
+  {
+    // Raster's gl_FrontFacing, as shadeHit and faceSkipped decide it.
+    vec3 localDir = vec3(dot(instanceCameraToLocal(instance, 0).xyz, dir),
+      dot(instanceCameraToLocal(instance, 1).xyz, dir), dot(instanceCameraToLocal(instance, 2).xyz, dir));
+    Triangle t = fetchTriangle(uTriangles, primitive);
+    float facing = dot(cross(t.v1 - t.v0, t.v2 - t.v0), localDir);
+    bool front = (flags & kInstanceMirrored) != 0u ? facing >= 0.0 : facing <= 0.0;
+    if (front || (flags & kInstanceTextureOnBackface) != 0u)
+    {
+      alpha *= instanceTextureColor(instance, fetchTriangleVertices(uTriangleVertices, primitive).ids, uv).a;
+    }
+  }
+#endif
+  return alpha;
+}
+
+#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+// Transmittance below which a secondary ray counts as blocked.
+const float kBlockedTransmittance = 1.0 / 1024.0;
+
+// The fraction of light passing from org along dir within (0, tmax]: the
+// product of (1 - alpha) over every layer, in depth order (each once).
+float rayTransmittance(vec3 org, vec3 dir, float tmax)
+{
+  vec3 invDir = safeInverse(dir);
+  float transmittance = 1.0;
+  float tMin = 0.0;
+  for (;;)
+  {
+    float t = tmax;
+    int hitInstance;
+    int hitPrimitive;
+    vec2 hitUV;
+    traceClosest(org, dir, invDir, tMin, t, hitInstance, hitPrimitive, hitUV);
+    if (hitInstance < 0)
+    {
+      return transmittance;
+    }
+    transmittance *= 1.0 - surfaceOpacity(hitInstance, hitPrimitive, hitUV, dir);
+    if (transmittance < kBlockedTransmittance)
+    {
+      return 0.0;
+    }
+    tMin = nextLayerTMin(t);
+  }
+  return transmittance;
+}
+#endif

@@ -1,0 +1,518 @@
+// Translucent actors traced: every layer composited front to back, compared
+// with VTK's raster of the same scene with depth peeling (many peels,
+// occlusion ratio 0): a translucent shell over an opaque mesh, scalar colors
+// with alpha, a textured quad with translucent texels (translucent sphere
+// glyphs stay with raster, composited with the traced scene); shadows
+// through translucent surfaces; translucency code only in shaders of scenes
+// that have it; opacity outside [0, 1]; hardware selection of the nearest
+// layer, as raster's.
+#include "vtkrtPassTestUtils.h"
+
+#include "vtkCellData.h"
+#include "vtkFloatArray.h"
+#include "vtkHardwareSelector.h"
+#include "vtkInformation.h"
+#include "vtkLight.h"
+#include "vtkSelection.h"
+#include "vtkSelectionNode.h"
+#include "vtkTexture.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <utility>
+
+using namespace vtkrtPassTest;
+
+namespace
+{
+constexpr int W = 320;
+constexpr int H = 240;
+
+/// A window and renderer set up as VTK's depth peeling draws translucency
+/// exactly: many peels, occlusion ratio 0.
+struct Scene
+{
+  vtkSmartPointer<vtkEGLHeadlessRenderWindow> Window = MakeWindow(W, H);
+  vtkNew<vtkRenderer> Renderer;
+
+  Scene()
+  {
+    this->Window->AddRenderer(this->Renderer);
+    this->Window->SetAlphaBitPlanes(1);
+    this->Renderer->SetBackground(0.1, 0.1, 0.15);
+    this->Renderer->SetUseDepthPeeling(true);
+    this->Renderer->SetMaximumNumberOfPeels(200);
+    this->Renderer->SetOcclusionRatio(0.0);
+  }
+
+  void Frame(double azimuth, double zoom)
+  {
+    this->Renderer->ResetCamera();
+    this->Renderer->GetActiveCamera()->Azimuth(azimuth);
+    this->Renderer->GetActiveCamera()->Elevation(15);
+    this->Renderer->GetActiveCamera()->Zoom(zoom);
+    this->Renderer->ResetCameraClippingRange();
+  }
+};
+
+/// Writes the raster image, the traced one and their difference under the
+/// test output directory (as the other image tests do on failure).
+void WriteFailure(const std::string& name, vtkImageData* raster, vtkImageData* traced)
+{
+  WritePNG(raster, std::string(VTKRT_TEMP_DIR) + "/" + name + ".raster.png");
+  WritePNG(traced, std::string(VTKRT_TEMP_DIR) + "/" + name + ".png");
+  vtkNew<vtkImageDifference> diff;
+  diff->SetInputData(traced);
+  diff->SetImageData(raster);
+  diff->Update();
+  WritePNG(diff->GetOutput(), std::string(VTKRT_TEMP_DIR) + "/" + name + ".diff.png");
+}
+
+/// Raster then traced; checks the traced prop count, the RGB RMSE and
+/// that the shader composites layers.
+RasterAndTraced Compare(const std::string& name, Scene& scene, int tracedProps, double maxRmse)
+{
+  RasterAndTraced frames = RenderRasterThenTraced(scene.Window, scene.Renderer);
+  std::ostringstream props;
+  props << name << ": " << frames.Pass->GetNumberOfTracedProps() << " props traced (" << tracedProps << ")";
+  Check(frames.Pass->GetNumberOfTracedProps() == tracedProps, props.str());
+  const double rmse = RootMeanSquareError(frames.Raster, frames.Traced);
+  std::ostringstream what;
+  what << name << ": RGB RMSE " << rmse << " against raster with depth peeling (<= " << maxRmse << ")";
+  Check(rmse <= maxRmse, what.str());
+  if (rmse > maxRmse)
+  {
+    WriteFailure(name, frames.Raster, frames.Traced);
+  }
+  Check(std::string(frames.Pass->GetLastFragmentShaderSource()).find("#define VTKRT_TRANSLUCENT") !=
+      std::string::npos,
+    name + ": the shader composites translucent layers");
+  NoGLError(scene.Window, name);
+  NoVTKOutput(name);
+  return frames;
+}
+
+vtkSmartPointer<vtkFloatArray> ZBuffer(vtkRenderWindow* win)
+{
+  auto z = vtkSmartPointer<vtkFloatArray>::New();
+  win->GetZbufferData(0, 0, W - 1, H - 1, z);
+  return z;
+}
+
+/// An opaque sphere inside a translucent specular shell, cut by a second
+/// translucent sphere: up to six layers. The depth the pass leaves is the
+/// opaque depth (the far plane where only translucent layers are), as
+/// VTK's depth peeling leaves it.
+void TestShell()
+{
+  Scene scene;
+  auto core = SphereActor(0.0, 0.0, 0.0, 0.5, 48);
+  core->GetProperty()->SetColor(0.9, 0.6, 0.3);
+  auto shell = SphereActor(0.0, 0.0, 0.0, 1.0, 64);
+  shell->GetProperty()->SetColor(0.3, 0.5, 1.0);
+  shell->GetProperty()->SetOpacity(0.35);
+  shell->GetProperty()->SetSpecular(0.5);
+  shell->GetProperty()->SetSpecularPower(30);
+  auto cutter = SphereActor(0.8, 0.3, 0.4, 0.6, 48);
+  cutter->GetProperty()->SetColor(0.2, 1.0, 0.3);
+  cutter->GetProperty()->SetOpacity(0.5);
+  for (vtkActor* a : { core.Get(), shell.Get(), cutter.Get() })
+  {
+    scene.Renderer->AddActor(a);
+  }
+  scene.Frame(25, 1.3);
+  scene.Window->Render();
+  auto rasterZ = ZBuffer(scene.Window);
+  RasterAndTraced frames = Compare("Shell", scene, 3, 3.0);
+  auto tracedZ = ZBuffer(scene.Window);
+  long differ = 0, far = 0;
+  for (vtkIdType i = 0; i < rasterZ->GetNumberOfValues(); ++i)
+  {
+    differ += std::abs(rasterZ->GetValue(i) - tracedZ->GetValue(i)) > 1e-3f;
+    far += tracedZ->GetValue(i) == 1.0f;
+  }
+  std::ostringstream s;
+  s << "Shell: depth as raster's (the opaque depth) at all but " << differ << " pixels, "
+    << far << " far";
+  Check(differ < W * H / 200 && far > W * H / 4, s.str());
+  // Sub-pixel samples: each adds its alpha, the resolve blends the sum.
+  frames.Pass->SetSamplesPerPixel(4);
+  scene.Window->Render();
+  const double sampled = RootMeanSquareError(frames.Raster, Grab(scene.Window));
+  std::ostringstream a;
+  a << "Shell, 4 samples per pixel: RGB RMSE " << sampled << " against raster (<= 3)";
+  Check(sampled <= 3.0, a.str());
+  NoVTKOutput("Shell, 4 samples per pixel");
+}
+
+/// Twelve translucent spheres over an opaque floor: the top-level walk
+/// (more than 8 instances) continues past each layer too.
+void TestManyActors()
+{
+  Scene scene;
+  for (int i = 0; i < 12; ++i)
+  {
+    auto ball = SphereActor(0.5 * (i % 4) - 0.75, 0.25 * (i / 4), 0.3 * (i % 3), 0.3, 32);
+    ball->GetProperty()->SetColor(0.2 + 0.06 * i, 0.9 - 0.05 * i, 0.5);
+    ball->GetProperty()->SetOpacity(0.3 + 0.05 * i);
+    scene.Renderer->AddActor(ball);
+  }
+  auto floor = FloorActor(1.5);
+  floor->SetPosition(0.0, -0.35, 0.0);
+  scene.Renderer->AddActor(floor);
+  scene.Frame(30, 1.2);
+  Compare("ManyActors", scene, 13, 3.0);
+}
+
+/// A sphere whose point scalars carry alpha (interpolated as raster does)
+/// and a plane of cell scalars with alpha, over an opaque floor.
+void TestScalars()
+{
+  Scene scene;
+  vtkNew<vtkSphereSource> source;
+  source->SetThetaResolution(48);
+  source->SetPhiResolution(32);
+  source->Update();
+  auto sphere = vtkSmartPointer<vtkPolyData>::New();
+  sphere->DeepCopy(source->GetOutput());
+  vtkNew<vtkUnsignedCharArray> pointRGBA;
+  pointRGBA->SetNumberOfComponents(4);
+  for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+  {
+    const double* p = sphere->GetPoint(i);
+    const unsigned char c[4] = { static_cast<unsigned char>(128 + 250 * p[0]), 80,
+      static_cast<unsigned char>(128 - 250 * p[0]), static_cast<unsigned char>(40 + 400 * (p[1] + 0.5)) };
+    pointRGBA->InsertNextTypedTuple(c);
+  }
+  sphere->GetPointData()->SetScalars(pointRGBA);
+  auto ball = MeshActor(sphere);
+  ball->GetMapper()->ScalarVisibilityOn();
+  vtkPolyDataMapper::SafeDownCast(ball->GetMapper())->SetColorModeToDirectScalars();
+  scene.Renderer->AddActor(ball);
+
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-0.9, -0.6, 0.3);
+  plane->SetPoint1(0.9, -0.6, 0.3);
+  plane->SetPoint2(-0.9, 0.6, 0.6);
+  plane->SetResolution(6, 4);
+  plane->Update();
+  auto cells = vtkSmartPointer<vtkPolyData>::New();
+  cells->DeepCopy(plane->GetOutput());
+  vtkNew<vtkUnsignedCharArray> cellRGBA;
+  cellRGBA->SetNumberOfComponents(4);
+  for (vtkIdType i = 0; i < cells->GetNumberOfCells(); ++i)
+  {
+    const unsigned char c[4] = { 60, static_cast<unsigned char>(40 * (i % 6) + 40), 200,
+      static_cast<unsigned char>(30 + 9 * i) };
+    cellRGBA->InsertNextTypedTuple(c);
+  }
+  cells->GetCellData()->SetScalars(cellRGBA);
+  cells->GetPointData()->SetNormals(nullptr);
+  auto sheet = MeshActor(cells);
+  sheet->GetMapper()->ScalarVisibilityOn();
+  vtkPolyDataMapper::SafeDownCast(sheet->GetMapper())->SetColorModeToDirectScalars();
+  scene.Renderer->AddActor(sheet);
+  auto floor = FloorActor(1.5);
+  floor->SetPosition(0.0, -0.7, 0.0);
+  scene.Renderer->AddActor(floor);
+  scene.Frame(-30, 1.2);
+  Compare("Scalars", scene, 3, 3.0);
+}
+
+/// An RGBA texture whose texels' alpha runs from 0.15 to 1 (interpolated).
+vtkSmartPointer<vtkTexture> TranslucentTexture()
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(8, 8, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
+  auto* p = static_cast<unsigned char*>(image->GetScalarPointer());
+  for (int y = 0; y < 8; ++y)
+  {
+    for (int x = 0; x < 8; ++x, p += 4)
+    {
+      const bool dark = (x + y) % 2 == 0;
+      p[0] = dark ? 40 : 230;
+      p[1] = static_cast<unsigned char>(30 * y);
+      p[2] = dark ? 220 : 60;
+      p[3] = static_cast<unsigned char>(40 + 30 * x);
+    }
+  }
+  auto texture = vtkSmartPointer<vtkTexture>::New();
+  texture->SetInputData(image);
+  texture->InterpolateOn();
+  return texture;
+}
+
+/// A quad textured with translucent texels in front of an opaque sphere.
+void TestTexture()
+{
+  Scene scene;
+  auto ball = SphereActor(0.0, 0.0, -0.6, 0.6, 48);
+  ball->GetProperty()->SetColor(0.9, 0.8, 0.3);
+  scene.Renderer->AddActor(ball);
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-1.0, -0.8, 0.2);
+  plane->SetPoint1(1.0, -0.8, 0.2);
+  plane->SetPoint2(-1.0, 0.8, 0.2);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(plane->GetOutputPort());
+  vtkNew<vtkActor> quad;
+  quad->SetMapper(mapper);
+  quad->SetTexture(TranslucentTexture());
+  scene.Renderer->AddActor(quad);
+  scene.Frame(20, 1.3);
+  Compare("Texture", scene, 2, 3.0);
+}
+
+/// Translucent sphere glyphs around an opaque sphere: left to raster
+/// (VTK's glyph mapper blends their layers unlike a mesh's), composited
+/// with the traced sphere as raster draws the scene.
+void TestGlyphs()
+{
+  Scene scene;
+  scene.Renderer->AddActor(SphereActor(0.0, 0.0, 0.0, 0.4, 64));
+  vtkNew<vtkPolyData> centers;
+  vtkNew<vtkPoints> points;
+  for (int i = 0; i < 5; ++i)
+  {
+    points->InsertNextPoint(0.6 * std::cos(1.3 * i), 0.3 * (i - 2), 0.6 * std::sin(1.3 * i));
+  }
+  centers->SetPoints(points);
+  vtkNew<vtkSphereSource> source;
+  source->SetRadius(0.35);
+  source->SetThetaResolution(128);
+  source->SetPhiResolution(64);
+  vtkNew<vtkGlyph3DMapper> glyphs;
+  glyphs->SetInputData(centers);
+  glyphs->SetSourceConnection(source->GetOutputPort());
+  glyphs->ScalingOff();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(glyphs);
+  actor->GetProperty()->SetColor(0.4, 0.9, 0.6);
+  actor->GetProperty()->SetOpacity(0.45);
+  scene.Renderer->AddActor(actor);
+  scene.Frame(10, 1.4);
+  RasterAndTraced frames = RenderRasterThenTraced(scene.Window, scene.Renderer);
+  const double rmse = RootMeanSquareError(frames.Raster, frames.Traced);
+  std::ostringstream s;
+  s << "Glyphs: " << frames.Pass->GetNumberOfTracedProps() << " prop traced (the opaque sphere), "
+    << "RGB RMSE " << rmse << " against raster (<= 3)";
+  Check(frames.Pass->GetNumberOfTracedProps() == 1 && rmse <= 3.0, s.str());
+  if (rmse > 3.0)
+  {
+    WriteFailure("Glyphs", frames.Raster, frames.Traced);
+  }
+  NoGLError(scene.Window, "Glyphs");
+  NoVTKOutput("Glyphs");
+}
+
+/// Mean over `mask` of a grey image's channels.
+double MeanOver(vtkImageData* image, const std::vector<long>& mask)
+{
+  const auto* p = static_cast<const unsigned char*>(image->GetScalarPointer());
+  double sum = 0.0;
+  for (long i : mask)
+  {
+    sum += (p[3 * i] + p[3 * i + 1] + p[3 * i + 2]) / 3.0;
+  }
+  return mask.empty() ? 0.0 : sum / static_cast<double>(mask.size());
+}
+
+/// A traced floor under a traced sphere lit from straight above: the
+/// translucent sphere's shadow is lighter than the opaque one's, by the
+/// light its two layers let through ((1 - 0.4)^2 of the direct light).
+void TestShadow()
+{
+  Scene scene;
+  auto floor = FloorActor(2.0);
+  floor->GetProperty()->SetColor(0.6, 0.6, 0.6); // lit floor below 255
+  scene.Renderer->AddActor(floor);
+  auto ball = SphereActor(0.0, 0.5, 0.0, 0.3, 48);
+  scene.Renderer->AddActor(ball);
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPosition(0.0, 10.0, 0.0);
+  light->SetFocalPoint(0.0, 0.0, 0.0);
+  light->SetPositional(false);
+  scene.Renderer->AddLight(light);
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  camera->SetPosition(0.0, 2.5, 2.5);
+  camera->SetFocalPoint(0.0, 0.0, 0.0);
+  camera->SetViewUp(0.0, 1.0, 0.0);
+  scene.Renderer->ResetCameraClippingRange();
+  vtkNew<vtkRayTracePass> pass;
+  scene.Renderer->SetPass(pass);
+  auto render = [&](double opacity, bool shadows) {
+    ball->GetProperty()->SetOpacity(opacity);
+    pass->SetShadows(shadows);
+    scene.Window->Render();
+    return Grab(scene.Window);
+  };
+  auto lit = render(1.0, false);
+  auto opaqueShadow = render(1.0, true);
+  auto litThroughGlass = render(0.4, false);
+  auto glassShadow = render(0.4, true);
+  Check(pass->GetNumberOfTracedProps() == 2, "Shadow: floor and sphere traced");
+  // Floor pixels in the opaque sphere's shadow that the sphere does not
+  // cover in the view (the translucent sphere leaves them as they were).
+  std::vector<long> mask;
+  const auto* l = static_cast<const unsigned char*>(lit->GetScalarPointer());
+  const auto* o = static_cast<const unsigned char*>(opaqueShadow->GetScalarPointer());
+  const auto* g = static_cast<const unsigned char*>(litThroughGlass->GetScalarPointer());
+  for (long i = 0; i < static_cast<long>(W) * H; ++i)
+  {
+    if (l[3 * i] > o[3 * i] + 30 && l[3 * i] == g[3 * i] && l[3 * i + 2] == g[3 * i + 2])
+    {
+      mask.push_back(i);
+    }
+  }
+  const double litMean = MeanOver(lit, mask);
+  const double opaqueMean = MeanOver(opaqueShadow, mask);
+  const double glassMean = MeanOver(glassShadow, mask);
+  const double through = (glassMean - opaqueMean) / std::max(1.0, litMean - opaqueMean);
+  std::ostringstream s;
+  s << "Shadow: " << mask.size() << " floor pixels in the shadow: lit " << litMean << ", under the "
+    << "opaque sphere " << opaqueMean << ", under the translucent one " << glassMean << " ("
+    << through << " of the direct light through, 0.36 expected)";
+  Check(mask.size() > 300 && opaqueMean < glassMean && glassMean < litMean &&
+      std::abs(through - 0.36) < 0.03,
+    s.str());
+  NoGLError(scene.Window, "Shadow");
+  NoVTKOutput("Shadow");
+}
+
+/// An opaque scene compiles no translucency code; a translucent one does;
+/// TraceTranslucency off leaves translucent actors to raster.
+void TestFeature()
+{
+  Scene scene;
+  auto opaque = SphereActor(0.0, 0.0, 0.0, 0.5);
+  auto glass = SphereActor(0.5, 0.0, 0.5, 0.5);
+  scene.Renderer->AddActor(opaque);
+  scene.Renderer->AddActor(glass);
+  scene.Frame(0, 1.0);
+  vtkNew<vtkRayTracePass> pass;
+  scene.Renderer->SetPass(pass);
+  auto compiled = [&]() {
+    scene.Window->Render();
+    const std::string source = pass->GetLastFragmentShaderSource();
+    // The define, or the compositing chunk (vtkrtRayTraceTranslucent).
+    return source.find("#define VTKRT_TRANSLUCENT") != std::string::npos ||
+      source.find("kLayerGapUlps") != std::string::npos;
+  };
+  Check(!compiled() && pass->GetNumberOfTracedProps() == 2, "opaque scene: no translucency code");
+  glass->GetProperty()->SetOpacity(0.5);
+  Check(compiled() && pass->GetNumberOfTracedProps() == 2, "translucent actor: traced, composited");
+  pass->SetShadows(true);
+  Check(compiled(), "translucent actor with shadows: transmittance compiled");
+  pass->SetAmbientOcclusionSamples(4);
+  Check(compiled(), "translucent actor with ambient occlusion: compiled");
+  pass->SetAmbientOcclusionSamples(0);
+  pass->TraceTranslucencyOff();
+  Check(!compiled() && pass->GetNumberOfTracedProps() == 1, "TraceTranslucency off: left to raster");
+  NoGLError(scene.Window, "Feature");
+  NoVTKOutput("Feature");
+}
+
+/// Opacity outside [0, 1]: vtkProperty clamps it (above 1: opaque; below 0:
+/// invisible, as raster draws it), and NaN draws as opaque; no crash.
+void TestBadOpacity()
+{
+  Scene scene;
+  scene.Renderer->AddActor(SphereActor(0.0, 0.0, 0.0, 0.5));
+  auto other = SphereActor(0.5, 0.0, 0.5, 0.5);
+  scene.Renderer->AddActor(other);
+  scene.Frame(0, 1.0);
+  vtkNew<vtkRayTracePass> pass;
+  scene.Renderer->SetPass(pass);
+  scene.Window->Render();
+  auto opaque = Grab(scene.Window);
+  other->GetProperty()->SetOpacity(1.5);
+  scene.Window->Render();
+  Check(RootMeanSquareError(opaque, Grab(scene.Window)) == 0.0, "opacity 1.5: as opaque");
+  other->GetProperty()->SetOpacity(std::nan(""));
+  scene.Window->Render();
+  Check(RootMeanSquareError(opaque, Grab(scene.Window)) == 0.0, "opacity NaN: as opaque");
+  other->GetProperty()->SetOpacity(-0.5);
+  scene.Window->Render();
+  auto invisible = Grab(scene.Window);
+  Check(pass->GetNumberOfTracedProps() == 2, "opacity -0.5 (0): counted traced");
+  other->SetVisibility(false);
+  scene.Window->Render();
+  Check(RootMeanSquareError(invisible, Grab(scene.Window)) == 0.0, "opacity -0.5 (0): invisible");
+  NoGLError(scene.Window, "BadOpacity");
+  NoVTKOutput("BadOpacity");
+}
+
+/// (prop, cell id) of every pixel's selection over the whole window.
+std::set<std::pair<vtkProp*, vtkIdType>> SelectCells(vtkRenderer* ren)
+{
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(ren);
+  selector->SetArea(0, 0, W - 1, H - 1);
+  selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_CELLS);
+  vtkSmartPointer<vtkSelection> selection = vtk::TakeSmartPointer(selector->Select());
+  std::set<std::pair<vtkProp*, vtkIdType>> cells;
+  for (unsigned int n = 0; selection && n < selection->GetNumberOfNodes(); ++n)
+  {
+    vtkSelectionNode* node = selection->GetNode(n);
+    auto* prop = vtkProp::SafeDownCast(node->GetProperties()->Get(vtkSelectionNode::PROP()));
+    vtkDataArray* ids = vtkArrayDownCast<vtkDataArray>(node->GetSelectionList());
+    for (vtkIdType i = 0; ids && i < ids->GetNumberOfTuples(); ++i)
+    {
+      cells.emplace(prop, static_cast<vtkIdType>(ids->GetTuple1(i)));
+    }
+  }
+  return cells;
+}
+
+/// Hardware selection sees the nearest layer, translucent or not, as
+/// raster's selection does.
+void TestSelection()
+{
+  Scene scene;
+  scene.Renderer->AddActor(SphereActor(0.0, 0.0, 0.0, 0.5, 24));
+  auto glass = SphereActor(0.4, 0.0, 0.6, 0.5, 24);
+  glass->GetProperty()->SetOpacity(0.4);
+  scene.Renderer->AddActor(glass);
+  scene.Frame(0, 1.0);
+  scene.Window->Render();
+  const auto raster = SelectCells(scene.Renderer);
+  vtkNew<vtkRayTracePass> pass;
+  scene.Renderer->SetPass(pass);
+  scene.Window->Render();
+  const auto traced = SelectCells(scene.Renderer);
+  long glassCells = 0;
+  for (const auto& c : raster)
+  {
+    glassCells += c.first == glass.Get();
+  }
+  long missing = 0;
+  for (const auto& c : raster)
+  {
+    missing += traced.count(c) == 0;
+  }
+  long extra = 0;
+  for (const auto& c : traced)
+  {
+    extra += raster.count(c) == 0;
+  }
+  std::ostringstream s;
+  s << "Selection: " << raster.size() << " raster cells (" << glassCells << " translucent), traced "
+    << traced.size() << ": " << missing << " missing, " << extra << " extra";
+  Check(pass->GetNumberOfTracedProps() == 2 && glassCells > 50 && missing <= 4 && extra <= 4, s.str());
+  NoGLError(scene.Window, "Selection");
+  NoVTKOutput("Selection");
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Output = vtkrtTestOutputWindow::Install();
+  return RunCase(argc, argv,
+    { { "Shell", TestShell }, { "Scalars", TestScalars }, { "Texture", TestTexture },
+      { "Glyphs", TestGlyphs }, { "ManyActors", TestManyActors }, { "Shadow", TestShadow }, { "Feature", TestFeature },
+      { "BadOpacity", TestBadOpacity }, { "Selection", TestSelection } });
+}
