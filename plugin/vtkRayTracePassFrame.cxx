@@ -210,6 +210,8 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   f.FaceCulling = this->Scene.HasFaceCulling();
   f.BackfaceProperties = this->Scene.HasBackfaceProperties();
   f.TextureCutOuts = this->Scene.HasTextureCutOuts();
+  f.SurfaceEdges = this->Scene.HasSurfaceEdges();
+  f.Wireframe = this->Scene.HasWireframe();
   // The stack as deep as the deepest bottom-level tree needs; the top-level
   // walk shares it, so with one it is the largest.
   std::uint32_t depth = 0;
@@ -264,6 +266,11 @@ void vtkRayTracePass::Internals::SetUniforms(vtkShaderProgram* program, const Fe
   if (f.ClipPlanes > 0)
   {
     program->SetUniform4fv("uClipPlanes", f.ClipPlanes, frame.ClipPlanes.data());
+  }
+  if (f.SurfaceEdgeCode() || f.WireframeCode())
+  {
+    toGLSL(camera.CameraToPixels, m);
+    program->SetUniformMatrix4x4("uCameraToPixels", m);
   }
   vtkrt::pass::SetLightUniforms(program, lights);
 }

@@ -6,6 +6,15 @@
 // mesh's center, and the VTK cell id.
 uniform usamplerBuffer uTriangles;
 
+#if defined(VTKRT_HAS_WIREFRAME) || defined(VTKRT_SURFACE_EDGES)
+#define VTKRT_EDGE_WALK
+// vtkrtRayTraceEdges: cell edges where raster draws them (wires, edges
+// beside a mesh's boundary or silhouette).
+bool edgeWalk();
+vec3 edgeGrowBy();
+bool edgeHit(Triangle t, vec3 org, vec3 dir, bool inside, float tmin, float tmax, inout vec3 hit);
+#endif
+
 // Per-ray data of the watertight test: the axis permutation and shear of
 // core::RayTrianglePrecomputed (its constructor is precomputeRayTriangle).
 struct RayTrianglePrecomputed
@@ -121,8 +130,13 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
   bool culled = false;
   for (;;)
   {
+#ifdef VTKRT_EDGE_WALK
+    vec3 growBy = edgeGrowBy();
+#else
+    vec3 growBy = vec3(0.0);
+#endif
     if (!bvhDescend(
-      org, invDir, parallelBias, vec3(0.0), tmin, tmax, sp, steps, index, count, culled))
+      org, invDir, parallelBias, growBy, tmin, tmax, sp, steps, index, count, culled))
     {
       break;
     }
@@ -139,7 +153,11 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
     {
       Triangle triangle = fetchTriangle(uTriangles, i);
       vec3 h;
-      if (intersectRayTriangle(pre, triangle.v0, triangle.v1, triangle.v2, tmin, tmax, h))
+      bool hit = intersectRayTriangle(pre, triangle.v0, triangle.v1, triangle.v2, tmin, tmax, h);
+#ifdef VTKRT_EDGE_WALK
+      hit = edgeWalk() ? edgeHit(triangle, org, dir, hit, tmin, tmax, h) : hit;
+#endif
+      if (hit)
       {
         tmax = h.x;
         tri = i;

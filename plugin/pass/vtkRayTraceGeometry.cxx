@@ -10,6 +10,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
+#include "vtkUnsignedCharArray.h"
 
 #include "vtkrt/core/BVHBuild.h"
 #include "vtkrt/core/LocalFrame.h"
@@ -145,9 +146,15 @@ public:
   std::size_t Count() const { return this->ChunkFirst.back(); }
   vtkIdType NumberOfCells() const { return this->CellCount; }
 
-  /// Writes the triangles' point ids (three each) and cell ids (numbered
-  /// from firstCellId) from indices and cellIds on.
-  void Write(std::uint32_t firstCellId, std::uint32_t* indices, std::uint32_t* cellIds) const
+  /// Writes the triangles' point ids (three each), cell ids (numbered from
+  /// firstCellId) and cell edge bits from indices, cellIds and cellEdges on.
+  /// A fan's triangles keep the polygon's outline, not its diagonals, as
+  /// vtkOpenGLIndexBufferObject marks them, masked by the points' edge
+  /// flags when given (VTK's EDGEFLAG attribute: the edge from a point
+  /// whose flag is 0 is not drawn); a strip's triangles keep all three
+  /// edges, as raster draws strips' edges.
+  void Write(std::uint32_t firstCellId, std::uint32_t* indices, std::uint32_t* cellIds,
+    std::uint8_t* cellEdges, const unsigned char* edgeFlags, std::size_t edgeFlagCount) const
   {
     const vtkIdType chunks = static_cast<vtkIdType>(this->ChunkFirst.size()) - 1;
     withCellStorage(this->Cells, [&](const auto* offsets, const auto* connectivity) {
@@ -175,6 +182,7 @@ public:
                 tri[2] = std::uint32_t(pts[k + 2]);
               }
               cellIds[t] = firstCellId + static_cast<std::uint32_t>(i);
+              cellEdges[t] = this->Strips ? std::uint8_t(core::gpu::kAllEdges) : fanEdges(k, n, tri, edgeFlags, edgeFlagCount);
             }
           }
         }
@@ -184,6 +192,24 @@ public:
 
 private:
   static constexpr vtkIdType kChunks = 256;
+
+  /// The cell edges of fan triangle k of n (vtkOpenGLIndexBufferObject's
+  /// edge values): its first and last triangles hold the polygon's first
+  /// and last edges, every one its outer edge v1-v2.
+  static std::uint8_t fanEdges(std::size_t k, std::size_t n, const std::uint32_t* tri,
+    const unsigned char* edgeFlags, std::size_t edgeFlagCount)
+  {
+    using namespace core::gpu;
+    std::uint32_t edges = kEdge12 | (k == 0 ? kEdge01 : 0u) | (k + 1 == n ? kEdge20 : 0u);
+    const auto flagged = [&](std::uint32_t point) { return point >= edgeFlagCount || edgeFlags[point] != 0; };
+    if (edgeFlags)
+    {
+      edges &= (flagged(tri[0]) ? kEdge01 : 0u) | (flagged(tri[1]) ? kEdge12 : 0u) |
+        (flagged(tri[2]) ? kEdge20 : 0u);
+    }
+    return static_cast<std::uint8_t>(edges);
+  }
+
   vtkCellArray* Cells;
   bool Strips;
   vtkIdType CellCount;
@@ -199,17 +225,26 @@ private:
 /// The fan triangulation of polys and the triangles of strips, as point id
 /// triples with their VTK cell ids, in arrays of exactly their size.
 void triangulate(vtkPolyData* poly, core::NoFillArray<std::uint32_t>& indices,
-  core::NoFillArray<std::uint32_t>& cellIds)
+  core::NoFillArray<std::uint32_t>& cellIds, core::NoFillArray<std::uint8_t>& cellEdges)
 {
   const CellTriangles polys(poly->GetPolys(), false);
   const CellTriangles strips(poly->GetStrips(), true);
   const std::size_t n = polys.Count() + strips.Count();
   indices.resize(3 * n);
   cellIds.resize(n);
+  cellEdges.resize(n);
+  // VTK's raster reads edge flags as unsigned chars, one per point.
+  auto* flags = vtkUnsignedCharArray::SafeDownCast(
+    poly->GetPointData()->GetAttribute(vtkDataSetAttributes::EDGEFLAG));
+  const unsigned char* edgeFlags = flags && flags->GetNumberOfTuples() >= poly->GetNumberOfPoints() &&
+      flags->GetNumberOfComponents() == 1
+    ? flags->GetPointer(0)
+    : nullptr;
   const auto firstPoly = static_cast<std::uint32_t>(poly->GetNumberOfVerts() + poly->GetNumberOfLines());
-  polys.Write(firstPoly, indices.data(), cellIds.data());
+  const auto edgeFlagCount = static_cast<std::size_t>(poly->GetNumberOfPoints());
+  polys.Write(firstPoly, indices.data(), cellIds.data(), cellEdges.data(), edgeFlags, edgeFlagCount);
   strips.Write(firstPoly + static_cast<std::uint32_t>(polys.NumberOfCells()), indices.data() + 3 * polys.Count(),
-    cellIds.data() + polys.Count());
+    cellIds.data() + polys.Count(), cellEdges.data() + polys.Count(), nullptr, 0);
 }
 
 /// `normals` as GPU records when it holds `count` vectors (one per point, or
@@ -279,7 +314,8 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
   });
   core::NoFillArray<std::uint32_t> indices;
   core::NoFillArray<std::uint32_t> cellIds;
-  triangulate(poly, indices, cellIds);
+  core::NoFillArray<std::uint8_t> cellEdges;
+  triangulate(poly, indices, cellIds, cellEdges);
   g->TriangulationSeconds = SecondsSince(start);
 
   core::TriangleMesh<double> mesh;
@@ -319,7 +355,8 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
       t.v1 = rel[ids[1]];
       t.v2 = rel[ids[2]];
       t.cellId = cellIds[tri];
-      t.unused1 = t.unused2 = 0.0f;
+      t.cellEdges = cellEdges[tri];
+      t.unused2 = 0.0f;
       g->TriangleVertices[k] = { { ids[0], ids[1], ids[2] }, 0u };
       chunkMaximum = std::max(chunkMaximum, t.cellId);
     }

@@ -142,6 +142,25 @@ bool collectPieces(vtkDataObject* object, vtkCompositeDataDisplayAttributes* att
   return false;
 }
 
+/// A triangle instance's cell edges as the property asks: VTK draws edges
+/// over a surface (EdgeVisibility; not in the wireframe or points
+/// representations) in EdgeColor, and the wireframe representation as the
+/// cells' edges in the surface's colors; both LineWidth pixels wide
+/// (vtkProperty clamps it to >= 0; the shader gives edges at least 1.1, as
+/// VTK's, and wires at least 1, as OpenGL's lines).
+void FillEdges(vtkProperty* property, Instance& inst)
+{
+  inst.Wireframe = property->GetRepresentation() == VTK_WIREFRAME;
+  inst.SurfaceEdges = property->GetRepresentation() == VTK_SURFACE && property->GetEdgeVisibility();
+  double c[3];
+  property->GetEdgeColor(c);
+  for (int k = 0; k < 3; ++k)
+  {
+    inst.EdgeColor[k] = static_cast<float>(c[k]);
+  }
+  inst.LineWidth = property->GetLineWidth();
+}
+
 } // namespace
 
 bool Scene::IsTraceable(vtkProp* prop)
@@ -159,26 +178,29 @@ bool Scene::IsTraceable(vtkProp* prop)
     return false;
   }
   vtkProperty* property = actor->GetProperty();
-  if (property->GetOpacity() < 1.0 || property->GetEdgeVisibility() ||
-    property->GetInterpolation() == VTK_PBR)
+  const int representation = property->GetRepresentation();
+  // Edges and wires of glyphs, and drawn as tubes (VTK's shaded fake
+  // tubes), stay with raster.
+  const bool edges = property->GetEdgeVisibility() || representation == VTK_WIREFRAME;
+  if (property->GetOpacity() < 1.0 || property->GetInterpolation() == VTK_PBR ||
+    (edges && (glyphs || property->GetRenderLinesAsTubes())))
   {
     return false;
   }
-  const int representation = property->GetRepresentation();
   // Textures, culling and back-face colors: on polygonal surfaces (a
   // translucent back face is left to raster, as a translucent front).
   vtkProperty* back = actor->GetBackfaceProperty();
   const bool surfaceLooks = actor->GetTexture() || property->GetNumberOfTextures() > 0 || back ||
     property->GetBackfaceCulling() || property->GetFrontfaceCulling();
+  // Raster's wires are lines: never culled, never back faces, untextured.
   if (surfaceLooks &&
-    (glyphs || (back && back->GetOpacity() < 1.0) ||
+    (glyphs || representation == VTK_WIREFRAME || (back && back->GetOpacity() < 1.0) ||
       !TextureCache::Untraceable(actor).empty() ||
       (actor->GetTexture() && representation != VTK_SURFACE)))
   {
     return false;
   }
-  if (representation == VTK_WIREFRAME ||
-    (representation == VTK_POINTS && (glyphs || !property->GetRenderPointsAsSpheres())))
+  if (representation == VTK_POINTS && (glyphs || !property->GetRenderPointsAsSpheres()))
   {
     return false;
   }
@@ -201,7 +223,7 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     ApplyBlockColor(inst, property, blockColor, false);
   }
 
-  if (property->GetRepresentation() == VTK_SURFACE &&
+  if (property->GetRepresentation() != VTK_POINTS &&
     (poly->GetNumberOfPolys() > 0 || poly->GetNumberOfStrips() > 0))
   {
     auto& entry = this->TriangleCache[poly];
@@ -234,6 +256,7 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
       {
         return false;
       }
+      FillEdges(property, tri);
       this->Instances.push_back(tri);
     }
   }
@@ -437,6 +460,17 @@ bool Scene::HasBackfaceProperties() const
 {
   return std::any_of(this->Instances.begin(), this->Instances.end(),
     [](const Instance& i) { return !i.Geom->Spheres && i.BackfaceProperty; });
+}
+
+bool Scene::HasSurfaceEdges() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return !i.Geom->Spheres && i.SurfaceEdges; });
+}
+bool Scene::HasWireframe() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return !i.Geom->Spheres && i.Wireframe; });
 }
 
 bool Scene::HasTextureCutOuts() const

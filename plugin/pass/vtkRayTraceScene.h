@@ -91,6 +91,8 @@ public:
   bool HasFaceCulling() const;
   bool HasBackfaceProperties() const;
   bool HasTextureCutOuts() const;
+  bool HasSurfaceEdges() const;
+  bool HasWireframe() const;
 
   /// The actors' texture images and texture coordinates.
   const TextureCache& GetTextures() const { return this->Textures; }
