@@ -391,7 +391,7 @@ void RunQuad(vtkRenderWindow* win, int size, const Options& opt, std::ostream& p
 /// edge visibility (1 pixel) and as a wireframe.
 void RunMeshes(vtkRenderWindow* win, int size, const Options& opt, std::ostream& phases)
 {
-  const char* looks[] = { "", " +edges", " wire" };
+  const char* looks[] = { "k triangles", "k edges", "k wireframe" };
   for (long n : opt.Meshes)
   {
     auto mesh = MeshOf(n);
@@ -411,8 +411,7 @@ void RunMeshes(vtkRenderWindow* win, int size, const Options& opt, std::ostream&
       };
       const Timing pass = Measure(win, setup, true, opt.Frames);
       const Timing raster = Measure(win, setup, false, opt.Frames);
-      const std::string scene =
-        std::to_string(mesh->GetNumberOfCells() / 1000) + "k triangles" + looks[look];
+      const std::string scene = std::to_string(mesh->GetNumberOfCells() / 1000) + looks[look];
       Row(scene, size, "vtkPolyDataMapper", pass, raster);
       PhaseRow(phases, scene, size, pass, raster);
     }

@@ -124,7 +124,7 @@ int wireEdgeAt(vec3 p0, vec3 p1, vec3 p2, uint edges, vec2 q, float lineWidth)
 }
 #endif
 
-#if defined(VTKRT_HAS_WIREFRAME) || defined(VTKRT_SURFACE_EDGES)
+#ifdef VTKRT_HAS_WIREFRAME
 // Where pixel q falls along the projected edge a-b (0 at a, 1 at b; both
 // ends in front of the eye).
 float edgeParameter(vec3 a, vec3 b, vec2 q)
@@ -145,67 +145,81 @@ float edgePointUnder(vec3 a, vec3 b, vec3 va, vec3 vb, float s, vec3 org, vec3 d
   return dot(x - org, dir) / dot(dir, dir);
 }
 
-// The instance the triangle walk is in, when it draws cell edges (set by
-// traceInstance). A wireframe's triangle hit counts only where a wire
-// covers it, so rays pass through the faces and the walk goes on behind
-// them. A camera ray that misses a triangle by less than what raster draws
-// beside its cell edges meets that edge: the outer half of a wire, or the
-// quarter line width by which VTK's edge geometry shader grows a triangle
-// of a surface with edges (at a mesh's boundary or silhouette no
-// neighbour holds it). The BVH boxes grow by gEdgeGrow local units for it.
-int gEdgeMode = 0; // 0: none, 1: wireframe, 2: surface with edges
-mat4 gEdgeToPixels;
-float gEdgeWidth;
-float gEdgeGrow;
+// The wireframe instance the triangle walk is in (set by traceInstance):
+// a triangle hit counts only where a wire covers it, so rays pass through
+// the faces and the walk goes on behind them; a camera ray that misses the
+// triangle by less than half a wire meets the wire's outer half (at a
+// mesh's boundary or silhouette no neighbour holds it), the BVH boxes grown
+// by gWireGrow local units for it.
+bool gWireActive = false;
+mat4 gWireToPixels;
+float gWireWidth;
+float gWireGrow; // < 0: not a camera ray
 
-void beginEdgeInstance(int instance, uint flags, bool cameraRay)
+void beginWireInstance(int instance, uint flags, bool cameraRay)
 {
-  gEdgeMode = (flags & kInstanceWireframe) != 0u ? 1
-                                                : (cameraRay && (flags & kInstanceSurfaceEdges) != 0u ? 2 : 0);
-  if (gEdgeMode != 0)
+  gWireActive = (flags & kInstanceWireframe) != 0u;
+  if (gWireActive)
   {
-    gEdgeToPixels = instanceLocalToPixels(instance);
-    gEdgeWidth = instanceLineWidth(instance);
-    gEdgeGrow = cameraRay ? instanceSphereGrow(instance) : -1.0;
+    gWireToPixels = instanceLocalToPixels(instance);
+    gWireWidth = instanceLineWidth(instance);
+    gWireGrow = cameraRay ? instanceSphereGrow(instance) : -1.0;
   }
 }
 
-bool edgeWalk()
+bool wireWalk()
 {
-  return gEdgeMode != 0;
+  return gWireActive;
 }
 
 // The BVH boxes' growth for the walk (local units).
-vec3 edgeGrowBy()
+vec3 wireGrowBy()
 {
-  return vec3(gEdgeMode != 0 ? max(gEdgeGrow, 0.0) : 0.0);
+  return vec3(gWireActive ? max(gWireGrow, 0.0) : 0.0);
 }
 
-// Whether the ray (local org, dir) meets triangle t of the current edge
-// instance within [tmin, tmax]: a hit inside it (on a wire, for a
-// wireframe), or, for camera rays, a cell edge of t beside it; hit = (t,
-// u, v) as intersectRayTriangle's, on the edge for the latter.
-bool edgeHit(Triangle t, vec3 org, vec3 dir, bool inside, float tmin, float tmax, inout vec3 hit)
+// Whether a ray that misses triangle t may pass within gWireGrow of it: the
+// origin's distance to t in the watertight test's sheared plane (along the
+// ray onto the plane across its dominant axis), which is at most sqrt(3)
+// times the ray's distance to t; a cheap reject before any projection.
+bool wireMayBeBeside(RayTrianglePrecomputed r, Triangle t)
 {
-  if (inside && gEdgeMode == 2)
+  vec3 A = t.v0 - r.org;
+  vec3 B = t.v1 - r.org;
+  vec3 C = t.v2 - r.org;
+  vec2 a = vec2(A[r.kx] - r.sx * A[r.kz], A[r.ky] - r.sy * A[r.kz]);
+  vec2 b = vec2(B[r.kx] - r.sx * B[r.kz], B[r.ky] - r.sy * B[r.kz]);
+  vec2 c = vec2(C[r.kx] - r.sx * C[r.kz], C[r.ky] - r.sy * C[r.kz]);
+  float U = c.x * b.y - c.y * b.x;
+  float V = a.x * c.y - a.y * c.x;
+  float W = b.x * a.y - b.y * a.x;
+  float side = U + V + W < 0.0 ? -1.0 : 1.0;
+  // Outside an edge's line by its edge function over its length; the
+  // distance to the triangle is at least the largest of these.
+  float d = max(max(-side * U / length(c - b), -side * V / length(a - c)), -side * W / length(b - a));
+  return !(d > 1.75 * gWireGrow);
+}
+
+// Whether the ray (local org, dir) meets triangle t of the current
+// wireframe instance within [tmin, tmax] on a wire: a hit inside it where
+// a wire covers it, or, for camera rays, a wire of t beside it; hit = (t,
+// u, v) as intersectRayTriangle's, on the wire's edge for the latter.
+bool wireHit(RayTrianglePrecomputed pre, Triangle t, vec3 org, vec3 dir, bool inside, float tmin,
+  float tmax, inout vec3 hit)
+{
+  if (!inside && (gWireGrow < 0.0 || !wireMayBeBeside(pre, t)))
   {
-    return true;
+    return false;
   }
-  vec3 p0 = pixelPoint(gEdgeToPixels, t.v0);
-  vec3 p1 = pixelPoint(gEdgeToPixels, t.v1);
-  vec3 p2 = pixelPoint(gEdgeToPixels, t.v2);
-#ifdef VTKRT_HAS_WIREFRAME
+  vec3 p0 = pixelPoint(gWireToPixels, t.v0);
+  vec3 p1 = pixelPoint(gWireToPixels, t.v1);
+  vec3 p2 = pixelPoint(gWireToPixels, t.v2);
   if (inside)
   {
-    vec2 q = projectToPixels(gEdgeToPixels, org + hit.x * dir);
-    return wireEdgeAt(p0, p1, p2, t.cellEdges, q, gEdgeWidth) >= 0;
+    vec2 q = projectToPixels(gWireToPixels, org + hit.x * dir);
+    return wireEdgeAt(p0, p1, p2, t.cellEdges, q, gWireWidth) >= 0;
   }
-#endif
-  if (gEdgeGrow < 0.0)
-  {
-    return false; // not a camera ray
-  }
-  vec2 q = projectToPixels(gEdgeToPixels, org);
+  vec2 q = projectToPixels(gWireToPixels, org);
   vec3 ends[4] = vec3[4](p0, p1, p2, p0);
   vec3 verts[4] = vec3[4](t.v0, t.v1, t.v2, t.v0);
   uint bits[3] = uint[3](kEdge01, kEdge12, kEdge20);
@@ -214,27 +228,12 @@ bool edgeHit(Triangle t, vec3 org, vec3 dir, bool inside, float tmin, float tmax
   {
     vec3 a = ends[k];
     vec3 b = ends[k + 1];
-    if ((t.cellEdges & bits[k]) == 0u || !(a.z > 0.0 && b.z > 0.0))
-    {
-      continue;
-    }
-    float s = edgeParameter(a, b, q);
-#ifdef VTKRT_HAS_WIREFRAME
-    bool beside = gEdgeMode == 1 ? wireCovers(a, b, q, gEdgeWidth) : false;
-#else
-    bool beside = false;
-#endif
-    if (gEdgeMode == 2)
-    {
-      beside = s >= 0.0 && s <= 1.0 &&
-        lineDistance(pixelLine(a, b), q) < 0.25 * max(gEdgeWidth, 1.1);
-    }
-    if (!beside)
+    if ((t.cellEdges & bits[k]) == 0u || !(a.z > 0.0 && b.z > 0.0) || !wireCovers(a, b, q, gWireWidth))
     {
       continue;
     }
     float s3;
-    float tx = edgePointUnder(a, b, verts[k], verts[k + 1], s, org, dir, s3);
+    float tx = edgePointUnder(a, b, verts[k], verts[k + 1], edgeParameter(a, b, q), org, dir, s3);
     if (tx >= tmin && tx <= tmax && (!found || tx < hit.x))
     {
       found = true;
@@ -243,9 +242,7 @@ bool edgeHit(Triangle t, vec3 org, vec3 dir, bool inside, float tmin, float tmax
   }
   return found;
 }
-#endif
 
-#ifdef VTKRT_HAS_WIREFRAME
 // The shading normal of a wire hit at local point p of triangle t, as VTK
 // shades wireframe lines without normals: perpendicular to the line and
 // as near the view direction (viewBack, towards the eye) as it can be.

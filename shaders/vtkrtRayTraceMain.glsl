@@ -294,8 +294,8 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, inout float tB
   vec3 localOrg = vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
   vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
   int root = int(instanceRoot(instance));
-#ifdef VTKRT_EDGE_WALK
-  beginEdgeInstance(instance, flags, !stopAtFirstHit);
+#ifdef VTKRT_HAS_WIREFRAME
+  beginWireInstance(instance, flags, !stopAtFirstHit);
 #endif
   int primitive = -1;
   vec2 uv = vec2(0.0);

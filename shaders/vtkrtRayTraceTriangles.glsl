@@ -6,13 +6,10 @@
 // mesh's center, and the VTK cell id.
 uniform usamplerBuffer uTriangles;
 
-#if defined(VTKRT_HAS_WIREFRAME) || defined(VTKRT_SURFACE_EDGES)
-#define VTKRT_EDGE_WALK
-// vtkrtRayTraceEdges: cell edges where raster draws them (wires, edges
-// beside a mesh's boundary or silhouette).
-bool edgeWalk();
-vec3 edgeGrowBy();
-bool edgeHit(Triangle t, vec3 org, vec3 dir, bool inside, float tmin, float tmax, inout vec3 hit);
+#ifdef VTKRT_HAS_WIREFRAME
+// vtkrtRayTraceEdges: a wireframe's triangles are hit on their wires only.
+bool wireWalk();
+vec3 wireGrowBy();
 #endif
 
 // Per-ray data of the watertight test: the axis permutation and shear of
@@ -27,6 +24,11 @@ struct RayTrianglePrecomputed
   float sy;
   float sz;
 };
+
+#ifdef VTKRT_HAS_WIREFRAME
+bool wireHit(RayTrianglePrecomputed pre, Triangle t, vec3 org, vec3 dir, bool inside, float tmin,
+  float tmax, inout vec3 hit);
+#endif
 
 RayTrianglePrecomputed precomputeRayTriangle(vec3 org, vec3 dir)
 {
@@ -130,8 +132,8 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
   bool culled = false;
   for (;;)
   {
-#ifdef VTKRT_EDGE_WALK
-    vec3 growBy = edgeGrowBy();
+#ifdef VTKRT_HAS_WIREFRAME
+    vec3 growBy = wireGrowBy();
 #else
     vec3 growBy = vec3(0.0);
 #endif
@@ -154,8 +156,8 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
       Triangle triangle = fetchTriangle(uTriangles, i);
       vec3 h;
       bool hit = intersectRayTriangle(pre, triangle.v0, triangle.v1, triangle.v2, tmin, tmax, h);
-#ifdef VTKRT_EDGE_WALK
-      hit = edgeWalk() ? edgeHit(triangle, org, dir, hit, tmin, tmax, h) : hit;
+#ifdef VTKRT_HAS_WIREFRAME
+      hit = wireWalk() ? wireHit(pre, triangle, org, dir, hit, tmin, tmax, h) : hit;
 #endif
       if (hit)
       {

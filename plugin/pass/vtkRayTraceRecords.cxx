@@ -72,13 +72,12 @@ ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* re
 {
   ScreenSphereRadii out;
   const Geometry& g = *inst.Geom;
-  // Beside cell edges (diameters: twice what is drawn off the edge): half a
-  // wire along its minor axis is up to sqrt(2) half widths off the edge,
-  // edges over a surface a quarter width (at least 1.1); a pixel more for
-  // float rounding.
+  // Wires (a diameter: twice what is drawn off the edge): half a wire
+  // along its minor axis is up to sqrt(2) half widths off the edge; an
+  // eighth of a pixel more for float rounding (every pixel of margin
+  // visits more leaves: the wire walk's main cost on fine meshes).
   const double pixelsWide = g.ScreenSized ? inst.PointSize
-    : inst.Wireframe                      ? std::sqrt(2.0) * std::max(1.0f, inst.LineWidth) + 2.0
-    : inst.SurfaceEdges                   ? 0.5 * std::max(1.1f, inst.LineWidth) + 2.0
+    : inst.Wireframe                      ? std::sqrt(2.0) * std::max(1.0f, inst.LineWidth) + 0.25
                                           : 0.0;
   if (!(pixelsWide > 0.0) || !ren || !ren->GetActiveCamera())
   {

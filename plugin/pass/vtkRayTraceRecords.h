@@ -74,9 +74,8 @@ double ViewScale(vtkCamera* cam);
 /// center, so the shader evaluates it per sphere from one plane, and the
 /// BVH over the bare centers stays valid for every camera: its boxes grow by
 /// the largest radius over the geometry's box. A camera move builds nothing.
-/// Cell edges take the same bound for what raster draws beside them (half
-/// a wire, a quarter of an edge over a surface, plus a pixel): the boxes
-/// the shader's walk grows by.
+/// Wireframes take the same bound for their wires' outer halves (plus an
+/// eighth of a pixel): the boxes the shader's walk grows by.
 struct ScreenSphereRadii
 {
   std::array<double, 4> Plane{ { 0, 0, 0, 0 } }; ///< local radius: max(0, Plane . (c, 1))
