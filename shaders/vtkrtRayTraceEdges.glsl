@@ -178,15 +178,15 @@ vec3 wireGrowBy()
   return vec3(gWireActive ? max(gWireGrow, 0.0) : 0.0);
 }
 
-// Whether a ray that misses triangle t may pass within gWireGrow of it: the
-// origin's distance to t in the watertight test's sheared plane (along the
+// Whether a ray that misses the triangle may pass within `reach` of it: the
+// origin's distance to it in the watertight test's sheared plane (along the
 // ray onto the plane across its dominant axis), which is at most sqrt(3)
-// times the ray's distance to t; a cheap reject before any projection.
-bool wireMayBeBeside(RayTrianglePrecomputed r, Triangle t)
+// times the ray's distance to it; a cheap reject before any projection.
+bool mayPassWithin(RayTrianglePrecomputed r, vec3 v0, vec3 v1, vec3 v2, float reach)
 {
-  vec3 A = t.v0 - r.org;
-  vec3 B = t.v1 - r.org;
-  vec3 C = t.v2 - r.org;
+  vec3 A = v0 - r.org;
+  vec3 B = v1 - r.org;
+  vec3 C = v2 - r.org;
   vec2 a = vec2(A[r.kx] - r.sx * A[r.kz], A[r.ky] - r.sy * A[r.kz]);
   vec2 b = vec2(B[r.kx] - r.sx * B[r.kz], B[r.ky] - r.sy * B[r.kz]);
   vec2 c = vec2(C[r.kx] - r.sx * C[r.kz], C[r.ky] - r.sy * C[r.kz]);
@@ -197,7 +197,7 @@ bool wireMayBeBeside(RayTrianglePrecomputed r, Triangle t)
   // Outside an edge's line by its edge function over its length; the
   // distance to the triangle is at least the largest of these.
   float d = max(max(-side * U / length(c - b), -side * V / length(a - c)), -side * W / length(b - a));
-  return !(d > 1.75 * gWireGrow);
+  return !(d > 1.75 * reach);
 }
 
 // Whether the ray (local org, dir) meets triangle t of the current
@@ -207,7 +207,7 @@ bool wireMayBeBeside(RayTrianglePrecomputed r, Triangle t)
 bool wireHit(RayTrianglePrecomputed pre, Triangle t, vec3 org, vec3 dir, bool inside, float tmin,
   float tmax, inout vec3 hit)
 {
-  if (!inside && (gWireGrow < 0.0 || !wireMayBeBeside(pre, t)))
+  if (!inside && (gWireGrow < 0.0 || !mayPassWithin(pre, t.v0, t.v1, t.v2, gWireGrow)))
   {
     return false;
   }

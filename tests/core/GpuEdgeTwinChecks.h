@@ -1,6 +1,7 @@
 // Checks of the edge kernels' twins (core/GpuEdgeKernels.h), part of
 // TestCoreGpuTwins: pixel distances, VTK's surface-with-edges blend, the
-// wires' coverage and the edge point under a pixel against double references under a perspective camera
+// wires' coverage and the edge point under a pixel against double references,
+// the wires' cheap reject never rejecting a ray within reach under a perspective camera
 // (vertices behind the eye included), and exact values in a pixel-aligned
 // orthographic view (fan diagonals blend nothing, line widths below VTK's
 // minimum act as it).
@@ -147,6 +148,43 @@ inline void checkAgainstDouble()
   VTKRT_CHECK(compared > 5000 && covered > 20 && behind > 100);
 }
 
+/// The cheap reject never rejects a ray passing within reach of a triangle
+/// (distance in double, sampled densely), and rejects far ones.
+inline void checkReject()
+{
+  Rng rng(22);
+  int near = 0, rejected = 0;
+  for (int i = 0; i < 3000; ++i)
+  {
+    const Vec3<double> v[3] = { rng.inBox(Vec3<double>(-1.0), Vec3<double>(1.0)),
+      rng.inBox(Vec3<double>(-1.0), Vec3<double>(1.0)), rng.inBox(Vec3<double>(-1.0), Vec3<double>(1.0)) };
+    const Vec3<double> from = 6.0 * rng.unitVector();
+    const Vec3<double> dir = rng.inBox(Vec3<double>(-1.2), Vec3<double>(1.2)) - from;
+    // The ray's distance to the triangle, over a dense set of its points.
+    double distance = 1e30;
+    for (int a = 0; a <= 40; ++a)
+    {
+      for (int b = 0; a + b <= 40; ++b)
+      {
+        const Vec3<double> p = v[0] + (a / 40.0) * (v[1] - v[0]) + (b / 40.0) * (v[2] - v[0]);
+        const Vec3<double> d = glm::normalize(dir);
+        const Vec3<double> w = p - from;
+        distance = std::min(distance, glm::length(w - glm::dot(w, d) * d));
+      }
+    }
+    const float reach = 0.1f;
+    const bool may = gpu::mayPassWithin(gpu::precomputeRayTriangle(vec3(from), vec3(dir)), vec3(v[0]),
+      vec3(v[1]), vec3(v[2]), reach);
+    if (distance <= reach)
+    {
+      VTKRT_CHECK(may);
+      ++near;
+    }
+    rejected += !may;
+  }
+  VTKRT_CHECK(near > 50 && rejected > 1000);
+}
+
 /// A pixel-aligned orthographic view (one local unit a pixel): exact values.
 inline void checkExactValues()
 {
@@ -186,6 +224,7 @@ inline void checkExactValues()
 inline void testEdgeKernels()
 {
   edgechecks::checkAgainstDouble();
+  edgechecks::checkReject();
   edgechecks::checkExactValues();
 }
 } // namespace vtkrt::test

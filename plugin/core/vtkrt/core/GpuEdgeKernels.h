@@ -11,6 +11,7 @@
 #ifndef vtkrt_core_GpuEdgeKernels_h
 #define vtkrt_core_GpuEdgeKernels_h
 
+#include "vtkrt/core/GpuKernels.h"
 #include "vtkrt/core/GpuLayout.h"
 
 #include <glm/glm.hpp>
@@ -149,6 +150,28 @@ inline float edgePointUnder(const vec3& a, const vec3& b, const vec3& va, const 
   s3 = s * a.z / (s * a.z + (1.0f - s) * b.z);
   const vec3 x = va + s3 * (vb - va);
   return glm::dot(x - org, dir) / glm::dot(dir, dir);
+}
+
+/// Whether a ray that misses the triangle may pass within `reach` of it: the
+/// ray origin's distance to the triangle in the watertight test's sheared
+/// plane (along the ray onto the plane across its dominant axis), which is
+/// at most sqrt(3) times the ray's distance to the triangle; the shader's
+/// cheap reject before projecting a wireframe triangle (wireMayBeBeside).
+inline bool mayPassWithin(const RayTrianglePrecomputed& r, const vec3& v0, const vec3& v1, const vec3& v2, float reach)
+{
+  const vec3 A = v0 - r.org;
+  const vec3 B = v1 - r.org;
+  const vec3 C = v2 - r.org;
+  const vec2 a(A[r.kx] - r.sx * A[r.kz], A[r.ky] - r.sy * A[r.kz]);
+  const vec2 b(B[r.kx] - r.sx * B[r.kz], B[r.ky] - r.sy * B[r.kz]);
+  const vec2 c(C[r.kx] - r.sx * C[r.kz], C[r.ky] - r.sy * C[r.kz]);
+  const float U = c.x * b.y - c.y * b.x;
+  const float V = a.x * c.y - a.y * c.x;
+  const float W = b.x * a.y - b.y * a.x;
+  const float side = U + V + W < 0.0f ? -1.0f : 1.0f;
+  const float d = std::max(std::max(-side * U / glm::length(c - b), -side * V / glm::length(a - c)),
+    -side * W / glm::length(b - a));
+  return !(d > 1.75f * reach);
 }
 
 } // namespace vtkrt::core::gpu
