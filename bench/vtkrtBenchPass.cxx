@@ -3,7 +3,8 @@
 // large buffers (the same for every side).
 //   quad:      a full-screen quad (two triangles), pass vs vtkPolyDataMapper,
 //              plain and with a 256x256 interpolated, repeated texture
-//   triangles: pass vs vtkPolyDataMapper, 100k and 1M (4M with --large)
+//   triangles: pass vs vtkPolyDataMapper, 100k and 1M (4M with --large);
+//              with --edges also with edge visibility and as a wireframe
 //   spheres:   pass (analytic) vs vtkGlyph3DMapper (triangulated 16x16
 //              spheres), RenderPointsAsSpheres and vtkOpenGLSphereMapper
 //              impostors, 10k and 100k (1M with --large)
@@ -15,7 +16,7 @@
 //              translucent shell of N triangles, pass vs vtkPolyDataMapper
 //              with depth peeling (100 peels, occlusion ratio 0), and the pass
 //              with the shell opaque (what compositing the layers costs)
-// usage: vtkrtBenchPass [--large] [--frames N] [--sizes 512,1024]
+// usage: vtkrtBenchPass [--large] [--frames N] [--sizes 512,1024] [--edges]
 //          [--meshes quad,N,..] [--spheres N,..] [--peers glyphs,points,impostors]
 //          [--translucent N,..]
 // (--meshes / --spheres replace the default counts, 0 skips that kind,
@@ -214,6 +215,7 @@ struct Options
   std::string Peers = "glyphs,points,impostors";
   bool Quad = true; ///< the full-screen quad (off with --meshes not naming it)
   std::vector<long> Translucent; ///< triangle counts of the translucent scene (none by default)
+  bool Edges = false; ///< meshes also with edge visibility and as wireframes
 };
 
 /// The positive numbers of a comma-separated list.
@@ -242,6 +244,10 @@ bool ParseArgs(int argc, char* argv[], Options& opt)
     if (a == "--large")
     {
       opt.Large = true;
+    }
+    else if (a == "--edges")
+    {
+      opt.Edges = true;
     }
     else if (a == "--frames" && i + 1 < argc)
     {
@@ -280,7 +286,7 @@ bool ParseArgs(int argc, char* argv[], Options& opt)
     else
     {
       std::cerr << "usage: " << argv[0]
-                << " [--large] [--frames N] [--sizes 512,1024] [--meshes quad,N,..] "
+                << " [--large] [--frames N] [--sizes 512,1024] [--edges] [--meshes quad,N,..] "
                    "[--spheres N,..]"
                    " [--peers glyphs,points,impostors] [--translucent N,..]\n";
       return false;
@@ -391,23 +397,34 @@ void RunQuad(vtkRenderWindow* win, int size, const Options& opt, std::ostream& p
   }
 }
 
-/// Triangles: the pass against vtkPolyDataMapper.
+/// Triangles: the pass against vtkPolyDataMapper; with --edges also with
+/// edge visibility (1 pixel) and as a wireframe.
 void RunMeshes(vtkRenderWindow* win, int size, const Options& opt, std::ostream& phases)
 {
+  const char* looks[] = { "k triangles", "k edges", "k wireframe" };
   for (long n : opt.Meshes)
   {
     auto mesh = MeshOf(n);
-    auto setup = [&](vtkRenderer* ren)
+    for (int look = 0; look < (opt.Edges ? 3 : 1); ++look)
     {
-      vtkNew<vtkPolyDataMapper> mapper;
-      mapper->SetInputData(mesh);
-      AddActor(ren, mapper);
-    };
-    const Timing pass = Measure(win, setup, true, opt.Frames);
-    const Timing raster = Measure(win, setup, false, opt.Frames);
-    const std::string scene = std::to_string(mesh->GetNumberOfCells() / 1000) + "k triangles";
-    Row(scene, size, "vtkPolyDataMapper", pass, raster);
-    PhaseRow(phases, scene, size, pass, raster);
+      auto setup = [&](vtkRenderer* ren)
+      {
+        vtkNew<vtkPolyDataMapper> mapper;
+        mapper->SetInputData(mesh);
+        vtkActor* actor = AddActor(ren, mapper);
+        actor->GetProperty()->SetEdgeVisibility(look == 1);
+        actor->GetProperty()->SetEdgeColor(0.1, 0.1, 0.1);
+        if (look == 2)
+        {
+          actor->GetProperty()->SetRepresentationToWireframe();
+        }
+      };
+      const Timing pass = Measure(win, setup, true, opt.Frames);
+      const Timing raster = Measure(win, setup, false, opt.Frames);
+      const std::string scene = std::to_string(mesh->GetNumberOfCells() / 1000) + looks[look];
+      Row(scene, size, "vtkPolyDataMapper", pass, raster);
+      PhaseRow(phases, scene, size, pass, raster);
+    }
   }
 }
 

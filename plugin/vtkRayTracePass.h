@@ -12,7 +12,8 @@
  *
  * Traced (everything else falls back to the delegate):
  * - vtkActor + vtkPolyDataMapper / vtkCompositePolyDataMapper(2), opaque
- *   or translucent (see SetTraceTranslucency), surface representation, no edge visibility, no PBR: polygons (fan
+ *   or translucent (see SetTraceTranslucency), surface or wireframe
+ *   representation, edges (opaque only), no PBR: polygons (fan
  *   triangulated, like VTK), triangle strips; composite block visibility
  *   and colors (inherited); an actor texture (SetTexture: one 2D texture of
  *   8-bit colors, or scalars through its table, any wrap mode, nearest or
@@ -23,7 +24,15 @@
  *   raster discards them); BackfaceCulling / FrontfaceCulling (camera rays
  *   pass culled triangles; shadow and occlusion rays do not); an opaque
  *   BackfaceProperty (its colors on back faces of actors without scalar
- *   colors).
+ *   colors). Cell edges as VTK 9.1 draws them, LineWidth pixels wide under
+ *   any camera (measured in the window, on the cells' own edges: a
+ *   polygon's outline, not its fan's diagonals; honouring point edge
+ *   flags): EdgeVisibility blends EdgeColor over the surface as
+ *   vtkOpenGLPolyDataMapper does (width at least 1.1 pixels); the
+ *   wireframe representation shows only the wires (rays pass through the
+ *   faces), in the actor's colors, lit with VTK's line normals. Edges of
+ *   glyphs, edges drawn as tubes, and wireframes with a texture, culling or
+ *   a backface property stay with raster.
  *   An actor whose data also has lines, vertices without
  *   RenderPointsAsSpheres, or a translucent block falls back whole.
  * - Points of such an actor with RenderPointsAsSpheres (vertices, or every

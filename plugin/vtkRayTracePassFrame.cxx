@@ -213,6 +213,8 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   f.TextureCutOuts = this->Scene.HasTextureCutOuts();
   // Ids are the nearest layer's, translucent or not (as raster selection).
   f.Translucent = !pass.IdMode && this->Scene.HasTranslucency();
+  f.SurfaceEdges = this->Scene.HasSurfaceEdges();
+  f.Wireframe = this->Scene.HasWireframe();
   // The stack as deep as the deepest bottom-level tree needs; the top-level
   // walk shares it, so with one it is the largest.
   std::uint32_t depth = 0;
@@ -267,6 +269,11 @@ void vtkRayTracePass::Internals::SetUniforms(vtkShaderProgram* program, const Fe
   if (f.ClipPlanes > 0)
   {
     program->SetUniform4fv("uClipPlanes", f.ClipPlanes, frame.ClipPlanes.data());
+  }
+  if (f.SurfaceEdgeCode() || f.WireframeCode())
+  {
+    toGLSL(camera.CameraToPixels, m);
+    program->SetUniformMatrix4x4("uCameraToPixels", m);
   }
   vtkrt::pass::SetLightUniforms(program, lights);
 }

@@ -2,8 +2,9 @@
 // #version line, the feature #defines and the kernel chunks
 // (vtkrtRayTraceKernels, and vtkrtRayTraceTriangles / vtkrtRayTraceSpheres
 // only when the scene has such primitives, vtkrtRayTraceSurfaces when it
-// has textured or culled triangles); vtkrtRayTraceTranslucent follows it
-// when the scene has translucent instances.
+// has textured or culled triangles, vtkrtRayTraceEdges when it has cell
+// edges or wireframes); vtkrtRayTraceTranslucent follows it when the scene
+// has translucent instances.
 //
 // Coordinates: everything the shader sees is camera-relative world space
 // (world minus the eye position, computed in double on the CPU), so a scene
@@ -311,6 +312,9 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, float tMin, in
   vec3 localOrg = vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
   vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
   int root = int(instanceRoot(instance));
+#ifdef VTKRT_HAS_WIREFRAME
+  beginWireInstance(instance, flags, !stopAtFirstHit);
+#endif
   int primitive = -1;
   vec2 uv = vec2(0.0);
 #ifdef VTKRT_SCREEN_SPHERES
@@ -676,6 +680,29 @@ vec4 shadeHit(vec3 org, vec3 dir, float tBest, int hitInstance, int hitPrimitive
     diffuseColor = instanceBackDiffuse(hitInstance);
     specularColor = instanceBackSpecular(hitInstance);
     specularPower = instanceBackSpecularPower(hitInstance);
+  }
+#endif
+#if defined(VTKRT_SURFACE_EDGES) || defined(VTKRT_HAS_WIREFRAME)
+  vec3 localHit = vec3(dot(r0.xyz, p) + r0.w, dot(r1.xyz, p) + r1.w, dot(r2.xyz, p) + r2.w);
+#endif
+#ifdef VTKRT_SURFACE_EDGES
+  if ((flags & kInstanceSurfaceEdges) != 0u)
+  {
+    // As vtkOpenGLPolyDataMapper: on an edge the edge color replaces the
+    // ambient color and the diffuse color fades out.
+    float edgeMix = instanceSurfaceEdgeMix(hitInstance, fetchTriangle(uTriangles, hitPrimitive), localHit);
+    diffuseColor = mix(diffuseColor, vec3(0.0), edgeMix);
+    ambientColor = mix(ambientColor, instanceEdgeColor(hitInstance), edgeMix);
+  }
+#endif
+#ifdef VTKRT_HAS_WIREFRAME
+  if ((flags & kInstanceWireframe) != 0u)
+  {
+    // Lines are front facing: normals are never flipped; without any, VTK's
+    // line normal.
+    n = (flags & (kInstanceVertexNormals | kInstanceCellNormals)) != 0u
+      ? normalize(cameraToLocal * localNormal)
+      : wireNormal(hitInstance, fetchTriangle(uTriangles, hitPrimitive), localHit, uViewBack);
   }
 #endif
   // Unit geometric normal on the viewer's side (secondary ray offsets).

@@ -6,6 +6,12 @@
 // mesh's center, and the VTK cell id.
 uniform usamplerBuffer uTriangles;
 
+#ifdef VTKRT_HAS_WIREFRAME
+// vtkrtRayTraceEdges: a wireframe's triangles are hit on their wires only.
+bool wireWalk();
+vec3 wireGrowBy();
+#endif
+
 // Per-ray data of the watertight test: the axis permutation and shear of
 // core::RayTrianglePrecomputed (its constructor is precomputeRayTriangle).
 struct RayTrianglePrecomputed
@@ -18,6 +24,11 @@ struct RayTrianglePrecomputed
   float sy;
   float sz;
 };
+
+#ifdef VTKRT_HAS_WIREFRAME
+bool wireHit(RayTrianglePrecomputed pre, Triangle t, vec3 org, vec3 dir, bool inside, float tmin,
+  float tmax, inout vec3 hit);
+#endif
 
 RayTrianglePrecomputed precomputeRayTriangle(vec3 org, vec3 dir)
 {
@@ -121,8 +132,13 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
   bool culled = false;
   for (;;)
   {
+#ifdef VTKRT_HAS_WIREFRAME
+    vec3 growBy = wireGrowBy();
+#else
+    vec3 growBy = vec3(0.0);
+#endif
     if (!bvhDescend(
-      org, invDir, parallelBias, vec3(0.0), tmin, tmax, sp, steps, index, count, culled))
+      org, invDir, parallelBias, growBy, tmin, tmax, sp, steps, index, count, culled))
     {
       break;
     }
@@ -139,7 +155,11 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
     {
       Triangle triangle = fetchTriangle(uTriangles, i);
       vec3 h;
-      if (intersectRayTriangle(pre, triangle.v0, triangle.v1, triangle.v2, tmin, tmax, h))
+      bool hit = intersectRayTriangle(pre, triangle.v0, triangle.v1, triangle.v2, tmin, tmax, h);
+#ifdef VTKRT_HAS_WIREFRAME
+      hit = wireWalk() ? wireHit(pre, triangle, org, dir, hit, tmin, tmax, h) : hit;
+#endif
+      if (hit)
       {
         tmax = h.x;
         tri = i;

@@ -13,6 +13,7 @@
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkSurfaceTriangulation.h"
+#include "vtkUnsignedCharArray.h"
 
 #include "vtkrt/core/BVHBuild.h"
 #include "vtkrt/core/LocalFrame.h"
@@ -96,6 +97,52 @@ std::optional<Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh, const co
   return origin;
 }
 
+/// `edges` of fan triangle `t` less those from a point whose edge flag is 0.
+std::uint8_t fanEdges(const core::SurfaceTriangles& triangles, std::size_t t, std::uint32_t edges,
+  const unsigned char* edgeFlags, std::size_t edgeFlagCount)
+{
+  using namespace core::gpu;
+  if (edgeFlags)
+  {
+    const std::uint32_t* tri = &triangles.pointIds[3 * t];
+    const auto flagged = [&](std::uint32_t point) { return point >= edgeFlagCount || edgeFlags[point] != 0; };
+    edges &= (flagged(tri[0]) ? kEdge01 : 0u) | (flagged(tri[1]) ? kEdge12 : 0u) | (flagged(tri[2]) ? kEdge20 : 0u);
+  }
+  return static_cast<std::uint8_t>(edges);
+}
+
+/// The point edge flags VTK's raster reads (unsigned chars, one per point), or null.
+const unsigned char* pointEdgeFlags(vtkPolyData* poly)
+{
+  auto* flags = vtkUnsignedCharArray::SafeDownCast(poly->GetPointData()->GetAttribute(vtkDataSetAttributes::EDGEFLAG));
+  return flags && flags->GetNumberOfTuples() >= poly->GetNumberOfPoints() && flags->GetNumberOfComponents() == 1
+    ? flags->GetPointer(0)
+    : nullptr;
+}
+
+/// The cell edges triangle `t` shows (vtkOpenGLIndexBufferObject's edge
+/// values): a fan's triangles keep the polygon's outline, not its
+/// diagonals (its first and last triangles hold the polygon's first and
+/// last edges, every one its outer edge v1-v2), masked by the points' edge
+/// flags when given (VTK's EDGEFLAG: the edge from a point whose flag is 0
+/// is not drawn); a strip's triangles keep all three, as raster draws them.
+std::uint8_t cellEdgesOf(const core::SurfaceTriangles& triangles, std::size_t t,
+  const unsigned char* edgeFlags, std::size_t edgeFlagCount)
+{
+  using namespace core::gpu;
+  const std::uint8_t part = triangles.part(t);
+  if ((part & core::FanTriangle) == 0)
+  {
+    return (part & core::WholeTriangle) != 0 && edgeFlags ? fanEdges(triangles, t, kAllEdges, edgeFlags, edgeFlagCount)
+                                                           : std::uint8_t(kAllEdges);
+  }
+  const std::int64_t cell = triangles.cellId(t);
+  const bool first = t == 0 || triangles.cellId(t - 1) != cell;
+  const bool last = t + 1 == triangles.count || triangles.cellId(t + 1) != cell;
+  const std::uint32_t edges = kEdge12 | (first ? kEdge01 : 0u) | (last ? kEdge20 : 0u);
+  return fanEdges(triangles, t, edges, edgeFlags, edgeFlagCount);
+}
+
 /// `normals` as GPU records when it holds `count` vectors (one per point, or
 /// per cell); else nothing.
 void readNormals(vtkDataArray* normals, std::size_t count, core::HugePageArray<core::gpu::Normal>& out)
@@ -167,6 +214,8 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
       points[i] = frame.toLocal(points[i]);
     }
   });
+  const unsigned char* edgeFlags = pointEdgeFlags(poly);
+  const auto edgeFlagCount = static_cast<std::size_t>(poly->GetNumberOfPoints());
   g->TriangulationSeconds = SecondsSince(start);
 
   core::TriangleMesh<double> mesh;
@@ -210,7 +259,8 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
       t.v1 = rel[b1];
       t.v2 = rel[c];
       t.cellId = static_cast<std::uint32_t>(triangles.cellId(tri));
-      t.unused1 = t.unused2 = 0.0f;
+      t.cellEdges = cellEdgesOf(triangles, tri, edgeFlags, edgeFlagCount);
+      t.unused2 = 0.0f;
       g->TriangleVertices[k] = { { a, b1, c }, 0u };
       chunkMaximum = std::max(chunkMaximum, t.cellId);
     }

@@ -56,6 +56,14 @@ void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCo
     this->CameraToClip->GetData()[i] *= normalize;
   }
   vtkMatrix4x4::Invert(this->CameraToClip, this->ClipToCamera);
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  this->CameraToPixels->DeepCopy(this->CameraToClip);
+  for (int c = 0; c < 4; ++c)
+  {
+    this->CameraToPixels->SetElement(0, c, 0.5 * width * this->CameraToClip->GetElement(0, c));
+    this->CameraToPixels->SetElement(1, c, 0.5 * height * this->CameraToClip->GetElement(1, c));
+  }
   cam->GetDirectionOfProjection(this->DirectionOfProjection);
 }
 
@@ -64,7 +72,14 @@ ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* re
 {
   ScreenSphereRadii out;
   const Geometry& g = *inst.Geom;
-  if (!g.ScreenSized || !ren || !ren->GetActiveCamera())
+  // Wires (a diameter: twice what is drawn off the edge): half a wire
+  // along its minor axis is up to sqrt(2) half widths off the edge; an
+  // eighth of a pixel more for float rounding (every pixel of margin
+  // visits more leaves: the wire walk's main cost on fine meshes).
+  const double pixelsWide = g.ScreenSized ? inst.PointSize
+    : inst.Wireframe                      ? std::sqrt(2.0) * std::max(1.0f, inst.LineWidth) + 0.25
+                                          : 0.0;
+  if (!(pixelsWide > 0.0) || !ren || !ren->GetActiveCamera())
   {
     return out;
   }
@@ -76,8 +91,8 @@ ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* re
   // Radius per unit of view depth (perspective) or constant (parallel), in
   // shader units.
   const double perDepth =
-    inst.PointSize * std::tan(vtkMath::RadiansFromDegrees(cam->GetViewAngle()) / 2.0) / pixels;
-  const double constant = inst.PointSize * cam->GetParallelScale() * shaderScale / pixels;
+    pixelsWide * std::tan(vtkMath::RadiansFromDegrees(cam->GetViewAngle()) / 2.0) / pixels;
+  const double constant = pixelsWide * cam->GetParallelScale() * shaderScale / pixels;
   // Local units -> shader units: the actor's (uniform) scale.
   double m3[3][3];
   for (int r = 0; r < 3; ++r)
@@ -212,6 +227,25 @@ double shaderHalfSize(const Instance& inst, vtkMatrix4x4* toShader)
   return stretch * half;
 }
 
+/// Cell edges: their color, width, and the local-to-shader rows the shader
+/// projects the triangles' vertices with (zero without edges).
+void fillEdges(const Instance& inst, vtkMatrix4x4* toShader, core::gpu::InstanceRecord& rec)
+{
+  if (!inst.SurfaceEdges && !inst.Wireframe)
+  {
+    return;
+  }
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      rec.localToCamera[r][c] = static_cast<float>(toShader->GetElement(r, c));
+    }
+    rec.edgeColor[r] = inst.EdgeColor[r];
+  }
+  rec.lineWidth = inst.LineWidth;
+}
+
 std::uint32_t instanceFlags(const Instance& inst, bool mirrored)
 {
   using namespace core::gpu;
@@ -234,6 +268,8 @@ std::uint32_t instanceFlags(const Instance& inst, bool mirrored)
   flags |= inst.CullBackfaces ? kInstanceCullBackfaces : 0u;
   flags |= inst.CullFrontfaces ? kInstanceCullFrontfaces : 0u;
   flags |= inst.Translucent ? kInstanceTranslucent : 0u;
+  flags |= inst.SurfaceEdges ? kInstanceSurfaceEdges : 0u;
+  flags |= inst.Wireframe ? kInstanceWireframe : 0u;
   return flags;
 }
 } // namespace
@@ -348,6 +384,7 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     rec.backSpecularPower = inst.BackSpecularPower;
     rec.textureBase = inst.Texture ? textureBase->second : 0u;
     rec.textureCoordinateBase = inst.Texture ? coordinateBase->second : 0u;
+    fillEdges(inst, toShader, rec);
     for (const auto& pl : inst.ClipPlanes)
     {
       const double d = (pl[3] + pl[0] * camera.Origin[0] + pl[1] * camera.Origin[1] +

@@ -42,6 +42,9 @@ struct CameraFrame
   double DirectionOfProjection[3] = { 0, 0, 1 };
   vtkNew<vtkMatrix4x4> CameraToClip; ///< row-major, from the shader's coordinates
   vtkNew<vtkMatrix4x4> ClipToCamera;
+  /// CameraToClip with x and y times half the viewport's size in pixels:
+  /// to homogeneous pixels from the viewport's center (edges are measured there).
+  vtkNew<vtkMatrix4x4> CameraToPixels;
 
   void Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCoordinates, double scale);
 
@@ -71,6 +74,8 @@ double ViewScale(vtkCamera* cam);
 /// center, so the shader evaluates it per sphere from one plane, and the
 /// BVH over the bare centers stays valid for every camera: its boxes grow by
 /// the largest radius over the geometry's box. A camera move builds nothing.
+/// Wireframes take the same bound for their wires' outer halves (plus an
+/// eighth of a pixel): the boxes the shader's walk grows by.
 struct ScreenSphereRadii
 {
   std::array<double, 4> Plane{ { 0, 0, 0, 0 } }; ///< local radius: max(0, Plane . (c, 1))

@@ -142,6 +142,25 @@ bool collectPieces(vtkDataObject* object, vtkCompositeDataDisplayAttributes* att
   return false;
 }
 
+/// A triangle instance's cell edges as the property asks: VTK draws edges
+/// over a surface (EdgeVisibility; not in the wireframe or points
+/// representations) in EdgeColor, and the wireframe representation as the
+/// cells' edges in the surface's colors; both LineWidth pixels wide
+/// (vtkProperty clamps it to >= 0; the shader gives edges at least 1.1, as
+/// VTK's, and wires at least 1, as OpenGL's lines).
+void FillEdges(vtkProperty* property, Instance& inst)
+{
+  inst.Wireframe = property->GetRepresentation() == VTK_WIREFRAME;
+  inst.SurfaceEdges = property->GetRepresentation() == VTK_SURFACE && property->GetEdgeVisibility();
+  double c[3];
+  property->GetEdgeColor(c);
+  for (int k = 0; k < 3; ++k)
+  {
+    inst.EdgeColor[k] = static_cast<float>(c[k]);
+  }
+  inst.LineWidth = property->GetLineWidth();
+}
+
 } // namespace
 
 bool Scene::IsTraceable(vtkProp* prop, bool translucency)
@@ -159,34 +178,38 @@ bool Scene::IsTraceable(vtkProp* prop, bool translucency)
     return false;
   }
   vtkProperty* property = actor->GetProperty();
-  if (property->GetEdgeVisibility() || property->GetInterpolation() == VTK_PBR)
-  {
-    return false;
-  }
-  // Translucent: polygonal surfaces. Not points as spheres (raster draws
-  // front-facing sprites, one layer), glyphs (raster's glyph mapper blends
-  // their layers unlike a mesh's, docs/pass.md) or a translucent back face
-  // (a property of its own).
-  if (actor->HasTranslucentPolygonalGeometry() &&
-    (!translucency || glyphs || property->GetRenderPointsAsSpheres() || actor->GetBackfaceProperty()))
-  {
-    return false;
-  }
   const int representation = property->GetRepresentation();
+  // Edges and wires of glyphs, and drawn as tubes (VTK's shaded fake
+  // tubes), stay with raster.
+  const bool edges = property->GetEdgeVisibility() || representation == VTK_WIREFRAME;
+  if (property->GetInterpolation() == VTK_PBR || (edges && (glyphs || property->GetRenderLinesAsTubes())))
+  {
+    return false;
+  }
+  // Translucent: polygonal surfaces without edges. Not points as spheres
+  // (raster draws front-facing sprites, one layer), glyphs (raster's glyph
+  // mapper blends their layers unlike a mesh's, docs/pass.md), a translucent
+  // back face (a property of its own) or edges and wires (raster blends
+  // them as lines over the layers).
+  if (actor->HasTranslucentPolygonalGeometry() &&
+    (!translucency || glyphs || edges || property->GetRenderPointsAsSpheres() || actor->GetBackfaceProperty()))
+  {
+    return false;
+  }
   // Textures, culling and back-face colors: on polygonal surfaces (a
   // translucent back face is left to raster, as a translucent front).
   vtkProperty* back = actor->GetBackfaceProperty();
   const bool surfaceLooks = actor->GetTexture() || property->GetNumberOfTextures() > 0 || back ||
     property->GetBackfaceCulling() || property->GetFrontfaceCulling();
+  // Raster's wires are lines: never culled, never back faces, untextured.
   if (surfaceLooks &&
-    (glyphs || (back && back->GetOpacity() < 1.0) ||
+    (glyphs || representation == VTK_WIREFRAME || (back && back->GetOpacity() < 1.0) ||
       !TextureCache::Untraceable(actor).empty() ||
       (actor->GetTexture() && representation != VTK_SURFACE)))
   {
     return false;
   }
-  return representation != VTK_WIREFRAME &&
-    (representation != VTK_POINTS || (!glyphs && property->GetRenderPointsAsSpheres()));
+  return representation != VTK_POINTS || (!glyphs && property->GetRenderPointsAsSpheres());
 }
 
 bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
@@ -204,7 +227,7 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     ApplyBlockColor(inst, property, blockColor, false);
   }
 
-  if (property->GetRepresentation() == VTK_SURFACE &&
+  if (property->GetRepresentation() != VTK_POINTS &&
     (poly->GetNumberOfPolys() > 0 || poly->GetNumberOfStrips() > 0))
   {
     auto& entry = this->TriangleCache[poly];
@@ -237,6 +260,7 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
       {
         return false;
       }
+      FillEdges(property, tri);
       this->Instances.push_back(tri);
     }
   }
@@ -452,6 +476,17 @@ bool Scene::HasTranslucency() const
 {
   return std::any_of(this->Instances.begin(), this->Instances.end(),
     [](const Instance& i) { return i.Translucent; });
+}
+
+bool Scene::HasSurfaceEdges() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return !i.Geom->Spheres && i.SurfaceEdges; });
+}
+bool Scene::HasWireframe() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return !i.Geom->Spheres && i.Wireframe; });
 }
 
 bool Scene::HasTextureCutOuts() const

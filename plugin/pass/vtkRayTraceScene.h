@@ -92,6 +92,8 @@ public:
   bool HasBackfaceProperties() const;
   bool HasTextureCutOuts() const;
   bool HasTranslucency() const;
+  bool HasSurfaceEdges() const;
+  bool HasWireframe() const;
 
   /// The actors' texture images and texture coordinates.
   const TextureCache& GetTextures() const { return this->Textures; }

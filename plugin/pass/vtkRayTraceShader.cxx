@@ -5,6 +5,7 @@
 #include "vtkOpenGLShaderCache.h"
 #include "vtkShaderProgram.h"
 
+#include "vtkrtRayTraceEdges.h"
 #include "vtkrtRayTraceKernels.h"
 #include "vtkrtRayTraceMain.h"
 #include "vtkrtRayTraceResolve.h"
@@ -35,7 +36,8 @@ std::string Features::Key() const
     << this->WorldCoordinates << "Q" << this->ScreenSpheres << "E" << this->Ellipsoids << "X"
     << this->ColorTexture << "K" << this->SelectIds << "F" << this->CellNormals << "U"
     << this->Textures << "B" << this->FaceCulling << "Y" << this->BackfaceProperties << "Z"
-    << this->TextureCutOuts << "S" << this->StackSize << "R" << this->Translucent;
+    << this->TextureCutOuts << "S" << this->StackSize << "R" << this->Translucent << "G"
+    << this->SurfaceEdges << "V" << this->Wireframe;
   return s.str();
 }
 
@@ -61,6 +63,11 @@ std::string AssembleShader(const Features& f)
   define(f.Triangles && f.FaceCulling, "VTKRT_FACE_CULLING");
   define(f.Triangles && f.Textures && f.TextureCutOuts, "VTKRT_TEXTURE_CUTOUTS");
   define(f.Triangles && f.BackfaceProperties, "VTKRT_BACKFACE_PROPERTIES");
+  // Edges change colors only: id and selection shaders need the wires alone.
+  const bool surfaceEdges = f.SurfaceEdgeCode();
+  const bool wireframe = f.WireframeCode();
+  define(surfaceEdges, "VTKRT_SURFACE_EDGES");
+  define(wireframe, "VTKRT_HAS_WIREFRAME");
   define(f.IdMode, "VTKRT_ID_MODE");
   define(f.SelectIds, "VTKRT_SELECT_IDS");
   define(f.TopLevel, "VTKRT_HAS_TOP_LEVEL");
@@ -92,6 +99,10 @@ std::string AssembleShader(const Features& f)
   if (f.Triangles && (f.Textures || f.FaceCulling))
   {
     s << vtkrtRayTraceSurfaces << "\n";
+  }
+  if (surfaceEdges || wireframe)
+  {
+    s << vtkrtRayTraceEdges << "\n";
   }
   s << vtkrtRayTraceMain;
   if (f.Translucent)

@@ -131,6 +131,12 @@ struct Instance
   /// its layers are composited with alpha Opacity x scalar alpha x texel alpha.
   bool Translucent = false;
   float Opacity = 1.0f; ///< vtkProperty::Opacity, in [0, 1]
+  /// Cell edges: over the surface (EdgeVisibility) in EdgeColor, or alone
+  /// (the wireframe representation), LineWidth pixels wide.
+  bool SurfaceEdges = false;
+  bool Wireframe = false;
+  std::array<float, 3> EdgeColor{ { 0, 0, 0 } };
+  float LineWidth = 1.0f;
 };
 
 /// What a frame needs from the shader; also the program cache key.
@@ -161,9 +167,15 @@ struct Features
   bool BackfaceProperties = false; ///< some triangles have a back-face material
   bool TextureCutOuts = false;   ///< some textures have fully transparent texels
   bool Translucent = false;      ///< some instances are translucent (layers composited)
+  bool SurfaceEdges = false;     ///< some triangles show their cell edges (EdgeVisibility)
+  bool Wireframe = false;        ///< some triangles are drawn as their cell edges alone
   int StackSize = static_cast<int>(core::kMaxStackSize); ///< entries of the shader's BVH stacks (VTKRT_STACK_SIZE)
 
   std::string Key() const;
+  /// What of the edge code the shader holds: the surface edges' colors (not
+  /// in shaders that write ids), the wires' hit test.
+  bool SurfaceEdgeCode() const { return this->Triangles && this->SurfaceEdges && !this->IdMode && !this->SelectIds; }
+  bool WireframeCode() const { return this->Triangles && this->Wireframe; }
 };
 
 /// Counters of the work one frame did.

@@ -6,8 +6,10 @@
 // over packed real BVHs (triangles, spheres, screen-sized spheres,
 // ellipsoids) find the closest hit of core's float walk exactly and of the
 // double walk wherever that hit is clear; the top-level walk finds what the
-// shader's flat loop over the instances finds.
+// shader's flat loop over the instances finds; the edge kernels measure
+// pixels as double does (GpuEdgeTwinChecks.h).
 #include "CoreTestUtils.h"
+#include "GpuEdgeTwinChecks.h"
 
 #include "vtkrt/core/GpuTraversal.h"
 
@@ -804,5 +806,6 @@ int main()
   checkSphereWalk(2000, 3000, true, 8);
   checkEllipsoidWalk(600, 3000, 9);
   testTopLevel();
+  testEdgeKernels();
   return testResult("TestCoreGpuTwins");
 }

@@ -330,8 +330,9 @@ void TestLights()
     40.0);
 }
 
-// Props the pass does not trace (translucent, wireframe, text) are drawn
-// by the raster delegate and composite with the traced image by depth.
+// Props the pass does not trace (translucent, text) are drawn by the raster
+// delegate and composite with the traced image (a mesh and a wireframe) by
+// depth.
 void TestFallback()
 {
   CompareWithRaster("Fallback",

@@ -11,6 +11,7 @@
 #include "vtkActorCollection.h"
 #include "vtkCamera.h"
 #include "vtkCubeSource.h"
+#include "vtkExtractEdges.h"
 #include "vtkGlyph3DMapper.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -165,7 +166,7 @@ void TestSampling()
   win->Render();
   Check(progressive->GetAccumulatedFrames() == 1, "samples per pixel changed: restarts");
 
-  // Depth: a raster wireframe grid through the sphere's center is hidden by
+  // Depth: a raster grid of lines through the sphere's center is hidden by
   // the sphere's front half with sampling as without (a wrong depth would
   // show the grid's lines across the sphere).
   vtkNew<vtkPlaneSource> grid;
@@ -173,11 +174,12 @@ void TestSampling()
   grid->SetPoint1(1.0, -1.0, 0.0);
   grid->SetPoint2(-1.0, 1.0, 0.0);
   grid->SetResolution(8, 8);
+  vtkNew<vtkExtractEdges> gridLines; // lines: raster draws them
+  gridLines->SetInputConnection(grid->GetOutputPort());
   vtkNew<vtkPolyDataMapper> gridMapper;
-  gridMapper->SetInputConnection(grid->GetOutputPort());
+  gridMapper->SetInputConnection(gridLines->GetOutputPort());
   vtkNew<vtkActor> wire;
   wire->SetMapper(gridMapper);
-  wire->GetProperty()->SetRepresentationToWireframe();
   wire->GetProperty()->LightingOff();
   wire->GetProperty()->SetColor(0.0, 1.0, 0.0);
   ren->AddActor(wire);

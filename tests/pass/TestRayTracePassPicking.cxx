@@ -325,10 +325,14 @@ void TestClassification()
   traced.emplace_back("translucent property", translucent);
   auto wire = meshActor(mesh);
   wire->GetProperty()->SetRepresentationToWireframe();
-  raster.emplace_back("wireframe", wire);
+  traced.emplace_back("wireframe", wire);
   auto edges = meshActor(mesh);
   edges->GetProperty()->EdgeVisibilityOn();
-  raster.emplace_back("edge visibility", edges);
+  traced.emplace_back("edge visibility", edges);
+  auto culledWire = meshActor(mesh);
+  culledWire->GetProperty()->SetRepresentationToWireframe();
+  culledWire->GetProperty()->BackfaceCullingOn();
+  raster.emplace_back("culled wireframe (raster's lines are never culled)", culledWire);
   auto culled = meshActor(mesh);
   culled->GetProperty()->BackfaceCullingOn();
   traced.emplace_back("backface culling", culled);

@@ -14,6 +14,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkMultiBlockDataSet.h"
+#include "vtkOutlineSource.h"
 #include "vtkPropPicker.h"
 #include "vtkSelection.h"
 #include "vtkSelectionNode.h"
@@ -34,7 +35,7 @@ constexpr int W = 300;
 constexpr int H = 200;
 
 /// A scene in one window: a fine sphere mesh, a cube, sphere glyphs (each
-/// its own actor), optionally behind a wireframe box that raster draws.
+/// its own actor), optionally behind a box outline (lines) that raster draws.
 struct Scene
 {
   vtkSmartPointer<vtkEGLHeadlessRenderWindow> Window = MakeWindow(W, H);
@@ -70,11 +71,10 @@ struct Scene
     this->Keep.insert(this->Keep.end(), { sphere.Get(), cube.Get(), plane.Get(), glyph.Get() });
     if (rasterBox)
     {
-      // Wireframe: left to raster, composited with the traced ids by depth.
-      vtkNew<vtkCubeSource> box;
+      // Lines: left to raster, composited with the traced ids by depth.
+      vtkNew<vtkOutlineSource> box;
       box->SetBounds(-0.5, 0.5, -0.5, 0.5, 0.8, 1.6);
       this->Add(box->GetOutputPort());
-      this->Actors.back()->GetProperty()->SetRepresentationToWireframe();
       this->Actors.back()->GetProperty()->SetLineWidth(3);
       this->Keep.push_back(box.Get());
     }

@@ -58,19 +58,30 @@ struct Node
 #define VTKRT_GPU_NODE_FIELDS(FIELD, PAD)                                                          \
   FIELD(Node, lo) FIELD(Node, index) FIELD(Node, hi) FIELD(Node, count)
 
-/// A triangle's vertices relative to its geometry's origin, and its VTK cell id.
+/// A triangle's vertices relative to its geometry's origin, its VTK cell id
+/// and which of its edges are edges of that cell (TriangleEdges bits).
 struct Triangle
 {
   vec3 v0;
   std::uint32_t cellId;
   vec3 v1;
-  float unused1;
+  std::uint32_t cellEdges;
   vec3 v2;
   float unused2;
 };
 #define VTKRT_GPU_TRIANGLE_FIELDS(FIELD, PAD)                                                      \
-  FIELD(Triangle, v0) FIELD(Triangle, cellId) FIELD(Triangle, v1) PAD(Triangle, unused1)           \
+  FIELD(Triangle, v0) FIELD(Triangle, cellId) FIELD(Triangle, v1) FIELD(Triangle, cellEdges)       \
     FIELD(Triangle, v2) PAD(Triangle, unused2)
+
+/// Triangle::cellEdges bits, as vtkOpenGLIndexBufferObject numbers a
+/// triangle's edges: v0-v1, v1-v2, v2-v0.
+enum TriangleEdges : std::uint32_t
+{
+  kEdge01 = 1u,
+  kEdge12 = 2u,
+  kEdge20 = 4u,
+  kAllEdges = 7u
+};
 
 /// The point ids of a triangle's vertices (for normals and point colors).
 struct TriangleVertices
@@ -141,6 +152,9 @@ struct InstanceRecord
   std::uint32_t textureCoordinateBase; ///< Textured: first word of the points' (s, t)
   vec3 backSpecular;
   float backSpecularPower;
+  vec4 localToCamera[3];       ///< SurfaceEdges / Wireframe: rows of the inverse of cameraToLocal
+  vec3 edgeColor;              ///< SurfaceEdges: vtkProperty::EdgeColor
+  float lineWidth;             ///< SurfaceEdges / Wireframe: in pixels
 };
 #define VTKRT_GPU_INSTANCE_FIELDS(FIELD, PAD)                                                      \
   FIELD(InstanceRecord, cameraToLocal) FIELD(InstanceRecord, boxMin) FIELD(InstanceRecord, root)   \
@@ -156,7 +170,10 @@ struct InstanceRecord
                       FIELD(InstanceRecord, backDiffuse)                                       \
                         FIELD(InstanceRecord, textureCoordinateBase)                           \
                           FIELD(InstanceRecord, backSpecular)                                  \
-                            FIELD(InstanceRecord, backSpecularPower)
+                            FIELD(InstanceRecord, backSpecularPower)                           \
+                              FIELD(InstanceRecord, localToCamera)                             \
+                                FIELD(InstanceRecord, edgeColor)                               \
+                                  FIELD(InstanceRecord, lineWidth)
 
 /// How the shader indexes a record's buffer: record i is texels
 /// i * texels + k (ByRecord), or starts at texel i (ByTexel: ellipsoids,
@@ -200,7 +217,9 @@ enum class Indexing
   X(CullBackfaces, 4096u)                                                                          \
   X(CullFrontfaces, 8192u)                                                                         \
   X(TextureCutOuts, 16384u)                                                                        \
-  X(Translucent, 32768u)
+  X(Translucent, 32768u)                                                                           \
+  X(SurfaceEdges, 65536u)                                                                          \
+  X(Wireframe, 131072u)
 
 enum InstanceFlags : std::uint32_t
 {
@@ -418,7 +437,8 @@ VTKRT_GPU_RECORDS(VTKRT_GPU_CHECK_TEXELS, VTKRT_GPU_FIELD_IN_TEXELS, VTKRT_GPU_N
 #undef VTKRT_GPU_CHECK_TEXELS
 static_assert(texelsOf<Ellipsoid>() == kEllipsoidTexels, "Ellipsoid: 3 texels");
 
-/// The GLSL for the layouts: the instance flags kInstance<Name>, per record
+/// The GLSL for the layouts: the instance flags kInstance<Name>, the
+/// triangle edge bits kEdge01, kEdge12, kEdge20, per record
 /// its struct, texel count VTKRT_<NAME>_TEXELS and reader fetch<Type>(b, i),
 /// and one accessor per instance record field (instanceBoxMin(i),
 /// instanceFlags(i) ...) reading the usamplerBuffer uInstances.
@@ -429,6 +449,8 @@ inline std::string glslLayout()
 #define VTKRT_GPU_FLAG_GLSL(name, bit) s << "const uint kInstance" #name " = " << bit << "u;\n";
   VTKRT_GPU_INSTANCE_FLAGS(VTKRT_GPU_FLAG_GLSL)
 #undef VTKRT_GPU_FLAG_GLSL
+  s << "const uint kEdge01 = " << kEdge01 << "u;\nconst uint kEdge12 = " << kEdge12
+    << "u;\nconst uint kEdge20 = " << kEdge20 << "u;\n";
 #define VTKRT_GPU_GLSL_FIELD(record, member)                                                       \
   detail::glslField<decltype(record::member)>(#member, offsetof(record, member)),
 #define VTKRT_GPU_GLSL_RECORD(type, NAME, indexing, fields)                                        \
