@@ -24,8 +24,16 @@
  *   pass culled triangles; shadow and occlusion rays do not); an opaque
  *   BackfaceProperty (its colors on back faces of actors without scalar
  *   colors).
- *   An actor whose data also has lines, vertices without
- *   RenderPointsAsSpheres, or a translucent block falls back whole.
+ *   An actor whose data also has lines not drawn as tubes (below),
+ *   vertices without RenderPointsAsSpheres, or a translucent block falls
+ *   back whole.
+ * - Line and polyline cells of such an actor with RenderLinesAsTubes and a
+ *   LineWidth over 1 (where VTK draws tubes) as analytic round tubes
+ *   LineWidth pixels wide under every camera: each segment the hull of its
+ *   two end spheres (radii as for points drawn as spheres), so polylines
+ *   have round joints; point scalars interpolated along a segment, cell
+ *   scalars per cell; their cell ids follow the vertices'. The BVH is over
+ *   the bare segments, grown per frame by the largest radius.
  * - Points of such an actor with RenderPointsAsSpheres (vertices, or every
  *   point with the points representation) as analytic spheres PointSize
  *   pixels wide, as VTK draws them, under every camera: each frame gives a

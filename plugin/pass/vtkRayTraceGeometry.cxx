@@ -38,6 +38,7 @@ void smpFor(std::size_t n, Fn&& fn)
   vtkSMPTools::For(0, static_cast<vtkIdType>(n),
     [&fn](vtkIdType b, vtkIdType e) { fn(static_cast<std::size_t>(b), static_cast<std::size_t>(e)); });
 }
+} // namespace
 
 /// The frame the primitives are built in: that of the finite boxes' union
 /// (model coordinates), so the BVH and every GPU record are in units near 1
@@ -92,6 +93,8 @@ std::optional<Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh, const co
   return origin;
 }
 
+namespace
+{
 /// The triangles a cell of `npts` points makes (fan or strip).
 template <class T>
 std::size_t trianglesOf(T npts)

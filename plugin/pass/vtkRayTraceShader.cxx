@@ -12,6 +12,7 @@
 #include "vtkrtRayTraceSpheres.h"
 #include "vtkrtRayTraceSurfaces.h"
 #include "vtkrtRayTraceTriangles.h"
+#include "vtkrtRayTraceTubes.h"
 
 #include "vtkrt/core/BVH.h"
 #include "vtkrt/core/GpuLayout.h"
@@ -34,7 +35,7 @@ std::string Features::Key() const
     << this->WorldCoordinates << "Q" << this->ScreenSpheres << "E" << this->Ellipsoids << "X"
     << this->ColorTexture << "K" << this->SelectIds << "F" << this->CellNormals << "U"
     << this->Textures << "B" << this->FaceCulling << "Y" << this->BackfaceProperties << "Z"
-    << this->TextureCutOuts << "S" << this->StackSize;
+    << this->TextureCutOuts << "S" << this->StackSize << "R" << this->Tubes;
   return s.str();
 }
 
@@ -71,6 +72,7 @@ std::string AssembleShader(const Features& f)
   define(f.WorldCoordinates, "VTKRT_WORLD_COORDINATES");
   define(f.ScreenSpheres, "VTKRT_SCREEN_SPHERES");
   define(f.Ellipsoids, "VTKRT_HAS_ELLIPSOIDS");
+  define(f.Spheres && f.Tubes, "VTKRT_HAS_TUBES");
   s << "#define VTKRT_AMBIENT_OCCLUSION_SAMPLES " << f.AmbientOcclusionSamples << "\n";
   s << "#define VTKRT_MAXIMUM_TRAVERSAL_STEPS " << f.MaximumTraversalSteps << "\n";
   s << "#define VTKRT_NUMBER_OF_CLIP_PLANES " << f.ClipPlanes << "\n";
@@ -86,6 +88,10 @@ std::string AssembleShader(const Features& f)
   if (f.Spheres)
   {
     s << vtkrtRayTraceSpheres << "\n";
+  }
+  if (f.Spheres && f.Tubes)
+  {
+    s << vtkrtRayTraceTubes << "\n";
   }
   if (f.Triangles && (f.Textures || f.FaceCulling))
   {
