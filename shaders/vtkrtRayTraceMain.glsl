@@ -550,16 +550,6 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
     if ((flags & (kInstancePointColors | kInstanceCellColors)) != 0u)
     {
       int cb = int(instanceColorBase(hitInstance));
-#ifdef VTKRT_HAS_COLOR_TEXTURE
-      if ((flags & kInstanceColorTexture) != 0u)
-      {
-        scalarColor = lookupColorTexture(cb, fetchColorCoordinate(cb, int(vtkId)));
-      }
-      else
-#endif
-      {
-        scalarColor = fetchColor(cb + int(vtkId));
-      }
 #ifdef VTKRT_HAS_TUBES
       if ((flags & (kInstanceTubes | kInstancePointColors)) == (kInstanceTubes | kInstancePointColors))
       {
@@ -577,7 +567,18 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
           scalarColor = mix(fetchColor(cb + i0), fetchColor(cb + i1), tubeS);
         }
       }
+      else
 #endif
+#ifdef VTKRT_HAS_COLOR_TEXTURE
+      if ((flags & kInstanceColorTexture) != 0u)
+      {
+        scalarColor = lookupColorTexture(cb, fetchColorCoordinate(cb, int(vtkId)));
+      }
+      else
+#endif
+      {
+        scalarColor = fetchColor(cb + int(vtkId));
+      }
     }
 #endif
   }
