@@ -5,10 +5,17 @@
 // ternary search over the convex distance along it), the float twin against
 // the double kernel, and the surface parameter (the normal's sphere) at hits.
 // Capsules (equal radii), round cones (the radii of a perspective tube),
-// zero-length segments and rays from far away.
+// zero-length segments and rays from far away. Then the shader's walk
+// (gpu::traverseTubes) over random polylines packed as the pass packs them,
+// its BVH over the bare segments grown by the frame's largest radius,
+// against every segment tested in turn: the growth never loses a hit.
 #include "CoreTestUtils.h"
 
-#include "vtkrt/core/GpuKernels.h"
+#include "vtkrt/core/BVHBuild.h"
+#include "vtkrt/core/GpuTraversal.h"
+
+#include <array>
+#include <cstring>
 
 using namespace vtkrt::core;
 using namespace vtkrt::test;
@@ -145,6 +152,92 @@ void checkEdgeCases()
   VTKRT_CHECK(!gpu::intersectRayTube(vec3(0.5f, 0, 4), vec3(0, 0, -1), vec3(0), vec3(1, 0, 0), 0.5f, 0.5f, 5.0f, 10.0f, t));
 }
 
+/// Random polylines, their BVH over bare segment boxes and the segments in
+/// the sphere buffer (two texels each), walked with a perspective-like
+/// radius plane and the grow bound the pass computes (the plane's largest
+/// value over the corners of the segments' box).
+void checkTubeWalk(int lines, int rayCount, std::uint64_t seed)
+{
+  Rng rng(seed);
+  std::vector<std::array<Vec3<double>, 2>> segments;
+  for (int l = 0; l < lines; ++l)
+  {
+    Vec3<double> p = rng.inBox(Vec3<double>(-1), Vec3<double>(1));
+    for (int k = 0; k < 20; ++k)
+    {
+      const Vec3<double> q = p + 0.08 * rng.unitVector();
+      segments.push_back({ { p, q } });
+      p = q;
+    }
+  }
+  std::vector<AABB<double>> boxes;
+  for (const auto& s : segments)
+  {
+    AABB<double> box;
+    box.extend(s[0]);
+    box.extend(s[1]);
+    boxes.push_back(box);
+  }
+  const BVH bvh = buildBVH(boxes);
+  const Vec3<double> origin = bvh.bounds().center();
+  std::vector<gpu::Node> gpuNodes = packGpuNodes(bvh.nodes, origin);
+  for (gpu::Node& node : gpuNodes)
+  {
+    // Leaves index texels, as the pass's.
+    node.index *= node.count > 0 ? gpu::kSegmentTexels : 1u;
+  }
+  std::vector<float> nodes(gpuNodes.size() * 8);
+  std::memcpy(nodes.data(), gpuNodes.data(), nodes.size() * sizeof(float));
+  std::vector<gpu::Segment> records;
+  for (std::uint32_t s : bvh.primIndex)
+  {
+    records.push_back({ vec3(segments[s][0] - origin), s, vec3(segments[s][1] - origin), s });
+  }
+  std::vector<float> texels(records.size() * 8);
+  std::memcpy(texels.data(), records.data(), texels.size() * sizeof(float));
+  gpu::ShaderInputs u;
+  u.uNodes = gpu::TexelBuffer(nodes);
+  u.uSpheres = gpu::TexelBuffer(texels);
+  // Radius growing with depth along -z from an eye at z = 4 (local units).
+  const gpu::vec4 radiusPlane(0.0f, 0.0f, -0.004f, 0.016f);
+  const AABB<double> local(bvh.bounds().min - origin, bvh.bounds().max - origin);
+  float grow = 0.0f;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const vec3 c(float((corner & 1) ? local.max.x : local.min.x), float((corner & 2) ? local.max.y : local.min.y),
+      float((corner & 4) ? local.max.z : local.min.z));
+    grow = std::max(grow, gpu::tubeRadius(radiusPlane, c));
+  }
+  int hits = 0;
+  for (int r = 0; r < rayCount; ++r)
+  {
+    const vec3 org = vec3(rng.inBox(Vec3<double>(-1.2), Vec3<double>(1.2))) + vec3(0.0f, 0.0f, 4.0f);
+    const vec3 dir = vec3(rng.inBox(Vec3<double>(-1.2), Vec3<double>(1.2))) - org;
+    float tmax = 1.0f;
+    int segment;
+    const bool found = gpu::traverseTubes(u, 0, org, dir, 0.0f, tmax, segment, false, radiusPlane, grow);
+    float best = 1.0f;
+    bool any = false;
+    for (const gpu::Segment& s : records)
+    {
+      float t;
+      if (gpu::intersectRayTube(org, dir, s.a, s.b, gpu::tubeRadius(radiusPlane, s.a),
+            gpu::tubeRadius(radiusPlane, s.b), 0.0f, best, t))
+      {
+        best = t;
+        any = true;
+      }
+    }
+    VTKRT_CHECK(found == any);
+    if (found && any)
+    {
+      ++hits;
+      VTKRT_CHECK(tmax == best);
+    }
+  }
+  VTKRT_CHECK_MSG(hits > rayCount / 4, "%d hits of %d rays", hits, rayCount);
+}
+
 } // namespace
 
 int main()
@@ -154,5 +247,6 @@ int main()
   checkPieces(1, 3000, 3.0, 32);
   checkPieces(2, 1000, 3.0, 33);
   checkPieces(1, 2000, 300.0, 34);
+  checkTubeWalk(200, 3000, 35);
   return testResult("TestCoreTubeTwins");
 }
