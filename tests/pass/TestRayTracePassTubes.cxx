@@ -13,7 +13,8 @@
 //                leave the actor to raster
 //   Selection    vtkHardwareSelector picks the same line cell ids (after
 //                the vertices, before the polygons) as raster
-//   Shadow       a traced tube casts a shadow on a traced floor
+//   Shadow       traced tubes cast a shadow on a traced floor (and on
+//                themselves); ambient occlusion darkens floor and tubes
 //   BadInput     zero-length segments, single-point lines, NaN points, a
 //                huge LineWidth: traced without a crash or a warning
 #include "vtkrtPassTestUtils.h"
@@ -395,6 +396,13 @@ void TestShadow()
   s << "shadow: " << pass->GetNumberOfTracedProps() << " traced props, " << darker
     << " pixels darkened by the tubes' shadow, " << brighter << " channel values brightened";
   Check(pass->GetNumberOfTracedProps() == 2 && darker > 1000 && brighter == 0, s.str());
+  // Ambient occlusion: the floor under the helix and the tubes near their
+  // neighbours darken.
+  pass->ShadowsOff();
+  pass->SetAmbientOcclusionSamples(16);
+  scene.Window->Render();
+  const long occluded = CountDifferingPixels(lit, Grab(scene.Window), 12);
+  Check(occluded > 200, "ambient occlusion: " + std::to_string(occluded) + " pixels darkened");
   NoGLError(scene.Window, "shadow");
   NoVTKOutput("Shadow");
 }
