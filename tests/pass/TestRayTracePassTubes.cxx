@@ -4,7 +4,7 @@
 // caps; a blur compares their shape and shading, not single edge pixels):
 //   Helix        a polyline helix, RenderLinesAsTubes, LineWidth 8, colored
 //                by point scalars, perspective and parallel projection;
-//                a camera move uploads no geometry; scalars interpolated
+//                a camera move or a LineWidth change uploads no geometry; scalars interpolated
 //                before mapping (a 4-color table along coarse segments)
 //   Mixed        one polydata of a surface and lines, colored by cell
 //                scalars: both traced (triangles and tubes), both projections
@@ -206,7 +206,8 @@ void TestHelix()
   {
     Scene scene;
     double range[2] = { 0.0, 1.0 };
-    scene.Renderer->AddActor(TubeActor(Helix(400, 3.0), 8.0, range));
+    auto helix = TubeActor(Helix(400, 3.0), 8.0, range);
+    scene.Renderer->AddActor(helix);
     scene.View(20.0, 25.0, parallel);
     const std::string label = std::string("helix, ") + (parallel ? "parallel" : "perspective");
     RasterAndTraced frames = scene.Compare(label, 1, 4.0);
@@ -219,7 +220,13 @@ void TestHelix()
     Check(frames.Pass->GetLastGeometryBytesUploaded() == 0 && frames.Pass->GetLastBVHBuilds() == 0,
       label + ": a camera move uploads no geometry (" +
         std::to_string(frames.Pass->GetLastGeometryBytesUploaded()) + " bytes)");
-    scene.Compare(label + ", moved camera", 1, 4.0);
+    RasterAndTraced moved = scene.Compare(label + ", moved camera", 1, 4.0);
+    // A thinner line: new radii in the instance record, no geometry.
+    helix->GetProperty()->SetLineWidth(6.0f);
+    scene.Window->Render();
+    Check(moved.Pass->GetLastGeometryBytesUploaded() == 0 && moved.Pass->GetLastBVHBuilds() == 0,
+      label + ": a LineWidth change uploads no geometry");
+    scene.Compare(label + ", LineWidth 6", 1, 4.0);
   }
   // Scalars through the mapper's color texture, interpolated along the tubes.
   Scene scene;
