@@ -8,6 +8,7 @@
 //                before mapping (a 4-color table along coarse segments)
 //   Mixed        one polydata of a surface and lines, colored by cell
 //                scalars: both traced (triangles and tubes), both projections
+//   ManyActors   twelve tube actors, walked through the top-level BVH
 //   NoTubeCode   the shader of a scene without tubes has none of their code;
 //                plain lines (no RenderLinesAsTubes, or LineWidth 1 or 0)
 //                leave the actor to raster
@@ -260,6 +261,32 @@ void TestMixed()
   NoVTKOutput("Mixed");
 }
 
+/// Twelve helices, each its own actor: more than 8 instances, so the rays
+/// walk the top-level BVH, whose boxes grow by each instance's radius bound.
+void TestManyActors()
+{
+  for (bool parallel : { false, true })
+  {
+    Scene scene;
+    double range[2] = { 0.0, 1.0 };
+    auto helix = Helix(120, 2.0);
+    for (int i = 0; i < 12; ++i)
+    {
+      auto actor = TubeActor(helix, 5.0, range);
+      actor->SetPosition(2.5 * (i % 4), 2.5 * (i / 4), -1.0 * i);
+      actor->SetScale(0.8 + 0.05 * i);
+      scene.Renderer->AddActor(actor);
+    }
+    scene.View(10.0, 15.0, parallel);
+    const std::string label = std::string("12 helices, ") + (parallel ? "parallel" : "perspective");
+    RasterAndTraced frames = scene.Compare(label, 12, 4.0);
+    Check(std::string(frames.Pass->GetLastFragmentShaderSource()).find("#define VTKRT_HAS_TOP_LEVEL") !=
+        std::string::npos,
+      label + ": through the top-level BVH");
+  }
+  NoVTKOutput("ManyActors");
+}
+
 void TestNoTubeCode()
 {
   Scene scene;
@@ -466,6 +493,7 @@ int main(int argc, char* argv[])
 {
   Output = vtkrtTestOutputWindow::Install();
   return RunCase(argc, argv,
-    { { "Helix", TestHelix }, { "Mixed", TestMixed }, { "NoTubeCode", TestNoTubeCode },
+    { { "Helix", TestHelix }, { "Mixed", TestMixed }, { "ManyActors", TestManyActors },
+      { "NoTubeCode", TestNoTubeCode },
       { "Selection", TestSelection }, { "Shadow", TestShadow }, { "BadInput", TestBadInput } });
 }
