@@ -8,6 +8,8 @@
 //   spheres:   pass (analytic) vs vtkGlyph3DMapper (triangulated 16x16
 //              spheres), RenderPointsAsSpheres and vtkOpenGLSphereMapper
 //              impostors, 10k and 100k (1M with --large)
+//   tubes:     with --tubes N,..: N segments of random polylines drawn as
+//              tubes (RenderLinesAsTubes, LineWidth 4), pass vs vtkPolyDataMapper
 // at 512x512 and 1024x1024, camera orbiting; the first frame (build, upload,
 // compile) is reported separately. Ratios are peer time / pass time (> 1:
 // the pass is faster); the cpu columns are process CPU time per steady frame
@@ -18,7 +20,7 @@
 //              with the shell opaque (what compositing the layers costs)
 // usage: vtkrtBenchPass [--large] [--frames N] [--sizes 512,1024] [--edges]
 //          [--meshes quad,N,..] [--spheres N,..] [--peers glyphs,points,impostors]
-//          [--translucent N,..]
+//          [--translucent N,..] [--tubes N,..]
 // (--meshes / --spheres replace the default counts, 0 skips that kind,
 // "quad" in --meshes keeps the quad; the pass's first frame is also printed
 // by phase: extraction, triangulation, BVH build, packing, upload, compile;
@@ -142,6 +144,42 @@ vtkSmartPointer<vtkPolyData> SpheresOf(long count)
   return poly;
 }
 
+/// Random walks in a unit cube, 100 segments each, `segments` in all, with
+/// a point scalar along each.
+vtkSmartPointer<vtkPolyData> PolylinesOf(long segments)
+{
+  vtkNew<vtkMinimalStandardRandomSequence> random;
+  random->SetSeed(11);
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> scalar;
+  vtkNew<vtkCellArray> lines;
+  const long perLine = 100;
+  const double step = 0.5 / std::sqrt(static_cast<double>(segments));
+  for (long line = 0; line * perLine < segments; ++line)
+  {
+    double p[3];
+    for (double& c : p)
+    {
+      c = random->GetNextRangeValue(-0.5, 0.5);
+    }
+    lines->InsertNextCell(perLine + 1);
+    for (long k = 0; k <= perLine; ++k)
+    {
+      lines->InsertCellPoint(points->InsertNextPoint(p));
+      scalar->InsertNextValue(static_cast<float>(k) / perLine);
+      for (double& c : p)
+      {
+        c = std::max(-0.5, std::min(0.5, c + step * random->GetNextRangeValue(-1.0, 1.0)));
+      }
+    }
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(points);
+  poly->SetLines(lines);
+  poly->GetPointData()->SetScalars(scalar);
+  return poly;
+}
+
 /// Renders `frames` orbit steps after a first frame; fresh renderer each time.
 Timing Measure(vtkRenderWindow* win, const std::function<void(vtkRenderer*)>& setup, bool trace,
   int frames, const Camera& camera = Orbit())
@@ -213,6 +251,7 @@ struct Options
   std::vector<long> Meshes = { 100000, 1000000 };
   std::vector<long> SphereCounts = { 10000, 100000 };
   std::string Peers = "glyphs,points,impostors";
+  std::vector<long> TubeSegments; ///< none unless --tubes
   bool Quad = true; ///< the full-screen quad (off with --meshes not naming it)
   std::vector<long> Translucent; ///< triangle counts of the translucent scene (none by default)
   bool Edges = false; ///< meshes also with edge visibility and as wireframes
@@ -269,6 +308,10 @@ bool ParseArgs(int argc, char* argv[], Options& opt)
     {
       opt.Translucent = ParseList(argv[++i]);
     }
+    else if (a == "--tubes" && i + 1 < argc)
+    {
+      opt.TubeSegments = ParseList(argv[++i]);
+    }
     else if (a == "--peers" && i + 1 < argc)
     {
       opt.Peers = argv[++i];
@@ -288,7 +331,7 @@ bool ParseArgs(int argc, char* argv[], Options& opt)
       std::cerr << "usage: " << argv[0]
                 << " [--large] [--frames N] [--sizes 512,1024] [--edges] [--meshes quad,N,..] "
                    "[--spheres N,..]"
-                   " [--peers glyphs,points,impostors] [--translucent N,..]\n";
+                   " [--peers glyphs,points,impostors] [--translucent N,..] [--tubes N,..]\n";
       return false;
     }
   }
@@ -528,6 +571,28 @@ void RunSpheres(vtkRenderWindow* win, int size, const Options& opt)
     }
   }
 }
+/// Lines drawn as tubes: the pass against vtkPolyDataMapper's tubes.
+void RunTubes(vtkRenderWindow* win, int size, const Options& opt, std::ostream& phases)
+{
+  for (long n : opt.TubeSegments)
+  {
+    auto lines = PolylinesOf(n);
+    auto setup = [&](vtkRenderer* ren)
+    {
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputData(lines);
+      mapper->SetScalarRange(0.0, 1.0);
+      vtkActor* actor = AddActor(ren, mapper);
+      actor->GetProperty()->SetRenderLinesAsTubes(true);
+      actor->GetProperty()->SetLineWidth(4.0f);
+    };
+    const Timing pass = Measure(win, setup, true, opt.Frames);
+    const Timing raster = Measure(win, setup, false, opt.Frames);
+    const std::string scene = std::to_string(n / 1000) + "k tube segments";
+    Row(scene, size, "vtkPolyDataMapper tubes", pass, raster);
+    PhaseRow(phases, scene, size, pass, raster);
+  }
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -555,6 +620,7 @@ int main(int argc, char* argv[])
     RunMeshes(win, size, opt, phases);
     RunSpheres(win, size, opt);
     RunTranslucent(win, size, opt, phases);
+    RunTubes(win, size, opt, phases);
     if (!phases.str().empty())
     {
       std::cout << "\nfirst frame by phase, ms (pass; rest: drawing and what VTK does around it):\n"

@@ -33,8 +33,16 @@
  *   faces), in the actor's colors, lit with VTK's line normals. Edges of
  *   glyphs, edges drawn as tubes, and wireframes with a texture, culling or
  *   a backface property stay with raster.
- *   An actor whose data also has lines, vertices without
- *   RenderPointsAsSpheres, or a translucent block falls back whole.
+ *   An actor whose data also has lines not drawn as tubes (below),
+ *   vertices without RenderPointsAsSpheres, or a translucent block falls
+ *   back whole.
+ * - Line and polyline cells of such an actor with RenderLinesAsTubes and a
+ *   LineWidth over 1 (where VTK draws tubes) as analytic round tubes
+ *   LineWidth pixels wide under every camera: each segment the hull of its
+ *   two end spheres (radii as for points drawn as spheres), so polylines
+ *   have round joints; point scalars interpolated along a segment, cell
+ *   scalars per cell; their cell ids follow the vertices'. The BVH is over
+ *   the bare segments, grown per frame by the largest radius.
  * - Points of such an actor with RenderPointsAsSpheres (vertices, or every
  *   point with the points representation) as analytic spheres PointSize
  *   pixels wide, as VTK draws them, under every camera: each frame gives a

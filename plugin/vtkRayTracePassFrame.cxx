@@ -207,6 +207,7 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   f.WorldCoordinates = pass.PrecisionMode == WORLD;
   f.ScreenSpheres = this->Scene.HasScreenSpheres();
   f.Ellipsoids = this->Scene.HasEllipsoids();
+  f.Tubes = this->Scene.HasTubes();
   f.Textures = this->Scene.HasTextures();
   f.FaceCulling = this->Scene.HasFaceCulling();
   f.BackfaceProperties = this->Scene.HasBackfaceProperties();

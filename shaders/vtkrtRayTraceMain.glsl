@@ -1,10 +1,11 @@
 // vtkrt ray tracing fragment shader, main part. The pass prepends the
 // #version line, the feature #defines and the kernel chunks
-// (vtkrtRayTraceKernels, and vtkrtRayTraceTriangles / vtkrtRayTraceSpheres
-// only when the scene has such primitives, vtkrtRayTraceSurfaces when it
-// has textured or culled triangles, vtkrtRayTraceEdges when it has cell
-// edges or wireframes); vtkrtRayTraceTranslucent follows it when the scene
-// has translucent instances.
+// (vtkrtRayTraceKernels, and vtkrtRayTraceTriangles / vtkrtRayTraceSpheres /
+// vtkrtRayTraceTubes only when the scene has such primitives,
+// vtkrtRayTraceSurfaces when it has textured or culled triangles,
+// vtkrtRayTraceEdges when it has cell edges or wireframes);
+// vtkrtRayTraceTranslucent follows it when the scene has translucent
+// instances.
 //
 // Coordinates: everything the shader sees is camera-relative world space
 // (world minus the eye position, computed in double on the CPU), so a scene
@@ -317,26 +318,34 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, float tMin, in
 #endif
   int primitive = -1;
   vec2 uv = vec2(0.0);
-#ifdef VTKRT_SCREEN_SPHERES
+#if defined(VTKRT_SCREEN_SPHERES) || defined(VTKRT_HAS_TUBES)
   vec4 radiusPlane = instanceScreenRadiusPlane(instance);
   float grow = instanceSphereGrow(instance);
 #else
   vec4 radiusPlane = vec4(0.0);
   float grow = 0.0;
 #endif
-#if defined(VTKRT_HAS_TRIANGLES) && defined(VTKRT_HAS_SPHERES)
-  bool hit = (flags & kInstanceSpheres) != 0u
-    ? traverseSpheres(root, localOrg, localDir, t0, t1, primitive, stopAtFirstHit, radiusPlane, grow,
-        (flags & kInstanceEllipsoids) != 0u)
-    : traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv, stopAtFirstHit);
-#elif defined(VTKRT_HAS_TRIANGLES)
-  bool hit = traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv, stopAtFirstHit);
-#elif defined(VTKRT_HAS_SPHERES)
-  bool hit = traverseSpheres(root, localOrg, localDir, t0, t1, primitive, stopAtFirstHit,
-    radiusPlane, grow, (flags & kInstanceEllipsoids) != 0u);
-#else
   bool hit = false;
+#ifdef VTKRT_HAS_TUBES
+  if ((flags & kInstanceTubes) != 0u)
+  {
+    hit = traverseTubes(root, localOrg, localDir, t0, t1, primitive, stopAtFirstHit, radiusPlane, grow);
+  }
+  else
 #endif
+  {
+#if defined(VTKRT_HAS_TRIANGLES) && defined(VTKRT_HAS_SPHERES)
+    hit = (flags & kInstanceSpheres) != 0u
+      ? traverseSpheres(root, localOrg, localDir, t0, t1, primitive, stopAtFirstHit, radiusPlane, grow,
+          (flags & kInstanceEllipsoids) != 0u)
+      : traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv, stopAtFirstHit);
+#elif defined(VTKRT_HAS_TRIANGLES)
+    hit = traverseTriangles(root, localOrg, localDir, t0, t1, primitive, uv, stopAtFirstHit);
+#elif defined(VTKRT_HAS_SPHERES)
+    hit = traverseSpheres(root, localOrg, localDir, t0, t1, primitive, stopAtFirstHit,
+      radiusPlane, grow, (flags & kInstanceEllipsoids) != 0u);
+#endif
+  }
 #ifdef VTKRT_SKIPS_FACES
   if (hit && (flags & kInstanceSpheres) == 0u &&
     faceSkipped(instance, primitive, uv, localDir, flags, !stopAtFirstHit))
@@ -528,6 +537,17 @@ vec4 shadeHit(vec3 org, vec3 dir, float tBest, int hitInstance, int hitPrimitive
     vec3 localOrg = vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
     vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
     localNormal = localOrg + tBest * localDir - fetchSphere(uSpheres, hitPrimitive).center;
+#ifdef VTKRT_HAS_TUBES
+    // Tubes: the normal from the sphere touching the hit; point colors
+    // interpolated along the segment, cell colors by its cell.
+    float tubeS = 0.0;
+    uvec2 tubePointIds = uvec2(0u);
+    if ((flags & kInstanceTubes) != 0u)
+    {
+      localNormal = tubeHitNormal(hitPrimitive, localOrg + tBest * localDir,
+        instanceScreenRadiusPlane(hitInstance), tubeS, tubePointIds);
+    }
+#endif
 #ifdef VTKRT_HAS_ELLIPSOIDS
     if ((flags & kInstanceEllipsoids) != 0u)
     {
@@ -550,6 +570,25 @@ vec4 shadeHit(vec3 org, vec3 dir, float tBest, int hitInstance, int hitPrimitive
     if ((flags & (kInstancePointColors | kInstanceCellColors)) != 0u)
     {
       int cb = int(instanceColorBase(hitInstance));
+#ifdef VTKRT_HAS_TUBES
+      if ((flags & (kInstanceTubes | kInstancePointColors)) == (kInstanceTubes | kInstancePointColors))
+      {
+        int i0 = int(tubePointIds.x);
+        int i1 = int(tubePointIds.y);
+#ifdef VTKRT_HAS_COLOR_TEXTURE
+        if ((flags & kInstanceColorTexture) != 0u)
+        {
+          scalarColor = lookupColorTexture(cb,
+            mix(fetchColorCoordinate(cb, i0), fetchColorCoordinate(cb, i1), tubeS));
+        }
+        else
+#endif
+        {
+          scalarColor = mix(fetchColor(cb + i0), fetchColor(cb + i1), tubeS);
+        }
+      }
+      else
+#endif
 #ifdef VTKRT_HAS_COLOR_TEXTURE
       if ((flags & kInstanceColorTexture) != 0u)
       {

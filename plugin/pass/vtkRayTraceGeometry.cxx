@@ -43,6 +43,7 @@ void smpFor(std::size_t n, Fn&& fn)
   vtkSMPTools::For(0, static_cast<vtkIdType>(n),
     [&fn](vtkIdType b, vtkIdType e) { fn(static_cast<std::size_t>(b), static_cast<std::size_t>(e)); });
 }
+} // namespace
 
 /// The frame the primitives are built in: that of the finite boxes' union
 /// (model coordinates), so the BVH and every GPU record are in units near 1
@@ -97,6 +98,8 @@ std::optional<Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh, const co
   return origin;
 }
 
+namespace
+{
 /// `edges` of fan triangle `t` less those from a point whose edge flag is 0.
 std::uint8_t fanEdges(const core::SurfaceTriangles& triangles, std::size_t t, std::uint32_t edges,
   const unsigned char* edgeFlags, std::size_t edgeFlagCount)

@@ -8,8 +8,11 @@
 #include "vtkrt/core/AABB.h"
 #include "vtkrt/core/BVH.h"
 #include "vtkrt/core/HugePageArray.h"
+#include "vtkrt/core/LocalFrame.h"
 
+#include <functional>
 #include <memory>
+#include <optional>
 
 class vtkPoints;
 class vtkPolyData;
@@ -18,6 +21,14 @@ namespace vtkrt
 {
 namespace pass
 {
+
+/// The frame the primitives are built in: that of the finite boxes' union.
+core::ScaledFrame buildFrame(std::size_t count, const std::function<core::AABB<double>(std::size_t)>& boxOf);
+
+/// Takes a BVH built in `frame`'s coordinates into `g` (nodes, local origin
+/// and bounds); returns the origin in the frame's coordinates, or nothing
+/// for an empty tree.
+std::optional<core::Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh, const core::ScaledFrame& frame);
 
 /// The points as double vectors (empty for null points).
 void ReadPoints(vtkPoints* pts, core::NoFillArray<core::Vec3<double>>& out);

@@ -50,7 +50,8 @@ GeometryLayout LayOutGeometry(const Scene& scene)
     {
       place.PrimitiveBase = static_cast<std::uint32_t>(out.SphereTexels);
       out.SphereTexels += g.SphereRecords.size() * core::gpu::texelsOf<core::gpu::Sphere>() +
-        g.EllipsoidRecords.size() * core::gpu::texelsOf<core::gpu::Ellipsoid>();
+        g.EllipsoidRecords.size() * core::gpu::texelsOf<core::gpu::Ellipsoid>() +
+        g.SegmentRecords.size() * core::gpu::texelsOf<core::gpu::Segment>();
       out.SphereIdWords += g.SphereIds.size();
     }
     else
@@ -77,6 +78,9 @@ void WriteGeometry(const Scene& scene, const GeometryLayout& layout, const Geome
       copyRecords(g.SphereRecords.data(), g.SphereRecords.size(), spheres);
       copyRecords(g.EllipsoidRecords.data(), g.EllipsoidRecords.size(),
         reinterpret_cast<core::gpu::Ellipsoid*>(spheres + g.SphereRecords.size()));
+      copyRecords(g.SegmentRecords.data(), g.SegmentRecords.size(),
+        reinterpret_cast<core::gpu::Segment*>(out.Spheres + place.PrimitiveBase +
+          g.SphereRecords.size() + g.EllipsoidRecords.size() * core::gpu::kEllipsoidTexels));
       copyRecords(g.SphereIds.data(), g.SphereIds.size(), out.SphereIds + sphereIds);
       sphereIds += g.SphereIds.size();
     }

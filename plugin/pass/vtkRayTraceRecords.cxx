@@ -252,6 +252,7 @@ std::uint32_t instanceFlags(const Instance& inst, bool mirrored)
   const Geometry& g = *inst.Geom;
   std::uint32_t flags = g.Spheres ? kInstanceSpheres : 0u;
   flags |= g.Ellipsoids ? kInstanceEllipsoids : 0u;
+  flags |= g.Tubes ? kInstanceTubes : 0u;
   flags |= inst.Lit ? kInstanceLit : 0u;
   flags |= inst.UseVertexNormals ? kInstanceVertexNormals : 0u;
   flags |= inst.UseCellNormals ? kInstanceCellNormals : 0u;

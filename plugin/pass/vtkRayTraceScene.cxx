@@ -1,6 +1,7 @@
 #include "vtkRayTraceScene.h"
 
 #include "vtkRayTraceGeometry.h"
+#include "vtkRayTraceTubes.h"
 
 #include "vtkActor.h"
 #include "vtkCompositeDataDisplayAttributes.h"
@@ -29,14 +30,18 @@ namespace pass
 namespace
 {
 /// The polydata's verts/lines cells decide whether the pass can trace it.
-bool hasUntraceableCells(vtkPolyData* poly, bool pointsAsSpheres)
+bool hasUntraceableCells(vtkPolyData* poly, bool pointsAsSpheres, bool linesAsTubes)
 {
-  if (poly->GetNumberOfLines() > 0)
+  if (poly->GetNumberOfLines() > 0 && !linesAsTubes)
   {
     return true;
   }
   return poly->GetNumberOfVerts() > 0 && !pointsAsSpheres;
 }
+
+/// The second part of a tube geometry's cache key (a points-as-spheres
+/// geometry of the same polydata has none).
+const char kTubesKey = 0;
 
 /// A cache entry's "used this frame" flag (entries held by pointer or by value).
 template <class T>
@@ -298,7 +303,39 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
       this->Instances.push_back(sph);
     }
   }
+  if (DrawsLinesAsTubes(property) && poly->GetNumberOfLines() > 0)
+  {
+    this->AddTubes(mapper, poly, time, inst, property->GetLineWidth(), counters);
+  }
   return true;
+}
+
+void Scene::AddTubes(vtkMapper* mapper, vtkPolyData* poly, vtkMTimeType time, const Instance& inst,
+  double lineWidth, FrameCounters& counters)
+{
+  // LineWidth pixels wide at any distance, as VTK draws them: the BVH is
+  // over the bare segments and the radii come with each frame's camera, as
+  // for points drawn as spheres.
+  auto& entry = this->SphereCache[std::make_pair(static_cast<const void*>(poly), &kTubesKey)];
+  if (!entry || entry->SourceTime != time || entry->Quality != this->BuildQuality)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    entry = BuildTubes(poly, this->SphereOptions());
+    counters.AddBuild(*entry, SecondsSince(start));
+    entry->Quality = this->BuildQuality;
+    entry->SourceTime = time;
+    entry->Keep = poly;
+    this->GeometryDirty = true;
+  }
+  entry->Used = true;
+  if (!entry->Empty())
+  {
+    Instance tube = inst;
+    tube.Geom = entry.get();
+    tube.PointSize = lineWidth;
+    tube.Color = this->GetColors(mapper, poly, time);
+    this->Instances.push_back(tube);
+  }
 }
 
 bool Scene::AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& counters)
@@ -307,6 +344,7 @@ bool Scene::AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& cou
   mapper->Update();
   vtkDataObject* input = mapper->GetInputDataObject(0, 0);
   const bool pointsAsSpheres = actor->GetProperty()->GetRenderPointsAsSpheres();
+  const bool linesAsTubes = DrawsLinesAsTubes(actor->GetProperty());
   std::vector<Piece> pieces;
   bool ok = true;
   if (auto* poly = vtkPolyData::SafeDownCast(input))
@@ -330,7 +368,7 @@ bool Scene::AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& cou
   }
   for (const Piece& piece : pieces)
   {
-    ok = ok && !hasUntraceableCells(piece.Poly, pointsAsSpheres);
+    ok = ok && !hasUntraceableCells(piece.Poly, pointsAsSpheres, linesAsTubes);
   }
   if (ok)
   {
@@ -428,7 +466,12 @@ bool Scene::HasSpheres() const
 bool Scene::HasScreenSpheres() const
 {
   return std::any_of(this->Instances.begin(), this->Instances.end(),
-    [](const Instance& i) { return i.Geom->ScreenSized; });
+    [](const Instance& i) { return i.Geom->ScreenSized && !i.Geom->Tubes; });
+}
+bool Scene::HasTubes() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return i.Geom->Tubes; });
 }
 bool Scene::HasEllipsoids() const
 {

@@ -83,6 +83,7 @@ public:
   bool HasSpheres() const;
   bool HasScreenSpheres() const;
   bool HasEllipsoids() const;
+  bool HasTubes() const;
   bool HasVertexNormals() const;
   bool HasCellNormals() const;
   bool HasColors() const;
@@ -133,6 +134,10 @@ private:
   /// One set's spheres or ellipsoids, cached per (mapper, dataset), and its instance.
   void AddGlyphSet(vtkActor* actor, vtkGlyph3DMapper* mapper, const GlyphSphere& sphere,
     const GlyphSet& set, int propIndex, FrameCounters& counters);
+  /// The polydata's line cells as tubes `lineWidth` pixels wide (cached per
+  /// polydata), and their instance, which takes `inst`'s material.
+  void AddTubes(vtkMapper* mapper, vtkPolyData* poly, vtkMTimeType time, const Instance& inst,
+    double lineWidth, FrameCounters& counters);
   Colors* GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time);
   void FillMaterial(vtkActor* actor, vtkMapper* mapper, Instance& inst) const;
   /// The actor's texture on a triangle instance; false (left to raster)

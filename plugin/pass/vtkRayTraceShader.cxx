@@ -14,6 +14,7 @@
 #include "vtkrtRayTraceSurfaces.h"
 #include "vtkrtRayTraceTranslucent.h"
 #include "vtkrtRayTraceTriangles.h"
+#include "vtkrtRayTraceTubes.h"
 
 #include "vtkrt/core/BVH.h"
 #include "vtkrt/core/GpuLayout.h"
@@ -37,7 +38,8 @@ std::string Features::Key() const
     << this->ColorTexture << "K" << this->SelectIds << "F" << this->CellNormals << "U"
     << this->Textures << "B" << this->FaceCulling << "Y" << this->BackfaceProperties << "Z"
     << this->TextureCutOuts << "S" << this->StackSize << "R" << this->Translucent << "G"
-    << this->SurfaceEdges << "V" << this->Wireframe;
+    << this->SurfaceEdges << "V" << this->Wireframe << "J"
+    << this->Tubes;
   return s.str();
 }
 
@@ -80,6 +82,7 @@ std::string AssembleShader(const Features& f)
   define(f.WorldCoordinates, "VTKRT_WORLD_COORDINATES");
   define(f.ScreenSpheres, "VTKRT_SCREEN_SPHERES");
   define(f.Ellipsoids, "VTKRT_HAS_ELLIPSOIDS");
+  define(f.Spheres && f.Tubes, "VTKRT_HAS_TUBES");
   s << "#define VTKRT_AMBIENT_OCCLUSION_SAMPLES " << f.AmbientOcclusionSamples << "\n";
   s << "#define VTKRT_MAXIMUM_TRAVERSAL_STEPS " << f.MaximumTraversalSteps << "\n";
   s << "#define VTKRT_NUMBER_OF_CLIP_PLANES " << f.ClipPlanes << "\n";
@@ -95,6 +98,10 @@ std::string AssembleShader(const Features& f)
   if (f.Spheres)
   {
     s << vtkrtRayTraceSpheres << "\n";
+  }
+  if (f.Spheres && f.Tubes)
+  {
+    s << vtkrtRayTraceTubes << "\n";
   }
   if (f.Triangles && (f.Textures || f.FaceCulling))
   {

@@ -56,6 +56,7 @@ struct Geometry
   core::HugePageArray<core::gpu::TriangleVertices> TriangleVertices;
   core::HugePageArray<core::gpu::Sphere> SphereRecords;       ///< leaf order
   core::HugePageArray<core::gpu::Ellipsoid> EllipsoidRecords; ///< leaf order
+  core::HugePageArray<core::gpu::Segment> SegmentRecords;     ///< leaf order (tubes)
   core::HugePageArray<std::uint32_t> SphereIds; ///< VTK point id per sphere texel (leaf order)
   core::HugePageArray<core::gpu::Normal> Normals; ///< per point, empty if none
   core::HugePageArray<core::gpu::Normal> CellNormals; ///< per VTK cell id, empty if none
@@ -72,6 +73,10 @@ struct Geometry
   bool ScreenSized = false;
   /// Sphere glyphs scaled per component: ellipsoids (Spheres is set too).
   bool Ellipsoids = false;
+  /// Lines drawn as tubes: segments in the sphere buffer, sized per frame
+  /// as screen-sized spheres are (Spheres and ScreenSized are set too;
+  /// SphereIds holds VTK cell ids).
+  bool Tubes = false;
   vtkSmartPointer<vtkObject> Keep; ///< keeps the keyed object alive
   vtkSmartPointer<vtkObject> KeepData; ///< glyphs: the keyed dataset (key: mapper, dataset)
 
@@ -112,7 +117,7 @@ struct Instance
   bool Lit = true;
   bool UseVertexNormals = false;
   bool UseCellNormals = false; ///< one normal per cell (none per point, or flat)
-  double PointSize = 0.0; ///< > 0: screen-sized spheres this many pixels wide
+  double PointSize = 0.0; ///< > 0: screen-sized spheres (tubes: LineWidth) this many pixels wide
   std::vector<std::array<double, 4>> ClipPlanes; ///< world: n.x + d >= 0 kept
   /// The actor's texture and the data's texture coordinates (both or neither).
   const TextureEntry* Texture = nullptr;
@@ -162,6 +167,7 @@ struct Features
   bool WorldCoordinates = false; ///< vtkRayTracePass::WORLD precision mode
   bool ScreenSpheres = false;    ///< points drawn as spheres (per-frame radii)
   bool Ellipsoids = false;       ///< sphere glyphs scaled per component
+  bool Tubes = false;            ///< lines drawn as tubes
   bool Textures = false;         ///< some triangles carry an actor texture
   bool FaceCulling = false;      ///< some triangles are culled on one side
   bool BackfaceProperties = false; ///< some triangles have a back-face material

@@ -10,6 +10,7 @@
 //   Triangle.h   intersectRayTriangle (watertight, Woop et al. 2013; u, v are
 //                the weights of v1, v2 like VTK pcoords), closestPointOnTriangle
 //   Sphere.h     raySphereRoots / intersectRaySphere (Ray Tracing Gems ch. 7)
+//   Capsule.h    intersectRayTube: a line segment drawn as a round tube (two spheres and their cone)
 //   Plane.h      intersectRayPlane -> Hit / Miss / Parallel; clipRayByPlane
 //                (an interval clipped to a PlaneEquation's kept side)
 //   BVH.h        the flattened layout (read its header comment: the GPU walks
@@ -18,7 +19,7 @@
 //                packGpuNodes(bvh.nodes, origin) -> gpu::Node per node
 //                (packNodesForGpu: the same as 8 floats per node)
 //   GpuLayout.h  the records the GPU reads (gpu::Node, Triangle, Sphere,
-//                Ellipsoid, InstanceRecord, Light, flags) and glslLayout(),
+//                Ellipsoid, Segment, InstanceRecord, Light, flags) and glslLayout(),
 //                the GLSL generated from them (a struct and a reader
 //                fetch<Record> per record)
 //   BVHBuild.h   buildBVH(vector<AABB<double>>, options): generic builder
@@ -89,6 +90,7 @@
 #include "vtkrt/core/Ray.h"
 #include "vtkrt/core/SegmentQueries.h"
 #include "vtkrt/core/Sphere.h"
+#include "vtkrt/core/Capsule.h"
 #include "vtkrt/core/Triangle.h"
 #include "vtkrt/core/TwoLevel.h"
 #include "vtkrt/core/WideBVH.h"

@@ -1,5 +1,5 @@
 // The C++ twins of the shader's kernels (shaders/vtkrtRayTraceKernels.glsl,
-// vtkrtRayTraceTriangles.glsl, vtkrtRayTraceSpheres.glsl): each has the GLSL
+// vtkrtRayTraceTriangles.glsl, vtkrtRayTraceSpheres.glsl, vtkrtRayTraceTubes.glsl): each has the GLSL
 // function's name, arguments and float operations in its order, so the CPU
 // can compute what the GPU computes (TestCoreGpuTwins checks them against the
 // double kernels). Where the shader runs a core kernel (slab, ray/plane clip,
@@ -11,6 +11,7 @@
 #ifndef vtkrt_core_GpuKernels_h
 #define vtkrt_core_GpuKernels_h
 
+#include "vtkrt/core/Capsule.h"
 #include "vtkrt/core/GpuLayout.h"
 #include "vtkrt/core/Plane.h"
 #include "vtkrt/core/Ray.h"
@@ -119,6 +120,20 @@ inline bool intersectRaySphere(const vec3& org, const vec3& dir, const vec3& cen
 {
   t = 0.0f;
   return core::intersectRaySphere(Ray<float>(org, dir, tmin, tmax), center, radius, t);
+}
+
+/// A tube piece (core::intersectRayTube in float): the hull of the spheres
+/// (a, ra) and (b, rb).
+inline bool intersectRayTube(const vec3& org, const vec3& dir, const vec3& a, const vec3& b, float ra,
+  float rb, float tmin, float tmax, float& t)
+{
+  t = 0.0f;
+  return core::intersectRayTube(Ray<float>(org, dir, tmin, tmax), a, b, ra, rb, t);
+}
+
+inline float tubeParameter(const vec3& p, const vec3& a, const vec3& b, float ra, float rb)
+{
+  return core::tubeParameter(p, a, b, ra, rb);
 }
 
 } // namespace vtkrt::core::gpu

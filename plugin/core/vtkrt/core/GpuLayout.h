@@ -111,6 +111,21 @@ struct Ellipsoid
 #define VTKRT_GPU_ELLIPSOID_FIELDS(FIELD, PAD) FIELD(Ellipsoid, rows)
 constexpr std::uint32_t kEllipsoidTexels = 3;
 
+/// One segment of a line drawn as a tube: its end points relative to its
+/// geometry's origin and their VTK point ids (point colors). It shares the
+/// sphere buffer as ellipsoids do: two primitive slots, read at its first
+/// texel. Its radii come with each frame (the instance's screenRadiusPlane).
+struct Segment
+{
+  vec3 a;
+  std::uint32_t pointId0;
+  vec3 b;
+  std::uint32_t pointId1;
+};
+#define VTKRT_GPU_SEGMENT_FIELDS(FIELD, PAD)                                                       \
+  FIELD(Segment, a) FIELD(Segment, pointId0) FIELD(Segment, b) FIELD(Segment, pointId1)
+constexpr std::uint32_t kSegmentTexels = 2;
+
 /// A point normal, or a cell normal (indexed by VTK cell id).
 struct Normal
 {
@@ -176,8 +191,8 @@ struct InstanceRecord
                                   FIELD(InstanceRecord, lineWidth)
 
 /// How the shader indexes a record's buffer: record i is texels
-/// i * texels + k (ByRecord), or starts at texel i (ByTexel: ellipsoids,
-/// whose buffer also holds one-texel spheres).
+/// i * texels + k (ByRecord), or starts at texel i (ByTexel: ellipsoids
+/// and segments, whose buffer also holds one-texel spheres).
 enum class Indexing
 {
   ByRecord,
@@ -193,6 +208,7 @@ enum class Indexing
     VTKRT_GPU_TRIANGLE_VERTICES_FIELDS(FIELD, PAD))                                                \
   RECORD(Sphere, SPHERE, ByRecord, VTKRT_GPU_SPHERE_FIELDS(FIELD, PAD))                            \
   RECORD(Ellipsoid, ELLIPSOID, ByTexel, VTKRT_GPU_ELLIPSOID_FIELDS(FIELD, PAD))                    \
+  RECORD(Segment, SEGMENT, ByTexel, VTKRT_GPU_SEGMENT_FIELDS(FIELD, PAD))                          \
   RECORD(Normal, NORMAL, ByRecord, VTKRT_GPU_NORMAL_FIELDS(FIELD, PAD))                            \
   RECORD(InstanceRecord, INSTANCE, ByRecord, VTKRT_GPU_INSTANCE_FIELDS(FIELD, PAD))
 
@@ -219,7 +235,8 @@ enum class Indexing
   X(TextureCutOuts, 16384u)                                                                        \
   X(Translucent, 32768u)                                                                           \
   X(SurfaceEdges, 65536u)                                                                          \
-  X(Wireframe, 131072u)
+  X(Wireframe, 131072u)                                                                            \
+  X(Tubes, 262144u)
 
 enum InstanceFlags : std::uint32_t
 {
@@ -436,6 +453,7 @@ VTKRT_GPU_RECORDS(VTKRT_GPU_CHECK_TEXELS, VTKRT_GPU_FIELD_IN_TEXELS, VTKRT_GPU_N
 #undef VTKRT_GPU_CHECK_FIELDS
 #undef VTKRT_GPU_CHECK_TEXELS
 static_assert(texelsOf<Ellipsoid>() == kEllipsoidTexels, "Ellipsoid: 3 texels");
+static_assert(texelsOf<Segment>() == kSegmentTexels, "Segment: 2 texels");
 
 /// The GLSL for the layouts: the instance flags kInstance<Name>, the
 /// triangle edge bits kEdge01, kEdge12, kEdge20, per record

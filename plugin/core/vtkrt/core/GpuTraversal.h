@@ -1,5 +1,5 @@
 // The C++ twins of the shader's BVH walks: the while-while walk of
-// traverseTriangles and traverseSpheres (bvhInteriorStep, bvhPopAfterLeaf)
+// traverseTriangles, traverseSpheres and traverseTubes (bvhInteriorStep, bvhPopAfterLeaf)
 // and the top-level walk of traceTopLevel, reading the packed arrays the
 // pass uploads (packNodesForGpu and the primitive records) the way the
 // shader reads its texture buffers: a record at a time, by readers named as
@@ -104,7 +104,7 @@ struct ShaderInputs
 {
   TexelBuffer uNodes;     ///< every bottom-level BVH's Nodes (packNodesForGpu)
   TexelBuffer uTriangles; ///< Triangles in leaf order
-  TexelBuffer uSpheres;   ///< Spheres, or Ellipsoids (a texel index each), in leaf order
+  TexelBuffer uSpheres;   ///< Spheres, or Ellipsoids or Segments (a texel index each), in leaf order
   TexelBuffer uTopNodes;  ///< the Nodes of the top-level BVH over the instance records
   vec3 uCameraToAnchor = vec3(0.0f);
   int maximumTraversalSteps = 0; ///< VTKRT_MAXIMUM_TRAVERSAL_STEPS (0: no cap)
@@ -345,6 +345,39 @@ inline bool traverseSpheres(const ShaderInputs& u, int root, const vec3& org, co
     return stopAtFirstHit && sphere >= 0;
   });
   return sphere >= 0;
+}
+
+/// A point's tube radius this frame (the shader's tubeRadius).
+inline float tubeRadius(const vec4& radiusPlane, const vec3& p)
+{
+  return glm::max(0.0f, glm::dot(vec3(radiusPlane), p) + radiusPlane.w);
+}
+
+/// Closest hit (any hit with stopAtFirstHit) in the segment BVH whose root
+/// node is `root` (the shader's traverseTubes): tmax becomes the hit's t,
+/// segment its first texel in uSpheres. Each segment is a tube piece of this
+/// frame's radii (radiusPlane); every box grows by `grow`, their bound.
+inline bool traverseTubes(const ShaderInputs& u, int root, const vec3& org, const vec3& dir, float tmin,
+  float& tmax, int& segment, bool stopAtFirstHit, const vec4& radiusPlane, float grow)
+{
+  segment = -1;
+  detail::whileWhileWalk<true>(u, root, org, dir, tmin, tmax, grow, [&](int first, int count) {
+    const int texels = static_cast<int>(kSegmentTexels);
+    const int last = first + texels * count;
+    for (int i = first; i < last; i += texels)
+    {
+      const Segment s = fetchSegment(u.uSpheres, i);
+      float t;
+      if (intersectRayTube(org, dir, s.a, s.b, tubeRadius(radiusPlane, s.a), tubeRadius(radiusPlane, s.b),
+            tmin, tmax, t))
+      {
+        tmax = t;
+        segment = i;
+      }
+    }
+    return stopAtFirstHit && segment >= 0;
+  });
+  return segment >= 0;
 }
 
 /// The top-level walk over the instance records: core's nearer-first walk

@@ -1,0 +1,499 @@
+// Lines drawn as tubes (issue 22, part 3), traced and compared with VTK's
+// raster of the same scene after a Gaussian blur of a few pixels (VTK's
+// raster tubes are flat quads shaded like cylinders, without round joints or
+// caps; a blur compares their shape and shading, not single edge pixels):
+//   Helix        a polyline helix, RenderLinesAsTubes, LineWidth 8, colored
+//                by point scalars, perspective and parallel projection;
+//                a camera move or a LineWidth change uploads no geometry; scalars interpolated
+//                before mapping (a 4-color table along coarse segments)
+//   Mixed        one polydata of a surface and lines, colored by cell
+//                scalars: both traced (triangles and tubes), both projections
+//   ManyActors   twelve tube actors, walked through the top-level BVH
+//   NoTubeCode   the shader of a scene without tubes has none of their code;
+//                plain lines (no RenderLinesAsTubes, or LineWidth 1 or 0)
+//                leave the actor to raster
+//   Selection    vtkHardwareSelector picks the same line cell ids (after
+//                the vertices, before the polygons) as raster
+//   Shadow       traced tubes cast a shadow on a traced floor (and on
+//                themselves); ambient occlusion darkens floor and tubes
+//   BadInput     zero-length segments, single-point lines, NaN points, a
+//                huge LineWidth: traced without a crash or a warning
+#include "vtkrtPassTestUtils.h"
+#include "vtkrtTestOutputWindow.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkHardwareSelector.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageGaussianSmooth.h"
+#include "vtkLight.h"
+#include "vtkLookupTable.h"
+#include "vtkSelection.h"
+#include "vtkSelectionNode.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <sstream>
+
+using namespace vtkrtPassTest;
+
+namespace
+{
+constexpr int kSize = 300;
+constexpr double kPi = 3.14159265358979323846;
+
+/// A helix of `points` points as one polyline, with a point scalar "t" along it.
+vtkSmartPointer<vtkPolyData> Helix(int points, double turns)
+{
+  vtkNew<vtkPoints> pts;
+  vtkNew<vtkDoubleArray> t;
+  t->SetName("t");
+  vtkNew<vtkCellArray> lines;
+  lines->InsertNextCell(points);
+  for (int i = 0; i < points; ++i)
+  {
+    const double u = static_cast<double>(i) / (points - 1);
+    const double a = 2.0 * kPi * turns * u;
+    pts->InsertNextPoint(std::cos(a), 2.0 * u - 1.0, std::sin(a));
+    t->InsertNextValue(u);
+    lines->InsertCellPoint(i);
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(pts);
+  poly->SetLines(lines);
+  poly->GetPointData()->SetScalars(t);
+  return poly;
+}
+
+/// A sphere's polygons and, in the same polydata, rings of lines around it
+/// and spokes out of it, with a cell scalar (lines first, as VTK numbers them).
+vtkSmartPointer<vtkPolyData> SurfaceWithLines()
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(0.6);
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(16);
+  sphere->Update();
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->DeepCopy(sphere->GetOutput());
+  poly->GetPointData()->Initialize();
+  vtkPoints* pts = poly->GetPoints();
+  vtkNew<vtkCellArray> lines;
+  for (int ring = 0; ring < 3; ++ring)
+  {
+    const int n = 48;
+    const double y = -0.5 + 0.5 * ring;
+    lines->InsertNextCell(n + 1);
+    const vtkIdType first = pts->GetNumberOfPoints();
+    for (int i = 0; i < n; ++i)
+    {
+      const double a = 2.0 * kPi * i / n;
+      pts->InsertNextPoint(1.0 * std::cos(a), y, 1.0 * std::sin(a));
+      lines->InsertCellPoint(first + i);
+    }
+    lines->InsertCellPoint(first);
+  }
+  for (int spoke = 0; spoke < 6; ++spoke)
+  {
+    const double a = 2.0 * kPi * spoke / 6 + 0.3;
+    const vtkIdType id0 = pts->InsertNextPoint(0.55 * std::cos(a), 0.0, 0.55 * std::sin(a));
+    const vtkIdType id1 = pts->InsertNextPoint(1.3 * std::cos(a), 0.4, 1.3 * std::sin(a));
+    const vtkIdType seg[2] = { id0, id1 };
+    lines->InsertNextCell(2, seg);
+  }
+  poly->SetLines(lines);
+  vtkNew<vtkFloatArray> cellScalar;
+  const vtkIdType cells = poly->GetNumberOfCells();
+  for (vtkIdType c = 0; c < cells; ++c)
+  {
+    cellScalar->InsertNextValue(static_cast<float>(c % 7));
+  }
+  poly->GetCellData()->SetScalars(cellScalar);
+  return poly;
+}
+
+vtkSmartPointer<vtkActor> TubeActor(vtkPolyData* poly, double lineWidth, double range[2])
+{
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(poly);
+  mapper->SetScalarRange(range);
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetRenderLinesAsTubes(true);
+  actor->GetProperty()->SetLineWidth(static_cast<float>(lineWidth));
+  actor->GetProperty()->SetSpecular(0.3);
+  actor->GetProperty()->SetSpecularPower(20.0);
+  return actor;
+}
+
+vtkSmartPointer<vtkImageData> Blurred(vtkImageData* image)
+{
+  vtkNew<vtkImageGaussianSmooth> blur;
+  blur->SetInputData(image);
+  blur->SetDimensionality(2);
+  blur->SetStandardDeviations(2.0, 2.0);
+  blur->SetRadiusFactors(3.0, 3.0);
+  blur->Update();
+  auto out = vtkSmartPointer<vtkImageData>::New();
+  out->DeepCopy(blur->GetOutput());
+  return out;
+}
+
+struct Scene
+{
+  vtkSmartPointer<vtkEGLHeadlessRenderWindow> Window = MakeWindow(kSize, kSize);
+  vtkNew<vtkRenderer> Renderer;
+  Scene()
+  {
+    this->Window->AddRenderer(this->Renderer);
+    this->Renderer->SetBackground(0.1, 0.1, 0.15);
+  }
+  void View(double azimuth, double elevation, bool parallel)
+  {
+    this->Renderer->GetActiveCamera()->SetParallelProjection(parallel);
+    this->Renderer->ResetCamera();
+    this->Renderer->GetActiveCamera()->Azimuth(azimuth);
+    this->Renderer->GetActiveCamera()->Elevation(elevation);
+    this->Renderer->ResetCameraClippingRange();
+  }
+  /// Raster, then traced: `traced` props traced, and the RGB RMSE of the
+  /// blurred images at most `bound`; on failure the images and their
+  /// difference are written.
+  RasterAndTraced Compare(const std::string& label, int traced, double bound)
+  {
+    this->Renderer->SetPass(nullptr);
+    RasterAndTraced frames = RenderRasterThenTraced(this->Window, this->Renderer);
+    auto raster = Blurred(frames.Raster);
+    auto tracedImage = Blurred(frames.Traced);
+    const double rmse = RootMeanSquareError(raster, tracedImage);
+    std::ostringstream s;
+    s << label << ": " << frames.Pass->GetNumberOfTracedProps() << " traced props (want " << traced
+      << "), blurred RGB RMSE vs raster " << rmse << " (bound " << bound << "; unblurred "
+      << RootMeanSquareError(frames.Raster, frames.Traced) << ")";
+    Check(frames.Pass->GetNumberOfTracedProps() == traced && rmse <= bound, s.str());
+    if (rmse > bound)
+    {
+      static int written = 0;
+      const std::string name = "tubes-" + std::to_string(written++);
+      WritePNG(frames.Raster, name + "-raster.png");
+      WritePNG(frames.Traced, name + "-traced.png");
+      vtkNew<vtkImageDifference> diff;
+      diff->SetInputData(frames.Traced);
+      diff->SetImageData(frames.Raster);
+      diff->Update();
+      WritePNG(diff->GetOutput(), name + "-diff.png");
+    }
+    NoGLError(this->Window, label);
+    return frames;
+  }
+};
+
+bool ShaderHasTubes(vtkRayTracePass* pass)
+{
+  const std::string source = pass->GetLastFragmentShaderSource();
+  // The chunk's definitions (the main part names them only under #ifdef).
+  return source.find("bool traverseTubes(") != std::string::npos ||
+    source.find("bool intersectRayTube(") != std::string::npos ||
+    source.find("#define VTKRT_HAS_TUBES") != std::string::npos;
+}
+
+void TestHelix()
+{
+  for (bool parallel : { false, true })
+  {
+    Scene scene;
+    double range[2] = { 0.0, 1.0 };
+    auto helix = TubeActor(Helix(400, 3.0), 8.0, range);
+    scene.Renderer->AddActor(helix);
+    scene.View(20.0, 25.0, parallel);
+    const std::string label = std::string("helix, ") + (parallel ? "parallel" : "perspective");
+    RasterAndTraced frames = scene.Compare(label, 1, 4.0);
+    Check(ShaderHasTubes(frames.Pass), label + ": the shader has the tube code");
+    // An orbit and a zoom: the tubes stay LineWidth wide, nothing uploads.
+    scene.Renderer->GetActiveCamera()->Azimuth(35.0);
+    scene.Renderer->GetActiveCamera()->Zoom(1.3);
+    scene.Renderer->ResetCameraClippingRange();
+    scene.Window->Render();
+    Check(frames.Pass->GetLastGeometryBytesUploaded() == 0 && frames.Pass->GetLastBVHBuilds() == 0,
+      label + ": a camera move uploads no geometry (" +
+        std::to_string(frames.Pass->GetLastGeometryBytesUploaded()) + " bytes)");
+    RasterAndTraced moved = scene.Compare(label + ", moved camera", 1, 4.0);
+    // A thinner line: new radii in the instance record, no geometry.
+    helix->GetProperty()->SetLineWidth(6.0f);
+    scene.Window->Render();
+    Check(moved.Pass->GetLastGeometryBytesUploaded() == 0 && moved.Pass->GetLastBVHBuilds() == 0,
+      label + ": a LineWidth change uploads no geometry");
+    scene.Compare(label + ", LineWidth 6", 1, 4.0);
+  }
+  // Scalars through the mapper's color texture, interpolated along the tubes.
+  Scene scene;
+  double range[2] = { 0.0, 1.0 };
+  auto actor = TubeActor(Helix(60, 3.0), 8.0, range);
+  actor->GetMapper()->InterpolateScalarsBeforeMappingOn();
+  actor->GetMapper()->GetLookupTable()->SetRange(0.0, 1.0);
+  vtkLookupTable::SafeDownCast(actor->GetMapper()->GetLookupTable())->SetNumberOfTableValues(4);
+  vtkLookupTable::SafeDownCast(actor->GetMapper()->GetLookupTable())->Build();
+  scene.Renderer->AddActor(actor);
+  scene.View(20.0, 25.0, false);
+  scene.Compare("helix, scalars interpolated before mapping", 1, 4.0);
+  NoVTKOutput("Helix");
+}
+
+void TestMixed()
+{
+  for (bool parallel : { false, true })
+  {
+    Scene scene;
+    double range[2] = { 0.0, 6.0 };
+    auto actor = TubeActor(SurfaceWithLines(), 6.0, range);
+    scene.Renderer->AddActor(actor);
+    scene.View(30.0, 30.0, parallel);
+    const std::string label = std::string("surface and lines, ") + (parallel ? "parallel" : "perspective");
+    RasterAndTraced frames = scene.Compare(label, 1, 4.0);
+    const std::string key = frames.Pass->GetLastFeatureKey();
+    Check(key.find("T1") == 0 && ShaderHasTubes(frames.Pass),
+      label + ": triangles and tubes in one shader (" + key + ")");
+  }
+  NoVTKOutput("Mixed");
+}
+
+/// Twelve helices, each its own actor: more than 8 instances, so the rays
+/// walk the top-level BVH, whose boxes grow by each instance's radius bound.
+void TestManyActors()
+{
+  for (bool parallel : { false, true })
+  {
+    Scene scene;
+    double range[2] = { 0.0, 1.0 };
+    auto helix = Helix(120, 2.0);
+    for (int i = 0; i < 12; ++i)
+    {
+      auto actor = TubeActor(helix, 5.0, range);
+      actor->SetPosition(2.5 * (i % 4), 2.5 * (i / 4), -1.0 * i);
+      actor->SetScale(0.8 + 0.05 * i);
+      scene.Renderer->AddActor(actor);
+    }
+    scene.View(10.0, 15.0, parallel);
+    const std::string label = std::string("12 helices, ") + (parallel ? "parallel" : "perspective");
+    RasterAndTraced frames = scene.Compare(label, 12, 4.0);
+    Check(std::string(frames.Pass->GetLastFragmentShaderSource()).find("#define VTKRT_HAS_TOP_LEVEL") !=
+        std::string::npos,
+      label + ": through the top-level BVH");
+  }
+  NoVTKOutput("ManyActors");
+}
+
+void TestNoTubeCode()
+{
+  Scene scene;
+  scene.Renderer->AddActor(SphereActor(0.0, 0.0, 0.0, 1.0));
+  scene.View(0.0, 0.0, false);
+  scene.Renderer->SetPass(nullptr);
+  RasterAndTraced frames = RenderRasterThenTraced(scene.Window, scene.Renderer);
+  Check(frames.Pass->GetNumberOfTracedProps() == 1 && !ShaderHasTubes(frames.Pass),
+    "a scene without tubes compiles no tube code");
+  // Plain lines stay with raster, the whole actor (surface and lines).
+  const struct
+  {
+    bool Tubes;
+    double Width;
+    const char* Name;
+  } plain[] = { { false, 8.0, "RenderLinesAsTubes off" }, { true, 1.0, "LineWidth 1" },
+    { true, 0.0, "LineWidth 0" } };
+  for (const auto& p : plain)
+  {
+    Scene lines;
+    double range[2] = { 0.0, 6.0 };
+    auto actor = TubeActor(SurfaceWithLines(), p.Width, range);
+    actor->GetProperty()->SetRenderLinesAsTubes(p.Tubes);
+    lines.Renderer->AddActor(actor);
+    lines.View(30.0, 30.0, false);
+    lines.Compare(std::string("plain lines, ") + p.Name + ": left to raster", 0, 1.0);
+  }
+  NoVTKOutput("NoTubeCode");
+}
+
+/// The cell ids vtkHardwareSelector selects over the whole view.
+std::set<vtkIdType> SelectCells(Scene& scene)
+{
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(scene.Renderer);
+  selector->SetArea(0, 0, kSize - 1, kSize - 1);
+  selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_CELLS);
+  vtkSmartPointer<vtkSelection> result = vtk::TakeSmartPointer(selector->Select());
+  std::set<vtkIdType> ids;
+  for (unsigned int n = 0; result && n < result->GetNumberOfNodes(); ++n)
+  {
+    vtkIdTypeArray* list = vtkIdTypeArray::SafeDownCast(result->GetNode(n)->GetSelectionList());
+    for (vtkIdType k = 0; list && k < list->GetNumberOfTuples(); ++k)
+    {
+      ids.insert(list->GetValue(k));
+    }
+  }
+  return ids;
+}
+
+void TestSelection()
+{
+  Scene scene;
+  double range[2] = { 0.0, 6.0 };
+  auto poly = SurfaceWithLines();
+  // A vertex cell first (two points drawn as spheres), so that line ids
+  // start after it.
+  vtkNew<vtkCellArray> verts;
+  const vtkIdType v[2] = { 0, 1 };
+  verts->InsertNextCell(2, v);
+  poly->SetVerts(verts);
+  poly->GetCellData()->Initialize();
+  auto actor = TubeActor(poly, 8.0, range);
+  actor->GetProperty()->SetRenderPointsAsSpheres(true);
+  actor->GetProperty()->SetPointSize(6.0f);
+  scene.Renderer->AddActor(actor);
+  scene.View(30.0, 30.0, false);
+  scene.Window->Render();
+  const std::set<vtkIdType> raster = SelectCells(scene);
+  vtkNew<vtkRayTracePass> pass;
+  scene.Renderer->SetPass(pass);
+  scene.Window->Render();
+  const std::set<vtkIdType> traced = SelectCells(scene);
+  const vtkIdType firstPoly = 1 + poly->GetNumberOfLines();
+  std::set<vtkIdType> rasterLines, tracedLines;
+  for (vtkIdType id : raster)
+  {
+    if (id >= 1 && id < firstPoly)
+    {
+      rasterLines.insert(id);
+    }
+  }
+  for (vtkIdType id : traced)
+  {
+    if (id >= 1 && id < firstPoly)
+    {
+      tracedLines.insert(id);
+    }
+  }
+  std::vector<vtkIdType> both;
+  std::set_intersection(raster.begin(), raster.end(), traced.begin(), traced.end(), std::back_inserter(both));
+  const double overlap = static_cast<double>(both.size()) / static_cast<double>(raster.size() + traced.size() - both.size());
+  std::ostringstream s;
+  s << "selection: " << pass->GetNumberOfTracedProps() << " traced props; line cells raster "
+    << rasterLines.size() << ", traced " << tracedLines.size() << " (" << poly->GetNumberOfLines()
+    << " lines); all cells in common " << overlap;
+  Check(pass->GetNumberOfTracedProps() == 1 && rasterLines == tracedLines && !tracedLines.empty() &&
+      overlap >= 0.9,
+    s.str());
+  NoVTKOutput("Selection");
+}
+
+void TestShadow()
+{
+  Scene scene;
+  double range[2] = { 0.0, 1.0 };
+  auto tubes = TubeActor(Helix(200, 1.5), 10.0, range);
+  tubes->SetPosition(0.0, 1.5, 0.0);
+  scene.Renderer->AddActor(tubes);
+  scene.Renderer->AddActor(FloorActor(3.0));
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPosition(0.0, 10.0, 0.0);
+  light->SetFocalPoint(0.0, 0.0, 0.0);
+  light->SetPositional(false);
+  scene.Renderer->AddLight(light);
+  scene.Renderer->GetActiveCamera()->SetPosition(0.0, 6.0, 6.0);
+  scene.Renderer->GetActiveCamera()->SetFocalPoint(0.0, 0.5, 0.0);
+  scene.Renderer->GetActiveCamera()->SetViewUp(0.0, 1.0, 0.0);
+  scene.Renderer->ResetCameraClippingRange();
+  vtkNew<vtkRayTracePass> pass;
+  scene.Renderer->SetPass(pass);
+  scene.Window->Render();
+  auto lit = Grab(scene.Window);
+  pass->ShadowsOn();
+  scene.Window->Render();
+  auto shadowed = Grab(scene.Window);
+  // The floor under the helix darkens (the tubes shade themselves too), and
+  // nothing brightens.
+  const long darker = CountDifferingPixels(lit, shadowed, 20);
+  int d[3];
+  lit->GetDimensions(d);
+  const auto* a = static_cast<const unsigned char*>(lit->GetScalarPointer());
+  const auto* b = static_cast<const unsigned char*>(shadowed->GetScalarPointer());
+  long brighter = 0;
+  for (long i = 0; i < static_cast<long>(d[0]) * d[1] * 3; ++i)
+  {
+    brighter += b[i] > a[i] + 2;
+  }
+  std::ostringstream s;
+  s << "shadow: " << pass->GetNumberOfTracedProps() << " traced props, " << darker
+    << " pixels darkened by the tubes' shadow, " << brighter << " channel values brightened";
+  Check(pass->GetNumberOfTracedProps() == 2 && darker > 1000 && brighter == 0, s.str());
+  // Ambient occlusion: the floor under the helix and the tubes near their
+  // neighbours darken.
+  pass->ShadowsOff();
+  pass->SetAmbientOcclusionSamples(16);
+  scene.Window->Render();
+  const long occluded = CountDifferingPixels(lit, Grab(scene.Window), 12);
+  Check(occluded > 200, "ambient occlusion: " + std::to_string(occluded) + " pixels darkened");
+  NoGLError(scene.Window, "shadow");
+  NoVTKOutput("Shadow");
+}
+
+void TestBadInput()
+{
+  vtkNew<vtkPoints> pts;
+  pts->InsertNextPoint(0, 0, 0);
+  pts->InsertNextPoint(1, 0, 0);
+  pts->InsertNextPoint(1, 0, 0); // a zero-length segment after the first
+  pts->InsertNextPoint(1, 1, 0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  pts->InsertNextPoint(nan, 0, 0);
+  pts->InsertNextPoint(0, 1, 0);
+  vtkNew<vtkCellArray> lines;
+  const vtkIdType polyline[4] = { 0, 1, 2, 3 };
+  lines->InsertNextCell(4, polyline);
+  const vtkIdType single[1] = { 5 };
+  lines->InsertNextCell(1, single);
+  const vtkIdType withNaN[3] = { 3, 4, 5 };
+  lines->InsertNextCell(3, withNaN);
+  const vtkIdType point[2] = { 5, 5 };
+  lines->InsertNextCell(2, point);
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(pts);
+  poly->SetLines(lines);
+  // LineWidth 1000: the eye inside the tubes, beyond what is framed.
+  for (double width : { 8.0, 60.0, 1000.0 })
+  {
+    Scene scene;
+    double range[2] = { 0.0, 1.0 };
+    auto actor = TubeActor(poly, width, range);
+    scene.Renderer->AddActor(actor);
+    scene.Renderer->GetActiveCamera()->SetPosition(0.5, 0.5, 4.0);
+    scene.Renderer->GetActiveCamera()->SetFocalPoint(0.5, 0.5, 0.0);
+    scene.Renderer->ResetCameraClippingRange();
+    vtkNew<vtkRayTracePass> pass;
+    scene.Renderer->SetPass(pass);
+    scene.Window->Render();
+    auto image = Grab(scene.Window);
+    const double background[3] = { 0.1, 0.1, 0.15 };
+    std::ostringstream s;
+    s << "degenerate lines, LineWidth " << width << ": " << pass->GetNumberOfTracedProps()
+      << " traced props, " << CountForegroundPixels(image, background) << " tube pixels";
+    Check(pass->GetNumberOfTracedProps() == 1 && (width > 100.0 || CountForegroundPixels(image, background) > 100),
+      s.str());
+    NoGLError(scene.Window, "degenerate lines");
+  }
+  NoVTKOutput("BadInput");
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Output = vtkrtTestOutputWindow::Install();
+  return RunCase(argc, argv,
+    { { "Helix", TestHelix }, { "Mixed", TestMixed }, { "ManyActors", TestManyActors },
+      { "NoTubeCode", TestNoTubeCode },
+      { "Selection", TestSelection }, { "Shadow", TestShadow }, { "BadInput", TestBadInput } });
+}
