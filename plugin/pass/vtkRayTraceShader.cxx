@@ -6,13 +6,17 @@
 #include "vtkShaderProgram.h"
 
 #include "vtkrtRayTraceEdges.h"
+#include "vtkrtRayTraceInputs.h"
 #include "vtkrtRayTraceKernels.h"
+#include "vtkrtRayTraceLighting.h"
 #include "vtkrtRayTraceMain.h"
 #include "vtkrtRayTraceResolve.h"
 #include "vtkrtRayTraceSelect.h"
+#include "vtkrtRayTraceShading.h"
 #include "vtkrtRayTraceSpheres.h"
 #include "vtkrtRayTraceSurfaces.h"
 #include "vtkrtRayTraceTranslucent.h"
+#include "vtkrtRayTraceTraversal.h"
 #include "vtkrtRayTraceTriangles.h"
 #include "vtkrtRayTraceTubes.h"
 
@@ -111,7 +115,8 @@ std::string AssembleShader(const Features& f)
   {
     s << vtkrtRayTraceEdges << "\n";
   }
-  s << vtkrtRayTraceMain;
+  s << vtkrtRayTraceInputs << "\n" << vtkrtRayTraceLighting << "\n" << vtkrtRayTraceTraversal << "\n"
+    << vtkrtRayTraceShading << "\n" << vtkrtRayTraceMain;
   if (f.Translucent)
   {
     s << "\n" << vtkrtRayTraceTranslucent;

@@ -1,0 +1,84 @@
+// vtkrt ray tracing fragment shader: the pass's inputs (the quad's
+// coordinate, the camera, lights and clip planes, the attribute buffers) and
+// the readers of scalar colors. First of the shader's main chunks (see
+// vtkrtRayTraceMain).
+
+in vec2 texCoord;
+layout(location = 0) out vec4 fragOutput0;
+
+uniform mat4 uClipToCamera; // inverse of uCameraToClip
+uniform mat4 uCameraToClip; // VTK's world-to-clip matrix, translated by the eye
+uniform vec3 uViewBack;     // unit +z axis of VTK's view coordinates
+uniform int uNumberOfInstances;
+#ifdef VTKRT_WORLD_COORDINATES
+// WORLD precision mode: coordinates are plain float world coordinates and
+// the eye is here (the comments' "camera-relative" then reads "world").
+uniform vec3 uEye;
+#else
+const vec3 uEye = vec3(0.0);
+#endif
+
+// Per-instance records (core::gpu::InstanceRecord), rewritten every frame
+// because their matrices are camera-relative; read a field at a time through
+// the accessors instance<Field>(i) and flags kInstance<Name> that the pass
+// generates from vtkrt/core/GpuLayout.h.
+
+#ifdef VTKRT_HAS_COLORS
+uniform usamplerBuffer uColors; // packed RGBA8, four per texel
+#endif
+#if defined(VTKRT_HAS_VERTEX_NORMALS) || defined(VTKRT_HAS_CELL_NORMALS)
+uniform usamplerBuffer uNormals; // a Normal per point, or per VTK cell
+#endif
+#ifdef VTKRT_HAS_TRIANGLE_VERTICES
+uniform usamplerBuffer uTriangleVertices; // TriangleVertices per triangle
+#endif
+#ifdef VTKRT_TEXTURE_CUTOUTS
+uvec3 triangleVertexIds(int tri)
+{
+  return fetchTriangleVertices(uTriangleVertices, tri).ids;
+}
+#endif
+#ifdef VTKRT_HAS_SPHERES
+uniform usamplerBuffer uSphereIds; // VTK point id per sphere, four per texel
+#endif
+#if VTKRT_NUMBER_OF_CLIP_PLANES > 0
+uniform vec4 uClipPlanes[VTKRT_NUMBER_OF_CLIP_PLANES]; // n.p + d >= 0 is kept
+#endif
+#if VTKRT_NUMBER_OF_LIGHTS > 0
+uniform vec3 uLightColor[VTKRT_NUMBER_OF_LIGHTS];     // diffuse color * intensity
+uniform vec3 uLightDirection[VTKRT_NUMBER_OF_LIGHTS]; // unit, from the light
+uniform vec3 uLightPosition[VTKRT_NUMBER_OF_LIGHTS];  // camera-relative
+uniform vec3 uLightAttenuation[VTKRT_NUMBER_OF_LIGHTS];
+uniform vec3 uLightCone[VTKRT_NUMBER_OF_LIGHTS]; // (cone angle, exponent, positional)
+#endif
+
+#ifdef VTKRT_HAS_COLORS
+vec4 fetchColor(int i)
+{
+  return unpackUnorm4x8(fetchPacked(uColors, i));
+}
+#endif
+
+#ifdef VTKRT_HAS_COLOR_TEXTURE
+// InterpolateScalarsBeforeMapping: at `base` a header (texel offset, width,
+// height, coordinate components), the points' texture coordinates, then the
+// mapper's color texture (the second row: the NaN color).
+vec2 fetchColorCoordinate(int base, int point)
+{
+  int comps = int(fetchPacked(uColors, base + 3));
+  int at = base + 4 + comps * point;
+  float t = comps > 1 ? uintBitsToFloat(fetchPacked(uColors, at + 1)) : 0.0;
+  return vec2(uintBitsToFloat(fetchPacked(uColors, at)), t);
+}
+
+// Sampled as VTK's raster samples it: nearest texel, clamped to the edge.
+vec4 lookupColorTexture(int base, vec2 st)
+{
+  int offset = int(fetchPacked(uColors, base));
+  int w = int(fetchPacked(uColors, base + 1));
+  int h = int(fetchPacked(uColors, base + 2));
+  int x = clamp(int(floor(st.x * float(w))), 0, w - 1);
+  int y = clamp(int(floor(st.y * float(h))), 0, h - 1);
+  return fetchColor(base + offset + y * w + x);
+}
+#endif

@@ -1,0 +1,179 @@
+// vtkrt ray tracing fragment shader: VTK's lighting at a hit, with shadow
+// and ambient occlusion rays (anyHit, from vtkrtRayTraceTraversal, or the
+// translucent layers' transmittance).
+
+#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+// Any hit of a ray from org along dir within (0, tmax] (the core's anyHit).
+bool anyHit(vec3 org, vec3 dir, float tmax);
+
+#ifdef VTKRT_TRANSLUCENT
+float rayTransmittance(vec3 org, vec3 dir, float tmax); // vtkrtRayTraceTranslucent
+#endif
+
+// The fraction of light that passes from org along dir within (0, tmax]:
+// 0 or 1, or with translucent surfaces the product of what each lets through.
+float rayVisibility(vec3 org, vec3 dir, float tmax)
+{
+#ifdef VTKRT_TRANSLUCENT
+  return rayTransmittance(org, dir, tmax);
+#else
+  return anyHit(org, dir, tmax) ? 0.0 : 1.0;
+#endif
+}
+
+// Wächter & Binder, "A Fast and Robust Method for Avoiding
+// Self-Intersection" (Ray Tracing Gems, ch. 6): moves a hit point off its
+// surface along the unit geometric normal n by a fixed number of float ulps
+// (integer arithmetic on the bits, so the offset scales with the point's
+// magnitude), or by a tiny absolute amount near the origin.
+vec3 offsetRayOrigin(vec3 p, vec3 n)
+{
+  const float kOrigin = 1.0 / 32.0;
+  const float kFloatScale = 1.0 / 65536.0;
+  const float kIntScale = 256.0;
+  ivec3 offset = ivec3(kIntScale * n);
+  vec3 pi = intBitsToFloat(floatBitsToInt(p) +
+    ivec3(p.x < 0.0 ? -offset.x : offset.x, p.y < 0.0 ? -offset.y : offset.y,
+      p.z < 0.0 ? -offset.z : offset.z));
+  return vec3(abs(p.x) < kOrigin ? p.x + kFloatScale * n.x : pi.x,
+    abs(p.y) < kOrigin ? p.y + kFloatScale * n.y : pi.y,
+    abs(p.z) < kOrigin ? p.z + kFloatScale * n.z : pi.z);
+}
+#endif
+
+#ifdef VTKRT_SHADOWS
+// 1 when nothing lies between the surface point p (unit geometric normal ng)
+// and the light along toLight within tmax, else 0 (hard shadows; translucent
+// surfaces in between let their share through).
+float lightVisibility(vec3 p, vec3 ng, vec3 toLight, float tmax)
+{
+  vec3 side = dot(ng, toLight) >= 0.0 ? ng : -ng;
+  return rayVisibility(offsetRayOrigin(p, side), toLight, tmax);
+}
+#endif
+
+#if VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+uniform float uAmbientOcclusionRadius; // world units
+int gSampleIndex = 0; // the pixel's sample (sub-pixel sampling), seeds the rays
+
+uint hashUint(uint x)
+{
+  // PCG-style integer hash (Jarzynski & Olano 2020).
+  uint state = x * 747796405u + 2891336453u;
+  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+
+// Unoccluded fraction of the hemisphere above p (unit geometric normal ng
+// facing the viewer): cosine-weighted rays of length uAmbientOcclusionRadius,
+// deterministic per pixel and sample.
+float ambientVisibility(vec3 p, vec3 ng)
+{
+  vec3 org = offsetRayOrigin(p, ng);
+  vec3 helper = abs(ng.x) > 0.5 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+  vec3 tangent = normalize(cross(helper, ng));
+  vec3 bitangent = cross(ng, tangent);
+  uint seed = hashUint(uint(gl_FragCoord.x) + hashUint(uint(gl_FragCoord.y) +
+    hashUint(uint(gSampleIndex))));
+  float unoccluded = 0.0;
+  for (int k = 0; k < VTKRT_AMBIENT_OCCLUSION_SAMPLES; ++k)
+  {
+    seed = hashUint(seed);
+    float u1 = float(seed >> 8) / 16777216.0;
+    seed = hashUint(seed);
+    float u2 = float(seed >> 8) / 16777216.0;
+    float r = sqrt(u1);
+    float phi = 6.283185307179586 * u2;
+    vec3 d = r * cos(phi) * tangent + r * sin(phi) * bitangent + sqrt(max(0.0, 1.0 - u1)) * ng;
+    unoccluded += rayVisibility(org, d * uAmbientOcclusionRadius, 1.0);
+  }
+  return unoccluded / float(VTKRT_AMBIENT_OCCLUSION_SAMPLES);
+}
+#endif
+
+// VTK's vtkOpenGLPolyDataMapper lighting, for the renderer's lighting
+// complexity (0: none, 1: headlight, 2: directional lights, 3: positional),
+// evaluated in camera-relative world space (a rotation of VTK's view space,
+// so every dot product is the same).
+// With shadows, a light blocked from p contributes nothing; with ambient
+// occlusion, the ambient and diffuse terms are scaled by the unoccluded
+// fraction of the hemisphere (ng: unit geometric normal facing the viewer).
+vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ng, vec3 ambientColor, vec3 diffuseColor,
+  vec3 specularColor, float specularPower, bool lit)
+{
+#if VTKRT_LIGHT_COMPLEXITY == 0 || VTKRT_NUMBER_OF_LIGHTS == 0
+  return ambientColor + diffuseColor;
+#else
+  if (!lit)
+  {
+    return ambientColor + diffuseColor;
+  }
+#if VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+  float ao = ambientVisibility(p, ng);
+#else
+  float ao = 1.0;
+#endif
+#if VTKRT_LIGHT_COMPLEXITY == 1
+  float df = max(0.0, dot(n, uViewBack));
+#ifdef VTKRT_SHADOWS
+  if (df > 0.0)
+  {
+    df *= lightVisibility(p, ng, uViewBack, 1.0e30);
+  }
+#endif
+  float sf = df > 0.0 ? pow(df, specularPower) : 0.0;
+  return ao * (ambientColor + df * diffuseColor * uLightColor[0]) +
+    sf * specularColor * uLightColor[0];
+#else
+  vec3 diffuse = vec3(0.0);
+  vec3 specular = vec3(0.0);
+  vec3 viewDirection = normalize(uEye - p);
+  for (int i = 0; i < VTKRT_NUMBER_OF_LIGHTS; ++i)
+  {
+    vec3 lightDirection = uLightDirection[i];
+    float attenuation = 1.0;
+#if VTKRT_LIGHT_COMPLEXITY == 3
+    if (uLightCone[i].z != 0.0)
+    {
+      lightDirection = p - uLightPosition[i];
+      float distance = length(lightDirection);
+      lightDirection = normalize(lightDirection);
+      vec3 att = uLightAttenuation[i];
+      attenuation = 1.0 / (att.x + att.y * distance + att.z * distance * distance);
+      if (uLightCone[i].x < 90.0)
+      {
+        float coneDot = dot(lightDirection, uLightDirection[i]);
+        if (coneDot >= cos(radians(uLightCone[i].x)))
+        {
+          attenuation = attenuation * pow(coneDot, uLightCone[i].y);
+        }
+        else
+        {
+          attenuation = 0.0;
+        }
+      }
+    }
+#endif
+#ifdef VTKRT_SHADOWS
+    if (attenuation > 0.0 && dot(n, -lightDirection) > 0.0)
+    {
+#if VTKRT_LIGHT_COMPLEXITY == 3
+      // Positional lights: the segment to the light (t in (0, 1]).
+      attenuation *= uLightCone[i].z != 0.0
+        ? lightVisibility(p, ng, uLightPosition[i] - p, 1.0)
+        : lightVisibility(p, ng, -lightDirection, 1.0e30);
+#else
+      attenuation *= lightVisibility(p, ng, -lightDirection, 1.0e30);
+#endif
+    }
+#endif
+    float df = max(0.0, attenuation * dot(n, -lightDirection));
+    diffuse += df * uLightColor[i];
+    float sf = sign(df) * attenuation *
+      pow(max(0.0, dot(reflect(lightDirection, n), viewDirection)), specularPower);
+    specular += sf * uLightColor[i];
+  }
+  return ao * (ambientColor + diffuse * diffuseColor) + specular * specularColor;
+#endif
+#endif
+}
