@@ -29,14 +29,27 @@ namespace pass
 
 namespace
 {
-/// The polydata's verts/lines cells decide whether the pass can trace it.
-bool hasUntraceableCells(vtkPolyData* poly, bool pointsAsSpheres, bool linesAsTubes)
+/// Whether raster must draw `poly` as `actor` shows it: lines not drawn as
+/// tubes, vertices not drawn as spheres; translucent tubes or points as
+/// spheres (raster draws one layer of them, the pass would composite two);
+/// polygon edges or wires drawn as tubes (raster's shaded fake tubes).
+bool hasUntraceableCells(vtkPolyData* poly, vtkActor* actor, bool pointsAsSpheres, bool linesAsTubes)
 {
-  if (poly->GetNumberOfLines() > 0 && !linesAsTubes)
+  const bool lines = poly->GetNumberOfLines() > 0;
+  const bool verts = poly->GetNumberOfVerts() > 0;
+  if ((lines && !linesAsTubes) || (verts && !pointsAsSpheres))
   {
     return true;
   }
-  return poly->GetNumberOfVerts() > 0 && !pointsAsSpheres;
+  vtkProperty* property = actor->GetProperty();
+  const bool surfaces = poly->GetNumberOfPolys() > 0 || poly->GetNumberOfStrips() > 0;
+  const bool spheres = pointsAsSpheres && (verts || property->GetRepresentation() == VTK_POINTS);
+  if (actor->HasTranslucentPolygonalGeometry() && ((lines && linesAsTubes) || spheres))
+  {
+    return true;
+  }
+  const bool edges = property->GetEdgeVisibility() || property->GetRepresentation() == VTK_WIREFRAME;
+  return edges && surfaces && linesAsTubes;
 }
 
 /// The second part of a tube geometry's cache key (a points-as-spheres
@@ -184,20 +197,21 @@ bool Scene::IsTraceable(vtkProp* prop, bool translucency)
   }
   vtkProperty* property = actor->GetProperty();
   const int representation = property->GetRepresentation();
-  // Edges and wires of glyphs, and drawn as tubes (VTK's shaded fake
-  // tubes), stay with raster.
+  // Edges and wires of glyphs stay with raster (and of polygons drawn as
+  // tubes, VTK's shaded fake tubes: decided with the data, in
+  // hasUntraceableCells).
   const bool edges = property->GetEdgeVisibility() || representation == VTK_WIREFRAME;
-  if (property->GetInterpolation() == VTK_PBR || (edges && (glyphs || property->GetRenderLinesAsTubes())))
+  if (property->GetInterpolation() == VTK_PBR || (edges && glyphs))
   {
     return false;
   }
-  // Translucent: polygonal surfaces without edges. Not points as spheres
-  // (raster draws front-facing sprites, one layer), glyphs (raster's glyph
-  // mapper blends their layers unlike a mesh's, docs/pass.md), a translucent
-  // back face (a property of its own) or edges and wires (raster blends
-  // them as lines over the layers).
+  // Translucent: polygonal surfaces without edges. Not glyphs (raster's
+  // glyph mapper blends their layers unlike a mesh's, docs/pass.md), a
+  // translucent back face (a property of its own) or edges and wires
+  // (raster blends them as lines over the layers); points as spheres and
+  // tubes are decided with the data (hasUntraceableCells).
   if (actor->HasTranslucentPolygonalGeometry() &&
-    (!translucency || glyphs || edges || property->GetRenderPointsAsSpheres() || actor->GetBackfaceProperty()))
+    (!translucency || glyphs || edges || actor->GetBackfaceProperty()))
   {
     return false;
   }
@@ -368,7 +382,7 @@ bool Scene::AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& cou
   }
   for (const Piece& piece : pieces)
   {
-    ok = ok && !hasUntraceableCells(piece.Poly, pointsAsSpheres, linesAsTubes);
+    ok = ok && !hasUntraceableCells(piece.Poly, actor, pointsAsSpheres, linesAsTubes);
   }
   if (ok)
   {

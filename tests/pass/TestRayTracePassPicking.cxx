@@ -19,6 +19,7 @@
 #include "vtkDataArray.h"
 #include "vtkGlyph3DMapper.h"
 #include "vtkImageData.h"
+#include "vtkLineSource.h"
 #include "vtkMath.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
@@ -397,6 +398,39 @@ void TestClassification()
   lines->InsertNextCell(2, line);
   withLines->SetLines(lines);
   raster.emplace_back("polydata with lines", meshActor(withLines));
+  // Properties that only matter for cells the data has (vedo sets
+  // RenderPointsAsSpheres and edges on every actor): a translucent surface
+  // with RenderPointsAsSpheres and no vertices, and a tube polyline with
+  // edge visibility, are traced; translucent tubes and translucent points as
+  // spheres (raster draws one layer of them), and polygon edges drawn as
+  // tubes (raster's shaded fake tubes) stay with raster.
+  auto translucentSpheresFlag = meshActor(mesh);
+  translucentSpheresFlag->GetProperty()->SetOpacity(0.5);
+  translucentSpheresFlag->GetProperty()->RenderPointsAsSpheresOn();
+  traced.emplace_back("translucent surface with RenderPointsAsSpheres", translucentSpheresFlag);
+  auto translucentPointSpheres = meshActor(mesh);
+  translucentPointSpheres->GetProperty()->SetOpacity(0.5);
+  translucentPointSpheres->GetProperty()->SetRepresentationToPoints();
+  translucentPointSpheres->GetProperty()->RenderPointsAsSpheresOn();
+  raster.emplace_back("translucent points as spheres", translucentPointSpheres);
+  vtkNew<vtkLineSource> segment;
+  segment->SetResolution(4);
+  segment->Update();
+  auto tubeActor = [&](double opacity, bool edgesOn) {
+    auto actor = meshActor(segment->GetOutput());
+    actor->GetProperty()->RenderLinesAsTubesOn();
+    actor->GetProperty()->SetLineWidth(4.0f);
+    actor->GetProperty()->SetOpacity(opacity);
+    actor->GetProperty()->SetEdgeVisibility(edgesOn);
+    return actor;
+  };
+  traced.emplace_back("tubes with edge visibility", tubeActor(1.0, true));
+  raster.emplace_back("translucent tubes", tubeActor(0.5, false));
+  auto tubeEdges = meshActor(mesh);
+  tubeEdges->GetProperty()->EdgeVisibilityOn();
+  tubeEdges->GetProperty()->RenderLinesAsTubesOn();
+  tubeEdges->GetProperty()->SetLineWidth(4.0f);
+  raster.emplace_back("polygon edges drawn as tubes", tubeEdges);
   vtkNew<vtkGlyph3DMapper> coneGlyphs;
   coneGlyphs->SetInputData(mesh);
   coneGlyphs->SetSourceConnection(cone->GetOutputPort());

@@ -181,6 +181,7 @@ void vtkPVRayTracedRenderView::ApplyKnobs()
   pass->SetMaximumTraversalSteps(knobs->GetMaximumTraversalSteps());
   pass->SetLeafSize(knobs->GetLeafSize());
   pass->SetPrecisionMode(knobs->GetPrecisionMode());
+  pass->SetTraceTranslucency(knobs->GetTraceTranslucency());
   pass->SetQualityPreset(this->QualityPreset);
 }
 
@@ -205,6 +206,7 @@ vtkrtForwardKnob(BuildQuality, int);
 vtkrtForwardKnob(MaximumTraversalSteps, int);
 vtkrtForwardKnob(LeafSize, int);
 vtkrtForwardKnob(PrecisionMode, int);
+vtkrtForwardKnob(TraceTranslucency, bool);
 #undef vtkrtForwardKnob
 
 vtkTypeInt64 vtkPVRayTracedRenderView::GetLastTracedPrimitives()

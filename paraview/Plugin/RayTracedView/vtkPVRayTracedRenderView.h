@@ -90,6 +90,8 @@ public:
   int GetLeafSize();
   void SetPrecisionMode(int mode);
   int GetPrecisionMode();
+  void SetTraceTranslucency(bool trace);
+  bool GetTraceTranslucency();
   ///@}
 
   ///@{

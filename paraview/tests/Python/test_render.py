@@ -7,7 +7,10 @@ data: traced, and against ParaView's own raster image of it), Distributed
 (mesh and glyphs, split over the ranks when run under mpiexec: the image
 must match the serial baseline), Presets (the view's Quality Preset
 property reaches the pass: Exact's shadows and ambient occlusion darken
-the mesh, and under a preset the knobs it sets are not used).
+the mesh, and under a preset the knobs it sets are not used), Translucent
+(a translucent isosurface around opaque sphere glyphs: traced, and against
+ParaView's raster with depth peeling, also split over the ranks under
+mpiexec; with Trace Translucency off the surface is left to raster).
 """
 import os
 import sys
@@ -76,6 +79,44 @@ elif case == "Distributed":
         check(0 < traced < total, "rank 0 traced only its piece (%d of %d primitives)" % (traced, total))
     else:
         check(traced == total, "all %d primitives traced (traced: %d)" % (total, traced))
+elif case == "Translucent":
+    source, display = mesh(view)
+    display.Opacity = 0.4
+    spheres, _ = glyphs(view, center=(0.0, 0.0, 0.0), radius=8.0)
+    place_camera(view, azimuth=-25.0, elevation=10.0)
+    Render(view)
+    traced = traced_primitives(view)
+    view.TraceTranslucency = 0
+    Render(view)
+    opaque_only = traced_primitives(view)
+    check(0 < opaque_only < traced,
+          "the translucent surface is traced (%d primitives), and left to raster with Trace "
+          "Translucency off (%d)" % (traced, opaque_only))
+    view.TraceTranslucency = 1
+    Render(view)
+    raster = raster_view()
+    raster_display = Show(source, raster)
+    ColorBy(raster_display, ("POINTS", None))
+    raster_display.DiffuseColor = display.DiffuseColor
+    raster_display.Specular = display.Specular
+    raster_display.Opacity = display.Opacity
+    raster_spheres = Show(spheres, raster)
+    raster_spheres.SetRepresentationType("Points")
+    raster_spheres.RenderPointsAsSpheres = 1
+    raster_spheres.PointSize = 14
+    ColorBy(raster_spheres, ("POINTS", "Elevation"))
+    raster_spheres.InterpolateScalarsBeforeMapping = 0
+    for name in ("CameraPosition", "CameraFocalPoint", "CameraViewUp", "CameraViewAngle"):
+        raster.SetPropertyWithName(name, view.GetPropertyValue(name))
+    Render(raster)
+    os.makedirs(TEMP_DIR, exist_ok=True)
+    raster_png = os.path.join(TEMP_DIR, "paraview_Translucent_np%d_raster.png" % ranks)
+    SaveScreenshot(raster_png, raster, ImageResolution=VIEW_SIZE)
+    traced_png = os.path.join(TEMP_DIR, "paraview_Translucent_np%d_traced.png" % ranks)
+    SaveScreenshot(traced_png, view, ImageResolution=VIEW_SIZE)
+    error = image_error(traced_png, raster_png)
+    check(error <= threshold, "traced translucency matches ParaView's raster with depth peeling on %d "
+          "rank(s) (error %.2f <= %.2f)" % (ranks, error, threshold))
 elif case == "Presets":
     source, _ = mesh(view)
     place_camera(view)
@@ -108,7 +149,7 @@ elif case == "Presets":
 else:
     raise SystemExit("unknown case " + case)
 
-if case not in ("Glyphs3D", "Presets"):  # compared with ParaView's raster image above
+if case not in ("Glyphs3D", "Presets", "Translucent"):  # compared with ParaView's raster image above
     png = os.path.join(TEMP_DIR, "paraview_%s_np%d.png" % (case, ranks))
     os.makedirs(TEMP_DIR, exist_ok=True)
     SaveScreenshot(png, view, ImageResolution=VIEW_SIZE)
