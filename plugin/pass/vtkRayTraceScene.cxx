@@ -49,7 +49,7 @@ bool hasUntraceableCells(vtkPolyData* poly, vtkActor* actor, bool pointsAsSphere
     return true;
   }
   const bool edges = property->GetEdgeVisibility() || property->GetRepresentation() == VTK_WIREFRAME;
-  return edges && surfaces && linesAsTubes;
+  return edges && surfaces && property->GetRenderLinesAsTubes() && property->GetLineWidth() > 1.0f;
 }
 
 /// The second part of a tube geometry's cache key (a points-as-spheres

@@ -431,6 +431,11 @@ void TestClassification()
   tubeEdges->GetProperty()->RenderLinesAsTubesOn();
   tubeEdges->GetProperty()->SetLineWidth(4.0f);
   raster.emplace_back("polygon edges drawn as tubes", tubeEdges);
+  auto tubeWires = meshActor(mesh);
+  tubeWires->GetProperty()->SetRepresentationToWireframe();
+  tubeWires->GetProperty()->RenderLinesAsTubesOn();
+  tubeWires->GetProperty()->SetLineWidth(4.0f);
+  raster.emplace_back("wireframe drawn as tubes", tubeWires);
   vtkNew<vtkGlyph3DMapper> coneGlyphs;
   coneGlyphs->SetInputData(mesh);
   coneGlyphs->SetSourceConnection(cone->GetOutputPort());

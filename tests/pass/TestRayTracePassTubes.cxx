@@ -261,6 +261,28 @@ void TestMixed()
   NoVTKOutput("Mixed");
 }
 
+/// Tubes in solid colors beside a solid-colored surface: no traced prop
+/// has scalar colors, so the shader has no color code at all.
+void TestUncolored()
+{
+  Scene scene;
+  double range[2] = { 0.0, 1.0 };
+  auto helix = TubeActor(Helix(200, 3.0), 8.0, range);
+  helix->GetMapper()->ScalarVisibilityOff();
+  helix->GetProperty()->SetColor(0.9, 0.4, 0.3);
+  scene.Renderer->AddActor(helix);
+  auto floor = FloorActor(1.5);
+  floor->SetPosition(0.0, -1.0, 0.0);
+  scene.Renderer->AddActor(floor);
+  scene.View(20.0, 25.0, false);
+  RasterAndTraced frames = scene.Compare("uncolored tubes", 2, 4.0);
+  const std::string shader = frames.Pass->GetLastFragmentShaderSource();
+  Check(ShaderHasTubes(frames.Pass) && shader.find("#define VTKRT_HAS_COLORS") == std::string::npos,
+    "uncolored tubes: tube code without color code");
+  NoGLError(scene.Window, "Uncolored");
+  NoVTKOutput("Uncolored");
+}
+
 /// Twelve helices, each its own actor: more than 8 instances, so the rays
 /// walk the top-level BVH, whose boxes grow by each instance's radius bound.
 void TestManyActors()
@@ -494,6 +516,6 @@ int main(int argc, char* argv[])
   Output = vtkrtTestOutputWindow::Install();
   return RunCase(argc, argv,
     { { "Helix", TestHelix }, { "Mixed", TestMixed }, { "ManyActors", TestManyActors },
-      { "NoTubeCode", TestNoTubeCode },
+      { "NoTubeCode", TestNoTubeCode }, { "Uncolored", TestUncolored },
       { "Selection", TestSelection }, { "Shadow", TestShadow }, { "BadInput", TestBadInput } });
 }
