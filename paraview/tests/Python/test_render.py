@@ -95,6 +95,7 @@ elif case == "Translucent":
     view.TraceTranslucency = 1
     Render(view)
     raster = raster_view()
+    raster.MaximumNumberOfPeels = 100
     raster_display = Show(source, raster)
     ColorBy(raster_display, ("POINTS", None))
     raster_display.DiffuseColor = display.DiffuseColor
@@ -114,9 +115,11 @@ elif case == "Translucent":
     SaveScreenshot(raster_png, raster, ImageResolution=VIEW_SIZE)
     traced_png = os.path.join(TEMP_DIR, "paraview_Translucent_np%d_traced.png" % ranks)
     SaveScreenshot(traced_png, view, ImageResolution=VIEW_SIZE)
-    error = image_error(traced_png, raster_png)
-    check(error <= threshold, "traced translucency matches ParaView's raster with depth peeling on %d "
-          "rank(s) (error %.2f <= %.2f)" % (ranks, error, threshold))
+    # Many thin layers: an RGB RMSE, not the count of differing pixels.
+    error = image_rmse(traced_png, raster_png)
+    bound = 3.0
+    check(error <= bound, "traced translucency matches ParaView's raster with depth peeling (100 peels) "
+          "on %d rank(s) (RGB RMSE %.2f <= %.1f)" % (ranks, error, bound))
 elif case == "Presets":
     source, _ = mesh(view)
     place_camera(view)

@@ -85,6 +85,21 @@ def image_error(png, other_png):
     return diff.GetThresholdedError()
 
 
+def image_rmse(png, other_png):
+    """RGB root mean square error (0..255) between two PNGs of the same size."""
+    a = _rgb(png).GetPointData().GetScalars()
+    b = _rgb(other_png).GetPointData().GetScalars()
+    n = a.GetNumberOfTuples()
+    if n == 0 or n != b.GetNumberOfTuples():
+        return float("inf")
+    total = 0.0
+    for i in range(n):
+        for c in range(3):
+            d = a.GetComponent(i, c) - b.GetComponent(i, c)
+            total += d * d
+    return (total / (3.0 * n)) ** 0.5
+
+
 def compare_with_baseline(png, name, threshold=10.0):
     """Compares the PNG `png` with data/baselines/<name>.png; returns the
     thresholded error (or None when no comparison could be made)."""
