@@ -33,9 +33,8 @@
  *   faces), in the actor's colors, lit with VTK's line normals. Edges of
  *   glyphs, edges drawn as tubes, and wireframes with a texture, culling or
  *   a backface property stay with raster.
- *   An actor whose data also has lines not drawn as tubes (below),
- *   vertices without RenderPointsAsSpheres, or a translucent block falls
- *   back whole.
+ *   An actor whose data also has lines not drawn as tubes (below), or
+ *   vertices without RenderPointsAsSpheres, falls back whole.
  * - Line and polyline cells of such an actor with RenderLinesAsTubes and a
  *   LineWidth over 1 (where VTK draws tubes) as analytic round tubes
  *   LineWidth pixels wide under every camera: each segment the hull of its

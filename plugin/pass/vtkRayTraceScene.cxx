@@ -103,15 +103,17 @@ struct Piece
   bool HasColor;
   std::array<double, 3> Color;
   unsigned int FlatIndex; ///< the composite index hardware selection reports
+  double Opacity = -1.0;  ///< the block opacity it inherits; negative: none
 };
 
 /// Walks a composite dataset as vtkCompositePolyDataMapper2 does: block
 /// visibility, color and opacity apply to the block and everything below
 /// it, and blocks are numbered in its order (flatIndex: the next block's
-/// number; an empty child takes one too). Returns false when something
-/// cannot be traced (a translucent block, a non-polydata leaf).
+/// number; an empty child takes one too). A block opacity replaces the
+/// property's, as vtkCompositePolyDataMapper2 draws it. Returns false when
+/// something cannot be traced (a non-polydata leaf).
 bool collectPieces(vtkDataObject* object, vtkCompositeDataDisplayAttributes* attributes,
-  bool visible, double opacity, Piece inherited, unsigned int& flatIndex, std::vector<Piece>& pieces)
+  bool visible, Piece inherited, unsigned int& flatIndex, std::vector<Piece>& pieces)
 {
   inherited.FlatIndex = flatIndex++;
   if (!object)
@@ -126,7 +128,7 @@ bool collectPieces(vtkDataObject* object, vtkCompositeDataDisplayAttributes* att
     }
     if (attributes->HasBlockOpacity(object))
     {
-      opacity = attributes->GetBlockOpacity(object);
+      inherited.Opacity = attributes->GetBlockOpacity(object);
     }
     if (attributes->HasBlockColor(object))
     {
@@ -140,10 +142,6 @@ bool collectPieces(vtkDataObject* object, vtkCompositeDataDisplayAttributes* att
     {
       return true;
     }
-    if (opacity < 1.0)
-    {
-      return false;
-    }
     inherited.Poly = poly;
     pieces.push_back(inherited);
     return true;
@@ -153,7 +151,7 @@ bool collectPieces(vtkDataObject* object, vtkCompositeDataDisplayAttributes* att
     bool ok = true;
     for (vtkDataObject* child : vtk::Range(tree, vtk::DataObjectTreeOptions::None))
     {
-      ok = collectPieces(child, attributes, visible, opacity, inherited, flatIndex, pieces) && ok;
+      ok = collectPieces(child, attributes, visible, inherited, flatIndex, pieces) && ok;
     }
     return ok;
   }
@@ -232,7 +230,7 @@ bool Scene::IsTraceable(vtkProp* prop, bool translucency)
 }
 
 bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
-  FrameCounters& counters, const double* blockColor)
+  FrameCounters& counters, const double* blockColor, double blockOpacity)
 {
   vtkProperty* property = actor->GetProperty();
   const bool pointsAsSpheres = property->GetRenderPointsAsSpheres() &&
@@ -244,6 +242,12 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
   if (blockColor)
   {
     ApplyBlockColor(inst, property, blockColor, false);
+  }
+  if (blockOpacity >= 0.0)
+  {
+    // A translucent block's layers are composited; an opaque one's stop the
+    // layer walk (alpha 1), as raster draws them in its opaque pass.
+    inst.Opacity = static_cast<float>(std::min(blockOpacity, 1.0));
   }
 
   if (property->GetRepresentation() != VTK_POINTS &&
@@ -374,7 +378,7 @@ bool Scene::AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& cou
     }
     Piece root{ nullptr, false, { { 0, 0, 0 } }, 0u };
     unsigned int flatIndex = 0;
-    ok = collectPieces(input, attributes, true, 1.0, root, flatIndex, pieces);
+    ok = collectPieces(input, attributes, true, root, flatIndex, pieces);
   }
   else if (input)
   {
@@ -390,7 +394,7 @@ bool Scene::AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& cou
     {
       const std::size_t first = this->Instances.size();
       if (!this->AddPolyData(actor, mapper, piece.Poly, propIndex, counters,
-            piece.HasColor ? piece.Color.data() : nullptr))
+            piece.HasColor ? piece.Color.data() : nullptr, piece.Opacity))
       {
         return false;
       }

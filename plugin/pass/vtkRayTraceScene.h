@@ -119,8 +119,10 @@ public:
   static bool IsTraceable(vtkProp* prop, bool translucency = true);
 
 private:
+  /// One polydata of `actor`; a composite block's color and opacity
+  /// (negative: none) replace the property's.
   bool AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
-    FrameCounters& counters, const double* blockColor = nullptr);
+    FrameCounters& counters, const double* blockColor = nullptr, double blockOpacity = -1.0);
   /// The prop's polydata pieces, each through AddPolyData; false (left to
   /// raster) when some piece cannot be traced.
   bool AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& counters);

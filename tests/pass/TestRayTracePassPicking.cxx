@@ -449,8 +449,7 @@ void TestClassification()
   sphereActor->SetMapper(sphereGlyphs);
   traced.emplace_back("glyphs of a sphere", sphereActor);
 
-  // A composite with a translucent block falls back whole; one with only
-  // opaque blocks is traced.
+  // Composites are traced, with opaque or translucent blocks.
   for (int translucentBlock = 0; translucentBlock < 2; ++translucentBlock)
   {
     vtkNew<vtkMultiBlockDataSet> blocks;
@@ -467,8 +466,7 @@ void TestClassification()
     composite->SetCompositeDataDisplayAttributes(attributes);
     auto actor = vtkSmartPointer<vtkActor>::New();
     actor->SetMapper(composite);
-    (translucentBlock ? raster : traced)
-      .emplace_back(translucentBlock ? "composite with a translucent block" : "composite", actor);
+    traced.emplace_back(translucentBlock ? "composite with a translucent block" : "composite", actor);
   }
 
   for (auto* list : { &traced, &raster })

@@ -9,10 +9,13 @@
 #include "vtkrtPassTestUtils.h"
 
 #include "vtkCellData.h"
+#include "vtkCompositeDataDisplayAttributes.h"
+#include "vtkCompositePolyDataMapper2.h"
 #include "vtkFloatArray.h"
 #include "vtkHardwareSelector.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkSelection.h"
 #include "vtkSelectionNode.h"
 #include "vtkTexture.h"
@@ -145,6 +148,43 @@ void TestShell()
   a << "Shell, 4 samples per pixel: RGB RMSE " << sampled << " against raster (<= 3)";
   Check(sampled <= 3.0, a.str());
   NoVTKOutput("Shell, 4 samples per pixel");
+}
+
+/// A composite of three spheres, two translucent by their block opacities
+/// (0.35 and 0.6), one opaque with a block color: translucent blocks are
+/// composited, the opaque one stops the layers behind it.
+void TestBlocks()
+{
+  Scene scene;
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(3);
+  const double centers[3][3] = { { 0.0, 0.0, 0.0 }, { 0.9, 0.2, -0.8 }, { -0.9, -0.2, -0.6 } };
+  for (int b = 0; b < 3; ++b)
+  {
+    vtkNew<vtkSphereSource> sphere;
+    sphere->SetCenter(centers[b][0], centers[b][1], centers[b][2]);
+    sphere->SetRadius(b == 0 ? 0.8 : 0.5);
+    sphere->SetThetaResolution(48);
+    sphere->SetPhiResolution(48);
+    sphere->Update();
+    blocks->SetBlock(b, sphere->GetOutput());
+  }
+  vtkNew<vtkCompositePolyDataMapper2> mapper;
+  mapper->SetInputDataObject(blocks);
+  vtkNew<vtkCompositeDataDisplayAttributes> attributes;
+  attributes->SetBlockOpacity(blocks->GetBlock(0), 0.35);
+  attributes->SetBlockOpacity(blocks->GetBlock(2), 0.6);
+  const double orange[3] = { 0.9, 0.6, 0.3 };
+  attributes->SetBlockColor(blocks->GetBlock(1), orange);
+  mapper->SetCompositeDataDisplayAttributes(attributes);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(0.3, 0.6, 1.0);
+  actor->GetProperty()->SetSpecular(0.3);
+  actor->GetProperty()->SetSpecularPower(20.0);
+  scene.Renderer->AddActor(actor);
+  scene.Frame(30, 1.2);
+  Compare("Blocks", scene, 1, 3.0);
 }
 
 /// Twelve translucent spheres over an opaque floor: the top-level walk
@@ -513,6 +553,6 @@ int main(int argc, char* argv[])
   Output = vtkrtTestOutputWindow::Install();
   return RunCase(argc, argv,
     { { "Shell", TestShell }, { "Scalars", TestScalars }, { "Texture", TestTexture },
-      { "Glyphs", TestGlyphs }, { "ManyActors", TestManyActors }, { "Shadow", TestShadow }, { "Feature", TestFeature },
+      { "Glyphs", TestGlyphs }, { "ManyActors", TestManyActors }, { "Blocks", TestBlocks }, { "Shadow", TestShadow }, { "Feature", TestFeature },
       { "BadOpacity", TestBadOpacity }, { "Selection", TestSelection } });
 }
