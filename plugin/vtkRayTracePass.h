@@ -33,8 +33,11 @@
  *   faces), in the actor's colors, lit with VTK's line normals. Edges of
  *   glyphs, edges drawn as tubes, and wireframes with a texture, culling or
  *   a backface property stay with raster.
- *   An actor whose data also has lines not drawn as tubes (below), or
- *   vertices without RenderPointsAsSpheres, falls back whole.
+ *   The actor's lines not drawn as tubes (below) and vertices not drawn
+ *   as spheres are drawn by raster (a stand-in actor over those cells, with
+ *   the actor's property, matrix and mapper settings); a composite with
+ *   such cells, an actor with nothing else, and such an actor during a
+ *   hardware selection fall back whole.
  * - Line and polyline cells of such an actor with RenderLinesAsTubes and a
  *   LineWidth over 1 (where VTK draws tubes) as analytic round tubes
  *   LineWidth pixels wide under every camera: each segment the hull of its

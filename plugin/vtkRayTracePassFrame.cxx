@@ -54,6 +54,9 @@ void vtkRayTracePass::Internals::Extract(
   this->Scene.SetBuildQuality(pass.BuildQuality);
   this->Scene.SetLeafSize(pass.LeafSize);
   this->Scene.SetTraceTranslucency(pass.TraceTranslucency);
+  // Hardware selection reports ids per prop: an actor's plain lines cannot
+  // come from a stand-in of its own there.
+  this->Scene.SetSplitRasterCells(ren->GetSelector() == nullptr || pass.IdMode);
   if (pass.IdMode || (!pass.Shadows && pass.AmbientOcclusionSamples == 0))
   {
     this->Scene.Extract(
@@ -81,7 +84,8 @@ void vtkRayTracePass::Internals::Extract(
   this->Others.clear();
   for (vtkProp* prop : others)
   {
-    if (std::find(stateProps, stateProps + stateCount, prop) != stateProps + stateCount)
+    vtkProp* owner = this->Scene.StandInOwner(prop);
+    if (std::find(stateProps, stateProps + stateCount, owner ? owner : prop) != stateProps + stateCount)
     {
       this->Others.push_back(prop);
     }

@@ -29,18 +29,24 @@ namespace pass
 
 namespace
 {
-/// Whether raster must draw `poly` as `actor` shows it: lines not drawn as
-/// tubes, vertices not drawn as spheres; translucent tubes or points as
-/// spheres (raster draws one layer of them, the pass would composite two);
-/// polygon edges or wires drawn as tubes (raster's shaded fake tubes).
+/// The cells of `poly` only raster draws: lines not drawn as tubes,
+/// vertices not drawn as spheres.
+RasterCellKinds rasterCellKinds(vtkPolyData* poly, bool pointsAsSpheres, bool linesAsTubes)
+{
+  RasterCellKinds kinds;
+  kinds.Lines = poly->GetNumberOfLines() > 0 && !linesAsTubes;
+  kinds.Verts = poly->GetNumberOfVerts() > 0 && !pointsAsSpheres;
+  return kinds;
+}
+
+/// Whether raster must draw `poly` as `actor` shows it, whole: translucent
+/// tubes or points as spheres (raster draws one layer of them, the pass
+/// would composite two); polygon edges or wires drawn as tubes (raster's
+/// shaded fake tubes).
 bool hasUntraceableCells(vtkPolyData* poly, vtkActor* actor, bool pointsAsSpheres, bool linesAsTubes)
 {
   const bool lines = poly->GetNumberOfLines() > 0;
   const bool verts = poly->GetNumberOfVerts() > 0;
-  if ((lines && !linesAsTubes) || (verts && !pointsAsSpheres))
-  {
-    return true;
-  }
   vtkProperty* property = actor->GetProperty();
   const bool surfaces = poly->GetNumberOfPolys() > 0 || poly->GetNumberOfStrips() > 0;
   const bool spheres = pointsAsSpheres && (verts || property->GetRepresentation() == VTK_POINTS);
@@ -384,9 +390,18 @@ bool Scene::AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& cou
   {
     ok = false;
   }
+  // Plain lines and points of a single polydata are drawn by a raster
+  // stand-in; a composite with some goes to raster whole.
+  const bool splittable = this->SplitRasterCells && vtkPolyData::SafeDownCast(input);
   for (const Piece& piece : pieces)
   {
-    ok = ok && !hasUntraceableCells(piece.Poly, actor, pointsAsSpheres, linesAsTubes);
+    const RasterCellKinds kinds = rasterCellKinds(piece.Poly, pointsAsSpheres, linesAsTubes);
+    ok = ok && (!kinds.Any() || splittable) &&
+      !hasUntraceableCells(piece.Poly, actor, pointsAsSpheres, linesAsTubes);
+    if (ok && kinds.Any())
+    {
+      this->FrameStandIns.push_back(this->RasterStandIns.Get(actor, piece.Poly, kinds));
+    }
   }
   if (ok)
   {
@@ -418,6 +433,7 @@ void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkPro
   markUnused(this->ColorCache);
   markUnused(this->GlyphSourceCache);
   this->Textures.BeginFrame();
+  this->RasterStandIns.BeginFrame();
 
   for (int i = 0; i < count; ++i)
   {
@@ -437,6 +453,7 @@ void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkPro
     }
     const int propIndex = static_cast<int>(traced.size());
     const std::size_t firstInstance = this->Instances.size();
+    this->FrameStandIns.clear();
     bool ok = false;
     if (auto* glyphs = vtkGlyph3DMapper::SafeDownCast(mapper))
     {
@@ -446,9 +463,12 @@ void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkPro
     {
       ok = this->AddPolyDataMapper(actor, propIndex, counters);
     }
+    // An actor whose every cell is raster's is left to raster whole.
+    ok = ok && (this->FrameStandIns.empty() || this->Instances.size() > firstInstance);
     if (ok)
     {
       traced.push_back(prop);
+      others.insert(others.end(), this->FrameStandIns.begin(), this->FrameStandIns.end());
     }
     else
     {
@@ -457,11 +477,17 @@ void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkPro
     }
   }
 
-  // Forget what no prop uses any more.
-  const bool trianglesDropped = dropUnused(this->TriangleCache);
-  const bool spheresDropped = dropUnused(this->SphereCache);
+  // Forget what no prop uses any more (but for a selection frame, whose
+  // actors with plain lines went to raster whole for this frame only).
+  const bool keep = !this->SplitRasterCells;
+  if (!keep)
+  {
+    this->RasterStandIns.EndFrame();
+  }
+  const bool trianglesDropped = !keep && dropUnused(this->TriangleCache);
+  const bool spheresDropped = !keep && dropUnused(this->SphereCache);
   this->GeometryDirty = this->GeometryDirty || trianglesDropped || spheresDropped;
-  this->ColorsDirty = dropUnused(this->ColorCache) || this->ColorsDirty;
+  this->ColorsDirty = (!keep && dropUnused(this->ColorCache)) || this->ColorsDirty;
   dropUnused(this->GlyphSourceCache);
   this->Textures.EndFrame();
   counters.TracedInstances = static_cast<int>(this->Instances.size());

@@ -6,6 +6,7 @@
 #define vtkRayTraceScene_h
 
 #include "vtkRayTraceGlyphs.h"
+#include "vtkRayTraceRasterCells.h"
 #include "vtkRayTraceTextures.h"
 #include "vtkRayTraceTypes.h"
 
@@ -38,7 +39,8 @@ class Scene
 {
 public:
   /// Extracts the props; `traced` receives the props the pass draws (a prop
-  /// index in an instance indexes it), `others` the ones left to raster.
+  /// index in an instance indexes it), `others` the ones left to raster and
+  /// the stand-ins drawing the plain lines and points of traced actors.
   void Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vtkProp*>& traced,
     std::vector<vtkProp*>& others, FrameCounters& counters);
 
@@ -118,6 +120,13 @@ public:
   /// `translucency`: whether translucent actors can be.
   static bool IsTraceable(vtkProp* prop, bool translucency = true);
 
+  /// Whether an actor's plain lines and points go to raster through a
+  /// stand-in while its surfaces are traced (off: such an actor goes to
+  /// raster whole, as hardware selection needs, whose ids are per prop).
+  void SetSplitRasterCells(bool split) { this->SplitRasterCells = split; }
+  /// The traced actor a stand-in of Extract's `others` draws for, or null.
+  vtkProp* StandInOwner(vtkProp* prop) const { return this->RasterStandIns.OwnerOf(prop); }
+
 private:
   /// One polydata of `actor`; a composite block's color and opacity
   /// (negative: none) replace the property's.
@@ -167,6 +176,9 @@ private:
   };
   std::map<const void*, GlyphSourceShape> GlyphSourceCache;
   TextureCache Textures;
+  bool SplitRasterCells = true;
+  RasterCells RasterStandIns;
+  std::vector<vtkProp*> FrameStandIns; ///< the stand-ins of the actor being added
   std::vector<Instance> Instances;
   bool GeometryDirty = true;
   bool ColorsDirty = true;

@@ -388,7 +388,8 @@ void TestClassification()
   auto alpha = meshActor(alphaMesh);
   vtkPolyDataMapper::SafeDownCast(alpha->GetMapper())->SetColorModeToDirectScalars();
   traced.emplace_back("scalars with alpha", alpha);
-  // Lines cannot be traced: the whole actor falls back.
+  // Plain lines are raster's: a stand-in draws them beside the traced
+  // surface; with nothing else the whole actor is raster's.
   vtkNew<vtkConeSource> cone;
   cone->Update();
   auto withLines = vtkSmartPointer<vtkPolyData>::New();
@@ -397,7 +398,11 @@ void TestClassification()
   const vtkIdType line[2] = { 0, 1 };
   lines->InsertNextCell(2, line);
   withLines->SetLines(lines);
-  raster.emplace_back("polydata with lines", meshActor(withLines));
+  traced.emplace_back("polydata with plain lines (a raster stand-in draws them)", meshActor(withLines));
+  auto linesOnlyData = vtkSmartPointer<vtkPolyData>::New();
+  linesOnlyData->SetPoints(withLines->GetPoints());
+  linesOnlyData->SetLines(lines);
+  raster.emplace_back("polydata of plain lines alone", meshActor(linesOnlyData));
   // Properties that only matter for cells the data has (vedo sets
   // RenderPointsAsSpheres and edges on every actor): a translucent surface
   // with RenderPointsAsSpheres and no vertices, and a tube polyline with

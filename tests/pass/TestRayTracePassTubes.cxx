@@ -318,7 +318,8 @@ void TestNoTubeCode()
   RasterAndTraced frames = RenderRasterThenTraced(scene.Window, scene.Renderer);
   Check(frames.Pass->GetNumberOfTracedProps() == 1 && !ShaderHasTubes(frames.Pass),
     "a scene without tubes compiles no tube code");
-  // Plain lines stay with raster, the whole actor (surface and lines).
+  // Plain lines stay with raster (a stand-in draws them), the surface is
+  // traced, and no tube code is compiled.
   const struct
   {
     bool Tubes;
@@ -334,7 +335,8 @@ void TestNoTubeCode()
     actor->GetProperty()->SetRenderLinesAsTubes(p.Tubes);
     lines.Renderer->AddActor(actor);
     lines.View(30.0, 30.0, false);
-    lines.Compare(std::string("plain lines, ") + p.Name + ": left to raster", 0, 1.0);
+    RasterAndTraced mixed = lines.Compare(std::string("plain lines, ") + p.Name + ": surface traced", 1, 1.0);
+    Check(!ShaderHasTubes(mixed.Pass), std::string("plain lines, ") + p.Name + ": no tube code");
   }
   NoVTKOutput("NoTubeCode");
 }
@@ -509,6 +511,64 @@ void TestBadInput()
   }
   NoVTKOutput("BadInput");
 }
+/// Polygons and plain lines (and a vertex cell, no spheres) in one
+/// polydata: the surface is traced, the lines and points drawn by raster
+/// through a stand-in; the image as raster's, a camera move uploads
+/// nothing, hardware selection returns the actor's line and polygon cells
+/// as raster does; a polydata of lines alone is left to raster whole.
+void TestPlainLines()
+{
+  Scene scene;
+  double range[2] = { 0.0, 6.0 };
+  auto poly = SurfaceWithLines();
+  vtkNew<vtkCellArray> verts;
+  const vtkIdType v[2] = { 0, 1 };
+  verts->InsertNextCell(2, v);
+  poly->SetVerts(verts);
+  poly->GetCellData()->Initialize();
+  auto actor = TubeActor(poly, 2.0, range);
+  actor->GetProperty()->SetRenderLinesAsTubes(false);
+  actor->GetProperty()->SetPointSize(5.0f);
+  scene.Renderer->AddActor(actor);
+  scene.View(30.0, 30.0, false);
+  scene.Window->Render();
+  const std::set<vtkIdType> rasterCells = SelectCells(scene);
+  RasterAndTraced frames = scene.Compare("plain lines", 1, 4.0);
+  Check(frames.Pass->GetLastTracedPrimitives() > 0 && !ShaderHasTubes(frames.Pass),
+    "plain lines: the surface is traced, the lines are not tubes");
+  // Without the stand-in the lines would be missing: the image differs
+  // from the traced surface alone.
+  auto surfaceOnly = vtkSmartPointer<vtkPolyData>::New();
+  surfaceOnly->ShallowCopy(poly);
+  surfaceOnly->SetLines(nullptr);
+  surfaceOnly->SetVerts(nullptr);
+  vtkPolyDataMapper::SafeDownCast(actor->GetMapper())->SetInputData(surfaceOnly);
+  scene.Window->Render();
+  auto bare = Grab(scene.Window);
+  vtkPolyDataMapper::SafeDownCast(actor->GetMapper())->SetInputData(poly);
+  scene.Window->Render();
+  const long lineDifference = CountDifferingPixels(bare, frames.Traced, 30);
+  scene.Renderer->GetActiveCamera()->Azimuth(20.0);
+  scene.Window->Render();
+  const bool nothingUploaded =
+    frames.Pass->GetLastGeometryBytesUploaded() == 0 && frames.Pass->GetLastBVHBuilds() == 0;
+  scene.Renderer->GetActiveCamera()->Azimuth(-20.0);
+  scene.Window->Render();
+  const std::set<vtkIdType> tracedCells = SelectCells(scene);
+  std::ostringstream s;
+  s << "plain lines: " << lineDifference << " pixels drawn by the raster stand-in; camera move uploads "
+    << (nothingUploaded ? "nothing" : "geometry") << "; selected cells raster " << rasterCells.size()
+    << ", with the pass " << tracedCells.size();
+  Check(lineDifference > 500 && nothingUploaded && rasterCells == tracedCells && !rasterCells.empty(), s.str());
+  // Lines alone: nothing to trace, raster draws the actor.
+  Scene linesOnly;
+  linesOnly.Renderer->AddActor(TubeActor(Helix(100, 2.0), 1.0, range));
+  linesOnly.View(20.0, 25.0, false);
+  linesOnly.Compare("lines alone", 0, 0.5);
+  NoGLError(scene.Window, "PlainLines");
+  NoVTKOutput("PlainLines");
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
@@ -517,5 +577,6 @@ int main(int argc, char* argv[])
   return RunCase(argc, argv,
     { { "Helix", TestHelix }, { "Mixed", TestMixed }, { "ManyActors", TestManyActors },
       { "NoTubeCode", TestNoTubeCode }, { "Uncolored", TestUncolored },
+      { "PlainLines", TestPlainLines },
       { "Selection", TestSelection }, { "Shadow", TestShadow }, { "BadInput", TestBadInput } });
 }

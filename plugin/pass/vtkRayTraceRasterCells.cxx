@@ -1,0 +1,124 @@
+#include "vtkRayTraceRasterCells.h"
+
+#include "vtkActor.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkMatrix4x4.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+
+namespace vtkrt
+{
+namespace pass
+{
+
+void RasterCells::BeginFrame()
+{
+  for (auto& e : this->Entries)
+  {
+    e.second.Used = false;
+  }
+}
+
+void RasterCells::EndFrame()
+{
+  for (auto it = this->Entries.begin(); it != this->Entries.end();)
+  {
+    it = it->second.Used ? std::next(it) : this->Entries.erase(it);
+  }
+}
+
+vtkProp* RasterCells::OwnerOf(vtkProp* prop) const
+{
+  for (const auto& e : this->Entries)
+  {
+    if (e.second.Actor.GetPointer() == prop)
+    {
+      return e.first;
+    }
+  }
+  return nullptr;
+}
+
+void RasterCells::CopyCells(vtkPolyData* poly, RasterCellKinds kinds, vtkPolyData* out)
+{
+  out->Initialize();
+  out->SetPoints(poly->GetPoints());
+  out->GetPointData()->ShallowCopy(poly->GetPointData());
+  // VTK numbers cells verts, lines, polys, strips: the chosen kinds are one
+  // run of them.
+  const vtkIdType verts = poly->GetNumberOfVerts();
+  const vtkIdType first = kinds.Verts ? 0 : verts;
+  const vtkIdType count = (kinds.Verts ? verts : 0) + (kinds.Lines ? poly->GetNumberOfLines() : 0);
+  if (kinds.Verts)
+  {
+    out->SetVerts(poly->GetVerts());
+  }
+  if (kinds.Lines)
+  {
+    out->SetLines(poly->GetLines());
+  }
+  vtkCellData* in = poly->GetCellData();
+  vtkCellData* cells = out->GetCellData();
+  cells->CopyAllocate(in, count);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    cells->CopyData(in, first + i, i);
+  }
+}
+
+vtkActor* RasterCells::Get(vtkActor* actor, vtkPolyData* poly, RasterCellKinds kinds)
+{
+  Entry& e = this->Entries[actor];
+  e.Used = true;
+  if (!e.Actor)
+  {
+    e.Actor = vtkSmartPointer<vtkActor>::New();
+    e.Actor->SetMapper(vtkSmartPointer<vtkPolyDataMapper>::New());
+    e.Actor->SetUserMatrix(vtkSmartPointer<vtkMatrix4x4>::New());
+    e.Cells = vtkSmartPointer<vtkPolyData>::New();
+  }
+  if (e.Source != poly || e.SourceTime != poly->GetMTime() || e.Kinds.Verts != kinds.Verts ||
+    e.Kinds.Lines != kinds.Lines)
+  {
+    CopyCells(poly, kinds, e.Cells);
+    e.Source = poly;
+    e.SourceTime = poly->GetMTime();
+    e.Kinds = kinds;
+  }
+  // The actor's mapper settings (colors, lookup table, clipping planes,
+  // coincident topology), then its cells: vtkMapper's copy, not the OpenGL
+  // mapper's, which copies (deprecated) shader code too.
+  auto* mapper = vtkPolyDataMapper::SafeDownCast(e.Actor->GetMapper());
+  if (mapper->GetMTime() < actor->GetMapper()->GetMTime() || mapper->GetInput() != e.Cells)
+  {
+    mapper->vtkMapper::ShallowCopy(actor->GetMapper());
+    mapper->SetInputData(e.Cells);
+  }
+  if (e.Actor->GetProperty() != actor->GetProperty())
+  {
+    e.Actor->SetProperty(actor->GetProperty());
+  }
+  if (e.Actor->GetBackfaceProperty() != actor->GetBackfaceProperty())
+  {
+    e.Actor->SetBackfaceProperty(actor->GetBackfaceProperty());
+  }
+  vtkMatrix4x4* matrix = e.Actor->GetUserMatrix();
+  vtkMatrix4x4* wanted = actor->GetMatrix();
+  bool same = true;
+  for (int i = 0; i < 16 && same; ++i)
+  {
+    same = matrix->GetData()[i] == wanted->GetData()[i];
+  }
+  if (!same)
+  {
+    matrix->DeepCopy(wanted);
+  }
+  e.Actor->SetVisibility(actor->GetVisibility());
+  e.Actor->SetPickable(false);
+  return e.Actor;
+}
+
+} // namespace pass
+} // namespace vtkrt
