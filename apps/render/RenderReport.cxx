@@ -10,6 +10,7 @@
 #include "vtkJPEGWriter.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
+#include "vtkPropCollection.h"
 #include "vtkRayTracePass.h"
 #include "vtkRenderer.h"
 #include "vtkTIFFWriter.h"
@@ -106,7 +107,9 @@ void PrintReport(const Options& opt, const Scene& scene, vtkEGLHeadlessRenderWin
               << (pass->GetShadows() ? "on" : "off") << ", ambient occlusion "
               << pass->GetAmbientOcclusionSamples() << " ray(s), precision "
               << pass->GetPrecisionModeAsString() << ", preset "
-              << pass->GetQualityPresetAsString() << "\n";
+              << pass->GetQualityPresetAsString() << "\n"
+              << "  traced props: " << pass->GetNumberOfTracedProps() << " of "
+              << scene.Renderer->GetViewProps()->GetNumberOfItems() << " (the rest drawn by raster)\n";
   }
   std::cout << "  device:       " << window->GetGLRenderer() << " (" << window->GetGLVersion()
             << "; " << window->GetDeviceDescription() << ")\n"
