@@ -15,7 +15,7 @@ case "$mode" in
     sanitize="address,undefined"
     targets=(TestBVHCellLocator TestCoreKernels TestCoreBVHQueries TestCoreWatertight TestCoreExtremes
       TestCoreBuild TestCoreTwoLevel TestCoreConservativeFloat TestCoreWideBVH TestCoreGpuTwins
-      TestCoreSurfaceTriangulation)
+      TestCoreSurfaceTriangulation TestCoreGpuTranslucency TestCoreTubeTwins)
     default_tests=(-L 'core|locator')
     # Leak checking stays on; the suppressions may list third-party
     # libraries only.
