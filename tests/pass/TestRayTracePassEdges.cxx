@@ -45,7 +45,7 @@ constexpr double kBound = 4.0; // RGB RMSE after the blur
 
 /// A copy of an RGB(A) image blurred by a separable Gaussian (sigma 1.5
 /// pixels, radius 4), clamped at the borders.
-vtkSmartPointer<vtkImageData> Blurred(vtkImageData* image)
+vtkSmartPointer<vtkImageData> NarrowBlurred(vtkImageData* image)
 {
   int d[3];
   image->GetDimensions(d);
@@ -144,8 +144,8 @@ struct Scene
   {
     this->Renderer->SetPass(nullptr);
     RasterAndTraced frames = RenderRasterThenTraced(this->Window, this->Renderer);
-    auto raster = Blurred(frames.Raster);
-    auto tracedBlurred = Blurred(frames.Traced);
+    auto raster = NarrowBlurred(frames.Raster);
+    auto tracedBlurred = NarrowBlurred(frames.Traced);
     const double rmse = RootMeanSquareError(raster, tracedBlurred);
     std::ostringstream s;
     s << label << ": " << frames.Pass->GetNumberOfTracedProps() << " traced props (want " << traced

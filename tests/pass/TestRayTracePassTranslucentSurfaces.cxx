@@ -60,19 +60,6 @@ struct Scene
   }
 };
 
-/// Writes the raster image, the traced one and their difference under the
-/// test output directory (as the other image tests do on failure).
-void WriteFailure(const std::string& name, vtkImageData* raster, vtkImageData* traced)
-{
-  WritePNG(raster, std::string(VTKRT_TEMP_DIR) + "/" + name + ".raster.png");
-  WritePNG(traced, std::string(VTKRT_TEMP_DIR) + "/" + name + ".png");
-  vtkNew<vtkImageDifference> diff;
-  diff->SetInputData(traced);
-  diff->SetImageData(raster);
-  diff->Update();
-  WritePNG(diff->GetOutput(), std::string(VTKRT_TEMP_DIR) + "/" + name + ".diff.png");
-}
-
 /// Raster then traced; checks the traced prop count, the RGB RMSE and
 /// that the shader composites layers.
 RasterAndTraced Compare(const std::string& name, Scene& scene, int tracedProps, double maxRmse)
@@ -87,7 +74,7 @@ RasterAndTraced Compare(const std::string& name, Scene& scene, int tracedProps, 
   Check(rmse <= maxRmse, what.str());
   if (rmse > maxRmse)
   {
-    WriteFailure(name, frames.Raster, frames.Traced);
+    WriteFailedImages(name, frames.Raster, frames.Traced);
   }
   Check(std::string(frames.Pass->GetLastFragmentShaderSource()).find("#define VTKRT_TRANSLUCENT") !=
       std::string::npos,
@@ -342,22 +329,10 @@ void TestGlyphs()
   Check(frames.Pass->GetNumberOfTracedProps() == 1 && rmse <= 3.0, s.str());
   if (rmse > 3.0)
   {
-    WriteFailure("Glyphs", frames.Raster, frames.Traced);
+    WriteFailedImages("Glyphs", frames.Raster, frames.Traced);
   }
   NoGLError(scene.Window, "Glyphs");
   NoVTKOutput("Glyphs");
-}
-
-/// Mean over `mask` of a grey image's channels.
-double MeanOver(vtkImageData* image, const std::vector<long>& mask)
-{
-  const auto* p = static_cast<const unsigned char*>(image->GetScalarPointer());
-  double sum = 0.0;
-  for (long i : mask)
-  {
-    sum += (p[3 * i] + p[3 * i + 1] + p[3 * i + 2]) / 3.0;
-  }
-  return mask.empty() ? 0.0 : sum / static_cast<double>(mask.size());
 }
 
 /// A traced floor under a traced sphere lit from straight above: the

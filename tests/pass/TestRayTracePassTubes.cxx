@@ -130,19 +130,6 @@ vtkSmartPointer<vtkActor> TubeActor(vtkPolyData* poly, double lineWidth, double 
   return actor;
 }
 
-vtkSmartPointer<vtkImageData> Blurred(vtkImageData* image)
-{
-  vtkNew<vtkImageGaussianSmooth> blur;
-  blur->SetInputData(image);
-  blur->SetDimensionality(2);
-  blur->SetStandardDeviations(2.0, 2.0);
-  blur->SetRadiusFactors(3.0, 3.0);
-  blur->Update();
-  auto out = vtkSmartPointer<vtkImageData>::New();
-  out->DeepCopy(blur->GetOutput());
-  return out;
-}
-
 struct Scene
 {
   vtkSmartPointer<vtkEGLHeadlessRenderWindow> Window = MakeWindow(kSize, kSize);

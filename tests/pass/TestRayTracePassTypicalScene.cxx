@@ -57,30 +57,6 @@ struct Scene
   }
 };
 
-vtkSmartPointer<vtkImageData> Blurred(vtkImageData* image)
-{
-  vtkNew<vtkImageGaussianSmooth> blur;
-  blur->SetInputData(image);
-  blur->SetDimensionality(2);
-  blur->SetStandardDeviations(2.0, 2.0);
-  blur->SetRadiusFactors(3.0, 3.0);
-  blur->Update();
-  auto out = vtkSmartPointer<vtkImageData>::New();
-  out->DeepCopy(blur->GetOutput());
-  return out;
-}
-
-void WriteFailure(const std::string& name, vtkImageData* raster, vtkImageData* traced)
-{
-  WritePNG(raster, std::string(VTKRT_TEMP_DIR) + "/" + name + ".raster.png");
-  WritePNG(traced, std::string(VTKRT_TEMP_DIR) + "/" + name + ".png");
-  vtkNew<vtkImageDifference> diff;
-  diff->SetInputData(traced);
-  diff->SetImageData(raster);
-  diff->Update();
-  WritePNG(diff->GetOutput(), std::string(VTKRT_TEMP_DIR) + "/" + name + ".diff.png");
-}
-
 /// A checkerboard of two light greys (nearest texels), so the lit floor
 /// stays below white.
 vtkSmartPointer<vtkTexture> CheckerTexture()
@@ -210,7 +186,7 @@ void TestTypicalScene()
     Check(frames.Pass->GetNumberOfTracedProps() == 6 && rmse <= 4.0, s.str());
     if (rmse > 4.0)
     {
-      WriteFailure("TypicalScene" + std::to_string(static_cast<int>(azimuth)), frames.Raster, frames.Traced);
+      WriteFailedImages("TypicalScene" + std::to_string(static_cast<int>(azimuth)), frames.Raster, frames.Traced);
     }
     const std::string shader = frames.Pass->GetLastFragmentShaderSource();
     for (const char* feature : { "VTKRT_TRANSLUCENT", "VTKRT_HAS_WIREFRAME", "VTKRT_HAS_TUBES",
@@ -222,18 +198,6 @@ void TestTypicalScene()
     NoGLError(scene.Window, "TypicalScene");
   }
   NoVTKOutput("TypicalScene");
-}
-
-/// Mean RGB over the pixels where `mask` is set.
-double MeanOver(vtkImageData* image, const std::vector<long>& mask)
-{
-  const auto* p = static_cast<const unsigned char*>(image->GetScalarPointer());
-  double sum = 0.0;
-  for (long i : mask)
-  {
-    sum += (p[3 * i] + p[3 * i + 1] + p[3 * i + 2]) / 3.0;
-  }
-  return mask.empty() ? 0.0 : sum / static_cast<double>(mask.size());
 }
 
 /// The typical scene with shadows and ambient occlusion: each frame changes

@@ -15,6 +15,7 @@
 #include "vtkGlyph3DMapper.h"
 #include "vtkImageData.h"
 #include "vtkImageDifference.h"
+#include "vtkImageGaussianSmooth.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
@@ -39,6 +40,7 @@
 #include <iostream>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace vtkrtPassTest
 {
@@ -415,6 +417,46 @@ inline RasterAndTraced RenderRasterThenTraced(vtkRenderWindow* win, vtkRenderer*
   win->Render();
   frames.Traced = Grab(win);
   return frames;
+}
+
+/// A copy of `image` blurred by a 2D Gaussian of 2 pixels (radius 6): what
+/// one-pixel lines and silhouettes are compared after.
+inline vtkSmartPointer<vtkImageData> Blurred(vtkImageData* image)
+{
+  vtkNew<vtkImageGaussianSmooth> blur;
+  blur->SetInputData(image);
+  blur->SetDimensionality(2);
+  blur->SetStandardDeviations(2.0, 2.0);
+  blur->SetRadiusFactors(3.0, 3.0);
+  blur->Update();
+  auto out = vtkSmartPointer<vtkImageData>::New();
+  out->DeepCopy(blur->GetOutput());
+  return out;
+}
+
+/// Writes the raster image, the traced one and their difference as
+/// NAME.raster.png, NAME.png and NAME.diff.png under the test output folder.
+inline void WriteFailedImages(const std::string& name, vtkImageData* raster, vtkImageData* traced)
+{
+  WritePNG(raster, std::string(VTKRT_TEMP_DIR) + "/" + name + ".raster.png");
+  WritePNG(traced, std::string(VTKRT_TEMP_DIR) + "/" + name + ".png");
+  vtkNew<vtkImageDifference> diff;
+  diff->SetInputData(traced);
+  diff->SetImageData(raster);
+  diff->Update();
+  WritePNG(diff->GetOutput(), std::string(VTKRT_TEMP_DIR) + "/" + name + ".diff.png");
+}
+
+/// Mean RGB (0..255) of an RGB image over the pixel indices in `mask`.
+inline double MeanOver(vtkImageData* image, const std::vector<long>& mask)
+{
+  const auto* p = static_cast<const unsigned char*>(image->GetScalarPointer());
+  double sum = 0.0;
+  for (long i : mask)
+  {
+    sum += (p[3 * i] + p[3 * i + 1] + p[3 * i + 2]) / 3.0;
+  }
+  return mask.empty() ? 0.0 : sum / static_cast<double>(mask.size());
 }
 } // namespace vtkrtPassTest
 
