@@ -178,6 +178,30 @@ vec3 wireGrowBy()
   return vec3(gWireActive ? max(gWireGrow, 0.0) : 0.0);
 }
 
+// Wires this close in t (relative; 64 float ulps) are coincident: faces
+// sharing an edge, each with its own copy of the edge's points.
+const float kWireTie = 64.0 / 8388608.0;
+
+// How far a wire walk looks past the best hit tBest: far enough to meet the
+// wires coincident with it.
+float wireReach(float tBest)
+{
+  return gWireActive ? tBest * (1.0 + kWireTie) : tBest;
+}
+
+// Whether a wire hit at t of VTK cell `cell` replaces the best one so far
+// (tBest; `cellBest` when `haveBest`): the nearer wins, and of coincident
+// wires the highest cell id, as raster's depth test (GL_LEQUAL) keeps the
+// cell it draws last.
+bool wireWins(float t, float tBest, bool haveBest, uint cell, uint cellBest)
+{
+  if (!haveBest || t < tBest * (1.0 - kWireTie))
+  {
+    return t <= tBest;
+  }
+  return cell > cellBest || (cell == cellBest && t < tBest);
+}
+
 // Whether a ray that misses the triangle may pass within `reach` of it: the
 // origin's distance to it in the watertight test's sheared plane (along the
 // ray onto the plane across its dominant axis), which is at most sqrt(3)
@@ -214,11 +238,15 @@ bool wireHit(RayTrianglePrecomputed pre, Triangle t, vec3 org, vec3 dir, bool in
   vec3 p0 = pixelPoint(gWireToPixels, t.v0);
   vec3 p1 = pixelPoint(gWireToPixels, t.v1);
   vec3 p2 = pixelPoint(gWireToPixels, t.v2);
-  if (inside)
+  if (inside && gWireGrow < 0.0)
   {
+    // Shadow and occlusion rays: where a wire crosses the triangle.
     vec2 q = projectToPixels(gWireToPixels, org + hit.x * dir);
     return wireEdgeAt(p0, p1, p2, t.cellEdges, q, gWireWidth) >= 0;
   }
+  // Camera rays meet a wire at the depth of its line, as raster draws it,
+  // on either side of the edge: coincident wires of faces sharing an edge
+  // are then equally near, and wireWins picks one as raster does.
   vec2 q = projectToPixels(gWireToPixels, org);
   vec3 ends[4] = vec3[4](p0, p1, p2, p0);
   vec3 verts[4] = vec3[4](t.v0, t.v1, t.v2, t.v0);

@@ -10,6 +10,8 @@ uniform usamplerBuffer uTriangles;
 // vtkrtRayTraceEdges: a wireframe's triangles are hit on their wires only.
 bool wireWalk();
 vec3 wireGrowBy();
+float wireReach(float tBest);
+bool wireWins(float t, float tBest, bool haveBest, uint cell, uint cellBest);
 #endif
 
 // Per-ray data of the watertight test: the axis permutation and shear of
@@ -130,15 +132,20 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
   uint index = rootNode.index;
   uint count = rootNode.count;
   bool culled = false;
+#ifdef VTKRT_HAS_WIREFRAME
+  uint bestCell = 0u; // the cell of the best wire hit (coincident wires)
+#endif
   for (;;)
   {
 #ifdef VTKRT_HAS_WIREFRAME
     vec3 growBy = wireGrowBy();
+    float reach = wireReach(tmax);
 #else
     vec3 growBy = vec3(0.0);
+    float reach = tmax;
 #endif
     if (!bvhDescend(
-      org, invDir, parallelBias, growBy, tmin, tmax, sp, steps, index, count, culled))
+      org, invDir, parallelBias, growBy, tmin, reach, sp, steps, index, count, culled))
     {
       break;
     }
@@ -155,9 +162,17 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
     {
       Triangle triangle = fetchTriangle(uTriangles, i);
       vec3 h;
-      bool hit = intersectRayTriangle(pre, triangle.v0, triangle.v1, triangle.v2, tmin, tmax, h);
 #ifdef VTKRT_HAS_WIREFRAME
-      hit = wireWalk() ? wireHit(pre, triangle, org, dir, hit, tmin, tmax, h) : hit;
+      reach = wireReach(tmax);
+      bool hit = intersectRayTriangle(pre, triangle.v0, triangle.v1, triangle.v2, tmin, reach, h);
+      if (wireWalk())
+      {
+        hit = wireHit(pre, triangle, org, dir, hit, tmin, reach, h) &&
+          wireWins(h.x, tmax, tri >= 0, triangle.cellId, bestCell);
+      }
+      bestCell = hit ? triangle.cellId : bestCell;
+#else
+      bool hit = intersectRayTriangle(pre, triangle.v0, triangle.v1, triangle.v2, tmin, tmax, h);
 #endif
       if (hit)
       {
@@ -170,7 +185,10 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
     {
       return true;
     }
-    if (!bvhPopAfterLeaf(tmax, sp, index, count, culled))
+#ifdef VTKRT_HAS_WIREFRAME
+    reach = wireReach(tmax);
+#endif
+    if (!bvhPopAfterLeaf(reach, sp, index, count, culled))
     {
       break;
     }

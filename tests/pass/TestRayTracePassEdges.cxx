@@ -21,6 +21,9 @@
 #include "vtkrtTestOutputWindow.h"
 
 #include "vtkAppendPolyData.h"
+#include "vtkCubeSource.h"
+#include "vtkFloatArray.h"
+#include "vtkScalarsToColors.h"
 #include "vtkCamera.h"
 #include "vtkHardwareSelector.h"
 #include "vtkIdTypeArray.h"
@@ -511,6 +514,68 @@ void TestWireframeSelection()
   Check(behind[0].size() == 1 && behind[0] == behind[1], "between the wires both select the same sphere cell");
   NoVTKOutput("wireframe selection");
 }
+/// Coincident wires: a vtkCubeSource holds its own copy of each corner per
+/// face, so every cube edge is two faces' wire at one depth. Raster's depth
+/// test (GL_LEQUAL) keeps the face it draws last; the pass keeps the
+/// highest cell id whatever the BVH's order. Seen head-on, the front face
+/// (+z, the last cell) colors its whole outline, each face colored by
+/// point scalars.
+void TestCoincidentWires()
+{
+  Scene scene;
+  vtkNew<vtkCubeSource> cube;
+  cube->Update();
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->DeepCopy(cube->GetOutput());
+  vtkNew<vtkFloatArray> face;
+  for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i)
+  {
+    face->InsertNextValue(static_cast<float>(i / 4)); // the cube's points: four per face
+  }
+  poly->GetPointData()->SetScalars(face);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(poly);
+  mapper->SetScalarRange(0.0, 5.0);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetRepresentationToWireframe();
+  actor->GetProperty()->SetLineWidth(3.0f);
+  actor->GetProperty()->LightingOff();
+  scene.Renderer->AddActor(actor);
+  scene.Renderer->ResetCamera();
+  vtkNew<vtkRayTracePass> pass;
+  scene.Renderer->SetPass(pass);
+  scene.Window->Render();
+  auto image = Grab(scene.Window);
+  double front[3];
+  mapper->GetLookupTable()->GetColor(5.0, front);
+  // The middle of each front edge, in display coordinates.
+  const double middles[4][3] = { { 0.0, 0.5, 0.5 }, { 0.0, -0.5, 0.5 }, { 0.5, 0.0, 0.5 }, { -0.5, 0.0, 0.5 } };
+  int frontColored = 0;
+  int dims[3];
+  image->GetDimensions(dims);
+  const auto* rgb = static_cast<const unsigned char*>(image->GetScalarPointer());
+  for (const auto& m : middles)
+  {
+    scene.Renderer->SetWorldPoint(m[0], m[1], m[2], 1.0);
+    scene.Renderer->WorldToDisplay();
+    double d[3];
+    scene.Renderer->GetDisplayPoint(d);
+    const int x = static_cast<int>(std::lround(d[0])), y = static_cast<int>(std::lround(d[1]));
+    const unsigned char* p = rgb + 3 * (static_cast<long>(y) * dims[0] + x);
+    bool match = true;
+    for (int k = 0; k < 3; ++k)
+    {
+      match = match && std::abs(p[k] - 255.0 * front[k]) < 8.0;
+    }
+    frontColored += match ? 1 : 0;
+  }
+  Check(pass->GetNumberOfTracedProps() == 1 && frontColored == 4,
+    "coincident wires: the front face's color on " + std::to_string(frontColored) +
+      " of its 4 edges (the highest cell id wins, as raster's last drawn)");
+  NoGLError(scene.Window, "CoincidentWires");
+  NoVTKOutput("CoincidentWires");
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -520,5 +585,5 @@ int main(int argc, char* argv[])
     { { "QuadEdges", TestQuadEdges }, { "TriangleEdges", TestTriangleEdges },
       { "Wireframe", TestWireframe }, { "PolygonOutlines", TestPolygonOutlines },
       { "EdgeCode", TestEdgeCode }, { "BadLineWidth", TestBadLineWidth },
-      { "WireframeSelection", TestWireframeSelection } });
+      { "WireframeSelection", TestWireframeSelection }, { "CoincidentWires", TestCoincidentWires } });
 }
