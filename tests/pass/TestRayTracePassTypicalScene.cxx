@@ -130,9 +130,9 @@ std::vector<vtkSmartPointer<vtkActor>> AddTypicalScene(vtkRenderer* renderer)
   actors.push_back(SphereActor(0.0, 0.0, 0.0, 0.7, 64));
   actors.back()->GetProperty()->SetColor(0.4, 0.6, 1.0);
   actors.back()->GetProperty()->SetOpacity(0.35);
-  // A wireframe box around everything, unlit as outlines usually are (a
-  // cube's coincident face edges take one face's normal in raster, by draw
-  // order, and another in the pass: a tie, not compared).
+  // A wireframe box around everything, unlit as outlines usually are (lit,
+  // a cube's coincident face edges take the last face's normal in the pass
+  // and in VTK's X11 window, but another in this window's raster).
   vtkNew<vtkCubeSource> cube;
   cube->SetBounds(-1.3, 1.3, -0.55, 0.9, -1.3, 1.3);
   vtkNew<vtkPolyDataMapper> cubeMapper;
