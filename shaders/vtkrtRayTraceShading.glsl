@@ -235,12 +235,11 @@ vec3 shadingNormal(uint flags, vec3 n, vec3 ng, vec3 dir)
   return dot(given ? ng : n, dir) > 0.0 ? -n : n;
 }
 
-// The lit color and alpha of a surface hit (alpha 1 unless translucent).
-vec4 shadeSurface(vec3 p, vec3 dir, int hitInstance, uint flags, HitSurface s, vec2 hitUV, int hitPrimitive)
+// The lit color and alpha of a surface hit (alpha 1 unless translucent);
+// r0..r2: the instance's camera-to-local rows.
+vec4 shadeSurface(vec3 p, vec3 dir, int hitInstance, uint flags, HitSurface s, vec2 hitUV, int hitPrimitive,
+  vec4 r0, vec4 r1, vec4 r2)
 {
-  vec4 r0 = instanceCameraToLocal(hitInstance, 0);
-  vec4 r1 = instanceCameraToLocal(hitInstance, 1);
-  vec4 r2 = instanceCameraToLocal(hitInstance, 2);
   // Local normals map to camera space by the transpose of the camera-to-local
   // matrix (the inverse transpose of local-to-camera).
   mat3 cameraToLocal = mat3(r0.xyz, r1.xyz, r2.xyz); // columns = rows of the matrix
@@ -319,13 +318,13 @@ vec4 shadeSurface(vec3 p, vec3 dir, int hitInstance, uint flags, HitSurface s, v
 vec4 shadeHit(vec3 org, vec3 dir, float tBest, int hitInstance, int hitPrimitive, vec2 hitUV)
 {
   uint flags = instanceFlags(hitInstance);
+  vec4 r0 = instanceCameraToLocal(hitInstance, 0);
+  vec4 r1 = instanceCameraToLocal(hitInstance, 1);
+  vec4 r2 = instanceCameraToLocal(hitInstance, 2);
   HitSurface s = emptyHitSurface(flags);
 #ifdef VTKRT_HAS_SPHERES
   if ((flags & kInstanceSpheres) != 0u)
   {
-    vec4 r0 = instanceCameraToLocal(hitInstance, 0);
-    vec4 r1 = instanceCameraToLocal(hitInstance, 1);
-    vec4 r2 = instanceCameraToLocal(hitInstance, 2);
     vec3 localOrg = vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
     vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
     s = sphereHitSurface(hitInstance, hitPrimitive, flags, localOrg + tBest * localDir);
@@ -340,6 +339,6 @@ vec4 shadeHit(vec3 org, vec3 dir, float tBest, int hitInstance, int hitPrimitive
 #if defined(VTKRT_SELECT_IDS) || defined(VTKRT_ID_MODE)
   return hitIdColor(hitInstance, s.vtkId);
 #else
-  return shadeSurface(org + tBest * dir, dir, hitInstance, flags, s, hitUV, hitPrimitive);
+  return shadeSurface(org + tBest * dir, dir, hitInstance, flags, s, hitUV, hitPrimitive, r0, r1, r2);
 #endif
 }

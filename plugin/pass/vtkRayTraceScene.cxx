@@ -362,7 +362,8 @@ void Scene::AddTubes(vtkMapper* mapper, vtkPolyData* poly, vtkMTimeType time, co
   }
 }
 
-bool Scene::AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& counters)
+bool Scene::AddPolyDataMapper(
+  vtkActor* actor, int propIndex, FrameCounters& counters, std::vector<vtkProp*>& standIns)
 {
   vtkMapper* mapper = actor->GetMapper();
   mapper->Update();
@@ -400,7 +401,7 @@ bool Scene::AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& cou
       !hasUntraceableCells(piece.Poly, actor, pointsAsSpheres, linesAsTubes);
     if (ok && kinds.Any())
     {
-      this->FrameStandIns.push_back(this->RasterStandIns.Get(actor, piece.Poly, kinds));
+      standIns.push_back(this->RasterStandIns.Get(actor, piece.Poly, kinds));
     }
   }
   if (ok)
@@ -453,7 +454,7 @@ void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkPro
     }
     const int propIndex = static_cast<int>(traced.size());
     const std::size_t firstInstance = this->Instances.size();
-    this->FrameStandIns.clear();
+    std::vector<vtkProp*> standIns;
     bool ok = false;
     if (auto* glyphs = vtkGlyph3DMapper::SafeDownCast(mapper))
     {
@@ -461,14 +462,14 @@ void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkPro
     }
     else
     {
-      ok = this->AddPolyDataMapper(actor, propIndex, counters);
+      ok = this->AddPolyDataMapper(actor, propIndex, counters, standIns);
     }
     // An actor whose every cell is raster's is left to raster whole.
-    ok = ok && (this->FrameStandIns.empty() || this->Instances.size() > firstInstance);
+    ok = ok && (standIns.empty() || this->Instances.size() > firstInstance);
     if (ok)
     {
       traced.push_back(prop);
-      others.insert(others.end(), this->FrameStandIns.begin(), this->FrameStandIns.end());
+      others.insert(others.end(), standIns.begin(), standIns.end());
     }
     else
     {

@@ -133,8 +133,10 @@ private:
   bool AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
     FrameCounters& counters, const double* blockColor = nullptr, double blockOpacity = -1.0);
   /// The prop's polydata pieces, each through AddPolyData; false (left to
-  /// raster) when some piece cannot be traced.
-  bool AddPolyDataMapper(vtkActor* actor, int propIndex, FrameCounters& counters);
+  /// raster) when some piece cannot be traced. `standIns` receives the
+  /// raster stand-ins of its plain lines and points.
+  bool AddPolyDataMapper(
+    vtkActor* actor, int propIndex, FrameCounters& counters, std::vector<vtkProp*>& standIns);
   /// A glyph mapper's plain input or every visible, non-empty leaf of its
   /// composite input (as vtkOpenGLGlyph3DMapper), each through AddGlyphSet;
   /// false (left to raster) when the source is not a sphere or some set's
@@ -178,7 +180,6 @@ private:
   TextureCache Textures;
   bool SplitRasterCells = true;
   RasterCells RasterStandIns;
-  std::vector<vtkProp*> FrameStandIns; ///< the stand-ins of the actor being added
   std::vector<Instance> Instances;
   bool GeometryDirty = true;
   bool ColorsDirty = true;
