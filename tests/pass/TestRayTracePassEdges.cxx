@@ -101,27 +101,6 @@ vtkSmartPointer<vtkImageData> NarrowBlurred(vtkImageData* image)
   return blurred;
 }
 
-/// |a - b| times 4 per channel (RGB), for a failing comparison's record.
-vtkSmartPointer<vtkImageData> DifferenceImage(vtkImageData* a, vtkImageData* b)
-{
-  auto diff = vtkSmartPointer<vtkImageData>::New();
-  diff->DeepCopy(a);
-  int d[3];
-  a->GetDimensions(d);
-  const int ca = a->GetNumberOfScalarComponents(), cb = b->GetNumberOfScalarComponents();
-  const auto* pa = static_cast<const unsigned char*>(a->GetScalarPointer());
-  const auto* pb = static_cast<const unsigned char*>(b->GetScalarPointer());
-  auto* out = static_cast<unsigned char*>(diff->GetScalarPointer());
-  for (long i = 0; i < static_cast<long>(d[0]) * d[1]; ++i)
-  {
-    for (int c = 0; c < ca; ++c)
-    {
-      out[i * ca + c] = c < 3 ? static_cast<unsigned char>(std::min(255, 4 * std::abs(pa[i * ca + c] - pb[i * cb + c]))) : 255;
-    }
-  }
-  return diff;
-}
-
 /// The scene's window and renderer: a view of whatever is added.
 struct Scene
 {
@@ -140,32 +119,13 @@ struct Scene
     this->Renderer->GetActiveCamera()->Elevation(elevation);
     this->Renderer->ResetCameraClippingRange();
   }
-  /// Raster, then traced: `traced` props traced and the blurred images'
-  /// RGB RMSE at most kBound (else the images and their difference are
-  /// written to the test directory).
+  /// Raster, then traced: `traced` props traced and the narrowly blurred
+  /// images' RGB RMSE at most kBound.
   RasterAndTraced Compare(const std::string& label, int traced)
   {
-    this->Renderer->SetPass(nullptr);
-    RasterAndTraced frames = RenderRasterThenTraced(this->Window, this->Renderer);
-    auto raster = NarrowBlurred(frames.Raster);
-    auto tracedBlurred = NarrowBlurred(frames.Traced);
-    const double rmse = RootMeanSquareError(raster, tracedBlurred);
-    std::ostringstream s;
-    s << label << ": " << frames.Pass->GetNumberOfTracedProps() << " traced props (want " << traced
-      << "), blurred RGB RMSE vs raster " << rmse << " (bound " << kBound << "; unblurred "
-      << RootMeanSquareError(frames.Raster, frames.Traced) << ")";
-    Check(frames.Pass->GetNumberOfTracedProps() == traced && rmse <= kBound, s.str());
-    if (rmse > kBound)
-    {
-      static int written = 0;
-      const std::string name = std::string(VTKRT_TEMP_DIR) + "/edges-" + std::to_string(written++);
-      WritePNG(frames.Raster, name + "-raster.png");
-      WritePNG(frames.Traced, name + "-traced.png");
-      WritePNG(DifferenceImage(raster, tracedBlurred), name + "-diff.png");
-      std::cout << "     wrote " << name << "-{raster,traced,diff}.png\n";
-    }
-    NoGLError(this->Window, label);
-    return frames;
+    static int written = 0;
+    return CompareBlurred(
+      this->Window, this->Renderer, label, traced, kBound, "edges-" + std::to_string(written++), NarrowBlurred);
   }
 };
 

@@ -60,13 +60,7 @@ void CheckClose(const std::string& name, vtkImageData* raster, vtkImageData* tra
   Check(rmse <= maxRmse, what.str());
   if (rmse > maxRmse)
   {
-    WritePNG(raster, std::string(VTKRT_TEMP_DIR) + "/" + name + ".raster.png");
-    WritePNG(traced, std::string(VTKRT_TEMP_DIR) + "/" + name + ".png");
-    vtkNew<vtkImageDifference> diff;
-    diff->SetInputData(traced);
-    diff->SetImageData(raster);
-    diff->Update();
-    WritePNG(diff->GetOutput(), std::string(VTKRT_TEMP_DIR) + "/" + name + ".diff.png");
+    WriteFailedImages(name, raster, traced);
   }
 }
 

@@ -40,15 +40,7 @@ struct Scene
   vtkSmartPointer<vtkEGLHeadlessRenderWindow> Window = MakeWindow(W, H);
   vtkNew<vtkRenderer> Renderer;
 
-  Scene()
-  {
-    this->Window->AddRenderer(this->Renderer);
-    this->Window->SetAlphaBitPlanes(1);
-    this->Renderer->SetBackground(0.1, 0.1, 0.15);
-    this->Renderer->SetUseDepthPeeling(true);
-    this->Renderer->SetMaximumNumberOfPeels(200);
-    this->Renderer->SetOcclusionRatio(0.0);
-  }
+  Scene() { SetUpDepthPeeling(this->Window, this->Renderer); }
 
   void Frame(double azimuth, double zoom)
   {

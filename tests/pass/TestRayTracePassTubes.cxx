@@ -27,7 +27,6 @@
 #include "vtkFloatArray.h"
 #include "vtkHardwareSelector.h"
 #include "vtkIdTypeArray.h"
-#include "vtkImageGaussianSmooth.h"
 #include "vtkLight.h"
 #include "vtkLookupTable.h"
 #include "vtkSelection.h"
@@ -148,34 +147,11 @@ struct Scene
     this->Renderer->ResetCameraClippingRange();
   }
   /// Raster, then traced: `traced` props traced, and the RGB RMSE of the
-  /// blurred images at most `bound`; on failure the images and their
-  /// difference are written.
+  /// blurred images at most `bound`.
   RasterAndTraced Compare(const std::string& label, int traced, double bound)
   {
-    this->Renderer->SetPass(nullptr);
-    RasterAndTraced frames = RenderRasterThenTraced(this->Window, this->Renderer);
-    auto raster = Blurred(frames.Raster);
-    auto tracedImage = Blurred(frames.Traced);
-    const double rmse = RootMeanSquareError(raster, tracedImage);
-    std::ostringstream s;
-    s << label << ": " << frames.Pass->GetNumberOfTracedProps() << " traced props (want " << traced
-      << "), blurred RGB RMSE vs raster " << rmse << " (bound " << bound << "; unblurred "
-      << RootMeanSquareError(frames.Raster, frames.Traced) << ")";
-    Check(frames.Pass->GetNumberOfTracedProps() == traced && rmse <= bound, s.str());
-    if (rmse > bound)
-    {
-      static int written = 0;
-      const std::string name = "tubes-" + std::to_string(written++);
-      WritePNG(frames.Raster, name + "-raster.png");
-      WritePNG(frames.Traced, name + "-traced.png");
-      vtkNew<vtkImageDifference> diff;
-      diff->SetInputData(frames.Traced);
-      diff->SetImageData(frames.Raster);
-      diff->Update();
-      WritePNG(diff->GetOutput(), name + "-diff.png");
-    }
-    NoGLError(this->Window, label);
-    return frames;
+    static int written = 0;
+    return CompareBlurred(this->Window, this->Renderer, label, traced, bound, "tubes-" + std::to_string(written++));
   }
 };
 

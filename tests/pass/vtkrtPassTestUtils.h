@@ -39,6 +39,7 @@
 #include <map>
 #include <iostream>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -445,6 +446,40 @@ inline void WriteFailedImages(const std::string& name, vtkImageData* raster, vtk
   diff->SetImageData(raster);
   diff->Update();
   WritePNG(diff->GetOutput(), std::string(VTKRT_TEMP_DIR) + "/" + name + ".diff.png");
+}
+
+/// Raster, then traced (the pass removed first): `traced` props traced and
+/// the RGB RMSE of the images after `blur` at most `bound`; on failure the
+/// raw images and their difference are written as `failName`.*.png.
+inline RasterAndTraced CompareBlurred(vtkRenderWindow* win, vtkRenderer* ren, const std::string& label, int traced,
+  double bound, const std::string& failName, vtkSmartPointer<vtkImageData> (*blur)(vtkImageData*) = Blurred)
+{
+  ren->SetPass(nullptr);
+  RasterAndTraced frames = RenderRasterThenTraced(win, ren);
+  const double rmse = RootMeanSquareError(blur(frames.Raster), blur(frames.Traced));
+  std::ostringstream s;
+  s << label << ": " << frames.Pass->GetNumberOfTracedProps() << " traced props (want " << traced
+    << "), blurred RGB RMSE vs raster " << rmse << " (bound " << bound << "; unblurred "
+    << RootMeanSquareError(frames.Raster, frames.Traced) << ")";
+  Check(frames.Pass->GetNumberOfTracedProps() == traced && rmse <= bound, s.str());
+  if (rmse > bound)
+  {
+    WriteFailedImages(failName, frames.Raster, frames.Traced);
+  }
+  NoGLError(win, label);
+  return frames;
+}
+
+/// A renderer in `win` set up as VTK's depth peeling draws translucency
+/// exactly: many peels, occlusion ratio 0.
+inline void SetUpDepthPeeling(vtkRenderWindow* win, vtkRenderer* ren)
+{
+  win->AddRenderer(ren);
+  win->SetAlphaBitPlanes(1);
+  ren->SetBackground(0.1, 0.1, 0.15);
+  ren->SetUseDepthPeeling(true);
+  ren->SetMaximumNumberOfPeels(200);
+  ren->SetOcclusionRatio(0.0);
 }
 
 /// Mean RGB (0..255) of an RGB image over the pixel indices in `mask`.
