@@ -155,8 +155,9 @@ bool gWireActive = false;
 mat4 gWireToPixels;
 float gWireWidth;
 float gWireGrow; // < 0: not a camera ray
+vec2 gWirePixel;  // a camera ray's pixel (its origin's), the same for every triangle
 
-void beginWireInstance(int instance, uint flags, bool cameraRay)
+void beginWireInstance(int instance, uint flags, bool cameraRay, vec3 localOrg)
 {
   gWireActive = (flags & kInstanceWireframe) != 0u;
   if (gWireActive)
@@ -164,6 +165,7 @@ void beginWireInstance(int instance, uint flags, bool cameraRay)
     gWireToPixels = instanceLocalToPixels(instance);
     gWireWidth = instanceLineWidth(instance);
     gWireGrow = cameraRay ? instanceSphereGrow(instance) : -1.0;
+    gWirePixel = projectToPixels(gWireToPixels, localOrg);
   }
 }
 
@@ -247,7 +249,7 @@ bool wireHit(RayTrianglePrecomputed pre, Triangle t, vec3 org, vec3 dir, bool in
   // Camera rays meet a wire at the depth of its line, as raster draws it,
   // on either side of the edge: coincident wires of faces sharing an edge
   // are then equally near, and wireWins picks one as raster does.
-  vec2 q = projectToPixels(gWireToPixels, org);
+  vec2 q = gWirePixel;
   vec3 ends[4] = vec3[4](p0, p1, p2, p0);
   vec3 verts[4] = vec3[4](t.v0, t.v1, t.v2, t.v0);
   uint bits[3] = uint[3](kEdge01, kEdge12, kEdge20);

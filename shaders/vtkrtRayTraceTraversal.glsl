@@ -47,7 +47,7 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, float tMin, in
   vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
   int root = int(instanceRoot(instance));
 #ifdef VTKRT_HAS_WIREFRAME
-  beginWireInstance(instance, flags, !stopAtFirstHit);
+  beginWireInstance(instance, flags, !stopAtFirstHit, localOrg);
 #endif
   int primitive = -1;
   vec2 uv = vec2(0.0);
