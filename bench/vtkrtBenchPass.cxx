@@ -612,6 +612,9 @@ int main(int argc, char* argv[])
   for (int size : opt.Sizes)
   {
     win->SetSize(size, size);
+    // The window's buffers at the new size: neither side's first frame pays
+    // for them (whichever scene came first used to).
+    win->Render();
     std::ostringstream phases;
     if (opt.Quad)
     {
