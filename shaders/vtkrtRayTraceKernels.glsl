@@ -61,6 +61,18 @@ bool intersectRayAABB(vec3 org, vec3 invDir, vec3 bmin, vec3 bmax, float tmin, f
   return tmin <= tmax;
 }
 
+// A point through the rows of an affine map (an instance's camera-to-local
+// rows, an ellipsoid's world-to-unit rows), then a direction (no translation).
+vec3 rowsPoint(vec4 r0, vec4 r1, vec4 r2, vec3 p)
+{
+  return vec3(dot(r0.xyz, p) + r0.w, dot(r1.xyz, p) + r1.w, dot(r2.xyz, p) + r2.w);
+}
+
+vec3 rowsDir(vec4 r0, vec4 r1, vec4 r2, vec3 d)
+{
+  return vec3(dot(r0.xyz, d), dot(r1.xyz, d), dot(r2.xyz, d));
+}
+
 // The parallelBias of intersectRayBoxConservative for a ray's invDir.
 vec3 parallelAxisBias(vec3 invDir)
 {

@@ -249,7 +249,7 @@ vec4 shadeSurface(vec3 p, vec3 dir, int hitInstance, uint flags, HitSurface s, v
   bool frontFacing = dot(ng, dir) <= 0.0;
   HitMaterial m = hitMaterial(hitInstance, flags, s, frontFacing);
 #if defined(VTKRT_SURFACE_EDGES) || defined(VTKRT_HAS_WIREFRAME)
-  vec3 localHit = vec3(dot(r0.xyz, p) + r0.w, dot(r1.xyz, p) + r1.w, dot(r2.xyz, p) + r2.w);
+  vec3 localHit = rowsPoint(r0, r1, r2, p);
 #endif
 #ifdef VTKRT_SURFACE_EDGES
   if ((flags & kInstanceSurfaceEdges) != 0u)
@@ -325,9 +325,7 @@ vec4 shadeHit(vec3 org, vec3 dir, float tBest, int hitInstance, int hitPrimitive
 #ifdef VTKRT_HAS_SPHERES
   if ((flags & kInstanceSpheres) != 0u)
   {
-    vec3 localOrg = vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
-    vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
-    s = sphereHitSurface(hitInstance, hitPrimitive, flags, localOrg + tBest * localDir);
+    s = sphereHitSurface(hitInstance, hitPrimitive, flags, rowsPoint(r0, r1, r2, org) + tBest * rowsDir(r0, r1, r2, dir));
   }
 #endif
 #ifdef VTKRT_HAS_TRIANGLES

@@ -114,12 +114,8 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
       for (int i = first; i < last; i += VTKRT_ELLIPSOID_TEXELS)
       {
         Ellipsoid e = fetchEllipsoid(uSpheres, i);
-        vec4 r0 = e.rows[0];
-        vec4 r1 = e.rows[1];
-        vec4 r2 = e.rows[2];
-        vec3 unitOrg =
-          vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
-        vec3 unitDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
+        vec3 unitOrg = rowsPoint(e.rows[0], e.rows[1], e.rows[2], org);
+        vec3 unitDir = rowsDir(e.rows[0], e.rows[1], e.rows[2], dir);
         float t;
         if (intersectRaySphere(unitOrg, unitDir, vec3(0.0), 1.0, tmin, tmax, t))
         {

@@ -126,8 +126,8 @@ float surfaceOpacity(int instance, int primitive, vec2 uv, vec3 dir)
   if ((flags & kInstanceTextured) != 0u)
   {
     // Raster's gl_FrontFacing, as shadeHit and faceSkipped decide it.
-    vec3 localDir = vec3(dot(instanceCameraToLocal(instance, 0).xyz, dir),
-      dot(instanceCameraToLocal(instance, 1).xyz, dir), dot(instanceCameraToLocal(instance, 2).xyz, dir));
+    vec3 localDir = rowsDir(instanceCameraToLocal(instance, 0), instanceCameraToLocal(instance, 1),
+      instanceCameraToLocal(instance, 2), dir);
     Triangle t = fetchTriangle(uTriangles, primitive);
     float facing = dot(cross(t.v1 - t.v0, t.v2 - t.v0), localDir);
     bool front = (flags & kInstanceMirrored) != 0u ? facing >= 0.0 : facing <= 0.0;

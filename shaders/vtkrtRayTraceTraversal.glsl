@@ -43,8 +43,8 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, float tMin, in
   vec4 r0 = instanceCameraToLocal(instance, 0);
   vec4 r1 = instanceCameraToLocal(instance, 1);
   vec4 r2 = instanceCameraToLocal(instance, 2);
-  vec3 localOrg = vec3(dot(r0.xyz, org) + r0.w, dot(r1.xyz, org) + r1.w, dot(r2.xyz, org) + r2.w);
-  vec3 localDir = vec3(dot(r0.xyz, dir), dot(r1.xyz, dir), dot(r2.xyz, dir));
+  vec3 localOrg = rowsPoint(r0, r1, r2, org);
+  vec3 localDir = rowsDir(r0, r1, r2, dir);
   int root = int(instanceRoot(instance));
 #ifdef VTKRT_HAS_WIREFRAME
   beginWireInstance(instance, flags, !stopAtFirstHit, localOrg);

@@ -214,6 +214,29 @@ void testPlaneClip()
 
 void testPrimitiveKernels()
 {
+  // An affine map's rows: rowsPoint is M p + b, rowsDir is M d (no b), each
+  // within float rounding of the double product.
+  {
+    Rng rows(29);
+    for (int i = 0; i < 1000; ++i)
+    {
+      vec4 r[3];
+      for (vec4& row : r)
+      {
+        row = vec4(toFloat(rows.inBox(Vec3<double>(-2), Vec3<double>(2))), float(rows.uniform(-5.0, 5.0)));
+      }
+      const vec3 p = toFloat(rows.inBox(Vec3<double>(-3), Vec3<double>(3)));
+      const vec3 mp = gpu::rowsPoint(r[0], r[1], r[2], p);
+      const vec3 md = gpu::rowsDir(r[0], r[1], r[2], p);
+      for (int k = 0; k < 3; ++k)
+      {
+        const double dot = double(r[k].x) * p.x + double(r[k].y) * p.y + double(r[k].z) * p.z;
+        VTKRT_CHECK_NEAR(md[k], dot, 1e-5 * (1.0 + std::abs(dot)) + 1e-5);
+        VTKRT_CHECK_NEAR(mp[k], dot + r[k].w, 1e-5 * (1.0 + std::abs(dot + r[k].w)) + 1e-5);
+      }
+    }
+  }
+
   // Sphere roots in float against double; the tangent ray; a ray along an
   // axis through the center plane (b' = -0).
   Rng rng(17);

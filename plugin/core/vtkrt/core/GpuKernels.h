@@ -72,6 +72,20 @@ inline bool intersectRayBoxConservative(const vec3& org, const vec3& invDir, con
   return tnear <= tfar;
 }
 
+/// A point through the rows of an affine map (an instance's camera-to-local
+/// rows, an ellipsoid's world-to-unit rows): each row's dot product, then
+/// its translation.
+inline vec3 rowsPoint(const vec4& r0, const vec4& r1, const vec4& r2, const vec3& p)
+{
+  return vec3(glm::dot(vec3(r0), p) + r0.w, glm::dot(vec3(r1), p) + r1.w, glm::dot(vec3(r2), p) + r2.w);
+}
+
+/// A direction through the same rows: no translation.
+inline vec3 rowsDir(const vec4& r0, const vec4& r1, const vec4& r2, const vec3& d)
+{
+  return vec3(glm::dot(vec3(r0), d), glm::dot(vec3(r1), d), glm::dot(vec3(r2), d));
+}
+
 inline bool clipRayByPlane(const vec3& org, const vec3& dir, const vec4& plane, float& tmin, float& tmax)
 {
   return core::clipRayByPlane(org, dir, plane, tmin, tmax);

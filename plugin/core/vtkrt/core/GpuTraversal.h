@@ -312,12 +312,8 @@ inline bool traverseSpheres(const ShaderInputs& u, int root, const vec3& org, co
         for (int i = first; i < last; i += texels)
         {
           const Ellipsoid e = fetchEllipsoid(u.uSpheres, i);
-          const vec4 r0 = e.rows[0];
-          const vec4 r1 = e.rows[1];
-          const vec4 r2 = e.rows[2];
-          const vec3 unitOrg(glm::dot(vec3(r0), org) + r0.w, glm::dot(vec3(r1), org) + r1.w,
-            glm::dot(vec3(r2), org) + r2.w);
-          const vec3 unitDir(glm::dot(vec3(r0), dir), glm::dot(vec3(r1), dir), glm::dot(vec3(r2), dir));
+          const vec3 unitOrg = rowsPoint(e.rows[0], e.rows[1], e.rows[2], org);
+          const vec3 unitDir = rowsDir(e.rows[0], e.rows[1], e.rows[2], dir);
           float t;
           if (intersectRaySphere(unitOrg, unitDir, vec3(0.0f), 1.0f, tmin, tmax, t))
           {
