@@ -14,13 +14,15 @@
 // compile) is reported separately. Ratios are peer time / pass time (> 1:
 // the pass is faster); the cpu columns are process CPU time per steady frame
 // (every llvmpipe thread counted), steadier than wall time on a shared machine.
+//   dynamic (--dynamic N,..): a mesh of N triangles beside a small ball that
+//              moves every frame, camera still, pass vs vtkPolyDataMapper
 //   translucent (--translucent N,..): an opaque mesh of N triangles inside a
 //              translucent shell of N triangles, pass vs vtkPolyDataMapper
 //              with depth peeling (100 peels, occlusion ratio 0), and the pass
 //              with the shell opaque (what compositing the layers costs)
 // usage: vtkrtBenchPass [--large] [--frames N] [--sizes 512,1024] [--edges]
 //          [--meshes quad,N,..] [--spheres N,..] [--peers glyphs,points,impostors]
-//          [--translucent N,..] [--tubes N,..]
+//          [--translucent N,..] [--tubes N,..] [--dynamic N,..]
 // (--meshes / --spheres replace the default counts, 0 skips that kind,
 // "quad" in --meshes keeps the quad; the pass's first frame is also printed
 // by phase: extraction, triangulation, BVH build, packing, upload, compile;
@@ -281,6 +283,7 @@ struct Options
   std::vector<long> TubeSegments; ///< none unless --tubes
   bool Quad = true; ///< the full-screen quad (off with --meshes not naming it)
   std::vector<long> Translucent; ///< triangle counts of the translucent scene (none by default)
+  std::vector<long> Dynamic;     ///< triangle counts of the moving-ball scene (none by default)
   bool Edges = false; ///< meshes also with edge visibility and as wireframes
 };
 
@@ -334,6 +337,10 @@ bool ParseArgs(int argc, char* argv[], Options& opt)
     else if (a == "--translucent" && i + 1 < argc)
     {
       opt.Translucent = ParseList(argv[++i]);
+    }
+    else if (a == "--dynamic" && i + 1 < argc)
+    {
+      opt.Dynamic = ParseList(argv[++i]);
     }
     else if (a == "--tubes" && i + 1 < argc)
     {
@@ -498,6 +505,43 @@ void RunMeshes(vtkRenderWindow* win, int size, const Options& opt, std::ostream&
   }
 }
 
+/// A mesh of n triangles beside a small ball (a 16x16 sphere source) that
+/// moves every frame, camera still: what a changing prop costs each frame
+/// (the pass rebuilds the ball's BVH and writes its records only; raster
+/// uploads the ball's buffers).
+void RunDynamic(vtkRenderWindow* win, int size, const Options& opt)
+{
+  for (long n : opt.Dynamic)
+  {
+    auto mesh = MeshOf(n);
+    vtkNew<vtkSphereSource> ball;
+    ball->SetRadius(0.05);
+    ball->SetThetaResolution(16);
+    ball->SetPhiResolution(16);
+    auto setup = [&](vtkRenderer* ren) {
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputData(mesh);
+      AddActor(ren, mapper);
+      vtkNew<vtkPolyDataMapper> ballMapper;
+      ballMapper->SetInputConnection(ball->GetOutputPort());
+      AddActor(ren, ballMapper)->GetProperty()->SetColor(0.2, 0.4, 1.0);
+    };
+    int step = 0;
+    const Camera moveBall{ [&](vtkRenderer* ren) {
+                            ball->SetCenter(0.0, 0.0, 0.6);
+                            ren->ResetCamera();
+                          },
+      [&](vtkRenderer*, int frames) {
+        const double a = 6.283185307179586 * (++step) / frames;
+        ball->SetCenter(0.6 * std::sin(a), 0.0, 0.6 * std::cos(a));
+      } };
+    const Timing pass = Measure(win, setup, true, opt.Frames, moveBall);
+    const Timing raster = Measure(win, setup, false, opt.Frames, moveBall);
+    Row(std::to_string(mesh->GetNumberOfCells() / 1000) + "k + moving ball", size, "vtkPolyDataMapper", pass,
+      raster);
+  }
+}
+
 /// An opaque mesh inside a translucent shell (opacity 0.4, both of n
 /// triangles): the pass against raster with depth peeling, and against the
 /// pass with the shell opaque.
@@ -649,6 +693,7 @@ int main(int argc, char* argv[])
     RunSpheres(win, size, opt);
     RunTranslucent(win, size, opt, phases);
     RunTubes(win, size, opt, phases);
+    RunDynamic(win, size, opt);
     if (!phases.str().empty())
     {
       std::cout << "\nfirst frame by phase, ms (pass; rest: drawing and what VTK does around it):\n"

@@ -107,31 +107,14 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
   std::string error;
   if (this->Scene.GeometryChanged() || !this->GeometryOnGpu || (!this->GeometryValid && limitChanged))
   {
-    // Packed straight into the mapped GPU buffers: no copy of the scene
-    // on the way.
-    auto start = std::chrono::steady_clock::now();
-    vtkrt::pass::GeometryLayout layout = vtkrt::pass::LayOutGeometry(this->Scene);
+    const bool appended = this->GeometryOnGpu && this->GeometryValid && !limitChanged && this->AppendGeometry(win);
+    if (!appended)
+    {
+      this->UploadGeometry(pass, win, limit);
+    }
     this->Scene.MarkGeometryPacked();
-    this->GeometryValid = vtkrt::pass::SceneBuffers::Fits(layout, limit, error);
-    if (this->GeometryValid)
-    {
-      this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
-      start = std::chrono::steady_clock::now();
-      const vtkrt::pass::GeometryTargets targets = this->Buffers.MapGeometry(layout);
-      const double mapSeconds = vtkrt::pass::SecondsSince(start);
-      start = std::chrono::steady_clock::now();
-      vtkrt::pass::WriteGeometry(this->Scene, layout, targets);
-      this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
-      start = std::chrono::steady_clock::now();
-      this->Counters.GeometryBytesUploaded += this->Buffers.UnmapGeometry(win);
-      this->Counters.UploadSeconds += mapSeconds + vtkrt::pass::SecondsSince(start);
-    }
-    this->Places.GeometryPlaces = std::move(layout.Placements);
+    this->Places.GeometryPlaces = this->GeometryUploaded.Placements;
     this->GeometryOnGpu = true;
-    if (!this->GeometryValid)
-    {
-      vtkErrorWithObjectMacro(&pass, << error);
-    }
   }
   if (this->Scene.ColorsChanged() || !this->ColorsOnGpu || (!this->ColorsValid && limitChanged))
   {
@@ -156,6 +139,60 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
     }
   }
   this->UploadTextures(pass, win, limit, limitChanged);
+}
+
+bool vtkRayTracePass::Internals::AppendGeometry(vtkOpenGLRenderWindow* win)
+{
+  auto start = std::chrono::steady_clock::now();
+  vtkrt::pass::GeometryLayout next;
+  std::vector<const vtkrt::pass::Geometry*> appended;
+  if (!vtkrt::pass::ExtendLayout(this->Scene, this->GeometryUploaded, this->GeometryCapacity, next, appended))
+  {
+    return false;
+  }
+  this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
+  start = std::chrono::steady_clock::now();
+  const vtkrt::pass::GeometryTargets targets = this->Buffers.MapAppended(this->GeometryUploaded, next);
+  const double mapSeconds = vtkrt::pass::SecondsSince(start);
+  start = std::chrono::steady_clock::now();
+  vtkrt::pass::WriteAppended(appended, next, targets);
+  this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
+  start = std::chrono::steady_clock::now();
+  this->Counters.GeometryBytesUploaded += this->Buffers.UnmapAppended();
+  this->Counters.UploadSeconds += mapSeconds + vtkrt::pass::SecondsSince(start);
+  (void)win;
+  this->GeometryUploaded = std::move(next);
+  return true;
+}
+
+void vtkRayTracePass::Internals::UploadGeometry(
+  const vtkRayTracePass& pass, vtkOpenGLRenderWindow* win, std::size_t limit)
+{
+  // Packed straight into the mapped GPU buffers: no copy of the scene on
+  // the way; with room to append what changes later.
+  auto start = std::chrono::steady_clock::now();
+  vtkrt::pass::GeometryLayout layout = vtkrt::pass::LayOutGeometry(this->Scene);
+  std::string error;
+  this->GeometryValid = vtkrt::pass::SceneBuffers::Fits(layout, limit, error);
+  if (this->GeometryValid)
+  {
+    this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
+    start = std::chrono::steady_clock::now();
+    this->GeometryCapacity = vtkrt::pass::WithRoom(layout, limit);
+    const vtkrt::pass::GeometryTargets targets = this->Buffers.MapGeometry(layout, this->GeometryCapacity);
+    const double mapSeconds = vtkrt::pass::SecondsSince(start);
+    start = std::chrono::steady_clock::now();
+    vtkrt::pass::WriteGeometry(this->Scene, layout, targets);
+    this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
+    start = std::chrono::steady_clock::now();
+    this->Counters.GeometryBytesUploaded += this->Buffers.UnmapGeometry(win);
+    this->Counters.UploadSeconds += mapSeconds + vtkrt::pass::SecondsSince(start);
+  }
+  else
+  {
+    vtkErrorWithObjectMacro(&pass, << error);
+  }
+  this->GeometryUploaded = std::move(layout);
 }
 
 void vtkRayTracePass::Internals::UploadTextures(

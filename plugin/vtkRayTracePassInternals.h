@@ -70,6 +70,9 @@ struct vtkRayTracePass::Internals
   std::vector<int> WarnedTooSmallProps; ///< what the last scale warning named
   vtkrt::pass::SceneBuffers Buffers;
   vtkrt::pass::ScenePlacements Places;
+  /// What the geometry buffers hold and have room for (see ExtendLayout).
+  vtkrt::pass::GeometryLayout GeometryUploaded;
+  vtkrt::pass::GeometrySizes GeometryCapacity;
   vtkrt::pass::TopLevel Top;
   vtkrt::pass::Accumulation Accumulated;
   vtkrt::pass::Selection Selecting;
@@ -85,6 +88,11 @@ struct vtkRayTracePass::Internals
     std::vector<vtkTextureObject*> Active; ///< bound samplers
     vtkOpenGLQuadHelper* Tracer = nullptr;
   };
+
+  /// Writes the scene's changed geometry after what the buffers hold;
+  /// false when it needs a new packing of everything (UploadGeometry).
+  bool AppendGeometry(vtkOpenGLRenderWindow* win);
+  void UploadGeometry(const vtkRayTracePass& pass, vtkOpenGLRenderWindow* win, std::size_t limit);
 
   void ReleaseGL(vtkWindow* w)
   {

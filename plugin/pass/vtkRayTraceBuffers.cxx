@@ -11,6 +11,7 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
@@ -126,14 +127,16 @@ std::size_t TextureBuffer::Upload(vtkOpenGLRenderWindow* win, const void* data, 
   this->Texture->SetInternalFormat(GL_RGBA32UI);
   this->Texture->CreateTextureBuffer(static_cast<unsigned int>(n), 4, VTK_UNSIGNED_INT, this->Buffer);
   this->Texels = n;
+  this->Capacity = n;
   return core::gpu::kTexelBytes * n;
 }
 
-void* TextureBuffer::Map(std::size_t texels)
+void* TextureBuffer::Map(std::size_t texels, std::size_t capacity)
 {
-  const std::size_t n = texels == 0 ? 1 : texels;
+  const std::size_t n = std::max<std::size_t>({ texels, capacity, 1 });
   const std::size_t bytes = core::gpu::kTexelBytes * n;
-  this->Texels = n;
+  this->Texels = std::max<std::size_t>(texels, 1);
+  this->Capacity = n;
   this->Mapped = false;
   void* storage = RendererPinsMemory() ? this->Pending.Allocate(bytes) : nullptr;
   if (!storage && this->Buffer->GenerateBuffer(vtkOpenGLBufferObject::TextureBuffer) && this->Buffer->Bind())
@@ -148,6 +151,9 @@ void* TextureBuffer::Map(std::size_t texels)
   {
     this->Staging.reset(new unsigned char[bytes]);
     storage = this->Staging.get();
+    // The room past the texels is uploaded too: zeros, not garbage.
+    std::memset(static_cast<unsigned char*>(storage) + core::gpu::kTexelBytes * texels, 0,
+      bytes - core::gpu::kTexelBytes * texels);
   }
   if (texels == 0)
   {
@@ -156,9 +162,64 @@ void* TextureBuffer::Map(std::size_t texels)
   return storage;
 }
 
+void* TextureBuffer::MapRange(std::size_t first, std::size_t texels)
+{
+  this->RangeFirst = first;
+  this->RangeTexels = texels;
+  this->Mapped = false;
+  if (texels == 0 || first + texels > this->Capacity)
+  {
+    this->RangeTexels = 0;
+    return nullptr;
+  }
+  const std::size_t offset = core::gpu::kTexelBytes * first;
+  const std::size_t bytes = core::gpu::kTexelBytes * texels;
+  if (this->Pinned.Data())
+  {
+    glFinish(); // frames in flight may still read the storage written now
+    return static_cast<unsigned char*>(this->Pinned.Data()) + offset;
+  }
+  if (this->Buffer->Bind())
+  {
+    void* storage = glMapBufferRange(GL_TEXTURE_BUFFER, static_cast<GLintptr>(offset),
+      static_cast<GLsizeiptr>(bytes), GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_RANGE_BIT);
+    this->Buffer->Release();
+    if (storage)
+    {
+      this->Mapped = true;
+      return storage;
+    }
+  }
+  this->Staging.reset(new unsigned char[bytes]);
+  return this->Staging.get();
+}
+
+std::size_t TextureBuffer::UnmapRange()
+{
+  const std::size_t bytes = core::gpu::kTexelBytes * this->RangeTexels;
+  if (bytes == 0 || this->Pinned.Data())
+  {
+    return bytes;
+  }
+  this->Buffer->Bind();
+  if (this->Mapped)
+  {
+    glUnmapBuffer(GL_TEXTURE_BUFFER);
+    this->Mapped = false;
+  }
+  else
+  {
+    glBufferSubData(GL_TEXTURE_BUFFER, static_cast<GLintptr>(core::gpu::kTexelBytes * this->RangeFirst),
+      static_cast<GLsizeiptr>(bytes), this->Staging.get());
+    this->Staging.reset();
+  }
+  this->Buffer->Release();
+  return bytes;
+}
+
 std::size_t TextureBuffer::Unmap(vtkOpenGLRenderWindow* win)
 {
-  const std::size_t n = this->Texels;
+  const std::size_t n = this->Capacity;
   if (this->Pending.Data())
   {
     if (!this->AdoptPending(core::gpu::kTexelBytes * n))
@@ -184,7 +245,7 @@ std::size_t TextureBuffer::Unmap(vtkOpenGLRenderWindow* win)
   this->Texture->SetContext(win);
   this->Texture->SetInternalFormat(GL_RGBA32UI);
   this->Texture->CreateTextureBuffer(static_cast<unsigned int>(n), 4, VTK_UNSIGNED_INT, this->Buffer);
-  return core::gpu::kTexelBytes * n;
+  return core::gpu::kTexelBytes * this->Texels;
 }
 
 bool TextureBuffer::AdoptPending(std::size_t bytes)
@@ -222,6 +283,7 @@ void TextureBuffer::Release(vtkWindow* w)
   }
   this->Pending.Free();
   this->Texels = 0;
+  this->Capacity = 0;
 }
 
 namespace
@@ -269,18 +331,54 @@ bool SceneBuffers::Fits(const ColorsLayout& layout, std::size_t limit, std::stri
   return fitsLimit(layout.Words / 4, limit, "'s colors", error);
 }
 
-GeometryTargets SceneBuffers::MapGeometry(const GeometryLayout& layout)
+GeometryTargets SceneBuffers::MapGeometry(const GeometryLayout& layout, const GeometrySizes& capacity)
 {
   using namespace core::gpu;
   GeometryTargets out;
-  out.Nodes = static_cast<Node*>(this->Nodes.Map(texelsFor<Node>(layout.Nodes)));
-  out.Triangles = static_cast<Triangle*>(this->Triangles.Map(texelsFor<Triangle>(layout.Triangles)));
+  out.Nodes = static_cast<Node*>(
+    this->Nodes.Map(texelsFor<Node>(layout.Nodes), texelsFor<Node>(capacity.Nodes)));
+  out.Triangles = static_cast<Triangle*>(
+    this->Triangles.Map(texelsFor<Triangle>(layout.Triangles), texelsFor<Triangle>(capacity.Triangles)));
   out.TriangleVertices = static_cast<core::gpu::TriangleVertices*>(
-    this->TriangleVertices.Map(texelsFor<core::gpu::TriangleVertices>(layout.Triangles)));
-  out.Spheres = static_cast<Texel*>(this->Spheres.Map(layout.SphereTexels));
-  out.SphereIds = static_cast<std::uint32_t*>(this->SphereIds.Map(layout.SphereIdWords / 4));
-  out.Normals = static_cast<Normal*>(this->Normals.Map(texelsFor<Normal>(layout.Normals)));
+    this->TriangleVertices.Map(texelsFor<core::gpu::TriangleVertices>(layout.Triangles),
+      texelsFor<core::gpu::TriangleVertices>(capacity.Triangles)));
+  out.Spheres = static_cast<Texel*>(this->Spheres.Map(layout.SphereTexels, capacity.SphereTexels));
+  out.SphereIds = static_cast<std::uint32_t*>(
+    this->SphereIds.Map(layout.SphereIdWords / 4, capacity.SphereIdWords / 4));
+  out.Normals = static_cast<Normal*>(
+    this->Normals.Map(texelsFor<Normal>(layout.Normals), texelsFor<Normal>(capacity.Normals)));
   return out;
+}
+
+GeometryTargets SceneBuffers::MapAppended(const GeometrySizes& from, const GeometrySizes& to)
+{
+  using namespace core::gpu;
+  GeometryTargets out;
+  out.From = from;
+  out.Nodes = static_cast<Node*>(
+    this->Nodes.MapRange(texelsFor<Node>(from.Nodes), texelsFor<Node>(to.Nodes - from.Nodes)));
+  out.Triangles = static_cast<Triangle*>(this->Triangles.MapRange(
+    texelsFor<Triangle>(from.Triangles), texelsFor<Triangle>(to.Triangles - from.Triangles)));
+  out.TriangleVertices = static_cast<core::gpu::TriangleVertices*>(
+    this->TriangleVertices.MapRange(texelsFor<core::gpu::TriangleVertices>(from.Triangles),
+      texelsFor<core::gpu::TriangleVertices>(to.Triangles - from.Triangles)));
+  out.Spheres = static_cast<Texel*>(this->Spheres.MapRange(from.SphereTexels, to.SphereTexels - from.SphereTexels));
+  out.SphereIds = static_cast<std::uint32_t*>(
+    this->SphereIds.MapRange(from.SphereIdWords / 4, (to.SphereIdWords - from.SphereIdWords) / 4));
+  out.Normals = static_cast<Normal*>(
+    this->Normals.MapRange(texelsFor<Normal>(from.Normals), texelsFor<Normal>(to.Normals - from.Normals)));
+  return out;
+}
+
+std::size_t SceneBuffers::UnmapAppended()
+{
+  std::size_t bytes = 0;
+  for (TextureBuffer* b : { &this->Nodes, &this->Triangles, &this->TriangleVertices, &this->Spheres,
+         &this->SphereIds, &this->Normals })
+  {
+    bytes += b->UnmapRange();
+  }
+  return bytes;
 }
 
 std::size_t SceneBuffers::UnmapGeometry(vtkOpenGLRenderWindow* win)

@@ -25,6 +25,7 @@ namespace pass
 {
 struct ColorsLayout;
 struct GeometryLayout;
+struct GeometrySizes;
 struct GeometryTargets;
 struct PackedTextures;
 
@@ -70,10 +71,18 @@ public:
   /// user memory (llvmpipe's GL_AMD_pinned_memory), memory of ours that
   /// becomes the buffer; else the buffer's own memory mapped, or a staging
   /// array when it does not map.
-  void* Map(std::size_t texels);
+  /// With `capacity` (at least `texels`), the buffer has room for that
+  /// many texels, which MapRange() writes later without a new buffer.
+  void* Map(std::size_t texels, std::size_t capacity = 0);
   /// Makes what Map() gave the texture buffer's contents. Returns the bytes
   /// uploaded.
   std::size_t Unmap(vtkOpenGLRenderWindow* win);
+  /// Storage for texels [first, first + texels) of the buffer made by
+  /// Map(), within its capacity, to write before UnmapRange(); the other
+  /// texels keep what they hold. Null for no texels.
+  void* MapRange(std::size_t first, std::size_t texels);
+  /// Makes what MapRange() gave part of the buffer. Returns the bytes uploaded.
+  std::size_t UnmapRange();
   void Release(vtkWindow* w);
   std::size_t GetTexels() const { return this->Texels; }
   vtkTextureObject* GetTexture() const { return this->Texture; }
@@ -82,7 +91,9 @@ private:
   vtkOpenGLBufferObject* Buffer;
   vtkTextureObject* Texture;
   std::size_t Texels = 0;
+  std::size_t Capacity = 0; ///< texels the buffer and its texture hold
   bool Mapped = false;
+  std::size_t RangeFirst = 0, RangeTexels = 0; ///< MapRange()'s texels
   std::unique_ptr<unsigned char[]> Staging; ///< Map()'s storage when the buffer does not map
   PinnedStorage Pinned;  ///< the buffer's storage when it uses ours
   PinnedStorage Pending; ///< Map()'s pinned storage until Unmap()
@@ -105,8 +116,14 @@ public:
 
   /// The geometry buffers' storage for the layout, for WriteGeometry; then
   /// UnmapGeometry, which returns the bytes uploaded.
-  GeometryTargets MapGeometry(const GeometryLayout& layout);
+  /// The buffers get room for `capacity`.
+  GeometryTargets MapGeometry(const GeometryLayout& layout, const GeometrySizes& capacity);
   std::size_t UnmapGeometry(vtkOpenGLRenderWindow* win);
+  /// The geometry buffers' storage past `from` up to `to` (both within the
+  /// capacity MapGeometry gave), for WriteAppended; then UnmapAppended,
+  /// which returns the bytes uploaded.
+  GeometryTargets MapAppended(const GeometrySizes& from, const GeometrySizes& to);
+  std::size_t UnmapAppended();
   /// Uploads the packed textures when they fit `limit` texels; otherwise
   /// `error` says so and nothing is uploaded. Returns the bytes uploaded.
   std::size_t UploadTextures(vtkOpenGLRenderWindow* win, const PackedTextures& packed,

@@ -39,71 +39,177 @@ void padWords(std::uint32_t* words, std::size_t used)
 }
 } // namespace
 
+namespace
+{
+/// Up to a multiple of four (whole texels of sphere ids).
+std::size_t alignedToTexel(std::size_t n)
+{
+  return (n + 3) / 4 * 4;
+}
+
+std::size_t sphereTexelsOf(const Geometry& g)
+{
+  return g.SphereRecords.size() * core::gpu::texelsOf<core::gpu::Sphere>() +
+    g.EllipsoidRecords.size() * core::gpu::texelsOf<core::gpu::Ellipsoid>() +
+    g.SegmentRecords.size() * core::gpu::texelsOf<core::gpu::Segment>();
+}
+
+/// Places `g` at the ends of `sizes` and moves them past it. A sphere
+/// geometry starts and ends on whole texels of ids (one id word a sphere
+/// texel), so that appending one never rewrites another's texel.
+GeometryPlacement placeAtEnd(const Geometry& g, GeometrySizes& sizes)
+{
+  GeometryPlacement place;
+  place.Serial = g.Serial;
+  place.Root = static_cast<std::uint32_t>(sizes.Nodes);
+  sizes.Nodes += g.Nodes.size();
+  if (g.Spheres)
+  {
+    place.PrimitiveBase = static_cast<std::uint32_t>(sizes.SphereTexels);
+    sizes.SphereTexels = alignedToTexel(sizes.SphereTexels + sphereTexelsOf(g));
+    sizes.SphereIdWords = sizes.SphereTexels;
+  }
+  else
+  {
+    place.PrimitiveBase = static_cast<std::uint32_t>(sizes.Triangles);
+    sizes.Triangles += g.Triangles.size();
+    place.NormalBase = static_cast<std::uint32_t>(sizes.Normals);
+    place.CellNormalBase = static_cast<std::uint32_t>(sizes.Normals + g.Normals.size());
+    sizes.Normals += g.Normals.size() + g.CellNormals.size();
+  }
+  return place;
+}
+
+/// The records a geometry takes, all buffers together (for the waste test).
+std::size_t recordsOf(const Geometry& g)
+{
+  return g.Nodes.size() + g.Triangles.size() + sphereTexelsOf(g) + g.Normals.size() + g.CellNormals.size();
+}
+
+std::size_t recordsOf(const GeometrySizes& sizes)
+{
+  return sizes.Nodes + sizes.Triangles + sizes.SphereTexels + sizes.Normals;
+}
+
+/// `n` records from `records` to the buffer of `out`, whose pointer holds
+/// record `from`, at record `at`.
+template <class Record, class Target>
+void copyAt(const Record* records, std::size_t n, Target* out, std::size_t from, std::size_t at)
+{
+  copyRecords(records, n, reinterpret_cast<Record*>(out + (at - from)));
+}
+
+/// Writes one placed geometry's records (and its sphere padding).
+void writePlaced(const Geometry& g, const GeometryPlacement& place, const GeometryTargets& out)
+{
+  const GeometrySizes& from = out.From;
+  if (g.Spheres)
+  {
+    std::size_t at = place.PrimitiveBase;
+    copyAt(g.SphereRecords.data(), g.SphereRecords.size(), out.Spheres, from.SphereTexels, at);
+    at += g.SphereRecords.size() * core::gpu::texelsOf<core::gpu::Sphere>();
+    copyAt(g.EllipsoidRecords.data(), g.EllipsoidRecords.size(), out.Spheres, from.SphereTexels, at);
+    at += g.EllipsoidRecords.size() * core::gpu::texelsOf<core::gpu::Ellipsoid>();
+    copyAt(g.SegmentRecords.data(), g.SegmentRecords.size(), out.Spheres, from.SphereTexels, at);
+    at += g.SegmentRecords.size() * core::gpu::texelsOf<core::gpu::Segment>();
+    std::fill(out.Spheres + (at - from.SphereTexels), out.Spheres + (alignedToTexel(at) - from.SphereTexels),
+      core::gpu::Texel{});
+    copyAt(g.SphereIds.data(), g.SphereIds.size(), out.SphereIds, from.SphereIdWords, place.PrimitiveBase);
+    const std::size_t idsEnd = place.PrimitiveBase + g.SphereIds.size();
+    std::fill(out.SphereIds + (idsEnd - from.SphereIdWords),
+      out.SphereIds + (alignedToTexel(idsEnd) - from.SphereIdWords), 0u);
+  }
+  else
+  {
+    copyAt(g.Triangles.data(), g.Triangles.size(), out.Triangles, from.Triangles, place.PrimitiveBase);
+    copyAt(g.TriangleVertices.data(), g.TriangleVertices.size(), out.TriangleVertices, from.Triangles,
+      place.PrimitiveBase);
+    copyAt(g.Normals.data(), g.Normals.size(), out.Normals, from.Normals, place.NormalBase);
+    copyAt(g.CellNormals.data(), g.CellNormals.size(), out.Normals, from.Normals, place.CellNormalBase);
+  }
+  // Local child / primitive indices become global ones.
+  core::gpu::Node* nodes = out.Nodes + (place.Root - from.Nodes);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(g.Nodes.size()), kCopyGrain, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType i = b; i < e; ++i)
+    {
+      core::gpu::Node node = g.Nodes[static_cast<std::size_t>(i)];
+      node.index += node.count == 0 ? place.Root : place.PrimitiveBase;
+      nodes[i] = node;
+    }
+  });
+}
+
+/// `used` plus room, in records of `texelsPerRecord` texels, within `limit` texels.
+std::size_t withRoom(std::size_t used, std::size_t texelsPerRecord, std::size_t limit)
+{
+  const std::size_t room = used + std::max<std::size_t>(used / 4, 1024);
+  return std::max(used, std::min(room, limit / texelsPerRecord));
+}
+} // namespace
+
+GeometrySizes WithRoom(const GeometrySizes& used, std::size_t limit)
+{
+  using namespace core::gpu;
+  GeometrySizes out;
+  out.Nodes = withRoom(used.Nodes, texelsOf<Node>(), limit);
+  out.Triangles = std::min(withRoom(used.Triangles, texelsOf<Triangle>(), limit),
+    withRoom(used.Triangles, texelsOf<core::gpu::TriangleVertices>(), limit));
+  out.SphereTexels = withRoom(used.SphereTexels, 1, limit) / 4 * 4;
+  out.SphereTexels = std::max(out.SphereTexels, used.SphereTexels);
+  out.SphereIdWords = out.SphereTexels;
+  out.Normals = withRoom(used.Normals, texelsOf<Normal>(), limit);
+  return out;
+}
+
 GeometryLayout LayOutGeometry(const Scene& scene)
 {
   GeometryLayout out;
-  scene.ForEachGeometry([&out](const Geometry& g) {
-    GeometryPlacement& place = out.Placements[&g];
-    place.Root = static_cast<std::uint32_t>(out.Nodes);
-    out.Nodes += g.Nodes.size();
-    if (g.Spheres)
-    {
-      place.PrimitiveBase = static_cast<std::uint32_t>(out.SphereTexels);
-      out.SphereTexels += g.SphereRecords.size() * core::gpu::texelsOf<core::gpu::Sphere>() +
-        g.EllipsoidRecords.size() * core::gpu::texelsOf<core::gpu::Ellipsoid>() +
-        g.SegmentRecords.size() * core::gpu::texelsOf<core::gpu::Segment>();
-      out.SphereIdWords += g.SphereIds.size();
-    }
-    else
-    {
-      place.PrimitiveBase = static_cast<std::uint32_t>(out.Triangles);
-      out.Triangles += g.Triangles.size();
-      place.NormalBase = static_cast<std::uint32_t>(out.Normals);
-      place.CellNormalBase = static_cast<std::uint32_t>(out.Normals + g.Normals.size());
-      out.Normals += g.Normals.size() + g.CellNormals.size();
-    }
-  });
-  out.SphereIdWords = paddedWords(out.SphereIdWords);
+  scene.ForEachGeometry([&out](const Geometry& g) { out.Placements[&g] = placeAtEnd(g, out); });
   return out;
 }
 
 void WriteGeometry(const Scene& scene, const GeometryLayout& layout, const GeometryTargets& out)
 {
-  std::size_t sphereIds = 0;
+  scene.ForEachGeometry([&](const Geometry& g) { writePlaced(g, layout.Placements.at(&g), out); });
+}
+
+bool ExtendLayout(const Scene& scene, const GeometryLayout& current, const GeometrySizes& capacity,
+  GeometryLayout& next, std::vector<const Geometry*>& appended)
+{
+  next = GeometryLayout();
+  static_cast<GeometrySizes&>(next) = current;
+  appended.clear();
+  std::size_t live = 0;
   scene.ForEachGeometry([&](const Geometry& g) {
-    const GeometryPlacement& place = layout.Placements.at(&g);
-    if (g.Spheres)
+    const auto kept = current.Placements.find(&g);
+    if (kept != current.Placements.end() && kept->second.Serial == g.Serial)
     {
-      auto* spheres = reinterpret_cast<core::gpu::Sphere*>(out.Spheres + place.PrimitiveBase);
-      copyRecords(g.SphereRecords.data(), g.SphereRecords.size(), spheres);
-      copyRecords(g.EllipsoidRecords.data(), g.EllipsoidRecords.size(),
-        reinterpret_cast<core::gpu::Ellipsoid*>(spheres + g.SphereRecords.size()));
-      copyRecords(g.SegmentRecords.data(), g.SegmentRecords.size(),
-        reinterpret_cast<core::gpu::Segment*>(out.Spheres + place.PrimitiveBase +
-          g.SphereRecords.size() + g.EllipsoidRecords.size() * core::gpu::kEllipsoidTexels));
-      copyRecords(g.SphereIds.data(), g.SphereIds.size(), out.SphereIds + sphereIds);
-      sphereIds += g.SphereIds.size();
+      next.Placements[&g] = kept->second;
+      live += recordsOf(g);
     }
     else
     {
-      copyRecords(g.Triangles.data(), g.Triangles.size(), out.Triangles + place.PrimitiveBase);
-      copyRecords(
-        g.TriangleVertices.data(), g.TriangleVertices.size(), out.TriangleVertices + place.PrimitiveBase);
-      copyRecords(g.Normals.data(), g.Normals.size(), out.Normals + place.NormalBase);
-      copyRecords(g.CellNormals.data(), g.CellNormals.size(), out.Normals + place.CellNormalBase);
+      appended.push_back(&g);
     }
-    // Local child / primitive indices become global ones.
-    core::gpu::Node* nodes = out.Nodes + place.Root;
-    vtkSMPTools::For(0, static_cast<vtkIdType>(g.Nodes.size()), kCopyGrain, [&](vtkIdType b, vtkIdType e) {
-      for (vtkIdType i = b; i < e; ++i)
-      {
-        core::gpu::Node node = g.Nodes[static_cast<std::size_t>(i)];
-        node.index += node.count == 0 ? place.Root : place.PrimitiveBase;
-        nodes[i] = node;
-      }
-    });
   });
-  padWords(out.SphereIds, sphereIds);
+  for (const Geometry* g : appended)
+  {
+    next.Placements[g] = placeAtEnd(*g, next);
+    live += recordsOf(*g);
+  }
+  const bool fits = next.Nodes <= capacity.Nodes && next.Triangles <= capacity.Triangles &&
+    next.SphereTexels <= capacity.SphereTexels && next.SphereIdWords <= capacity.SphereIdWords &&
+    next.Normals <= capacity.Normals;
+  return fits && recordsOf(next) <= 2 * live;
+}
+
+void WriteAppended(
+  const std::vector<const Geometry*>& appended, const GeometryLayout& layout, const GeometryTargets& out)
+{
+  for (const Geometry* g : appended)
+  {
+    writePlaced(*g, layout.Placements.at(g), out);
+  }
 }
 
 ColorsLayout LayOutColors(const Scene& scene)

@@ -1,7 +1,10 @@
 // Private to vtkRayTracePass: the scene's cached geometry and colors
 // concatenated into the buffers the shader reads, in the GPU's layout
 // (core/GpuLayout.h): first where each geometry and colors entry goes, then
-// the records written straight into the storage given. No GL here.
+// the records written straight into the storage given. Geometry keeps its
+// place from upload to upload: what changed is appended after the rest, so
+// a small prop modified beside a large mesh writes only its own records.
+// No GL here.
 #ifndef vtkRayTracePacker_h
 #define vtkRayTracePacker_h
 
@@ -19,28 +22,39 @@ class Scene;
 /// Where a geometry's records start in the packed buffers.
 struct GeometryPlacement
 {
+  std::uint64_t Serial = 0;         ///< the Geometry placed (Geometry::Serial)
   std::uint32_t Root = 0;           ///< its root node
   std::uint32_t NormalBase = 0;     ///< its first point normal
   std::uint32_t CellNormalBase = 0; ///< its first cell normal (after its point normals)
-  std::uint32_t PrimitiveBase = 0;  ///< its first triangle, or sphere texel
+  std::uint32_t PrimitiveBase = 0;  ///< its first triangle, or sphere texel (a multiple of 4)
 };
 
-/// Where every traced geometry goes in the upload layout, and each
-/// buffer's size. Node indices are global: interior nodes index nodes,
-/// leaves index their buffer's primitive slots (triangles, or texels of the
-/// sphere buffer, which holds spheres and ellipsoids).
-struct GeometryLayout
+/// How much each geometry buffer holds (records; sphere buffers in texels
+/// and id words), from its start.
+struct GeometrySizes
 {
   std::size_t Nodes = 0;
   std::size_t Triangles = 0; ///< and triangle vertex records
   std::size_t SphereTexels = 0;
   std::size_t SphereIdWords = 0; ///< padded to whole texels
   std::size_t Normals = 0;
+};
+
+/// Where every traced geometry goes in the upload layout, and each
+/// buffer's size. Node indices are global: interior nodes index nodes,
+/// leaves index their buffer's primitive slots (triangles, or texels of the
+/// sphere buffer, which holds spheres and ellipsoids).
+struct GeometryLayout : GeometrySizes
+{
   std::map<const Geometry*, GeometryPlacement> Placements;
 };
 
-/// Storage of a layout's sizes that WriteGeometry fills in place (the GPU
-/// buffers themselves): nothing is packed twice.
+/// Storage of a layout's sizes with room to append: a quarter more, at
+/// least 1024 records a buffer, within `limit` texels.
+GeometrySizes WithRoom(const GeometrySizes& used, std::size_t limit);
+
+/// Storage that WriteGeometry fills in place (the GPU buffers themselves,
+/// from the record at `From` on): nothing is packed twice.
 struct GeometryTargets
 {
   core::gpu::Node* Nodes = nullptr;
@@ -49,6 +63,7 @@ struct GeometryTargets
   core::gpu::Texel* Spheres = nullptr;
   std::uint32_t* SphereIds = nullptr;
   core::gpu::Normal* Normals = nullptr;
+  GeometrySizes From; ///< the records the pointers above point at
 };
 
 /// Every colors entry, four RGBA8 (or texture header/coordinate) words per
@@ -72,6 +87,17 @@ struct ScenePlacements
 GeometryLayout LayOutGeometry(const Scene& scene);
 /// Writes every record of the layout, padding included.
 void WriteGeometry(const Scene& scene, const GeometryLayout& layout, const GeometryTargets& out);
+
+/// The scene's layout when the buffers hold `current` and have room for
+/// `capacity`: geometry already there keeps its place, the rest is
+/// appended (`appended`, in order). False when something does not fit the
+/// room, or when what is gone would leave more than half of the buffers'
+/// records unused: then a new LayOutGeometry packs everything again.
+bool ExtendLayout(const Scene& scene, const GeometryLayout& current, const GeometrySizes& capacity,
+  GeometryLayout& next, std::vector<const Geometry*>& appended);
+/// Writes the records of `appended` (placed by `layout`, after out.From).
+void WriteAppended(
+  const std::vector<const Geometry*>& appended, const GeometryLayout& layout, const GeometryTargets& out);
 
 ColorsLayout LayOutColors(const Scene& scene);
 /// Writes layout.Words words, padding included.

@@ -13,6 +13,7 @@
 #include "vtkrt/core/HugePageArray.h"
 
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -38,6 +39,10 @@ inline double SecondsSince(std::chrono::steady_clock::time_point start)
 /// bases).
 struct Geometry
 {
+  /// Unique to this geometry in the process: a rebuilt one may reuse an
+  /// old one's address, never its serial (the uploaded buffers' places
+  /// are kept by it).
+  const std::uint64_t Serial = NextSerial();
   bool Spheres = false;
   vtkMTimeType SourceTime = 0; ///< cache key part: MTime of what it was built from
   std::string SourceKey;       ///< extra key (e.g. sphere radius settings)
@@ -81,6 +86,12 @@ struct Geometry
   vtkSmartPointer<vtkObject> KeepData; ///< glyphs: the keyed dataset (key: mapper, dataset)
 
   bool Empty() const { return Nodes.empty(); }
+
+  static std::uint64_t NextSerial()
+  {
+    static std::atomic<std::uint64_t> next{ 1 };
+    return next++;
+  }
 };
 
 /// Colors of one (mapper, data) pair: RGBA8 per point or per cell.

@@ -3,6 +3,9 @@
 //                     moves, property/light changes, data and feature changes
 //   ManyActors        more than 8 actors: a top-level BVH, rebuilt only when
 //                     an actor moves
+//   IncrementalUpload a small prop changed beside a mesh writes only its own
+//                     records (appended, then packed anew when out of room);
+//                     images and picks equal a fresh pass's
 //   Lifecycle         the pass removed and installed again, its window
 //                     destroyed and replaced
 //   MovedBetweenWindows one pass moved between two live windows' renderers and
@@ -26,6 +29,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
+#include "vtkPropPicker.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
@@ -140,6 +144,136 @@ void TestCounters()
   frame("unchanged after the quality change", 0, false, 0);
   NoGLError(win, "counters");
   NoVTKOutput("counters");
+}
+
+// A small sphere moved beside the bunny and the glyphs, frame after frame:
+// only its rebuilt records are written, after what the buffers hold, until
+// they run out of room; then everything is packed again. Every frame's
+// image equals a fresh pass's in a second window, and a pick on the moved
+// sphere finds it.
+void TestIncrementalUpload()
+{
+  auto win = MakeWindow(200, 200);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  auto bunnyData = ReadPolyData("bunny.vtp");
+  auto bunny = MeshActor(bunnyData);
+  auto glyphPoints = ReadPolyData("demo-spheres.vtp");
+  auto glyphs = GlyphActor(glyphPoints);
+  vtkNew<vtkSphereSource> ballSource;
+  ballSource->SetRadius(0.01);
+  ballSource->SetThetaResolution(12);
+  ballSource->SetPhiResolution(12);
+  vtkNew<vtkPolyDataMapper> ballMapper;
+  ballMapper->SetInputConnection(ballSource->GetOutputPort());
+  vtkNew<vtkActor> ball;
+  ball->SetMapper(ballMapper);
+  ball->GetProperty()->SetColor(0.2, 0.4, 1.0);
+  ren->AddActor(bunny);
+  ren->AddActor(glyphs);
+  ren->AddActor(ball);
+  ren->ResetCamera();
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+
+  // The same actors and camera, traced by a new pass each time.
+  auto freshWin = MakeWindow(200, 200);
+  auto freshImage = [&]() {
+    vtkNew<vtkRenderer> freshRen;
+    freshRen->SetActiveCamera(ren->GetActiveCamera());
+    for (vtkActor* a : { static_cast<vtkActor*>(bunny), static_cast<vtkActor*>(glyphs), static_cast<vtkActor*>(ball) })
+    {
+      freshRen->AddActor(a);
+    }
+    vtkNew<vtkRayTracePass> freshPass;
+    freshRen->SetPass(freshPass);
+    freshWin->AddRenderer(freshRen);
+    freshWin->Render();
+    auto image = Grab(freshWin);
+    freshWin->RemoveRenderer(freshRen);
+    freshRen->ReleaseGraphicsResources(freshWin);
+    return image;
+  };
+  auto sameAsFresh = [&](const std::string& what) {
+    auto image = Grab(win);
+    const double rmse = RootMeanSquareError(image, freshImage());
+    Check(rmse == 0.0, what + ": the image equals a fresh pass's (RGB RMSE " + std::to_string(rmse) + ")");
+  };
+
+  win->Render();
+  const vtkTypeInt64 everything = pass->GetLastGeometryBytesUploaded();
+  Check(everything > 0, "first frame uploads the scene");
+  sameAsFresh("first frame");
+  double bounds[6];
+  bunnyData->GetBounds(bounds);
+  int repacked = 0;
+  int appended = 0;
+  for (int step = 0; step < 40; ++step)
+  {
+    // Around the bunny's middle, in front of it; every tenth step a larger
+    // ball (more records than the room left), which the next step leaves
+    // unused: more than half of the records, so that step packs anew too.
+    const double t = step / 40.0;
+    ballSource->SetCenter(bounds[0] + t * (bounds[1] - bounds[0]), 0.5 * (bounds[2] + bounds[3]), bounds[5]);
+    const int res = step % 10 == 4 ? 300 : 12;
+    ballSource->SetThetaResolution(res);
+    ballSource->SetPhiResolution(res);
+    win->Render();
+    const vtkTypeInt64 bytes = pass->GetLastGeometryBytesUploaded();
+    std::ostringstream s;
+    s << "step " << step << ": " << pass->GetLastBVHBuilds() << " build, " << bytes << " geometry bytes (the scene: "
+      << everything << ")";
+    Check(pass->GetLastBVHBuilds() == 1 && bytes > 0, s.str());
+    if (step % 10 != 4 && step % 10 != 5)
+    {
+      Check(bytes < everything / 10, s.str() + ": only the ball's records");
+    }
+    (bytes > everything / 2 ? repacked : appended)++;
+    sameAsFresh("step " + std::to_string(step));
+  }
+  Check(appended == 32 && repacked == 8,
+    "appended " + std::to_string(appended) + " times, packed anew " + std::to_string(repacked) + " times");
+
+  // The ball picked where it is drawn (hardware selection through the pass).
+  double center[3];
+  ballSource->GetCenter(center);
+  ren->SetWorldPoint(center[0], center[1], center[2], 1.0);
+  ren->WorldToDisplay();
+  double display[3];
+  ren->GetDisplayPoint(display);
+  vtkNew<vtkPropPicker> picker;
+  picker->Pick(display[0], display[1], 0.0, ren);
+  Check(picker->GetActor() == ball, "a pick on the moved ball finds it");
+
+  // Hidden: no geometry to write (its records stay unused; the colors,
+  // packed anew whenever an entry goes, are the glyphs' few hundred
+  // bytes). Shown again: its cache entry went with it, so it is rebuilt
+  // and appended.
+  ball->VisibilityOff();
+  win->Render();
+  Check(pass->GetLastGeometryBytesUploaded() < 1024,
+    "ball hidden: no geometry written (" + std::to_string(pass->GetLastGeometryBytesUploaded()) + " bytes)");
+  sameAsFresh("ball hidden");
+  ball->VisibilityOn();
+  win->Render();
+  Check(pass->GetLastBVHBuilds() == 1 && pass->GetLastGeometryBytesUploaded() > 0 &&
+      pass->GetLastGeometryBytesUploaded() < everything / 10,
+    "ball shown again: only its records");
+  sameAsFresh("ball shown again");
+
+  // Glyphs moved: their sphere records are appended too.
+  vtkPoints* centers = glyphPoints->GetPoints();
+  double p[3];
+  centers->GetPoint(0, p);
+  centers->SetPoint(0, p[0] + 0.01, p[1], p[2]);
+  centers->Modified();
+  win->Render();
+  Check(pass->GetLastBVHBuilds() == 1 && pass->GetLastGeometryBytesUploaded() > 0 &&
+      pass->GetLastGeometryBytesUploaded() < everything,
+    "glyphs moved: only their records");
+  sameAsFresh("glyphs moved");
+  NoGLError(win, "incremental upload");
+  NoVTKOutput("incremental upload");
 }
 
 // Many actors (more than 8): the pass walks a top-level BVH over them. The
@@ -349,6 +483,7 @@ int main(int argc, char* argv[])
   const std::map<std::string, std::function<void()>> cases = {
     { "Counters", TestCounters },
     { "ManyActors", TestManyActors },
+    { "IncrementalUpload", TestIncrementalUpload },
     { "Lifecycle", TestLifecycle },
     { "MovedBetweenWindows", TestMovedBetweenWindows },
     { "App", TestApp },
