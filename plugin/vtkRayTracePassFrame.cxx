@@ -104,11 +104,11 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
   // A scene refused for its size is tried again when the limit changes.
   const bool limitChanged = limit != this->CheckedLimit;
   this->CheckedLimit = limit;
-  std::string error;
+  // What changed is appended to what the buffers hold, while they have
+  // room; otherwise everything is packed anew.
   if (this->Scene.GeometryChanged() || !this->GeometryOnGpu || (!this->GeometryValid && limitChanged))
   {
-    const bool appended = this->GeometryOnGpu && this->GeometryValid && !limitChanged && this->AppendGeometry(win);
-    if (!appended)
+    if (!(this->GeometryOnGpu && this->GeometryValid && !limitChanged && this->AppendGeometry(limit)))
     {
       this->UploadGeometry(pass, win, limit);
     }
@@ -118,35 +118,27 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
   }
   if (this->Scene.ColorsChanged() || !this->ColorsOnGpu || (!this->ColorsValid && limitChanged))
   {
-    auto start = std::chrono::steady_clock::now();
-    vtkrt::pass::ColorsLayout layout = vtkrt::pass::LayOutColors(this->Scene);
+    if (!(this->ColorsOnGpu && this->ColorsValid && !limitChanged && this->AppendColors(limit)))
+    {
+      this->UploadColors(pass, win, limit);
+    }
     this->Scene.MarkColorsPacked();
-    this->ColorsValid = vtkrt::pass::SceneBuffers::Fits(layout, limit, error);
-    if (this->ColorsValid)
-    {
-      auto* words = static_cast<std::uint32_t*>(this->Buffers.Colors.Map(layout.Words / 4));
-      vtkrt::pass::WriteColors(this->Scene, layout, words);
-      this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
-      start = std::chrono::steady_clock::now();
-      this->Counters.GeometryBytesUploaded += this->Buffers.Colors.Unmap(win);
-      this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(start);
-    }
-    this->Places.ColorBases = std::move(layout.Bases);
+    this->Places.ColorBases = this->ColorsUploaded.Bases;
     this->ColorsOnGpu = true;
-    if (!this->ColorsValid)
-    {
-      vtkErrorWithObjectMacro(&pass, << error);
-    }
   }
   this->UploadTextures(pass, win, limit, limitChanged);
 }
 
-bool vtkRayTracePass::Internals::AppendGeometry(vtkOpenGLRenderWindow* win)
+bool vtkRayTracePass::Internals::AppendGeometry(std::size_t limit)
 {
   auto start = std::chrono::steady_clock::now();
   vtkrt::pass::GeometryLayout next;
   std::vector<const vtkrt::pass::Geometry*> appended;
-  if (!vtkrt::pass::ExtendLayout(this->Scene, this->GeometryUploaded, this->GeometryCapacity, next, appended))
+  std::string error;
+  // The room was sized for the limit of its upload, which may have been
+  // lowered since: a scene past the limit now is refused by UploadGeometry.
+  if (!vtkrt::pass::ExtendLayout(this->Scene, this->GeometryUploaded, this->GeometryCapacity, next, appended) ||
+    !vtkrt::pass::SceneBuffers::Fits(next, limit, error))
   {
     return false;
   }
@@ -160,7 +152,6 @@ bool vtkRayTracePass::Internals::AppendGeometry(vtkOpenGLRenderWindow* win)
   start = std::chrono::steady_clock::now();
   this->Counters.GeometryBytesUploaded += this->Buffers.UnmapAppended();
   this->Counters.UploadSeconds += mapSeconds + vtkrt::pass::SecondsSince(start);
-  (void)win;
   this->GeometryUploaded = std::move(next);
   return true;
 }
@@ -193,6 +184,55 @@ void vtkRayTracePass::Internals::UploadGeometry(
     vtkErrorWithObjectMacro(&pass, << error);
   }
   this->GeometryUploaded = std::move(layout);
+}
+
+bool vtkRayTracePass::Internals::AppendColors(std::size_t limit)
+{
+  auto start = std::chrono::steady_clock::now();
+  vtkrt::pass::ColorsLayout next;
+  std::vector<const vtkrt::pass::Colors*> appended;
+  std::string error;
+  if (!vtkrt::pass::ExtendColors(this->Scene, this->ColorsUploaded, this->ColorsCapacity, next, appended) ||
+    !vtkrt::pass::SceneBuffers::Fits(next, limit, error))
+  {
+    return false;
+  }
+  const std::size_t from = this->ColorsUploaded.Words;
+  auto* words = static_cast<std::uint32_t*>(this->Buffers.Colors.MapRange(from / 4, (next.Words - from) / 4));
+  if (words)
+  {
+    vtkrt::pass::WriteAppendedColors(appended, next, words, from);
+  }
+  this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
+  start = std::chrono::steady_clock::now();
+  this->Counters.GeometryBytesUploaded += this->Buffers.Colors.UnmapRange();
+  this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(start);
+  this->ColorsUploaded = std::move(next);
+  return true;
+}
+
+void vtkRayTracePass::Internals::UploadColors(
+  const vtkRayTracePass& pass, vtkOpenGLRenderWindow* win, std::size_t limit)
+{
+  auto start = std::chrono::steady_clock::now();
+  vtkrt::pass::ColorsLayout layout = vtkrt::pass::LayOutColors(this->Scene);
+  std::string error;
+  this->ColorsValid = vtkrt::pass::SceneBuffers::Fits(layout, limit, error);
+  if (this->ColorsValid)
+  {
+    this->ColorsCapacity = vtkrt::pass::ColorWordsWithRoom(layout.Words, limit);
+    auto* words = static_cast<std::uint32_t*>(this->Buffers.Colors.Map(layout.Words / 4, this->ColorsCapacity / 4));
+    vtkrt::pass::WriteColors(this->Scene, layout, words);
+    this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
+    start = std::chrono::steady_clock::now();
+    this->Counters.GeometryBytesUploaded += this->Buffers.Colors.Unmap(win);
+    this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(start);
+  }
+  else
+  {
+    vtkErrorWithObjectMacro(&pass, << error);
+  }
+  this->ColorsUploaded = std::move(layout);
 }
 
 void vtkRayTracePass::Internals::UploadTextures(

@@ -73,6 +73,8 @@ struct vtkRayTracePass::Internals
   /// What the geometry buffers hold and have room for (see ExtendLayout).
   vtkrt::pass::GeometryLayout GeometryUploaded;
   vtkrt::pass::GeometrySizes GeometryCapacity;
+  vtkrt::pass::ColorsLayout ColorsUploaded;
+  std::size_t ColorsCapacity = 0; ///< words
   vtkrt::pass::TopLevel Top;
   vtkrt::pass::Accumulation Accumulated;
   vtkrt::pass::Selection Selecting;
@@ -91,8 +93,11 @@ struct vtkRayTracePass::Internals
 
   /// Writes the scene's changed geometry after what the buffers hold;
   /// false when it needs a new packing of everything (UploadGeometry).
-  bool AppendGeometry(vtkOpenGLRenderWindow* win);
+  bool AppendGeometry(std::size_t limit);
   void UploadGeometry(const vtkRayTracePass& pass, vtkOpenGLRenderWindow* win, std::size_t limit);
+  /// The same for the colors.
+  bool AppendColors(std::size_t limit);
+  void UploadColors(const vtkRayTracePass& pass, vtkOpenGLRenderWindow* win, std::size_t limit);
 
   void ReleaseGL(vtkWindow* w)
   {

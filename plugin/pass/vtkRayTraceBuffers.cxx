@@ -220,9 +220,11 @@ std::size_t TextureBuffer::UnmapRange()
 std::size_t TextureBuffer::Unmap(vtkOpenGLRenderWindow* win)
 {
   const std::size_t n = this->Capacity;
+  bool adopted = false;
   if (this->Pending.Data())
   {
-    if (!this->AdoptPending(core::gpu::kTexelBytes * n))
+    adopted = this->AdoptPending(core::gpu::kTexelBytes * n);
+    if (!adopted)
     {
       this->Buffer->Upload(
         static_cast<const float*>(this->Pending.Data()), 4 * n, vtkOpenGLBufferObject::TextureBuffer);
@@ -241,6 +243,13 @@ std::size_t TextureBuffer::Unmap(vtkOpenGLRenderWindow* win)
     this->Buffer->Upload(
       reinterpret_cast<const float*>(this->Staging.get()), 4 * n, vtkOpenGLBufferObject::TextureBuffer);
     this->Staging.reset();
+  }
+  if (!adopted && this->Pinned.Data())
+  {
+    // The buffer has storage of the driver's now: pinned memory of an
+    // earlier upload is no longer what it reads (MapRange must not write there).
+    glFinish(); // frames in flight may still read it
+    this->Pinned.Free();
   }
   this->Texture->SetContext(win);
   this->Texture->SetInternalFormat(GL_RGBA32UI);

@@ -212,25 +212,76 @@ void WriteAppended(
   }
 }
 
+namespace
+{
+/// Places `c` at the end of `layout`, on a whole texel.
+void placeColorsAtEnd(const Colors& c, ColorsLayout& layout)
+{
+  layout.Bases[&c] = static_cast<std::uint32_t>(layout.Words);
+  layout.Serials[&c] = c.Serial;
+  layout.Words = paddedWords(layout.Words + c.Packed.size());
+}
+
+/// Writes one placed entry and its padding; `out` holds word `from`.
+void writeColorsPlaced(const Colors& c, std::uint32_t base, std::uint32_t* out, std::size_t from)
+{
+  copyRecords(c.Packed.data(), c.Packed.size(), out + (base - from));
+  padWords(out + (base - from), c.Packed.size());
+}
+} // namespace
+
 ColorsLayout LayOutColors(const Scene& scene)
 {
   ColorsLayout out;
-  scene.ForEachColors([&out](const Colors& c) {
-    out.Bases[&c] = static_cast<std::uint32_t>(out.Words);
-    out.Words += c.Packed.size();
-  });
-  out.Words = paddedWords(out.Words);
+  scene.ForEachColors([&out](const Colors& c) { placeColorsAtEnd(c, out); });
   return out;
 }
 
 void WriteColors(const Scene& scene, const ColorsLayout& layout, std::uint32_t* out)
 {
-  std::size_t used = 0;
+  scene.ForEachColors([&](const Colors& c) { writeColorsPlaced(c, layout.Bases.at(&c), out, 0); });
+}
+
+bool ExtendColors(const Scene& scene, const ColorsLayout& current, std::size_t capacity, ColorsLayout& next,
+  std::vector<const Colors*>& appended)
+{
+  next = ColorsLayout();
+  next.Words = current.Words;
+  appended.clear();
+  std::size_t live = 0;
   scene.ForEachColors([&](const Colors& c) {
-    copyRecords(c.Packed.data(), c.Packed.size(), out + layout.Bases.at(&c));
-    used += c.Packed.size();
+    const auto kept = current.Serials.find(&c);
+    if (kept != current.Serials.end() && kept->second == c.Serial)
+    {
+      next.Bases[&c] = current.Bases.at(&c);
+      next.Serials[&c] = c.Serial;
+      live += paddedWords(c.Packed.size());
+    }
+    else
+    {
+      appended.push_back(&c);
+    }
   });
-  padWords(out, used);
+  for (const Colors* c : appended)
+  {
+    placeColorsAtEnd(*c, next);
+    live += paddedWords(c->Packed.size());
+  }
+  return next.Words <= capacity && next.Words <= 2 * live;
+}
+
+void WriteAppendedColors(
+  const std::vector<const Colors*>& appended, const ColorsLayout& layout, std::uint32_t* out, std::size_t from)
+{
+  for (const Colors* c : appended)
+  {
+    writeColorsPlaced(*c, layout.Bases.at(c), out, from);
+  }
+}
+
+std::size_t ColorWordsWithRoom(std::size_t words, std::size_t limit)
+{
+  return 4 * withRoom(words / 4, 1, limit);
 }
 
 } // namespace pass

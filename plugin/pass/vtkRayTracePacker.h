@@ -71,8 +71,9 @@ struct GeometryTargets
 /// texels.
 struct ColorsLayout
 {
-  std::size_t Words = 0;
+  std::size_t Words = 0; ///< whole texels; every entry starts on one
   std::map<const Colors*, std::uint32_t> Bases;
+  std::map<const Colors*, std::uint64_t> Serials; ///< the entries placed (Colors::Serial)
 };
 
 /// Where every geometry and colors entry of the uploaded buffers is: kept
@@ -102,6 +103,15 @@ void WriteAppended(
 ColorsLayout LayOutColors(const Scene& scene);
 /// Writes layout.Words words, padding included.
 void WriteColors(const Scene& scene, const ColorsLayout& layout, std::uint32_t* out);
+/// As ExtendLayout, for the colors: `capacity` words of room.
+bool ExtendColors(const Scene& scene, const ColorsLayout& current, std::size_t capacity, ColorsLayout& next,
+  std::vector<const Colors*>& appended);
+/// Writes the words of `appended` (placed by `layout`), padding included,
+/// into `out`, which holds word `from`.
+void WriteAppendedColors(
+  const std::vector<const Colors*>& appended, const ColorsLayout& layout, std::uint32_t* out, std::size_t from);
+/// Colors words with room to append (as WithRoom), within `limit` texels.
+std::size_t ColorWordsWithRoom(std::size_t words, std::size_t limit);
 
 } // namespace pass
 } // namespace vtkrt

@@ -33,16 +33,22 @@ inline double SecondsSince(std::chrono::steady_clock::time_point start)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// A number unique to each cache entry made in the process: a rebuilt
+/// entry may reuse an old one's address, never its serial (the uploaded
+/// buffers keep their places by it).
+inline std::uint64_t NextCacheSerial()
+{
+  static std::atomic<std::uint64_t> next{ 1 };
+  return next++;
+}
+
 /// One bottom-level BVH with its primitives (triangles of one polydata, or
 /// spheres or ellipsoids of one glyph set / point set) in the GPU's layout,
 /// relative to its local origin, with local indices (the packer adds the
 /// bases).
 struct Geometry
 {
-  /// Unique to this geometry in the process: a rebuilt one may reuse an
-  /// old one's address, never its serial (the uploaded buffers' places
-  /// are kept by it).
-  const std::uint64_t Serial = NextSerial();
+  const std::uint64_t Serial = NextCacheSerial();
   bool Spheres = false;
   vtkMTimeType SourceTime = 0; ///< cache key part: MTime of what it was built from
   std::string SourceKey;       ///< extra key (e.g. sphere radius settings)
@@ -86,17 +92,12 @@ struct Geometry
   vtkSmartPointer<vtkObject> KeepData; ///< glyphs: the keyed dataset (key: mapper, dataset)
 
   bool Empty() const { return Nodes.empty(); }
-
-  static std::uint64_t NextSerial()
-  {
-    static std::atomic<std::uint64_t> next{ 1 };
-    return next++;
-  }
 };
 
 /// Colors of one (mapper, data) pair: RGBA8 per point or per cell.
 struct Colors
 {
+  const std::uint64_t Serial = NextCacheSerial();
   vtkMTimeType SourceTime = 0;
   bool CellColors = false;
   /// InterpolateScalarsBeforeMapping: the mapper's color texture instead of

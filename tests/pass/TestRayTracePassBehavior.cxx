@@ -3,8 +3,9 @@
 //                     moves, property/light changes, data and feature changes
 //   ManyActors        more than 8 actors: a top-level BVH, rebuilt only when
 //                     an actor moves
-//   IncrementalUpload a small prop changed beside a mesh writes only its own
-//                     records (appended, then packed anew when out of room);
+//   IncrementalUpload a small prop changed beside a colored mesh writes only
+//                     its own records and colors (appended, then packed anew
+//                     when out of room or under a lowered texel limit);
 //                     images and picks equal a fresh pass's
 //   Lifecycle         the pass removed and installed again, its window
 //                     destroyed and replaced
@@ -19,6 +20,8 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkElevationFilter.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
@@ -26,6 +29,7 @@
 #include "vtkPLYWriter.h"
 #include "vtkPNGReader.h"
 #include "vtkPlane.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
@@ -156,16 +160,29 @@ void TestIncrementalUpload()
   auto win = MakeWindow(200, 200);
   vtkNew<vtkRenderer> ren;
   win->AddRenderer(ren);
+  // The bunny and the ball colored by point scalars: the colors are
+  // appended as the geometry is.
   auto bunnyData = ReadPolyData("bunny.vtp");
+  vtkNew<vtkFloatArray> height;
+  height->SetName("height");
+  for (vtkIdType i = 0; i < bunnyData->GetNumberOfPoints(); ++i)
+  {
+    height->InsertNextValue(static_cast<float>(bunnyData->GetPoint(i)[1]));
+  }
+  bunnyData->GetPointData()->SetScalars(height);
   auto bunny = MeshActor(bunnyData);
+  bunny->GetMapper()->ScalarVisibilityOn();
+  bunny->GetMapper()->SetScalarRange(height->GetRange());
   auto glyphPoints = ReadPolyData("demo-spheres.vtp");
   auto glyphs = GlyphActor(glyphPoints);
   vtkNew<vtkSphereSource> ballSource;
   ballSource->SetRadius(0.01);
   ballSource->SetThetaResolution(12);
   ballSource->SetPhiResolution(12);
+  vtkNew<vtkElevationFilter> ballColors;
+  ballColors->SetInputConnection(ballSource->GetOutputPort());
   vtkNew<vtkPolyDataMapper> ballMapper;
-  ballMapper->SetInputConnection(ballSource->GetOutputPort());
+  ballMapper->SetInputConnection(ballColors->GetOutputPort());
   vtkNew<vtkActor> ball;
   ball->SetMapper(ballMapper);
   ball->GetProperty()->SetColor(0.2, 0.4, 1.0);
@@ -245,14 +262,12 @@ void TestIncrementalUpload()
   picker->Pick(display[0], display[1], 0.0, ren);
   Check(picker->GetActor() == ball, "a pick on the moved ball finds it");
 
-  // Hidden: no geometry to write (its records stay unused; the colors,
-  // packed anew whenever an entry goes, are the glyphs' few hundred
-  // bytes). Shown again: its cache entry went with it, so it is rebuilt
-  // and appended.
+  // Hidden: nothing to write (its records stay unused). Shown again: its
+  // cache entry went with it, so it is rebuilt and appended.
   ball->VisibilityOff();
   win->Render();
-  Check(pass->GetLastGeometryBytesUploaded() < 1024,
-    "ball hidden: no geometry written (" + std::to_string(pass->GetLastGeometryBytesUploaded()) + " bytes)");
+  Check(pass->GetLastGeometryBytesUploaded() == 0,
+    "ball hidden: nothing written (" + std::to_string(pass->GetLastGeometryBytesUploaded()) + " bytes)");
   sameAsFresh("ball hidden");
   ball->VisibilityOn();
   win->Render();
@@ -272,6 +287,24 @@ void TestIncrementalUpload()
       pass->GetLastGeometryBytesUploaded() < everything,
     "glyphs moved: only their records");
   sameAsFresh("glyphs moved");
+
+  // A texel limit lowered below the scene (a frame without changes keeps
+  // what is uploaded): the next change is refused with the limit's error,
+  // not appended into the room of the old limit.
+  pass->SetMaximumTextureBufferTexels(1000);
+  win->Render();
+  ballSource->SetCenter(bounds[0], bounds[2], bounds[5]);
+  Output->SetEcho(false);
+  win->Render();
+  Output->SetEcho(true);
+  Check(Output->HasErrorContaining("The ray-traced scene needs a texture buffer") &&
+      pass->GetLastTracedPrimitives() == 0,
+    "limit lowered, then a change: refused with the limit's error");
+  Output->Clear();
+  pass->SetMaximumTextureBufferTexels(0);
+  win->Render();
+  Check(pass->GetLastTracedPrimitives() > 0, "limit lifted: traced again");
+  sameAsFresh("limit lifted");
   NoGLError(win, "incremental upload");
   NoVTKOutput("incremental upload");
 }
