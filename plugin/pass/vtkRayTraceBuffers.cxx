@@ -32,8 +32,15 @@ constexpr std::size_t kPinnedSlack = 4096;
 /// Whether the current context renders on the CPU and takes memory of ours
 /// as a buffer's storage (llvmpipe with GL_AMD_pinned_memory). A GPU's
 /// driver would read such a buffer over the bus: only a CPU renderer pins.
+/// VTKRT_NO_PINNED_MEMORY=1 pins nothing (the buffers a GPU driver gets,
+/// mapped; for tests).
 bool RendererPinsMemory()
 {
+  const char* noPinning = std::getenv("VTKRT_NO_PINNED_MEMORY");
+  if (noPinning && *noPinning && std::strcmp(noPinning, "0") != 0)
+  {
+    return false;
+  }
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   if (!renderer || !std::strstr(renderer, "llvmpipe"))
   {
