@@ -197,6 +197,25 @@ void ReadPoints(vtkPoints* pts, core::NoFillArray<Vec3<double>>& out)
   });
 }
 
+TriangleSource TriangleSourceOf(vtkPolyData* poly)
+{
+  TriangleSource s;
+  vtkDataArray* normals = poly->GetPointData()->GetNormals();
+  vtkDataArray* cellNormals = poly->GetCellData()->GetNormals();
+  vtkDataArray* edgeFlags = poly->GetPointData()->GetAttribute(vtkDataSetAttributes::EDGEFLAG);
+  s.Parts = { { poly->GetPoints(), poly->GetVerts(), poly->GetLines(), poly->GetPolys(), poly->GetStrips(),
+    normals, cellNormals, edgeFlags } };
+  s.Time = vtkSurfaceTriangulation::GetGeometryMTime(poly);
+  for (vtkDataArray* array : { normals, cellNormals, edgeFlags })
+  {
+    if (array)
+    {
+      s.Time = std::max(s.Time, array->GetMTime());
+    }
+  }
+  return s;
+}
+
 std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOptions& options)
 {
   auto g = std::make_unique<Geometry>();

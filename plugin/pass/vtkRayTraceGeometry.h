@@ -10,6 +10,7 @@
 #include "vtkrt/core/HugePageArray.h"
 #include "vtkrt/core/LocalFrame.h"
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -32,6 +33,19 @@ std::optional<core::Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh, co
 
 /// The points as double vectors (empty for null points).
 void ReadPoints(vtkPoints* pts, core::NoFillArray<core::Vec3<double>>& out);
+
+/// What BuildTriangles reads of a polydata: its geometry (points and cell
+/// arrays, as vtkSurfaceTriangulation::GetGeometryMTime), its point and
+/// cell normals and point edge flags; which objects they are and their
+/// latest MTime. Scalars are not in it: a color change keeps the BVH.
+struct TriangleSource
+{
+  std::array<const void*, 8> Parts{};
+  vtkMTimeType Time = 0;
+  bool operator==(const TriangleSource& o) const { return this->Parts == o.Parts && this->Time == o.Time; }
+  bool operator!=(const TriangleSource& o) const { return !(*this == o); }
+};
+TriangleSource TriangleSourceOf(vtkPolyData* poly);
 
 /// Triangles of polys (fan, as VTK's raster) and strips (VTK's winding),
 /// with their VTK cell ids, point normals when the data has them, and the

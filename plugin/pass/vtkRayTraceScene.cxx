@@ -259,16 +259,20 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
   if (property->GetRepresentation() != VTK_POINTS &&
     (poly->GetNumberOfPolys() > 0 || poly->GetNumberOfStrips() > 0))
   {
+    // Keyed by what the triangles are made of: new scalars (colors) keep
+    // the BVH and its records.
+    const TriangleSource source = TriangleSourceOf(poly);
     auto& entry = this->TriangleCache[poly];
-    if (!entry || entry->SourceTime != time || entry->Quality != this->BuildQuality ||
-      entry->LeafSize != this->LeafSize)
+    if (!entry || entry->SourceTime != source.Time || entry->SourceParts != source.Parts ||
+      entry->Quality != this->BuildQuality || entry->LeafSize != this->LeafSize)
     {
       const auto start = std::chrono::steady_clock::now();
       entry = BuildTriangles(poly, this->Options());
       counters.AddBuild(*entry, SecondsSince(start));
       entry->Quality = this->BuildQuality;
       entry->LeafSize = this->LeafSize;
-      entry->SourceTime = time;
+      entry->SourceTime = source.Time;
+      entry->SourceParts = source.Parts;
       entry->Keep = poly;
       this->GeometryDirty = true;
     }

@@ -51,6 +51,7 @@ struct Geometry
   const std::uint64_t Serial = NextCacheSerial();
   bool Spheres = false;
   vtkMTimeType SourceTime = 0; ///< cache key part: MTime of what it was built from
+  std::array<const void*, 8> SourceParts{}; ///< cache key part: the objects it was built from (triangles)
   std::string SourceKey;       ///< extra key (e.g. sphere radius settings)
   int Quality = -1;            ///< the build quality it was built with
   std::uint32_t LeafSize = 0;  ///< the maximum leaf size it was built with (triangles)

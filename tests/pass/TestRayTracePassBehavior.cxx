@@ -3,6 +3,8 @@
 //                     moves, property/light changes, data and feature changes
 //   ManyActors        more than 8 actors: a top-level BVH, rebuilt only when
 //                     an actor moves
+//   ScalarChange      new scalars keep a mesh's BVH (only colors written);
+//                     new normals or points rebuild it
 //   IncrementalUpload a small prop changed beside a colored mesh writes only
 //                     its own records and colors (appended, then packed anew
 //                     when out of room or under a lowered texel limit);
@@ -19,6 +21,7 @@
 #include "vtkrtTestOutputWindow.h"
 
 #include "vtkActor.h"
+#include "vtkActorCollection.h"
 #include "vtkCamera.h"
 #include "vtkElevationFilter.h"
 #include "vtkFloatArray.h"
@@ -150,6 +153,29 @@ void TestCounters()
   NoVTKOutput("counters");
 }
 
+/// Checks that `win`'s image equals that of a new pass tracing `ren`'s
+/// actors with its camera in `freshWin` (of the same size).
+void SameAsFreshPass(vtkRenderWindow* win, vtkRenderer* ren, vtkRenderWindow* freshWin, const std::string& what)
+{
+  vtkNew<vtkRenderer> freshRen;
+  freshRen->SetActiveCamera(ren->GetActiveCamera());
+  vtkActorCollection* actors = ren->GetActors();
+  actors->InitTraversal();
+  while (vtkActor* a = actors->GetNextActor())
+  {
+    freshRen->AddActor(a);
+  }
+  vtkNew<vtkRayTracePass> freshPass;
+  freshRen->SetPass(freshPass);
+  freshWin->AddRenderer(freshRen);
+  freshWin->Render();
+  auto fresh = Grab(freshWin);
+  freshWin->RemoveRenderer(freshRen);
+  freshRen->ReleaseGraphicsResources(freshWin);
+  const double rmse = RootMeanSquareError(Grab(win), fresh);
+  Check(rmse == 0.0, what + ": the image equals a fresh pass's (RGB RMSE " + std::to_string(rmse) + ")");
+}
+
 // A small sphere moved beside the bunny and the glyphs, frame after frame:
 // only its rebuilt records are written, after what the buffers hold, until
 // they run out of room; then everything is packed again. Every frame's
@@ -193,29 +219,8 @@ void TestIncrementalUpload()
   vtkNew<vtkRayTracePass> pass;
   ren->SetPass(pass);
 
-  // The same actors and camera, traced by a new pass each time.
   auto freshWin = MakeWindow(200, 200);
-  auto freshImage = [&]() {
-    vtkNew<vtkRenderer> freshRen;
-    freshRen->SetActiveCamera(ren->GetActiveCamera());
-    for (vtkActor* a : { static_cast<vtkActor*>(bunny), static_cast<vtkActor*>(glyphs), static_cast<vtkActor*>(ball) })
-    {
-      freshRen->AddActor(a);
-    }
-    vtkNew<vtkRayTracePass> freshPass;
-    freshRen->SetPass(freshPass);
-    freshWin->AddRenderer(freshRen);
-    freshWin->Render();
-    auto image = Grab(freshWin);
-    freshWin->RemoveRenderer(freshRen);
-    freshRen->ReleaseGraphicsResources(freshWin);
-    return image;
-  };
-  auto sameAsFresh = [&](const std::string& what) {
-    auto image = Grab(win);
-    const double rmse = RootMeanSquareError(image, freshImage());
-    Check(rmse == 0.0, what + ": the image equals a fresh pass's (RGB RMSE " + std::to_string(rmse) + ")");
-  };
+  auto sameAsFresh = [&](const std::string& what) { SameAsFreshPass(win, ren, freshWin, what); };
 
   win->Render();
   const vtkTypeInt64 everything = pass->GetLastGeometryBytesUploaded();
@@ -307,6 +312,84 @@ void TestIncrementalUpload()
   sameAsFresh("limit lifted");
   NoGLError(win, "incremental upload");
   NoVTKOutput("incremental upload");
+}
+
+// New scalars (values modified in place, another array set) keep the
+// mesh's BVH: only its colors are written. New normals or points rebuild
+// it, and so does a filter's new output (the polydata itself modified, as
+// raster uploads it again).
+void TestScalarChange()
+{
+  auto win = MakeWindow(200, 200);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  vtkNew<vtkSphereSource> source;
+  source->SetThetaResolution(120);
+  source->SetPhiResolution(120);
+  vtkNew<vtkElevationFilter> elevation;
+  elevation->SetInputConnection(source->GetOutputPort());
+  elevation->SetLowPoint(0, -0.5, 0);
+  elevation->SetHighPoint(0, 0.5, 0);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(elevation->GetOutputPort());
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  ren->AddActor(actor);
+  ren->ResetCamera();
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+  auto freshWin = MakeWindow(200, 200);
+  win->Render();
+  const vtkTypeInt64 everything = pass->GetLastGeometryBytesUploaded();
+  auto frame = [&](const std::string& what, int builds) {
+    win->Render();
+    std::ostringstream s;
+    s << what << ": " << pass->GetLastBVHBuilds() << " BVH builds (want " << builds << "), "
+      << pass->GetLastGeometryBytesUploaded() << " bytes written (the scene: " << everything << ")";
+    Check(pass->GetLastBVHBuilds() == builds && pass->GetLastGeometryBytesUploaded() > 0, s.str());
+    Check(pass->GetLastTriangulationSeconds() == 0.0 || builds > 0, what + ": nothing triangulated without a build");
+    if (builds == 0)
+    {
+      Check(pass->GetLastGeometryBytesUploaded() < everything / 4, what + ": only the colors written");
+    }
+    SameAsFreshPass(win, ren, freshWin, what);
+  };
+  // The filter runs again: a new output.
+  elevation->SetHighPoint(0, 0.2, 0);
+  frame("elevation range changed (a new output)", 1);
+  // Values modified in place, then another array.
+  mapper->Update();
+  vtkPolyData* output = vtkPolyData::SafeDownCast(mapper->GetInput());
+  vtkDataArray* scalars = output->GetPointData()->GetScalars();
+  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); i += 2)
+  {
+    scalars->SetTuple1(i, 1.0 - scalars->GetTuple1(i));
+  }
+  scalars->Modified();
+  frame("scalar values modified", 0);
+  vtkNew<vtkFloatArray> other;
+  other->SetName("other");
+  for (vtkIdType i = 0; i < output->GetNumberOfPoints(); ++i)
+  {
+    other->InsertNextValue(static_cast<float>(output->GetPoint(i)[0]));
+  }
+  output->GetPointData()->SetScalars(other);
+  frame("another scalar array", 0);
+  // Normals replaced, then points moved: the BVH is rebuilt.
+  vtkNew<vtkFloatArray> normals;
+  normals->DeepCopy(output->GetPointData()->GetNormals());
+  for (vtkIdType i = 0; i < normals->GetNumberOfTuples(); ++i)
+  {
+    double n[3];
+    normals->GetTuple(i, n);
+    normals->SetTuple3(i, n[1], n[2], n[0]);
+  }
+  output->GetPointData()->SetNormals(normals);
+  frame("normals replaced", 1);
+  source->SetRadius(0.8);
+  frame("points moved", 1);
+  NoGLError(win, "scalar change");
+  NoVTKOutput("scalar change");
 }
 
 // Many actors (more than 8): the pass walks a top-level BVH over them. The
@@ -517,6 +600,7 @@ int main(int argc, char* argv[])
     { "Counters", TestCounters },
     { "ManyActors", TestManyActors },
     { "IncrementalUpload", TestIncrementalUpload },
+    { "ScalarChange", TestScalarChange },
     { "Lifecycle", TestLifecycle },
     { "MovedBetweenWindows", TestMovedBetweenWindows },
     { "App", TestApp },
