@@ -106,7 +106,14 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
   this->CheckedLimit = limit;
   // What changed is appended to what the buffers hold, while they have
   // room; otherwise everything is packed anew.
-  if (this->Scene.GeometryChanged() || !this->GeometryOnGpu || (!this->GeometryValid && limitChanged))
+  std::string unused;
+  // A new limit: a refused scene is tried again, an uploaded one that no
+  // longer fits is refused.
+  const bool geometryRecheck = limitChanged &&
+    (!this->GeometryValid || !vtkrt::pass::SceneBuffers::Fits(this->GeometryUploaded, limit, unused));
+  const bool colorsRecheck = limitChanged &&
+    (!this->ColorsValid || !vtkrt::pass::SceneBuffers::Fits(this->ColorsUploaded, limit, unused));
+  if (this->Scene.GeometryChanged() || !this->GeometryOnGpu || geometryRecheck)
   {
     if (!(this->GeometryOnGpu && this->GeometryValid && !limitChanged && this->AppendGeometry(limit)))
     {
@@ -116,7 +123,7 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
     this->Places.GeometryPlaces = this->GeometryUploaded.Placements;
     this->GeometryOnGpu = true;
   }
-  if (this->Scene.ColorsChanged() || !this->ColorsOnGpu || (!this->ColorsValid && limitChanged))
+  if (this->Scene.ColorsChanged() || !this->ColorsOnGpu || colorsRecheck)
   {
     if (!(this->ColorsOnGpu && this->ColorsValid && !limitChanged && this->AppendColors(limit)))
     {
@@ -137,8 +144,15 @@ bool vtkRayTracePass::Internals::AppendGeometry(std::size_t limit)
   std::string error;
   // The room was sized for the limit of its upload, which may have been
   // lowered since: a scene past the limit now is refused by UploadGeometry.
-  if (!vtkrt::pass::ExtendLayout(this->Scene, this->GeometryUploaded, this->GeometryCapacity, next, appended) ||
-    !vtkrt::pass::SceneBuffers::Fits(next, limit, error))
+  const bool extended =
+    vtkrt::pass::ExtendLayout(this->Scene, this->GeometryUploaded, this->GeometryCapacity, next, appended);
+  const vtkrt::pass::GeometrySizes& from = this->GeometryUploaded;
+  this->GeometryLastAppend.Nodes = next.Nodes - from.Nodes;
+  this->GeometryLastAppend.Triangles = next.Triangles - from.Triangles;
+  this->GeometryLastAppend.SphereTexels = next.SphereTexels - from.SphereTexels;
+  this->GeometryLastAppend.SphereIdWords = next.SphereIdWords - from.SphereIdWords;
+  this->GeometryLastAppend.Normals = next.Normals - from.Normals;
+  if (!extended || !vtkrt::pass::SceneBuffers::Fits(next, limit, error))
   {
     return false;
   }
@@ -169,7 +183,7 @@ void vtkRayTracePass::Internals::UploadGeometry(
   {
     this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
     start = std::chrono::steady_clock::now();
-    this->GeometryCapacity = vtkrt::pass::WithRoom(layout, limit);
+    this->GeometryCapacity = vtkrt::pass::WithRoom(layout, limit, this->GeometryLastAppend);
     const vtkrt::pass::GeometryTargets targets = this->Buffers.MapGeometry(layout, this->GeometryCapacity);
     const double mapSeconds = vtkrt::pass::SecondsSince(start);
     start = std::chrono::steady_clock::now();
@@ -192,8 +206,10 @@ bool vtkRayTracePass::Internals::AppendColors(std::size_t limit)
   vtkrt::pass::ColorsLayout next;
   std::vector<const vtkrt::pass::Colors*> appended;
   std::string error;
-  if (!vtkrt::pass::ExtendColors(this->Scene, this->ColorsUploaded, this->ColorsCapacity, next, appended) ||
-    !vtkrt::pass::SceneBuffers::Fits(next, limit, error))
+  const bool extended =
+    vtkrt::pass::ExtendColors(this->Scene, this->ColorsUploaded, this->ColorsCapacity, next, appended);
+  this->ColorsLastAppend = next.Words - this->ColorsUploaded.Words;
+  if (!extended || !vtkrt::pass::SceneBuffers::Fits(next, limit, error))
   {
     return false;
   }
@@ -220,7 +236,7 @@ void vtkRayTracePass::Internals::UploadColors(
   this->ColorsValid = vtkrt::pass::SceneBuffers::Fits(layout, limit, error);
   if (this->ColorsValid)
   {
-    this->ColorsCapacity = vtkrt::pass::ColorWordsWithRoom(layout.Words, limit);
+    this->ColorsCapacity = vtkrt::pass::ColorWordsWithRoom(layout.Words, limit, this->ColorsLastAppend);
     auto* words = static_cast<std::uint32_t*>(this->Buffers.Colors.Map(layout.Words / 4, this->ColorsCapacity / 4));
     vtkrt::pass::WriteColors(this->Scene, layout, words);
     this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);

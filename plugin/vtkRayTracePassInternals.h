@@ -75,6 +75,9 @@ struct vtkRayTracePass::Internals
   vtkrt::pass::GeometrySizes GeometryCapacity;
   vtkrt::pass::ColorsLayout ColorsUploaded;
   std::size_t ColorsCapacity = 0; ///< words
+  /// What the last append wrote or would have written (sizes the room).
+  vtkrt::pass::GeometrySizes GeometryLastAppend;
+  std::size_t ColorsLastAppend = 0; ///< words
   vtkrt::pass::TopLevel Top;
   vtkrt::pass::Accumulation Accumulated;
   vtkrt::pass::Selection Selecting;

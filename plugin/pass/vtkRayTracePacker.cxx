@@ -139,25 +139,30 @@ void writePlaced(const Geometry& g, const GeometryPlacement& place, const Geomet
   });
 }
 
-/// `used` plus room, in records of `texelsPerRecord` texels, within `limit` texels.
-std::size_t withRoom(std::size_t used, std::size_t texelsPerRecord, std::size_t limit)
+/// `used` plus room, in records of `texelsPerRecord` texels, within `limit`
+/// texels; room for 32 appends like the last, up to a quarter of `scene`
+/// (all buffers' records: one large change does not ask for 32 times itself).
+std::size_t withRoom(std::size_t used, std::size_t texelsPerRecord, std::size_t limit, std::size_t lastAppend,
+  std::size_t scene)
 {
-  const std::size_t room = used + std::max<std::size_t>(used / 4, 1024);
+  const std::size_t room =
+    used + std::max<std::size_t>({ used / 4, 1024, std::min(32 * lastAppend, scene / 4) });
   return std::max(used, std::min(room, limit / texelsPerRecord));
 }
 } // namespace
 
-GeometrySizes WithRoom(const GeometrySizes& used, std::size_t limit)
+GeometrySizes WithRoom(const GeometrySizes& used, std::size_t limit, const GeometrySizes& lastAppend)
 {
   using namespace core::gpu;
   GeometrySizes out;
-  out.Nodes = withRoom(used.Nodes, texelsOf<Node>(), limit);
-  out.Triangles = std::min(withRoom(used.Triangles, texelsOf<Triangle>(), limit),
-    withRoom(used.Triangles, texelsOf<core::gpu::TriangleVertices>(), limit));
-  out.SphereTexels = withRoom(used.SphereTexels, 1, limit) / 4 * 4;
+  const std::size_t scene = recordsOf(used);
+  out.Nodes = withRoom(used.Nodes, texelsOf<Node>(), limit, lastAppend.Nodes, scene);
+  out.Triangles = std::min(withRoom(used.Triangles, texelsOf<Triangle>(), limit, lastAppend.Triangles, scene),
+    withRoom(used.Triangles, texelsOf<core::gpu::TriangleVertices>(), limit, lastAppend.Triangles, scene));
+  out.SphereTexels = withRoom(used.SphereTexels, 1, limit, lastAppend.SphereTexels, scene) / 4 * 4;
   out.SphereTexels = std::max(out.SphereTexels, used.SphereTexels);
   out.SphereIdWords = out.SphereTexels;
-  out.Normals = withRoom(used.Normals, texelsOf<Normal>(), limit);
+  out.Normals = withRoom(used.Normals, texelsOf<Normal>(), limit, lastAppend.Normals, scene);
   return out;
 }
 
@@ -279,9 +284,9 @@ void WriteAppendedColors(
   }
 }
 
-std::size_t ColorWordsWithRoom(std::size_t words, std::size_t limit)
+std::size_t ColorWordsWithRoom(std::size_t words, std::size_t limit, std::size_t lastAppend)
 {
-  return 4 * withRoom(words / 4, 1, limit);
+  return 4 * withRoom(words / 4, 1, limit, (lastAppend + 3) / 4, words / 4);
 }
 
 } // namespace pass

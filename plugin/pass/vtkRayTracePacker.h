@@ -49,9 +49,11 @@ struct GeometryLayout : GeometrySizes
   std::map<const Geometry*, GeometryPlacement> Placements;
 };
 
-/// Storage of a layout's sizes with room to append: a quarter more, at
-/// least 1024 records a buffer, within `limit` texels.
-GeometrySizes WithRoom(const GeometrySizes& used, std::size_t limit);
+/// Storage of a layout's sizes with room to append, within `limit` texels:
+/// a quarter more, at least 1024 records a buffer, and at least 32 times
+/// what the last append wrote to it (a prop that changes every frame then
+/// appends 32 frames or more before everything is packed anew).
+GeometrySizes WithRoom(const GeometrySizes& used, std::size_t limit, const GeometrySizes& lastAppend);
 
 /// Storage that WriteGeometry fills in place (the GPU buffers themselves,
 /// from the record at `From` on): nothing is packed twice.
@@ -111,7 +113,7 @@ bool ExtendColors(const Scene& scene, const ColorsLayout& current, std::size_t c
 void WriteAppendedColors(
   const std::vector<const Colors*>& appended, const ColorsLayout& layout, std::uint32_t* out, std::size_t from);
 /// Colors words with room to append (as WithRoom), within `limit` texels.
-std::size_t ColorWordsWithRoom(std::size_t words, std::size_t limit);
+std::size_t ColorWordsWithRoom(std::size_t words, std::size_t limit, std::size_t lastAppend);
 
 } // namespace pass
 } // namespace vtkrt

@@ -293,13 +293,17 @@ void TestIncrementalUpload()
     "glyphs moved: only their records");
   sameAsFresh("glyphs moved");
 
-  // A texel limit lowered below the scene (a frame without changes keeps
-  // what is uploaded): the next change is refused with the limit's error,
-  // not appended into the room of the old limit.
+  // A texel limit lowered below the scene: refused at once with the
+  // limit's error (nothing changed), and so is the next change, not
+  // appended into the room of the old limit.
   pass->SetMaximumTextureBufferTexels(1000);
-  win->Render();
-  ballSource->SetCenter(bounds[0], bounds[2], bounds[5]);
   Output->SetEcho(false);
+  win->Render();
+  Check(Output->HasErrorContaining("The ray-traced scene needs a texture buffer") &&
+      pass->GetLastTracedPrimitives() == 0,
+    "limit lowered: refused with the limit's error");
+  Output->Clear();
+  ballSource->SetCenter(bounds[0], bounds[2], bounds[5]);
   win->Render();
   Output->SetEcho(true);
   Check(Output->HasErrorContaining("The ray-traced scene needs a texture buffer") &&
