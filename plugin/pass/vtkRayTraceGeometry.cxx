@@ -21,6 +21,7 @@
 #include "vtkrt/core/SurfaceTriangulation.h"
 
 #include <algorithm>
+#include <cstring>
 #include <atomic>
 #include <functional>
 #include <numeric>
@@ -214,6 +215,98 @@ TriangleSource TriangleSourceOf(vtkPolyData* poly)
     }
   }
   return s;
+}
+
+namespace
+{
+std::uint64_t mix64(std::uint64_t h)
+{
+  // splitmix64's finalizer: every input bit reaches every output bit.
+  h ^= h >> 30;
+  h *= 0xbf58476d1ce4e5b9ull;
+  h ^= h >> 27;
+  h *= 0x94d049bb133111ebull;
+  return h ^ (h >> 31);
+}
+
+/// The fingerprint of `bytes` bytes: 1 MiB chunks hashed on VTK's SMP pool,
+/// combined in order.
+std::uint64_t fingerprintBytes(const unsigned char* data, std::size_t bytes)
+{
+  constexpr std::size_t kChunk = std::size_t(1) << 20;
+  const std::size_t chunks = (bytes + kChunk - 1) / kChunk;
+  std::vector<std::uint64_t> hashes(chunks);
+  smpFor(chunks, [&](std::size_t b, std::size_t e) {
+    for (std::size_t c = b; c < e; ++c)
+    {
+      const unsigned char* p = data + c * kChunk;
+      const std::size_t n = std::min(kChunk, bytes - c * kChunk);
+      std::uint64_t h = mix64(c + 0x9e3779b97f4a7c15ull);
+      std::size_t i = 0;
+      for (; i + 8 <= n; i += 8)
+      {
+        std::uint64_t w;
+        std::memcpy(&w, p + i, 8);
+        h = (h ^ (w * 0x9e3779b97f4a7c15ull)) * 0xc2b2ae3d27d4eb4full;
+        h ^= h >> 29;
+      }
+      std::uint64_t tail = 0;
+      std::memcpy(&tail, p + i, n - i);
+      hashes[c] = mix64(h ^ tail ^ n);
+    }
+  });
+  std::uint64_t h = mix64(bytes);
+  for (std::uint64_t c : hashes)
+  {
+    h = mix64(h ^ c);
+  }
+  return h;
+}
+
+/// Folds `array` (absent, or its type, shape and values) into `h`; false
+/// when its values are not one contiguous block.
+bool fingerprintArray(vtkDataArray* array, std::uint64_t& h)
+{
+  if (!array)
+  {
+    h = mix64(h ^ 0x5bd1e995u);
+    return true;
+  }
+  if (!array->HasStandardMemoryLayout())
+  {
+    return false;
+  }
+  const std::size_t bytes = static_cast<std::size_t>(array->GetNumberOfValues()) *
+    static_cast<std::size_t>(array->GetDataTypeSize());
+  h = mix64(h ^ (static_cast<std::uint64_t>(array->GetDataType()) << 32) ^
+    static_cast<std::uint64_t>(array->GetNumberOfComponents()));
+  h = mix64(h ^ (bytes ? fingerprintBytes(static_cast<const unsigned char*>(array->GetVoidPointer(0)), bytes)
+                       : 0u));
+  return true;
+}
+} // namespace
+
+std::uint64_t TriangleFingerprint(vtkPolyData* poly)
+{
+  std::vector<vtkDataArray*> arrays;
+  arrays.push_back(poly->GetPoints() ? poly->GetPoints()->GetData() : nullptr);
+  for (vtkCellArray* cells : { poly->GetVerts(), poly->GetLines(), poly->GetPolys(), poly->GetStrips() })
+  {
+    arrays.push_back(cells->GetOffsetsArray());
+    arrays.push_back(cells->GetConnectivityArray());
+  }
+  arrays.push_back(poly->GetPointData()->GetNormals());
+  arrays.push_back(poly->GetCellData()->GetNormals());
+  arrays.push_back(poly->GetPointData()->GetAttribute(vtkDataSetAttributes::EDGEFLAG));
+  std::uint64_t h = 0x243f6a8885a308d3ull;
+  for (vtkDataArray* array : arrays)
+  {
+    if (!fingerprintArray(array, h))
+    {
+      return 0;
+    }
+  }
+  return h == 0 ? 1 : h;
 }
 
 std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOptions& options)

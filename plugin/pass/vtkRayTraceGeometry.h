@@ -47,6 +47,11 @@ struct TriangleSource
 };
 TriangleSource TriangleSourceOf(vtkPolyData* poly);
 
+/// A 64-bit fingerprint of the contents TriangleSourceOf names (values,
+/// types, sizes): equal fingerprints, equal triangles. 0 when an array is
+/// not in one contiguous block (not worth copying to hash).
+std::uint64_t TriangleFingerprint(vtkPolyData* poly);
+
 /// Triangles of polys (fan, as VTK's raster) and strips (VTK's winding),
 /// with their VTK cell ids, point normals when the data has them, and the
 /// BVH over them.

@@ -263,11 +263,26 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     // the BVH and its records.
     const TriangleSource source = TriangleSourceOf(poly);
     auto& entry = this->TriangleCache[poly];
-    if (!entry || entry->SourceTime != source.Time || entry->SourceParts != source.Parts ||
-      entry->Quality != this->BuildQuality || entry->LeafSize != this->LeafSize)
+    const bool sameBuild = entry && entry->Quality == this->BuildQuality && entry->LeafSize == this->LeafSize;
+    std::uint64_t fingerprint = 0;
+    if (sameBuild && (entry->SourceTime != source.Time || entry->SourceParts != source.Parts))
+    {
+      // Data that changed once is likely to change again (a pipeline
+      // running again, a time series over one mesh): from its first
+      // rebuild on, its contents are fingerprinted, and the same contents
+      // keep the BVH.
+      fingerprint = TriangleFingerprint(poly);
+      if (fingerprint != 0 && fingerprint == entry->SourceFingerprint)
+      {
+        entry->SourceTime = source.Time;
+        entry->SourceParts = source.Parts;
+      }
+    }
+    if (!sameBuild || entry->SourceTime != source.Time || entry->SourceParts != source.Parts)
     {
       const auto start = std::chrono::steady_clock::now();
       entry = BuildTriangles(poly, this->Options());
+      entry->SourceFingerprint = fingerprint;
       counters.AddBuild(*entry, SecondsSince(start));
       entry->Quality = this->BuildQuality;
       entry->LeafSize = this->LeafSize;

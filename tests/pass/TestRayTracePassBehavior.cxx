@@ -41,6 +41,7 @@
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <functional>
 #include <map>
@@ -320,8 +321,9 @@ void TestIncrementalUpload()
 
 // New scalars (values modified in place, another array set) keep the
 // mesh's BVH: only its colors are written. New normals or points rebuild
-// it, and so does a filter's new output (the polydata itself modified, as
-// raster uploads it again).
+// it. A filter's new output (the polydata modified) is rebuilt the first
+// time; from then on its contents are fingerprinted, and the same points
+// and cells keep the BVH, while one point one ulp away rebuilds it.
 void TestScalarChange()
 {
   auto win = MakeWindow(200, 200);
@@ -358,9 +360,11 @@ void TestScalarChange()
     }
     SameAsFreshPass(win, ren, freshWin, what);
   };
-  // The filter runs again: a new output.
+  // The filter runs again: a new output, rebuilt; then again, kept.
   elevation->SetHighPoint(0, 0.2, 0);
   frame("elevation range changed (a new output)", 1);
+  elevation->SetHighPoint(0, 0.3, 0);
+  frame("elevation range changed again (same points and cells)", 0);
   // Values modified in place, then another array.
   mapper->Update();
   vtkPolyData* output = vtkPolyData::SafeDownCast(mapper->GetInput());
@@ -392,6 +396,21 @@ void TestScalarChange()
   frame("normals replaced", 1);
   source->SetRadius(0.8);
   frame("points moved", 1);
+  // New points objects: the same values keep the BVH, one ulp rebuilds it.
+  mapper->Update();
+  output = vtkPolyData::SafeDownCast(mapper->GetInput());
+  vtkNew<vtkPoints> same;
+  same->DeepCopy(output->GetPoints());
+  output->SetPoints(same);
+  frame("an equal copy of the points", 0);
+  vtkNew<vtkPoints> nudged;
+  nudged->DeepCopy(output->GetPoints());
+  double p[3];
+  nudged->GetPoint(7, p);
+  p[0] = std::nextafter(static_cast<float>(p[0]), 1.0f);
+  nudged->SetPoint(7, p);
+  output->SetPoints(nudged);
+  frame("a copy of the points, one ulp apart", 1);
   NoGLError(win, "scalar change");
   NoVTKOutput("scalar change");
 }
