@@ -191,6 +191,12 @@ Colors* Scene::GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time
   helper->SetInputData(data);
   int cellFlag = 0;
   vtkUnsignedCharArray* mapped = helper->MapScalars(data, 1.0, cellFlag);
+  // Mapping sets the shared table's range to the mapper's: that is what
+  // the colors were made with, not a change to map them again for.
+  if (vtkScalarsToColors* table = mapper->GetLookupTable())
+  {
+    colors->SourceTime = std::max(colors->SourceTime, table->GetMTime());
+  }
   vtkFloatArray* coordinates = helper->GetColorCoordinates();
   vtkImageData* texture = helper->GetColorTextureMap();
   vtkUnsignedCharArray* texels =

@@ -383,6 +383,13 @@ void TestScalarChange()
   }
   output->GetPointData()->SetScalars(other);
   frame("another scalar array", 0);
+  // A new scalar range maps the colors again, once: the next frame writes nothing.
+  mapper->SetScalarRange(0.2, 0.8);
+  frame("scalar range changed", 0);
+  win->Render();
+  Check(pass->GetLastGeometryBytesUploaded() == 0 && pass->GetLastBVHBuilds() == 0,
+    "the frame after the range change writes nothing (" + std::to_string(pass->GetLastGeometryBytesUploaded()) +
+      " bytes)");
   // Normals replaced, then points moved: the BVH is rebuilt.
   vtkNew<vtkFloatArray> normals;
   normals->DeepCopy(output->GetPointData()->GetNormals());
