@@ -206,7 +206,12 @@ TriangleSource TriangleSourceOf(vtkPolyData* poly)
   vtkDataArray* edgeFlags = poly->GetPointData()->GetAttribute(vtkDataSetAttributes::EDGEFLAG);
   s.Parts = { { poly->GetPoints(), poly->GetVerts(), poly->GetLines(), poly->GetPolys(), poly->GetStrips(),
     normals, cellNormals, edgeFlags } };
-  s.Time = vtkSurfaceTriangulation::GetGeometryMTime(poly);
+  // The point and cell data's own MTimes too: normals edited in place and
+  // announced by their point data's Modified() (as vtkPolyData::GetMTime
+  // would see it). A new scalar array bumps them as well; the fingerprint
+  // then keeps the BVH.
+  s.Time = std::max({ vtkSurfaceTriangulation::GetGeometryMTime(poly),
+    poly->GetPointData()->vtkObject::GetMTime(), poly->GetCellData()->vtkObject::GetMTime() });
   for (vtkDataArray* array : { normals, cellNormals, edgeFlags })
   {
     if (array)
@@ -263,18 +268,13 @@ std::uint64_t fingerprintBytes(const unsigned char* data, std::size_t bytes)
   return h;
 }
 
-/// Folds `array` (absent, or its type, shape and values) into `h`; false
-/// when its values are not one contiguous block.
-bool fingerprintArray(vtkDataArray* array, std::uint64_t& h)
+/// Folds `array` (absent, or its type, shape and values, in one block) into `h`.
+void fingerprintArray(vtkDataArray* array, std::uint64_t& h)
 {
   if (!array)
   {
     h = mix64(h ^ 0x5bd1e995u);
-    return true;
-  }
-  if (!array->HasStandardMemoryLayout())
-  {
-    return false;
+    return;
   }
   const std::size_t bytes = static_cast<std::size_t>(array->GetNumberOfValues()) *
     static_cast<std::size_t>(array->GetDataTypeSize());
@@ -282,7 +282,6 @@ bool fingerprintArray(vtkDataArray* array, std::uint64_t& h)
     static_cast<std::uint64_t>(array->GetNumberOfComponents()));
   h = mix64(h ^ (bytes ? fingerprintBytes(static_cast<const unsigned char*>(array->GetVoidPointer(0)), bytes)
                        : 0u));
-  return true;
 }
 } // namespace
 
@@ -298,13 +297,19 @@ std::uint64_t TriangleFingerprint(vtkPolyData* poly)
   arrays.push_back(poly->GetPointData()->GetNormals());
   arrays.push_back(poly->GetCellData()->GetNormals());
   arrays.push_back(poly->GetPointData()->GetAttribute(vtkDataSetAttributes::EDGEFLAG));
-  std::uint64_t h = 0x243f6a8885a308d3ull;
+  // Bit arrays (no byte size) and arrays not in one block: no fingerprint,
+  // decided before hashing anything.
   for (vtkDataArray* array : arrays)
   {
-    if (!fingerprintArray(array, h))
+    if (array && (!array->HasStandardMemoryLayout() || array->GetDataType() == VTK_BIT))
     {
       return 0;
     }
+  }
+  std::uint64_t h = 0x243f6a8885a308d3ull;
+  for (vtkDataArray* array : arrays)
+  {
+    fingerprintArray(array, h);
   }
   return h == 0 ? 1 : h;
 }

@@ -401,6 +401,15 @@ void TestScalarChange()
   }
   output->GetPointData()->SetNormals(normals);
   frame("normals replaced", 1);
+  // Normals edited in place, announced by the point data's Modified() only.
+  for (vtkIdType i = 0; i < normals->GetNumberOfTuples(); ++i)
+  {
+    double n[3];
+    normals->GetTuple(i, n);
+    normals->SetTuple3(i, n[2], n[0], n[1]);
+  }
+  output->GetPointData()->Modified();
+  frame("normals edited in place, point data modified", 1);
   source->SetRadius(0.8);
   frame("points moved", 1);
   // New points objects: the same values keep the BVH, one ulp rebuilds it.
