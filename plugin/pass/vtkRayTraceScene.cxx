@@ -321,16 +321,20 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     // rebuilds anything.
     std::ostringstream key;
     key << "points:" << property->GetRepresentation();
+    // Keyed by the points and cells (TriangleSourceOf names them, and a
+    // few arrays more): new scalars keep the spheres' BVH.
+    const TriangleSource source = TriangleSourceOf(poly);
     auto& entry = this->SphereCache[std::make_pair(static_cast<const void*>(poly), nullptr)];
-    if (!entry || entry->SourceTime != time || entry->SourceKey != key.str() ||
-      entry->Quality != this->BuildQuality)
+    if (!entry || entry->SourceTime != source.Time || entry->SourceParts != source.Parts ||
+      entry->SourceKey != key.str() || entry->Quality != this->BuildQuality)
     {
       const auto start = std::chrono::steady_clock::now();
       entry = BuildScreenSpheres(
         poly, property->GetRepresentation() == VTK_POINTS, this->SphereOptions());
       counters.AddBuild(*entry, SecondsSince(start));
       entry->Quality = this->BuildQuality;
-      entry->SourceTime = time;
+      entry->SourceTime = source.Time;
+      entry->SourceParts = source.Parts;
       entry->SourceKey = key.str();
       entry->Keep = poly;
       this->GeometryDirty = true;

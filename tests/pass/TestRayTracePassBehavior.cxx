@@ -427,6 +427,22 @@ void TestScalarChange()
   nudged->SetPoint(7, p);
   output->SetPoints(nudged);
   frame("a copy of the points, one ulp apart", 1);
+
+  // Points drawn as spheres: new scalars keep their BVH too.
+  actor->GetProperty()->SetRepresentationToPoints();
+  actor->GetProperty()->RenderPointsAsSpheresOn();
+  actor->GetProperty()->SetPointSize(6);
+  win->Render();
+  Check(pass->GetLastBVHBuilds() == 1, "points as spheres: one sphere BVH built");
+  mapper->Update();
+  output = vtkPolyData::SafeDownCast(mapper->GetInput());
+  scalars = output->GetPointData()->GetScalars();
+  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); i += 3)
+  {
+    scalars->SetTuple1(i, 1.0 - scalars->GetTuple1(i));
+  }
+  scalars->Modified();
+  frame("points as spheres, scalar values modified", 0);
   NoGLError(win, "scalar change");
   NoVTKOutput("scalar change");
 }
