@@ -110,9 +110,9 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
   // A new limit: a refused scene is tried again, an uploaded one that no
   // longer fits is refused.
   const bool geometryRecheck = limitChanged &&
-    (!this->GeometryValid || !vtkrt::pass::SceneBuffers::Fits(this->GeometryUploaded, limit, unused));
+    (!this->GeometryValid || !vtkrt::pass::SceneBuffers::Fits(this->Places.Geometry, limit, unused));
   const bool colorsRecheck = limitChanged &&
-    (!this->ColorsValid || !vtkrt::pass::SceneBuffers::Fits(this->ColorsUploaded, limit, unused));
+    (!this->ColorsValid || !vtkrt::pass::SceneBuffers::Fits(this->Places.Colors, limit, unused));
   if (this->Scene.GeometryChanged() || !this->GeometryOnGpu || geometryRecheck)
   {
     if (!(this->GeometryOnGpu && this->GeometryValid && !limitChanged && this->AppendGeometry(limit)))
@@ -120,7 +120,6 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
       this->UploadGeometry(pass, win, limit);
     }
     this->Scene.MarkGeometryPacked();
-    this->Places.GeometryPlaces = this->GeometryUploaded.Placements;
     this->GeometryOnGpu = true;
   }
   if (this->Scene.ColorsChanged() || !this->ColorsOnGpu || colorsRecheck)
@@ -130,7 +129,6 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
       this->UploadColors(pass, win, limit);
     }
     this->Scene.MarkColorsPacked();
-    this->Places.ColorBases = this->ColorsUploaded.Bases;
     this->ColorsOnGpu = true;
   }
   this->UploadTextures(pass, win, limit, limitChanged);
@@ -145,20 +143,15 @@ bool vtkRayTracePass::Internals::AppendGeometry(std::size_t limit)
   // The room was sized for the limit of its upload, which may have been
   // lowered since: a scene past the limit now is refused by UploadGeometry.
   const bool extended =
-    vtkrt::pass::ExtendLayout(this->Scene, this->GeometryUploaded, this->GeometryCapacity, next, appended);
-  const vtkrt::pass::GeometrySizes& from = this->GeometryUploaded;
-  this->GeometryLastAppend.Nodes = next.Nodes - from.Nodes;
-  this->GeometryLastAppend.Triangles = next.Triangles - from.Triangles;
-  this->GeometryLastAppend.SphereTexels = next.SphereTexels - from.SphereTexels;
-  this->GeometryLastAppend.SphereIdWords = next.SphereIdWords - from.SphereIdWords;
-  this->GeometryLastAppend.Normals = next.Normals - from.Normals;
+    vtkrt::pass::ExtendLayout(this->Scene, this->Places.Geometry, this->GeometryCapacity, next, appended);
+  this->GeometryLastAppend = vtkrt::pass::SizesPast(this->Places.Geometry, next);
   if (!extended || !vtkrt::pass::SceneBuffers::Fits(next, limit, error))
   {
     return false;
   }
   this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
   start = std::chrono::steady_clock::now();
-  const vtkrt::pass::GeometryTargets targets = this->Buffers.MapAppended(this->GeometryUploaded, next);
+  const vtkrt::pass::GeometryTargets targets = this->Buffers.MapAppended(this->Places.Geometry, next);
   const double mapSeconds = vtkrt::pass::SecondsSince(start);
   start = std::chrono::steady_clock::now();
   vtkrt::pass::WriteAppended(appended, next, targets);
@@ -166,7 +159,7 @@ bool vtkRayTracePass::Internals::AppendGeometry(std::size_t limit)
   start = std::chrono::steady_clock::now();
   this->Counters.GeometryBytesUploaded += this->Buffers.UnmapAppended();
   this->Counters.UploadSeconds += mapSeconds + vtkrt::pass::SecondsSince(start);
-  this->GeometryUploaded = std::move(next);
+  this->Places.Geometry = std::move(next);
   return true;
 }
 
@@ -197,7 +190,7 @@ void vtkRayTracePass::Internals::UploadGeometry(
   {
     vtkErrorWithObjectMacro(&pass, << error);
   }
-  this->GeometryUploaded = std::move(layout);
+  this->Places.Geometry = std::move(layout);
 }
 
 bool vtkRayTracePass::Internals::AppendColors(std::size_t limit)
@@ -207,13 +200,13 @@ bool vtkRayTracePass::Internals::AppendColors(std::size_t limit)
   std::vector<const vtkrt::pass::Colors*> appended;
   std::string error;
   const bool extended =
-    vtkrt::pass::ExtendColors(this->Scene, this->ColorsUploaded, this->ColorsCapacity, next, appended);
-  this->ColorsLastAppend = next.Words - this->ColorsUploaded.Words;
+    vtkrt::pass::ExtendColors(this->Scene, this->Places.Colors, this->ColorsCapacity, next, appended);
+  this->ColorsLastAppend = next.Words - this->Places.Colors.Words;
   if (!extended || !vtkrt::pass::SceneBuffers::Fits(next, limit, error))
   {
     return false;
   }
-  const std::size_t from = this->ColorsUploaded.Words;
+  const std::size_t from = this->Places.Colors.Words;
   auto* words = static_cast<std::uint32_t*>(this->Buffers.Colors.MapRange(from / 4, (next.Words - from) / 4));
   if (words)
   {
@@ -223,7 +216,7 @@ bool vtkRayTracePass::Internals::AppendColors(std::size_t limit)
   start = std::chrono::steady_clock::now();
   this->Counters.GeometryBytesUploaded += this->Buffers.Colors.UnmapRange();
   this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(start);
-  this->ColorsUploaded = std::move(next);
+  this->Places.Colors = std::move(next);
   return true;
 }
 
@@ -248,7 +241,7 @@ void vtkRayTracePass::Internals::UploadColors(
   {
     vtkErrorWithObjectMacro(&pass, << error);
   }
-  this->ColorsUploaded = std::move(layout);
+  this->Places.Colors = std::move(layout);
 }
 
 void vtkRayTracePass::Internals::UploadTextures(

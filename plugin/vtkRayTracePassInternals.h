@@ -70,10 +70,8 @@ struct vtkRayTracePass::Internals
   std::vector<int> WarnedTooSmallProps; ///< what the last scale warning named
   vtkrt::pass::SceneBuffers Buffers;
   vtkrt::pass::ScenePlacements Places;
-  /// What the geometry buffers hold and have room for (see ExtendLayout).
-  vtkrt::pass::GeometryLayout GeometryUploaded;
+  /// What the geometry and colors buffers have room for (see ExtendLayout).
   vtkrt::pass::GeometrySizes GeometryCapacity;
-  vtkrt::pass::ColorsLayout ColorsUploaded;
   std::size_t ColorsCapacity = 0; ///< words
   /// What the last append wrote or would have written (sizes the room).
   vtkrt::pass::GeometrySizes GeometryLastAppend;

@@ -12,6 +12,7 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
@@ -326,13 +327,41 @@ bool fitsLimit(std::size_t texels, std::size_t limit, const char* what, std::str
 }
 } // namespace
 
-bool SceneBuffers::Fits(const GeometryLayout& layout, std::size_t limit, std::string& error)
+namespace
+{
+/// Texels each geometry buffer takes for `sizes`, in GeometryBuffers() order.
+std::array<std::size_t, 6> geometryTexels(const GeometrySizes& sizes)
 {
   using namespace core::gpu;
-  const std::size_t sizes[] = { texelsFor<Node>(layout.Nodes), texelsFor<Triangle>(layout.Triangles),
-    texelsFor<core::gpu::TriangleVertices>(layout.Triangles), layout.SphereTexels, layout.SphereIdWords / 4,
-    texelsFor<Normal>(layout.Normals) };
-  for (std::size_t texels : sizes)
+  return { { texelsFor<Node>(sizes.Nodes), texelsFor<Triangle>(sizes.Triangles),
+    texelsFor<core::gpu::TriangleVertices>(sizes.Triangles), sizes.SphereTexels, sizes.SphereTexels / 4,
+    texelsFor<Normal>(sizes.Normals) } };
+}
+
+/// The geometry buffers' storage `p` (in GeometryBuffers() order) as records.
+GeometryTargets targetsOf(const std::array<void*, 6>& p, const GeometrySizes& from)
+{
+  GeometryTargets out;
+  out.Nodes = static_cast<core::gpu::Node*>(p[0]);
+  out.Triangles = static_cast<core::gpu::Triangle*>(p[1]);
+  out.TriangleVertices = static_cast<core::gpu::TriangleVertices*>(p[2]);
+  out.Spheres = static_cast<core::gpu::Texel*>(p[3]);
+  out.SphereIds = static_cast<std::uint32_t*>(p[4]);
+  out.Normals = static_cast<core::gpu::Normal*>(p[5]);
+  out.From = from;
+  return out;
+}
+} // namespace
+
+std::array<TextureBuffer*, 6> SceneBuffers::GeometryBuffers()
+{
+  return { { &this->Nodes, &this->Triangles, &this->TriangleVertices, &this->Spheres, &this->SphereIds,
+    &this->Normals } };
+}
+
+bool SceneBuffers::Fits(const GeometryLayout& layout, std::size_t limit, std::string& error)
+{
+  for (std::size_t texels : geometryTexels(layout))
   {
     if (!fitsLimit(texels, limit, "", error))
     {
@@ -349,61 +378,46 @@ bool SceneBuffers::Fits(const ColorsLayout& layout, std::size_t limit, std::stri
 
 GeometryTargets SceneBuffers::MapGeometry(const GeometryLayout& layout, const GeometrySizes& capacity)
 {
-  using namespace core::gpu;
-  GeometryTargets out;
-  out.Nodes = static_cast<Node*>(
-    this->Nodes.Map(texelsFor<Node>(layout.Nodes), texelsFor<Node>(capacity.Nodes)));
-  out.Triangles = static_cast<Triangle*>(
-    this->Triangles.Map(texelsFor<Triangle>(layout.Triangles), texelsFor<Triangle>(capacity.Triangles)));
-  out.TriangleVertices = static_cast<core::gpu::TriangleVertices*>(
-    this->TriangleVertices.Map(texelsFor<core::gpu::TriangleVertices>(layout.Triangles),
-      texelsFor<core::gpu::TriangleVertices>(capacity.Triangles)));
-  out.Spheres = static_cast<Texel*>(this->Spheres.Map(layout.SphereTexels, capacity.SphereTexels));
-  out.SphereIds = static_cast<std::uint32_t*>(
-    this->SphereIds.Map(layout.SphereIdWords / 4, capacity.SphereIdWords / 4));
-  out.Normals = static_cast<Normal*>(
-    this->Normals.Map(texelsFor<Normal>(layout.Normals), texelsFor<Normal>(capacity.Normals)));
-  return out;
-}
-
-GeometryTargets SceneBuffers::MapAppended(const GeometrySizes& from, const GeometrySizes& to)
-{
-  using namespace core::gpu;
-  GeometryTargets out;
-  out.From = from;
-  out.Nodes = static_cast<Node*>(
-    this->Nodes.MapRange(texelsFor<Node>(from.Nodes), texelsFor<Node>(to.Nodes - from.Nodes)));
-  out.Triangles = static_cast<Triangle*>(this->Triangles.MapRange(
-    texelsFor<Triangle>(from.Triangles), texelsFor<Triangle>(to.Triangles - from.Triangles)));
-  out.TriangleVertices = static_cast<core::gpu::TriangleVertices*>(
-    this->TriangleVertices.MapRange(texelsFor<core::gpu::TriangleVertices>(from.Triangles),
-      texelsFor<core::gpu::TriangleVertices>(to.Triangles - from.Triangles)));
-  out.Spheres = static_cast<Texel*>(this->Spheres.MapRange(from.SphereTexels, to.SphereTexels - from.SphereTexels));
-  out.SphereIds = static_cast<std::uint32_t*>(
-    this->SphereIds.MapRange(from.SphereIdWords / 4, (to.SphereIdWords - from.SphereIdWords) / 4));
-  out.Normals = static_cast<Normal*>(
-    this->Normals.MapRange(texelsFor<Normal>(from.Normals), texelsFor<Normal>(to.Normals - from.Normals)));
-  return out;
-}
-
-std::size_t SceneBuffers::UnmapAppended()
-{
-  std::size_t bytes = 0;
-  for (TextureBuffer* b : { &this->Nodes, &this->Triangles, &this->TriangleVertices, &this->Spheres,
-         &this->SphereIds, &this->Normals })
+  const std::array<std::size_t, 6> used = geometryTexels(layout);
+  const std::array<std::size_t, 6> room = geometryTexels(capacity);
+  const std::array<TextureBuffer*, 6> buffers = this->GeometryBuffers();
+  std::array<void*, 6> storage{};
+  for (std::size_t k = 0; k < buffers.size(); ++k)
   {
-    bytes += b->UnmapRange();
+    storage[k] = buffers[k]->Map(used[k], room[k]);
   }
-  return bytes;
+  return targetsOf(storage, GeometrySizes());
 }
 
 std::size_t SceneBuffers::UnmapGeometry(vtkOpenGLRenderWindow* win)
 {
   std::size_t bytes = 0;
-  for (TextureBuffer* b : { &this->Nodes, &this->Triangles, &this->TriangleVertices, &this->Spheres,
-         &this->SphereIds, &this->Normals })
+  for (TextureBuffer* b : this->GeometryBuffers())
   {
     bytes += b->Unmap(win);
+  }
+  return bytes;
+}
+
+GeometryTargets SceneBuffers::MapAppended(const GeometrySizes& from, const GeometrySizes& to)
+{
+  const std::array<std::size_t, 6> first = geometryTexels(from);
+  const std::array<std::size_t, 6> end = geometryTexels(to);
+  const std::array<TextureBuffer*, 6> buffers = this->GeometryBuffers();
+  std::array<void*, 6> storage{};
+  for (std::size_t k = 0; k < buffers.size(); ++k)
+  {
+    storage[k] = buffers[k]->MapRange(first[k], end[k] - first[k]);
+  }
+  return targetsOf(storage, from);
+}
+
+std::size_t SceneBuffers::UnmapAppended()
+{
+  std::size_t bytes = 0;
+  for (TextureBuffer* b : this->GeometryBuffers())
+  {
+    bytes += b->UnmapRange();
   }
   return bytes;
 }

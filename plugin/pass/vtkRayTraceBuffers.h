@@ -8,6 +8,7 @@
 
 #include "vtkrt/core/GpuLayout.h"
 
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -108,6 +109,10 @@ class SceneBuffers
 public:
   TextureBuffer Nodes, Triangles, TriangleVertices, Spheres, SphereIds, Normals, Colors, Instances,
     TopNodes, Textures;
+
+  /// The geometry's buffers: nodes, triangles, triangle vertices, spheres,
+  /// sphere ids, normals.
+  std::array<TextureBuffer*, 6> GeometryBuffers();
 
   /// Whether every buffer of the layout fits `limit` texels; if not,
   /// `error` says which is too large.

@@ -198,9 +198,9 @@ void ReadPoints(vtkPoints* pts, core::NoFillArray<Vec3<double>>& out)
   });
 }
 
-TriangleSource TriangleSourceOf(vtkPolyData* poly)
+GeometrySource GeometrySourceOf(vtkPolyData* poly)
 {
-  TriangleSource s;
+  GeometrySource s;
   vtkDataArray* normals = poly->GetPointData()->GetNormals();
   vtkDataArray* cellNormals = poly->GetCellData()->GetNormals();
   vtkDataArray* edgeFlags = poly->GetPointData()->GetAttribute(vtkDataSetAttributes::EDGEFLAG);
@@ -285,7 +285,7 @@ void fingerprintArray(vtkDataArray* array, std::uint64_t& h)
 }
 } // namespace
 
-std::uint64_t TriangleFingerprint(vtkPolyData* poly)
+std::uint64_t GeometryFingerprint(vtkPolyData* poly)
 {
   std::vector<vtkDataArray*> arrays;
   arrays.push_back(poly->GetPoints() ? poly->GetPoints()->GetData() : nullptr);

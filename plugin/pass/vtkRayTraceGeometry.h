@@ -34,23 +34,22 @@ std::optional<core::Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh, co
 /// The points as double vectors (empty for null points).
 void ReadPoints(vtkPoints* pts, core::NoFillArray<core::Vec3<double>>& out);
 
-/// What BuildTriangles reads of a polydata: its geometry (points and cell
-/// arrays, as vtkSurfaceTriangulation::GetGeometryMTime), its point and
-/// cell normals and point edge flags; which objects they are and their
-/// latest MTime. Scalars are not in it: a color change keeps the BVH.
-struct TriangleSource
+/// What BuildTriangles (and BuildScreenSpheres, a part of it) reads of a
+/// polydata: its geometry (points and cell arrays, as
+/// vtkSurfaceTriangulation::GetGeometryMTime), its point and cell normals
+/// and point edge flags; which objects they are and their latest MTime.
+/// Scalars are not in it: a color change keeps the BVH.
+struct GeometrySource
 {
   std::array<const void*, 8> Parts{};
   vtkMTimeType Time = 0;
-  bool operator==(const TriangleSource& o) const { return this->Parts == o.Parts && this->Time == o.Time; }
-  bool operator!=(const TriangleSource& o) const { return !(*this == o); }
 };
-TriangleSource TriangleSourceOf(vtkPolyData* poly);
+GeometrySource GeometrySourceOf(vtkPolyData* poly);
 
-/// A 64-bit fingerprint of the contents TriangleSourceOf names (values,
-/// types, sizes): equal fingerprints, equal triangles. 0 when an array is
+/// A 64-bit fingerprint of the contents GeometrySourceOf names (values,
+/// types, sizes): equal fingerprints, equal geometry. 0 when an array is
 /// not in one contiguous block (not worth copying to hash).
-std::uint64_t TriangleFingerprint(vtkPolyData* poly);
+std::uint64_t GeometryFingerprint(vtkPolyData* poly);
 
 /// Triangles of polys (fan, as VTK's raster) and strips (VTK's winding),
 /// with their VTK cell ids, point normals when the data has them, and the

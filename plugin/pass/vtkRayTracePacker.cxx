@@ -41,12 +41,6 @@ void padWords(std::uint32_t* words, std::size_t used)
 
 namespace
 {
-/// Up to a multiple of four (whole texels of sphere ids).
-std::size_t alignedToTexel(std::size_t n)
-{
-  return (n + 3) / 4 * 4;
-}
-
 std::size_t sphereTexelsOf(const Geometry& g)
 {
   return g.SphereRecords.size() * core::gpu::texelsOf<core::gpu::Sphere>() +
@@ -66,8 +60,7 @@ GeometryPlacement placeAtEnd(const Geometry& g, GeometrySizes& sizes)
   if (g.Spheres)
   {
     place.PrimitiveBase = static_cast<std::uint32_t>(sizes.SphereTexels);
-    sizes.SphereTexels = alignedToTexel(sizes.SphereTexels + sphereTexelsOf(g));
-    sizes.SphereIdWords = sizes.SphereTexels;
+    sizes.SphereTexels = paddedWords(sizes.SphereTexels + sphereTexelsOf(g));
   }
   else
   {
@@ -112,12 +105,12 @@ void writePlaced(const Geometry& g, const GeometryPlacement& place, const Geomet
     at += g.EllipsoidRecords.size() * core::gpu::texelsOf<core::gpu::Ellipsoid>();
     copyAt(g.SegmentRecords.data(), g.SegmentRecords.size(), out.Spheres, from.SphereTexels, at);
     at += g.SegmentRecords.size() * core::gpu::texelsOf<core::gpu::Segment>();
-    std::fill(out.Spheres + (at - from.SphereTexels), out.Spheres + (alignedToTexel(at) - from.SphereTexels),
+    std::fill(out.Spheres + (at - from.SphereTexels), out.Spheres + (paddedWords(at) - from.SphereTexels),
       core::gpu::Texel{});
-    copyAt(g.SphereIds.data(), g.SphereIds.size(), out.SphereIds, from.SphereIdWords, place.PrimitiveBase);
-    const std::size_t idsEnd = place.PrimitiveBase + g.SphereIds.size();
-    std::fill(out.SphereIds + (idsEnd - from.SphereIdWords),
-      out.SphereIds + (alignedToTexel(idsEnd) - from.SphereIdWords), 0u);
+    // One id word a sphere texel: the ids start at the same index.
+    std::uint32_t* ids = out.SphereIds + (place.PrimitiveBase - from.SphereTexels);
+    copyRecords(g.SphereIds.data(), g.SphereIds.size(), ids);
+    padWords(ids, g.SphereIds.size());
   }
   else
   {
@@ -159,10 +152,19 @@ GeometrySizes WithRoom(const GeometrySizes& used, std::size_t limit, const Geome
   out.Nodes = withRoom(used.Nodes, texelsOf<Node>(), limit, lastAppend.Nodes, scene);
   out.Triangles = std::min(withRoom(used.Triangles, texelsOf<Triangle>(), limit, lastAppend.Triangles, scene),
     withRoom(used.Triangles, texelsOf<core::gpu::TriangleVertices>(), limit, lastAppend.Triangles, scene));
-  out.SphereTexels = withRoom(used.SphereTexels, 1, limit, lastAppend.SphereTexels, scene) / 4 * 4;
-  out.SphereTexels = std::max(out.SphereTexels, used.SphereTexels);
-  out.SphereIdWords = out.SphereTexels;
+  out.SphereTexels = std::max(withRoom(used.SphereTexels, 1, limit, lastAppend.SphereTexels, scene) / 4 * 4,
+    used.SphereTexels);
   out.Normals = withRoom(used.Normals, texelsOf<Normal>(), limit, lastAppend.Normals, scene);
+  return out;
+}
+
+GeometrySizes SizesPast(const GeometrySizes& from, const GeometrySizes& to)
+{
+  GeometrySizes out;
+  out.Nodes = to.Nodes - from.Nodes;
+  out.Triangles = to.Triangles - from.Triangles;
+  out.SphereTexels = to.SphereTexels - from.SphereTexels;
+  out.Normals = to.Normals - from.Normals;
   return out;
 }
 
@@ -203,8 +205,7 @@ bool ExtendLayout(const Scene& scene, const GeometryLayout& current, const Geome
     live += recordsOf(*g);
   }
   const bool fits = next.Nodes <= capacity.Nodes && next.Triangles <= capacity.Triangles &&
-    next.SphereTexels <= capacity.SphereTexels && next.SphereIdWords <= capacity.SphereIdWords &&
-    next.Normals <= capacity.Normals;
+    next.SphereTexels <= capacity.SphereTexels && next.Normals <= capacity.Normals;
   return fits && recordsOf(next) <= 2 * live;
 }
 
@@ -222,8 +223,7 @@ namespace
 /// Places `c` at the end of `layout`, on a whole texel.
 void placeColorsAtEnd(const Colors& c, ColorsLayout& layout)
 {
-  layout.Bases[&c] = static_cast<std::uint32_t>(layout.Words);
-  layout.Serials[&c] = c.Serial;
+  layout.Placements[&c] = { c.Serial, static_cast<std::uint32_t>(layout.Words) };
   layout.Words = paddedWords(layout.Words + c.Packed.size());
 }
 
@@ -244,7 +244,7 @@ ColorsLayout LayOutColors(const Scene& scene)
 
 void WriteColors(const Scene& scene, const ColorsLayout& layout, std::uint32_t* out)
 {
-  scene.ForEachColors([&](const Colors& c) { writeColorsPlaced(c, layout.Bases.at(&c), out, 0); });
+  scene.ForEachColors([&](const Colors& c) { writeColorsPlaced(c, layout.Placements.at(&c).Base, out, 0); });
 }
 
 bool ExtendColors(const Scene& scene, const ColorsLayout& current, std::size_t capacity, ColorsLayout& next,
@@ -255,11 +255,10 @@ bool ExtendColors(const Scene& scene, const ColorsLayout& current, std::size_t c
   appended.clear();
   std::size_t live = 0;
   scene.ForEachColors([&](const Colors& c) {
-    const auto kept = current.Serials.find(&c);
-    if (kept != current.Serials.end() && kept->second == c.Serial)
+    const auto kept = current.Placements.find(&c);
+    if (kept != current.Placements.end() && kept->second.Serial == c.Serial)
     {
-      next.Bases[&c] = current.Bases.at(&c);
-      next.Serials[&c] = c.Serial;
+      next.Placements[&c] = kept->second;
       live += paddedWords(c.Packed.size());
     }
     else
@@ -280,7 +279,7 @@ void WriteAppendedColors(
 {
   for (const Colors* c : appended)
   {
-    writeColorsPlaced(*c, layout.Bases.at(c), out, from);
+    writeColorsPlaced(*c, layout.Placements.at(c).Base, out, from);
   }
 }
 

@@ -29,16 +29,18 @@ struct GeometryPlacement
   std::uint32_t PrimitiveBase = 0;  ///< its first triangle, or sphere texel (a multiple of 4)
 };
 
-/// How much each geometry buffer holds (records; sphere buffers in texels
-/// and id words), from its start.
+/// How much each geometry buffer holds (records; the sphere buffer in
+/// texels), from its start.
 struct GeometrySizes
 {
   std::size_t Nodes = 0;
-  std::size_t Triangles = 0; ///< and triangle vertex records
-  std::size_t SphereTexels = 0;
-  std::size_t SphereIdWords = 0; ///< padded to whole texels
+  std::size_t Triangles = 0;    ///< and triangle vertex records
+  std::size_t SphereTexels = 0; ///< whole texels of ids too: one id word a sphere texel
   std::size_t Normals = 0;
 };
+
+/// What `to` holds past `from` (`to` holds at least as much everywhere).
+GeometrySizes SizesPast(const GeometrySizes& from, const GeometrySizes& to);
 
 /// Where every traced geometry goes in the upload layout, and each
 /// buffer's size. Node indices are global: interior nodes index nodes,
@@ -68,22 +70,28 @@ struct GeometryTargets
   GeometrySizes From; ///< the records the pointers above point at
 };
 
+/// Where a colors entry starts in the packed colors (a whole texel).
+struct ColorsPlacement
+{
+  std::uint64_t Serial = 0; ///< the Colors placed (Colors::Serial)
+  std::uint32_t Base = 0;   ///< its first word
+};
+
 /// Every colors entry, four RGBA8 (or texture header/coordinate) words per
-/// texel: each entry's first word and the words in all, padded to whole
+/// texel: where each entry starts and the words in all, padded to whole
 /// texels.
 struct ColorsLayout
 {
-  std::size_t Words = 0; ///< whole texels; every entry starts on one
-  std::map<const Colors*, std::uint32_t> Bases;
-  std::map<const Colors*, std::uint64_t> Serials; ///< the entries placed (Colors::Serial)
+  std::size_t Words = 0;
+  std::map<const Colors*, ColorsPlacement> Placements;
 };
 
-/// Where every geometry and colors entry of the uploaded buffers is: kept
-/// from upload to upload, which the instance records of every frame read.
+/// What the uploaded buffers hold, where: kept from upload to upload
+/// (appends extend it), read by the instance records of every frame.
 struct ScenePlacements
 {
-  std::map<const Geometry*, GeometryPlacement> GeometryPlaces;
-  std::map<const Colors*, std::uint32_t> ColorBases;
+  GeometryLayout Geometry;
+  ColorsLayout Colors;
   std::map<const TextureEntry*, std::uint32_t> TextureBases; ///< first words in uTextures
 };
 

@@ -314,11 +314,12 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
   for (std::size_t i = 0; i < instances.size(); ++i)
   {
     const Instance& inst = instances[i];
-    const auto place = places.GeometryPlaces.find(inst.Geom);
-    const auto colorBase = inst.Color ? places.ColorBases.find(inst.Color) : places.ColorBases.end();
+    const auto place = places.Geometry.Placements.find(inst.Geom);
+    const auto colorPlace =
+      inst.Color ? places.Colors.Placements.find(inst.Color) : places.Colors.Placements.end();
     const auto textureBase = places.TextureBases.find(inst.Texture);
     const auto coordinateBase = places.TextureBases.find(inst.TextureCoordinates);
-    if (place == places.GeometryPlaces.end() || (inst.Color && colorBase == places.ColorBases.end()) ||
+    if (place == places.Geometry.Placements.end() || (inst.Color && colorPlace == places.Colors.Placements.end()) ||
       (inst.Texture &&
         (textureBase == places.TextureBases.end() || coordinateBase == places.TextureBases.end())))
     {
@@ -368,7 +369,7 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
       rec.backSpecular[k] = inst.BackSpecular[k];
     }
     rec.specularPower = inst.SpecularPower;
-    rec.colorBase = inst.Color ? colorBase->second : 0u;
+    rec.colorBase = inst.Color ? colorPlace->second.Base : 0u;
     rec.normalBase = inst.UseCellNormals ? place->second.CellNormalBase : place->second.NormalBase;
     rec.firstClipPlane = static_cast<std::uint32_t>(out.ClipPlanes.size() / 4);
     rec.clipPlaneCount = static_cast<std::uint32_t>(inst.ClipPlanes.size());

@@ -84,6 +84,18 @@ void markUnused(Cache& cache)
   }
 }
 
+/// Whether `g` was built from `source` (its objects, at its time).
+bool builtFrom(const Geometry& g, const GeometrySource& source)
+{
+  return g.SourceTime == source.Time && g.SourceParts == source.Parts;
+}
+
+void setBuiltFrom(Geometry& g, const GeometrySource& source)
+{
+  g.SourceTime = source.Time;
+  g.SourceParts = source.Parts;
+}
+
 /// Drops the entries no prop used this frame; returns whether any went.
 template <class Cache>
 bool dropUnused(Cache& cache)
@@ -261,24 +273,23 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
   {
     // Keyed by what the triangles are made of: new scalars (colors) keep
     // the BVH and its records.
-    const TriangleSource source = TriangleSourceOf(poly);
+    const GeometrySource source = GeometrySourceOf(poly);
     auto& entry = this->TriangleCache[poly];
     const bool sameBuild = entry && entry->Quality == this->BuildQuality && entry->LeafSize == this->LeafSize;
     std::uint64_t fingerprint = 0;
-    if (sameBuild && (entry->SourceTime != source.Time || entry->SourceParts != source.Parts))
+    if (sameBuild && !builtFrom(*entry, source))
     {
       // Data that changed once is likely to change again (a pipeline
       // running again, a time series over one mesh): from its first
       // rebuild on, its contents are fingerprinted, and the same contents
       // keep the BVH.
-      fingerprint = TriangleFingerprint(poly);
+      fingerprint = GeometryFingerprint(poly);
       if (fingerprint != 0 && fingerprint == entry->SourceFingerprint)
       {
-        entry->SourceTime = source.Time;
-        entry->SourceParts = source.Parts;
+        setBuiltFrom(*entry, source);
       }
     }
-    if (!sameBuild || entry->SourceTime != source.Time || entry->SourceParts != source.Parts)
+    if (!sameBuild || !builtFrom(*entry, source))
     {
       const auto start = std::chrono::steady_clock::now();
       entry = BuildTriangles(poly, this->Options());
@@ -286,8 +297,7 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
       counters.AddBuild(*entry, SecondsSince(start));
       entry->Quality = this->BuildQuality;
       entry->LeafSize = this->LeafSize;
-      entry->SourceTime = source.Time;
-      entry->SourceParts = source.Parts;
+      setBuiltFrom(*entry, source);
       entry->Keep = poly;
       this->GeometryDirty = true;
     }
@@ -321,20 +331,19 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     // rebuilds anything.
     std::ostringstream key;
     key << "points:" << property->GetRepresentation();
-    // Keyed by the points and cells (TriangleSourceOf names them, and a
-    // few arrays more): new scalars keep the spheres' BVH.
-    const TriangleSource source = TriangleSourceOf(poly);
+    // Keyed as the triangles (a superset of what the spheres are made of):
+    // new scalars keep the spheres' BVH.
+    const GeometrySource source = GeometrySourceOf(poly);
     auto& entry = this->SphereCache[std::make_pair(static_cast<const void*>(poly), nullptr)];
-    if (!entry || entry->SourceTime != source.Time || entry->SourceParts != source.Parts ||
-      entry->SourceKey != key.str() || entry->Quality != this->BuildQuality)
+    if (!entry || !builtFrom(*entry, source) || entry->SourceKey != key.str() ||
+      entry->Quality != this->BuildQuality)
     {
       const auto start = std::chrono::steady_clock::now();
       entry = BuildScreenSpheres(
         poly, property->GetRepresentation() == VTK_POINTS, this->SphereOptions());
       counters.AddBuild(*entry, SecondsSince(start));
       entry->Quality = this->BuildQuality;
-      entry->SourceTime = source.Time;
-      entry->SourceParts = source.Parts;
+      setBuiltFrom(*entry, source);
       entry->SourceKey = key.str();
       entry->Keep = poly;
       this->GeometryDirty = true;

@@ -52,7 +52,7 @@ struct Geometry
   bool Spheres = false;
   vtkMTimeType SourceTime = 0; ///< cache key part: MTime of what it was built from
   std::array<const void*, 8> SourceParts{}; ///< cache key part: the objects it was built from (triangles)
-  /// Triangles rebuilt at least once: TriangleFingerprint of what they
+  /// Triangles rebuilt at least once: GeometryFingerprint of what they
   /// were built from (0: none taken), which a later rebuild compares.
   std::uint64_t SourceFingerprint = 0;
   std::string SourceKey;       ///< extra key (e.g. sphere radius settings)
