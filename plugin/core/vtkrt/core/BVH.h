@@ -31,6 +31,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <cstring>
 #include <functional>
 #include <vector>
@@ -45,12 +46,14 @@ constexpr std::uint32_t kMaxStackSize = 64;
 static_assert(kMaxStackSize >= kMaxDepth, "the traversal stack must hold one entry per level");
 
 /// CPU node in double. Same fields, same meaning as the GPU's two vec4.
+/// Trivial: an array of them is sized without writing it (BVHNode() is
+/// all zeros).
 struct BVHNode
 {
   Vec3<double> min;
-  std::uint32_t index = 0; ///< first child (interior) or first primIndex slot (leaf)
+  std::uint32_t index; ///< first child (interior) or first primIndex slot (leaf)
   Vec3<double> max;
-  std::uint32_t count = 0; ///< 0: interior; > 0: number of primitives in the leaf
+  std::uint32_t count; ///< 0: interior; > 0: number of primitives in the leaf
 
   bool isLeaf() const { return count > 0; }
   AABB<double> bounds() const { return AABB<double>(min, max); }
@@ -64,6 +67,8 @@ struct BVHNode
     return min == o.min && max == o.max && index == o.index && count == o.count;
   }
 };
+
+static_assert(std::is_trivially_default_constructible<BVHNode>::value, "BVHNode arrays are sized without a write");
 
 /// A tree's nodes: read at random by every traversal, so on huge pages when
 /// large (HugePageArray.h); written in full by the builders, so no zero fill.
@@ -121,7 +126,7 @@ struct BVH
   AABB<double> bounds() const { return nodes.empty() ? AABB<double>() : nodes[0].bounds(); }
   std::size_t memoryBytes() const
   {
-    return nodes.capacity() * sizeof(BVHNode) + primIndex.capacity() * sizeof(std::uint32_t);
+    return nodes.size() * sizeof(BVHNode) + primIndex.capacity() * sizeof(std::uint32_t);
   }
 };
 

@@ -14,6 +14,7 @@
 
 #if defined(__linux__)
 #include <sys/mman.h> // mmap, madvise
+#include <unistd.h>   // sysconf
 #endif
 
 namespace vtkrt::core
@@ -158,6 +159,30 @@ using HugePageArray = std::vector<T, NoFillAllocator<T>>;
 /// An array written and read in order: no zero fill, no huge page hint.
 template <class T>
 using NoFillArray = std::vector<T, NoFillAllocator<T, false>>;
+
+/// Gives back the memory pages of `array` past its size (whole pages of its
+/// own mapping; the capacity stays, read as zeros if used again): what an
+/// array sized for the most it could hold keeps once it holds less.
+template <class T>
+void giveBackPagesPastSize(HugePageArray<T>& array)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  if (!detail::usesHugePages(array.capacity() * sizeof(T)))
+  {
+    return; // malloc's memory, not ours to give back
+  }
+  const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+  const auto base = reinterpret_cast<std::uintptr_t>(array.data());
+  const std::uintptr_t used = (base + array.size() * sizeof(T) + page - 1) / page * page;
+  const std::uintptr_t end = base + detail::hugePageBytes(array.capacity() * sizeof(T));
+  if (end > used)
+  {
+    madvise(reinterpret_cast<void*>(used), end - used, MADV_DONTNEED);
+  }
+#else
+  (void)array;
+#endif
+}
 
 } // namespace vtkrt::core
 

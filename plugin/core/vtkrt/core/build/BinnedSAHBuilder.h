@@ -147,7 +147,7 @@ private:
       {
         for (std::uint32_t k = 0; k < bins.nb; ++k)
         {
-          bins.axis(axis)[k].box.extend(chunk.axis(axis)[k].box);
+          extendBox(bins.axis(axis)[k].box, chunk.axis(axis)[k].box);
           bins.axis(axis)[k].count += chunk.axis(axis)[k].count;
         }
       }
@@ -182,7 +182,7 @@ private:
         if (active[axis])
         {
           Bin& bin = bins.axis(axis)[binOf(c[axis], centroids.min[axis], scale[axis], nb)];
-          bin.box.extend(r.box);
+          extendBox(bin.box, r.box);
           bin.count++;
         }
       }
@@ -203,7 +203,7 @@ private:
     std::uint32_t n = 0;
     for (std::uint32_t b = nb - 1; b > 0; --b)
     {
-      acc.extend(axisBins[b].box);
+      extendBox(acc, axisBins[b].box);
       n += axisBins[b].count;
       rightArea[b] = acc.halfArea();
       rightCount[b] = n;
@@ -212,7 +212,7 @@ private:
     n = 0;
     for (std::uint32_t b = 1; b < nb; ++b)
     {
-      acc.extend(axisBins[b - 1].box);
+      extendBox(acc, axisBins[b - 1].box);
       n += axisBins[b - 1].count;
       if (n == 0 || rightCount[b] == 0)
       {

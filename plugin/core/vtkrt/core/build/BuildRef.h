@@ -4,7 +4,9 @@
 
 #include "vtkrt/core/AABB.h"
 #include "vtkrt/core/HugePageArray.h"
+#include "vtkrt/core/simd/Dispatch.h" // VTKRT_ALWAYS_INLINE
 
+#include <algorithm>
 #include <cstdint>
 
 namespace vtkrt::core::detail
@@ -22,6 +24,28 @@ struct BuildRef
 /// before it is read), huge pages when large (fresh 4 KiB pages cost more
 /// than the builder's arithmetic on them).
 using BuildRefs = HugePageArray<BuildRef>;
+
+/// a.extend(b) in the builders' passes over references, compiled into them
+/// whatever the compiler's inlining budget (not inlined, the call is about
+/// a quarter of a build); component by component: glm::min and glm::max's order of
+/// operands, so the same box, NaN and signed zeros included.
+VTKRT_ALWAYS_INLINE inline void extendBox(AABB<double>& a, const Vec3<double>& lo, const Vec3<double>& hi)
+{
+  a.min.x = std::min(a.min.x, lo.x);
+  a.min.y = std::min(a.min.y, lo.y);
+  a.min.z = std::min(a.min.z, lo.z);
+  a.max.x = std::max(a.max.x, hi.x);
+  a.max.y = std::max(a.max.y, hi.y);
+  a.max.z = std::max(a.max.z, hi.z);
+}
+VTKRT_ALWAYS_INLINE inline void extendBox(AABB<double>& a, const AABB<double>& b)
+{
+  extendBox(a, b.min, b.max);
+}
+VTKRT_ALWAYS_INLINE inline void extendBox(AABB<double>& a, const Vec3<double>& p)
+{
+  extendBox(a, p, p);
+}
 
 /// Total order on (centroid[axis], id): makes median splits and sorts
 /// independent of the input order's ties.

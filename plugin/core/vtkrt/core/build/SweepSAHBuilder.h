@@ -125,13 +125,13 @@ private:
     AABB<double> acc;
     for (std::uint32_t i = count - 1; i > 0; --i)
     {
-      acc.extend(Refs[order[i]].box);
+      extendBox(acc, Refs[order[i]].box);
       rightArea[i] = acc.halfArea();
     }
     acc = AABB<double>();
     for (std::uint32_t i = 1; i < count; ++i)
     {
-      acc.extend(Refs[order[i - 1]].box);
+      extendBox(acc, Refs[order[i - 1]].box);
       const double cost = acc.halfArea() * i + rightArea[i] * (count - i);
       if (cost < local.cost)
       {

@@ -7,8 +7,10 @@
 // the task size one level at a time, the ranges of a level at once, each
 // pass over a large range (bounds, bins) in parallel chunks too; every
 // range it leaves at or under the task size becomes a task. The tasks' subtrees are then built at once, each
-// into its own array, and appended after the top nodes in task order: one
-// copy of each node, into an array of exactly the tree's size.
+// into its own part of the tree's array (room for the most nodes it can
+// make), then moved down after the top nodes in task order: no array a
+// task, no second array to join them in (fresh memory pages are dear on
+// some machines), the pages past the tree given back.
 //
 // Determinism: the tree depends only on the input, never on the thread
 // count: the task size depends on the primitive count only, and the
@@ -75,21 +77,22 @@ public:
 
   BVHNodes build()
   {
-    BVHNodes nodes;
     if (Refs.empty())
     {
-      return nodes;
+      return BVHNodes();
     }
     self().prepare();
     const std::size_t n = Refs.size();
     TaskSize = std::max(kTaskPrimitives, n / kTopTasks);
     std::vector<Task> tasks;
     BVHNodes top(1);
+    BVHNodes nodes;
     TopPhase = true;
     buildTop(top, tasks);
     TopPhase = false;
+    nodes = placeTasks(top, tasks);
     runTasks(tasks);
-    nodes = joinTasks(top, tasks);
+    joinTasks(nodes, top.size(), tasks);
     self().finish();
     return nodes;
   }
@@ -127,8 +130,8 @@ protected:
       {
         self().prefetchAfter(i);
         const BuildRef& r = self().refAt(i);
-        chunkBox.extend(r.box);
-        chunkCentroids.extend(r.centroid());
+        extendBox(chunkBox, r.box);
+        extendBox(chunkCentroids, r.centroid());
       }
       std::lock_guard<std::mutex> lock(merge);
       box.extend(chunkBox);
@@ -138,13 +141,26 @@ protected:
   }
 
 private:
+  /// A task's nodes (root first, child indices into them), in its own
+  /// part of the tree's array: room for the most nodes its range can make.
+  struct TaskNodes
+  {
+    BVHNode* first = nullptr;
+    std::size_t used = 0;
+    BVHNode& operator[](std::size_t i) { return first[i]; }
+    const BVHNode& operator[](std::size_t i) const { return first[i]; }
+    std::size_t size() const { return used; }
+    /// A node setNode then writes in full.
+    void emplace_back() { ::new (static_cast<void*>(first + used++)) BVHNode; }
+  };
+
   /// A subtree built apart: its range, where its root goes in the top
-  /// nodes, and its own nodes (root first, child indices into them).
+  /// nodes, and its nodes.
   struct Task
   {
     std::size_t slot;
     std::uint32_t begin, end, depth;
-    BVHNodes nodes;
+    TaskNodes nodes;
   };
 
   std::size_t TaskSize = kTaskPrimitives;
@@ -201,7 +217,8 @@ private:
 
   /// nodes[slot] for [begin, end) split at mid with `box`: a leaf when mid
   /// is `end`, else an interior node whose two children are appended.
-  static void setNode(BVHNodes& nodes, std::size_t slot, std::uint32_t begin, std::uint32_t mid,
+  template <class Nodes>
+  static void setNode(Nodes& nodes, std::size_t slot, std::uint32_t begin, std::uint32_t mid,
     std::uint32_t end, const AABB<double>& box)
   {
     nodes[slot].setBounds(box);
@@ -212,7 +229,8 @@ private:
       return;
     }
     const std::size_t first = nodes.size();
-    nodes.resize(first + 2);
+    nodes.emplace_back();
+    nodes.emplace_back();
     nodes[slot].index = static_cast<std::uint32_t>(first);
     nodes[slot].count = 0;
   }
@@ -220,7 +238,8 @@ private:
   /// Splits [begin, end) into nodes[slot] and, when it is an interior node,
   /// appends its two children; returns the split (`end` for a leaf, whose
   /// node is then complete).
-  std::uint32_t splitNode(BVHNodes& nodes, std::size_t slot, std::uint32_t begin,
+  template <class Nodes>
+  std::uint32_t splitNode(Nodes& nodes, std::size_t slot, std::uint32_t begin,
     std::uint32_t end, std::uint32_t depth)
   {
     AABB<double> box;
@@ -231,7 +250,8 @@ private:
 
   /// Builds the subtree of [begin, end) into nodes[slot] and nodes appended
   /// to `nodes` (depth first), on this thread.
-  void buildNode(BVHNodes& nodes, std::size_t slot, std::uint32_t begin, std::uint32_t end,
+  template <class Nodes>
+  void buildNode(Nodes& nodes, std::size_t slot, std::uint32_t begin, std::uint32_t end,
     std::uint32_t depth)
   {
     const std::uint32_t mid = splitNode(nodes, slot, begin, end, depth);
@@ -271,7 +291,7 @@ private:
       {
         if (r.end - r.begin <= TaskSize)
         {
-          tasks.push_back(Task{ r.slot, r.begin, r.end, r.depth, {} });
+          tasks.push_back(Task{ r.slot, r.begin, r.end, r.depth, TaskNodes{} });
           continue;
         }
         large.push_back(r);
@@ -303,10 +323,7 @@ private:
 
   void buildTask(Task& task)
   {
-    // At most 2 count - 1 nodes: no reallocation; untouched capacity
-    // costs no memory pages.
-    task.nodes.reserve(2 * std::size_t(task.end - task.begin));
-    task.nodes.resize(1);
+    task.nodes.emplace_back();
     buildNode(task.nodes, 0, task.begin, task.end, task.depth);
   }
 
@@ -345,21 +362,40 @@ private:
     parallelChunks(workers, threads, work, Refs.size());
   }
 
-  /// The top nodes, then each task's nodes but its root (which replaces
-  /// its slot), child indices renumbered; the tasks' arrays are freed.
-  BVHNodes joinTasks(BVHNodes& top, std::vector<Task>& tasks) const
+  /// The tree's array: the top nodes, then a part for each task, in task
+  /// order (the layout does not depend on which thread builds what), with
+  /// room for the most nodes its range can make. One array for all: the
+  /// tasks write in place (no array a task, no second array to join them
+  /// in), and it is large enough for huge pages; its nodes are not
+  /// initialized, and pages past a part's nodes are never touched.
+  BVHNodes placeTasks(const BVHNodes& top, std::vector<Task>& tasks) const
   {
-    std::size_t total = top.size();
+    std::size_t capacity = top.size();
     for (const Task& t : tasks)
     {
-      total += t.nodes.size() - 1;
+      capacity += 2 * std::size_t(t.end - t.begin);
     }
-    BVHNodes nodes;
-    nodes.reserve(total);
-    nodes.insert(nodes.end(), top.begin(), top.end());
+    BVHNodes nodes(capacity);
+    std::copy(top.begin(), top.end(), nodes.begin());
+    std::size_t offset = top.size();
     for (Task& t : tasks)
     {
-      const std::size_t base = nodes.size();
+      t.nodes = TaskNodes{ nodes.data() + offset, 0 };
+      offset += 2 * std::size_t(t.end - t.begin);
+    }
+    return nodes;
+  }
+
+  /// Moves each task's nodes but its root (which replaces its slot) down
+  /// after the top nodes and the tasks before it, child indices renumbered;
+  /// the array then ends at the tree's last node (pages past it given back).
+  void joinTasks(BVHNodes& nodes, std::size_t topCount, std::vector<Task>& tasks) const
+  {
+    std::size_t next = topCount;
+    for (Task& t : tasks)
+    {
+      // The part's nodes move down (next <= their place), in order.
+      const std::size_t base = next;
       auto remap = [base](BVHNode node) {
         if (!node.isLeaf())
         {
@@ -370,14 +406,15 @@ private:
       nodes[t.slot] = remap(t.nodes[0]);
       for (std::size_t i = 1; i < t.nodes.size(); ++i)
       {
-        nodes.push_back(remap(t.nodes[i]));
+        nodes[next++] = remap(t.nodes[i]);
       }
-      BVHNodes().swap(t.nodes);
     }
+    nodes.resize(next);
+    giveBackPagesPastSize(nodes);
     if (Builder::kBottomUpBounds)
     {
       // The top's boxes from their children, which come after them.
-      for (std::size_t i = top.size(); i-- > 0;)
+      for (std::size_t i = topCount; i-- > 0;)
       {
         if (!nodes[i].isLeaf())
         {
@@ -385,10 +422,10 @@ private:
         }
       }
     }
-    return nodes;
   }
 
-  static void mergeChildBounds(BVHNodes& nodes, std::size_t slot)
+  template <class Nodes>
+  static void mergeChildBounds(Nodes& nodes, std::size_t slot)
   {
     const std::size_t first = nodes[slot].index;
     AABB<double> box = nodes[first].bounds();

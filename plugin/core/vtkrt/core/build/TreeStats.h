@@ -25,13 +25,16 @@ inline void computeTreeStats(BVH& bvh, const BuildOptions& options = BuildOption
   {
     return;
   }
-  std::vector<std::uint32_t> depth(bvh.nodes.size(), 0);
+  // A byte a node (depths stay under 256), written before it is read: no
+  // zero fill of a node-sized array.
+  NoFillArray<std::uint8_t> depth(bvh.nodes.size());
+  depth[0] = 0;
   const double rootArea = bvh.nodes[0].bounds().halfArea();
   for (std::size_t i = 0; i < bvh.nodes.size(); ++i)
   {
     const BVHNode& n = bvh.nodes[i];
     const double rel = rootArea > 0.0 ? n.bounds().halfArea() / rootArea : 1.0;
-    s.maxDepth = std::max(s.maxDepth, depth[i]);
+    s.maxDepth = std::max<std::uint32_t>(s.maxDepth, depth[i]);
     if (n.isLeaf())
     {
       s.leafCount++;
@@ -40,7 +43,7 @@ inline void computeTreeStats(BVH& bvh, const BuildOptions& options = BuildOption
     }
     else
     {
-      depth[n.index] = depth[n.index + 1] = depth[i] + 1;
+      depth[n.index] = depth[n.index + 1] = static_cast<std::uint8_t>(depth[i] + 1);
       s.sahCost += rel * options.traversalCost;
     }
   }
