@@ -1,9 +1,12 @@
 // BuildQuality::Medium: binned SAH (Wald 2007). Each range's centroids are
 // binned on all three axes; the split is the bin boundary of least SAH
-// cost, the references partitioned in place.
+// cost, the references partitioned in place. The bins' boxes are float
+// boxes in the range's frame (BinBox.h): the costs are weighed in float,
+// everything else (bin indices, partition, node boxes) is double.
 #ifndef vtkrt_core_build_BinnedSAHBuilder_h
 #define vtkrt_core_build_BinnedSAHBuilder_h
 
+#include "vtkrt/core/build/BinBox.h"
 #include "vtkrt/core/build/SAH.h"
 #include "vtkrt/core/build/TopDownBuilder.h"
 
@@ -35,7 +38,7 @@ private:
 
   struct Bin
   {
-    AABB<double> box;
+    BinBox box;
     std::uint32_t count;
   };
 
@@ -84,7 +87,8 @@ private:
     Bins bins;
     // Small ranges get fewer bins: the sweeps cost O(bins) per node.
     bins.nb = std::min(Options.numBins, std::max<std::uint32_t>(2, count));
-    fillBins(bins, begin, end, centroids);
+    const BinFrame frame(box);
+    fillBins(bins, begin, end, centroids, frame);
     Candidate best;
     for (int axis = 0; axis < 3; ++axis)
     {
@@ -97,7 +101,7 @@ private:
     {
       return count <= Options.maxLeafSize ? end : medianSplit(begin, end, centroids);
     }
-    if (leafIsCheaper(Options, count, best.cost, box))
+    if (leafIsCheaper(Options, count, frame.areaOut(best.cost), box))
     {
       return end;
     }
@@ -120,7 +124,8 @@ private:
   /// Empties bins.nb bins per axis, then bins [begin, end) on all three
   /// axes in one pass over the primitives (in parallel chunks for a large
   /// range of the top phase, each into bins of its own, merged after).
-  void fillBins(Bins& bins, std::uint32_t begin, std::uint32_t end, const AABB<double>& centroids) const
+  void fillBins(Bins& bins, std::uint32_t begin, std::uint32_t end, const AABB<double>& centroids,
+    const BinFrame& frame) const
   {
     for (int axis = 0; axis < 3; ++axis)
     {
@@ -133,7 +138,7 @@ private:
     forChunks(begin, end, [&](std::uint32_t b, std::uint32_t e) {
       if (b == begin && e == end)
       {
-        binRange(bins, b, e, centroids);
+        binRange(bins, b, e, centroids, frame);
         return;
       }
       Bins chunk;
@@ -141,13 +146,13 @@ private:
       std::copy(bins.scale, bins.scale + 3, chunk.scale);
       std::copy(bins.active, bins.active + 3, chunk.active);
       clearBins(chunk);
-      binRange(chunk, b, e, centroids);
+      binRange(chunk, b, e, centroids, frame);
       std::lock_guard<std::mutex> lock(merge);
       for (int axis = 0; axis < 3; ++axis)
       {
         for (std::uint32_t k = 0; k < bins.nb; ++k)
         {
-          extendBox(bins.axis(axis)[k].box, chunk.axis(axis)[k].box);
+          bins.axis(axis)[k].box.extend(chunk.axis(axis)[k].box);
           bins.axis(axis)[k].count += chunk.axis(axis)[k].count;
         }
       }
@@ -161,14 +166,15 @@ private:
       Bin* axisBins = bins.axis(axis);
       for (std::uint32_t b = 0; b < bins.nb; ++b)
       {
-        new (&axisBins[b]) Bin{ AABB<double>(), 0u };
+        new (&axisBins[b]) Bin{ BinBox::empty(), 0u };
       }
     }
   }
 
   /// Bins [begin, end) into `bins` (scale and active in locals: the pass
   /// writes bins, and so never reloads them).
-  void binRange(Bins& bins, std::uint32_t begin, std::uint32_t end, const AABB<double>& centroids) const
+  void binRange(Bins& bins, std::uint32_t begin, std::uint32_t end, const AABB<double>& centroids,
+    const BinFrame& frame) const
   {
     const std::uint32_t nb = bins.nb;
     const double scale[3] = { bins.scale[0], bins.scale[1], bins.scale[2] };
@@ -177,12 +183,13 @@ private:
     {
       const BuildRef& r = Refs[i];
       const Vec3<double> c = r.centroid();
+      const BinBox box = frame.toBin(r.box);
       for (int axis = 0; axis < 3; ++axis)
       {
         if (active[axis])
         {
           Bin& bin = bins.axis(axis)[binOf(c[axis], centroids.min[axis], scale[axis], nb)];
-          extendBox(bin.box, r.box);
+          bin.box.extend(box);
           bin.count++;
         }
       }
@@ -196,29 +203,29 @@ private:
   {
     const std::uint32_t nb = bins.nb;
     const Bin* axisBins = bins.axis(axis);
-    double rightArea[kMaxBins];
+    float rightArea[kMaxBins];
     std::uint32_t rightCount[kMaxBins];
     Candidate local = best;
-    AABB<double> acc;
+    BinBox acc = BinBox::empty();
     std::uint32_t n = 0;
     for (std::uint32_t b = nb - 1; b > 0; --b)
     {
-      extendBox(acc, axisBins[b].box);
+      acc.extend(axisBins[b].box);
       n += axisBins[b].count;
       rightArea[b] = acc.halfArea();
       rightCount[b] = n;
     }
-    acc = AABB<double>();
+    acc = BinBox::empty();
     n = 0;
     for (std::uint32_t b = 1; b < nb; ++b)
     {
-      extendBox(acc, axisBins[b - 1].box);
+      acc.extend(axisBins[b - 1].box);
       n += axisBins[b - 1].count;
       if (n == 0 || rightCount[b] == 0)
       {
         continue;
       }
-      const double cost = acc.halfArea() * n + rightArea[b] * rightCount[b];
+      const double cost = double(acc.halfArea()) * n + double(rightArea[b]) * rightCount[b];
       if (cost < local.cost)
       {
         local.cost = cost;
