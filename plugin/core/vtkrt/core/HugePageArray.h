@@ -160,17 +160,19 @@ using HugePageArray = std::vector<T, NoFillAllocator<T>>;
 template <class T>
 using NoFillArray = std::vector<T, NoFillAllocator<T, false>>;
 
-/// Gives back the memory pages of `array` past its size (whole pages of its
-/// own mapping; the capacity stays, read as zeros if used again): what an
-/// array sized for the most it could hold keeps once it holds less.
+/// Gives back the memory of `array` past its size, for an array sized for
+/// the most it could hold that holds less: the pages of its own mapping
+/// past the size (the capacity stays, read as zeros if used again), or, a
+/// small array on malloc's heap, a copy of exactly its size.
 template <class T>
-void giveBackPagesPastSize(HugePageArray<T>& array)
+void giveBackPastSize(HugePageArray<T>& array)
 {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
   if (!detail::usesHugePages(array.capacity() * sizeof(T)))
   {
-    return; // malloc's memory, not ours to give back
+    HugePageArray<T>(array.begin(), array.end()).swap(array);
+    return;
   }
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
   const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
   const auto base = reinterpret_cast<std::uintptr_t>(array.data());
   const std::uintptr_t used = (base + array.size() * sizeof(T) + page - 1) / page * page;
@@ -179,8 +181,6 @@ void giveBackPagesPastSize(HugePageArray<T>& array)
   {
     madvise(reinterpret_cast<void*>(used), end - used, MADV_DONTNEED);
   }
-#else
-  (void)array;
 #endif
 }
 

@@ -15,7 +15,7 @@
 namespace vtkrt::core::detail
 {
 
-/// A float box (lanes 0-2; lane 3 carries a 0 and is never read).
+/// A float box (lanes 0-2; lane 3 is never read).
 struct alignas(16) BinBox
 {
   float lo[4];
@@ -61,6 +61,9 @@ struct BinFrame
   {
     const Vec3<double> d = box.diagonal();
     const double extent = std::max(d.x, std::max(d.y, d.z));
+    // A box wider than the largest double (extent inf) gets scale 0: every
+    // bin box is then a point, every split costs nothing, and the first one
+    // is taken; the tree stays valid.
     scale = extent > 0.0 ? 1.0 / extent : 1.0;
   }
 
@@ -89,8 +92,6 @@ struct BinFrame
     return b;
   }
 
-  /// An area of this frame in the box's own units.
-  double areaOut(double area) const { return area / (scale * scale); }
 };
 
 } // namespace vtkrt::core::detail

@@ -101,7 +101,8 @@ private:
     {
       return count <= Options.maxLeafSize ? end : medianSplit(begin, end, centroids);
     }
-    if (leafIsCheaper(Options, count, frame.areaOut(best.cost), box))
+    // Decided in the frame: the box's area there is at most 3 at any scale.
+    if (leafIsCheaper(Options, count, best.cost, double(frame.toBin(box).halfArea())))
     {
       return end;
     }

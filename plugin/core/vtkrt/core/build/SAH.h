@@ -10,16 +10,16 @@
 namespace vtkrt::core::detail
 {
 
-/// Whether a leaf over `count` primitives in `box` costs no more than the
-/// best split found (bestCost: the children's half areas times their
-/// counts). Only a range that fits in a leaf may stay one.
-inline bool leafIsCheaper(const BuildOptions& options, std::uint32_t count, double bestCost, const AABB<double>& box)
+/// Whether a leaf over `count` primitives in a box of half area
+/// `parentArea` costs no more than the best split found (bestCost: the
+/// children's half areas times their counts, in the same units). Only a
+/// range that fits in a leaf may stay one.
+inline bool leafIsCheaper(const BuildOptions& options, std::uint32_t count, double bestCost, double parentArea)
 {
   if (count > options.maxLeafSize)
   {
     return false;
   }
-  const double parentArea = box.halfArea();
   const double splitCost = options.traversalCost +
     options.intersectionCost * (parentArea > 0.0 ? bestCost / parentArea : double(count));
   return splitCost >= options.intersectionCost * count;

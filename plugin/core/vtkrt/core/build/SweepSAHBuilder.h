@@ -107,7 +107,7 @@ private:
     {
       return count <= Options.maxLeafSize ? end : medianSplit(begin, end, centroids);
     }
-    if (leafIsCheaper(Options, count, best.cost, box))
+    if (leafIsCheaper(Options, count, best.cost, box.halfArea()))
     {
       return end;
     }

@@ -367,7 +367,10 @@ private:
   /// room for the most nodes its range can make. One array for all: the
   /// tasks write in place (no array a task, no second array to join them
   /// in), and it is large enough for huge pages; its nodes are not
-  /// initialized, and pages past a part's nodes are never touched.
+  /// initialized. With 4 KiB pages a part's pages past its nodes are never
+  /// touched; with huge pages a part's first write commits a whole huge
+  /// page, so most of the array is committed until joinTasks gives back
+  /// what lies past the tree.
   BVHNodes placeTasks(const BVHNodes& top, std::vector<Task>& tasks) const
   {
     std::size_t capacity = top.size();
@@ -388,7 +391,7 @@ private:
 
   /// Moves each task's nodes but its root (which replaces its slot) down
   /// after the top nodes and the tasks before it, child indices renumbered;
-  /// the array then ends at the tree's last node (pages past it given back).
+  /// the array then ends at the tree's last node (giveBackPastSize).
   void joinTasks(BVHNodes& nodes, std::size_t topCount, std::vector<Task>& tasks) const
   {
     std::size_t next = topCount;
@@ -410,7 +413,7 @@ private:
       }
     }
     nodes.resize(next);
-    giveBackPagesPastSize(nodes);
+    giveBackPastSize(nodes);
     if (Builder::kBottomUpBounds)
     {
       // The top's boxes from their children, which come after them.
