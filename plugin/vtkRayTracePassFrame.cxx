@@ -136,7 +136,7 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
 
 bool vtkRayTracePass::Internals::AppendGeometry(std::size_t limit)
 {
-  auto start = std::chrono::steady_clock::now();
+  vtkrt::pass::PhaseClock clock;
   vtkrt::pass::GeometryLayout next;
   std::vector<const vtkrt::pass::Geometry*> appended;
   std::string error;
@@ -149,16 +149,13 @@ bool vtkRayTracePass::Internals::AppendGeometry(std::size_t limit)
   {
     return false;
   }
-  this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
-  start = std::chrono::steady_clock::now();
+  this->Counters.PackingSeconds += clock.Lap();
   const vtkrt::pass::GeometryTargets targets = this->Buffers.MapAppended(this->Places.Geometry, next);
-  const double mapSeconds = vtkrt::pass::SecondsSince(start);
-  start = std::chrono::steady_clock::now();
+  this->Counters.UploadSeconds += clock.Lap();
   vtkrt::pass::WriteAppended(appended, next, targets);
-  this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
-  start = std::chrono::steady_clock::now();
+  this->Counters.PackingSeconds += clock.Lap();
   this->Counters.GeometryBytesUploaded += this->Buffers.UnmapAppended();
-  this->Counters.UploadSeconds += mapSeconds + vtkrt::pass::SecondsSince(start);
+  this->Counters.UploadSeconds += clock.Lap();
   this->Places.Geometry = std::move(next);
   return true;
 }
@@ -168,23 +165,20 @@ void vtkRayTracePass::Internals::UploadGeometry(
 {
   // Packed straight into the mapped GPU buffers: no copy of the scene on
   // the way; with room to append what changes later.
-  auto start = std::chrono::steady_clock::now();
+  vtkrt::pass::PhaseClock clock;
   vtkrt::pass::GeometryLayout layout = vtkrt::pass::LayOutGeometry(this->Scene);
   std::string error;
   this->GeometryValid = vtkrt::pass::SceneBuffers::Fits(layout, limit, error);
   if (this->GeometryValid)
   {
-    this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
-    start = std::chrono::steady_clock::now();
+    this->Counters.PackingSeconds += clock.Lap();
     this->GeometryCapacity = vtkrt::pass::WithRoom(layout, limit, this->GeometryLastAppend);
     const vtkrt::pass::GeometryTargets targets = this->Buffers.MapGeometry(layout, this->GeometryCapacity);
-    const double mapSeconds = vtkrt::pass::SecondsSince(start);
-    start = std::chrono::steady_clock::now();
+    this->Counters.UploadSeconds += clock.Lap();
     vtkrt::pass::WriteGeometry(this->Scene, layout, targets);
-    this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
-    start = std::chrono::steady_clock::now();
+    this->Counters.PackingSeconds += clock.Lap();
     this->Counters.GeometryBytesUploaded += this->Buffers.UnmapGeometry(win);
-    this->Counters.UploadSeconds += mapSeconds + vtkrt::pass::SecondsSince(start);
+    this->Counters.UploadSeconds += clock.Lap();
   }
   else
   {
@@ -195,7 +189,7 @@ void vtkRayTracePass::Internals::UploadGeometry(
 
 bool vtkRayTracePass::Internals::AppendColors(std::size_t limit)
 {
-  auto start = std::chrono::steady_clock::now();
+  vtkrt::pass::PhaseClock clock;
   vtkrt::pass::ColorsLayout next;
   std::vector<const vtkrt::pass::Colors*> appended;
   std::string error;
@@ -212,10 +206,9 @@ bool vtkRayTracePass::Internals::AppendColors(std::size_t limit)
   {
     vtkrt::pass::WriteAppendedColors(appended, next, words, from);
   }
-  this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
-  start = std::chrono::steady_clock::now();
+  this->Counters.PackingSeconds += clock.Lap();
   this->Counters.GeometryBytesUploaded += this->Buffers.Colors.UnmapRange();
-  this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(start);
+  this->Counters.UploadSeconds += clock.Lap();
   this->Places.Colors = std::move(next);
   return true;
 }
@@ -223,7 +216,7 @@ bool vtkRayTracePass::Internals::AppendColors(std::size_t limit)
 void vtkRayTracePass::Internals::UploadColors(
   const vtkRayTracePass& pass, vtkOpenGLRenderWindow* win, std::size_t limit)
 {
-  auto start = std::chrono::steady_clock::now();
+  vtkrt::pass::PhaseClock clock;
   vtkrt::pass::ColorsLayout layout = vtkrt::pass::LayOutColors(this->Scene);
   std::string error;
   this->ColorsValid = vtkrt::pass::SceneBuffers::Fits(layout, limit, error);
@@ -232,10 +225,9 @@ void vtkRayTracePass::Internals::UploadColors(
     this->ColorsCapacity = vtkrt::pass::ColorWordsWithRoom(layout.Words, limit, this->ColorsLastAppend);
     auto* words = static_cast<std::uint32_t*>(this->Buffers.Colors.Map(layout.Words / 4, this->ColorsCapacity / 4));
     vtkrt::pass::WriteColors(this->Scene, layout, words);
-    this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
-    start = std::chrono::steady_clock::now();
+    this->Counters.PackingSeconds += clock.Lap();
     this->Counters.GeometryBytesUploaded += this->Buffers.Colors.Unmap(win);
-    this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(start);
+    this->Counters.UploadSeconds += clock.Lap();
   }
   else
   {
@@ -252,15 +244,14 @@ void vtkRayTracePass::Internals::UploadTextures(
   {
     return;
   }
-  auto start = std::chrono::steady_clock::now();
+  vtkrt::pass::PhaseClock clock;
   vtkrt::pass::PackedTextures packed = textures.Pack();
   textures.MarkPacked();
-  this->Counters.PackingSeconds += vtkrt::pass::SecondsSince(start);
-  start = std::chrono::steady_clock::now();
+  this->Counters.PackingSeconds += clock.Lap();
   std::string error;
   this->Counters.GeometryBytesUploaded +=
     this->Buffers.UploadTextures(win, packed, limit, this->TexturesValid, error);
-  this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(start);
+  this->Counters.UploadSeconds += clock.Lap();
   this->Places.TextureBases = std::move(packed.Bases);
   this->TexturesOnGpu = true;
   if (!this->TexturesValid)

@@ -33,6 +33,23 @@ inline double SecondsSince(std::chrono::steady_clock::time_point start)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// Times consecutive phases: Lap() is the seconds since the last lap (or
+/// since construction), and starts the next.
+class PhaseClock
+{
+public:
+  double Lap()
+  {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - this->Start).count();
+    this->Start = now;
+    return seconds;
+  }
+
+private:
+  std::chrono::steady_clock::time_point Start = std::chrono::steady_clock::now();
+};
+
 /// A number unique to each cache entry made in the process: a rebuilt
 /// entry may reuse an old one's address, never its serial (the uploaded
 /// buffers keep their places by it).
