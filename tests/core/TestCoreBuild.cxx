@@ -335,6 +335,65 @@ void testRefit()
   }
 }
 
+/// The binned SAH decides its splits on float references in the frame of
+/// the primitives' union: a mesh scaled by a power of two (down to 1e-90,
+/// up to 1e90) builds the same tree as at unit scale, one 1e8 away from
+/// the origin a tree as good, and one whose boxes span the whole double
+/// range a valid tree; every node box is the exact double one.
+void testFloatReferenceFrames()
+{
+  Rng rng(4);
+  MeshData unit = makeIcosphere(5, 0.5, Vec3<double>(0.5)); // 20480 triangles
+  for (auto& v : unit.vertices)
+  {
+    v += 0.002 * rng.inBox(Vec3<double>(-1), Vec3<double>(1));
+  }
+  BuildOptions opt;
+  opt.numThreads = 2;
+  const BVH ref = buildTriangleBVH(unit.view(), opt);
+  checkStructure("unit", ref, triangleBounds(unit.view()), opt.maxLeafSize);
+  auto transformed = [&unit](double scale, Vec3<double> offset) {
+    MeshData m = unit;
+    for (auto& v : m.vertices)
+    {
+      v = v * scale + offset;
+    }
+    return m;
+  };
+  for (const int exponent : { -300, -60, 60, 300 })
+  {
+    const MeshData m = transformed(std::ldexp(1.0, exponent), Vec3<double>(0.0));
+    const BVH b = buildTriangleBVH(m.view(), opt);
+    checkStructure("scaled", b, triangleBounds(m.view()), opt.maxLeafSize);
+    VTKRT_CHECK_MSG(b.primIndex == ref.primIndex && b.nodes.size() == ref.nodes.size(),
+      "scale 2^%d builds another tree", exponent);
+  }
+  {
+    const MeshData m = transformed(1.0, Vec3<double>(1e8, -1e8, 1e8));
+    const BVH b = buildTriangleBVH(m.view(), opt);
+    checkStructure("offset 1e8", b, triangleBounds(m.view()), opt.maxLeafSize);
+    VTKRT_CHECK_MSG(b.stats.sahCost <= ref.stats.sahCost * 1.01, "offset 1e8: SAH %g against %g at the origin",
+      b.stats.sahCost, ref.stats.sahCost);
+  }
+  {
+    // The unit mesh's boxes, twice, at -1e308 and +1e308 (the union's
+    // extent overflows double): valid, and the copies split at the root.
+    const std::vector<AABB<double>> unitBoxes = triangleBounds(unit.view());
+    std::vector<AABB<double>> boxes;
+    for (const double offset : { -1e308, 1e308 })
+    {
+      for (const AABB<double>& u : unitBoxes)
+      {
+        boxes.emplace_back(u.min * 1e300 + Vec3<double>(offset), u.max * 1e300 + Vec3<double>(offset));
+      }
+    }
+    const BVH b = buildBVH(boxes, opt);
+    checkStructure("whole double range", b, boxes, opt.maxLeafSize);
+    const BVHNode& left = b.nodes[b.nodes[0].index];
+    VTKRT_CHECK(b.stats.builtPrimitives == boxes.size() && (left.bounds().max.x < 0.0 || left.bounds().min.x > 0.0));
+  }
+}
+
 } // namespace
 
 int main()
@@ -343,5 +402,6 @@ int main()
   testFastCrowdedCluster();
   testDepthCap();
   testRefit();
+  testFloatReferenceFrames();
   return testResult("TestCoreBuild");
 }

@@ -28,31 +28,62 @@ namespace vtkrt::core
 
 namespace detail
 {
-/// The build from filled references (valid boxes only, ascending ids).
+inline void setBuildStats(BVH& bvh, std::size_t count, std::size_t built, const BuildOptions& options,
+  std::chrono::steady_clock::time_point start)
+{
+  bvh.stats.inputPrimitives = count;
+  bvh.stats.builtPrimitives = built;
+  bvh.stats.skippedPrimitives = count - built;
+  computeTreeStats(bvh, options);
+  bvh.stats.buildSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// The build from filled double references (valid boxes only, ascending ids).
 inline BVH buildFromRefs(BuildRefs& refs, std::size_t count, const BuildOptions& options,
   std::chrono::steady_clock::time_point start)
 {
   BVH bvh;
-  bvh.stats.inputPrimitives = count;
-  bvh.stats.builtPrimitives = refs.size();
-  bvh.stats.skippedPrimitives = count - refs.size();
-  buildWithDefaultBuilder(refs, options, bvh);
-  computeTreeStats(bvh, options);
-  bvh.stats.buildSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::size_t built = refs.size();
+  buildWithDoubleRefs(refs, options, bvh);
+  setBuildStats(bvh, count, built, options, start);
+  return bvh;
+}
+
+/// The binned SAH build; boundsOf is called from several threads.
+template <class BoundsFn>
+BVH buildOnFloatRefs(std::size_t count, BoundsFn& boundsOf, const BuildOptions& options,
+  std::chrono::steady_clock::time_point start)
+{
+  BVH bvh;
+  FloatRefs refs = fillFloatRefs(count, boundsOf, options);
+  const std::size_t built = refs.size();
+  auto leafBounds = [&boundsOf](std::uint32_t id) { return boundsOf(std::size_t(id)); };
+  buildWithFloatRefs(refs, leafBounds, options, bvh);
+  setBuildStats(bvh, count, built, options, start);
   return bvh;
 }
 } // namespace detail
 
 /// Builds a BVH over primitives given by a callable: boundsOf(i) for i in
 /// [0, count) returns primitive i's box. Primitives with empty, NaN or
-/// infinite bounds are skipped and counted in stats.skippedPrimitives. (No
-/// intermediate array of boxes: the builder's references are filled
-/// directly.)
+/// infinite bounds are skipped and counted in stats.skippedPrimitives.
+/// boundsOf is called on this thread only (the binned SAH keeps a copy of
+/// the boxes; the others fill their references directly).
 template <class BoundsFn>
 BVH buildBVH(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options = BuildOptions())
 {
   const auto start = std::chrono::steady_clock::now();
+  if (detail::buildsOnFloatRefs(options))
+  {
+    NoFillArray<AABB<double>> boxes(count);
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      boxes[i] = boundsOf(i);
+    }
+    auto boxOf = [&boxes](std::size_t i) { return boxes[i]; };
+    return detail::buildOnFloatRefs(count, boxOf, options, start);
+  }
   detail::BuildRefs refs;
   refs.reserve(count);
   for (std::size_t i = 0; i < count; ++i)
@@ -69,11 +100,17 @@ BVH buildBVH(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options
 
 /// The same tree as buildBVH(count, boundsOf, options), with boundsOf called
 /// from several threads at once (options.numThreads) on disjoint indices: it
-/// must be safe to call concurrently (no shared state written).
+/// must be safe to call concurrently (no shared state written). The binned
+/// SAH calls it up to three times a primitive instead of keeping a copy of
+/// the boxes.
 template <class BoundsFn>
 BVH buildBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options = BuildOptions())
 {
   const auto start = std::chrono::steady_clock::now();
+  if (detail::buildsOnFloatRefs(options))
+  {
+    return detail::buildOnFloatRefs(count, boundsOf, options, start);
+  }
   detail::BuildRefs refs(count);
   std::atomic<bool> allValid{ true };
   detail::parallelChunks(count, options, [&](std::size_t b, std::size_t e) {
@@ -103,7 +140,7 @@ BVH buildBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const Build
 /// in `bounds`).
 inline BVH buildBVH(const std::vector<AABB<double>>& bounds, const BuildOptions& options = BuildOptions())
 {
-  return buildBVH(bounds.size(), [&bounds](std::size_t i) { return bounds[i]; }, options);
+  return buildBVHConcurrentBounds(bounds.size(), [&bounds](std::size_t i) { return bounds[i]; }, options);
 }
 
 } // namespace vtkrt::core

@@ -1,12 +1,14 @@
 // BuildQuality::Medium: binned SAH (Wald 2007). Each range's centroids are
 // binned on all three axes; the split is the bin boundary of least SAH
-// cost, the references partitioned in place. The bins' boxes are float
-// boxes in the range's frame (BinBox.h): the costs are weighed in float,
-// everything else (bin indices, partition, node boxes) is double.
+// cost, the references partitioned in place. The splits are decided on
+// float references (FloatRef.h: half the bytes of double ones, SSE
+// passes); every node box is exact, the union of its primitives' double
+// boxes (leafBounds(id)), merged up from the leaves.
 #ifndef vtkrt_core_build_BinnedSAHBuilder_h
 #define vtkrt_core_build_BinnedSAHBuilder_h
 
 #include "vtkrt/core/build/BinBox.h"
+#include "vtkrt/core/build/FloatRef.h"
 #include "vtkrt/core/build/SAH.h"
 #include "vtkrt/core/build/TopDownBuilder.h"
 
@@ -15,31 +17,68 @@
 #include <limits>
 #include <mutex>
 #include <new>
-#include <vector>
 
 namespace vtkrt::core::detail
 {
 
-class BinnedSAHBuilder : public TopDownBuilder<BinnedSAHBuilder>
+/// A range's bounds in the build's frame: its box, and the box of its
+/// references' lo + hi (twice their centroids).
+struct FloatRangeBounds
 {
+  BinBox box = BinBox::empty();
+  BinBox centroids = BinBox::empty();
+};
+
+/// Orders references by lo + hi on one axis, then id (median splits).
+struct FloatAxisLess
+{
+  int axis;
+  bool operator()(const FloatRef& a, const FloatRef& b) const
+  {
+    const float ca = a.centroid2(axis), cb = b.centroid2(axis);
+    return ca < cb || (ca == cb && a.id < b.id);
+  }
+};
+
+template <class LeafBoundsFn>
+class BinnedSAHBuilder : public TopDownBuilder<BinnedSAHBuilder<LeafBoundsFn>, FloatRef>
+{
+  using Base = TopDownBuilder<BinnedSAHBuilder<LeafBoundsFn>, FloatRef>;
+
 public:
   static constexpr std::uint32_t kMaxBins = 64;
 
-  BinnedSAHBuilder(BuildRefs& refs, const BuildOptions& options)
-    : TopDownBuilder(refs, options)
+  /// leafBounds(id): primitive id's exact box; called from several threads.
+  BinnedSAHBuilder(FloatRefs& refs, const BuildOptions& options, const LeafBoundsFn& leafBounds)
+    : Base(refs, options)
+    , LeafBounds(leafBounds)
   {
-    Options.numBins = std::max<std::uint32_t>(2, std::min<std::uint32_t>(Options.numBins, kMaxBins));
+    this->Options.numBins = std::max<std::uint32_t>(2, std::min<std::uint32_t>(this->Options.numBins, kMaxBins));
   }
 
 private:
-  friend class TopDownBuilder<BinnedSAHBuilder>;
+  friend Base;
+  using Base::Options;
+  using Base::Refs;
 
-  static constexpr bool kBottomUpBounds = false;
+  static constexpr bool kBottomUpBounds = true;
+  static constexpr bool kSplitNeedsBounds = true;
+
+  const LeafBoundsFn& LeafBounds;
 
   struct Bin
   {
     BinBox box;
     std::uint32_t count;
+  };
+
+  /// How a range's references map to bins: bin = (lo + hi - min) * scale,
+  /// clamped to [0, nb - 1], on the three axes at once.
+  struct alignas(16) BinMap
+  {
+    float min[4];
+    float scale[4];
+    float last; ///< nb - 1
   };
 
   /// One node's bins on the three axes. Fixed-size scratch on the stack,
@@ -49,7 +88,7 @@ private:
   {
     alignas(Bin) unsigned char storage[3 * kMaxBins * sizeof(Bin)];
     std::uint32_t nb;
-    double scale[3];
+    BinMap map;
     bool active[3]; ///< the centroids spread on this axis
     Bin* axis(int a) { return reinterpret_cast<Bin*>(storage) + a * kMaxBins; }
     const Bin* axis(int a) const { return reinterpret_cast<const Bin*>(storage) + a * kMaxBins; }
@@ -63,32 +102,139 @@ private:
     std::uint32_t bin = 0;
   };
 
-  const BuildRef& refAt(std::uint32_t pos) const { return Refs[pos]; }
+  const FloatRef& refAt(std::uint32_t pos) const { return Refs[pos]; }
   void prepare() {}
   void finish() {}
 
-  std::uint32_t medianSplit(std::uint32_t begin, std::uint32_t end, const AABB<double>& centroids)
+  static BinBox boxOf(const FloatRef& r)
+  {
+    BinBox b;
+    std::copy(r.lo, r.lo + 3, b.lo);
+    std::copy(r.hi, r.hi + 3, b.hi);
+    b.lo[3] = b.hi[3] = 0.0f;
+    return b;
+  }
+
+  /// The exact box of a leaf's primitives.
+  AABB<double> leafBox(std::uint32_t begin, std::uint32_t end) const
+  {
+    AABB<double> box;
+    for (std::uint32_t i = begin; i < end; ++i)
+    {
+      extendBox(box, LeafBounds(Refs[i].id));
+    }
+    return box;
+  }
+
+  /// [begin, end)'s box and centroid box in the frame (in parallel chunks
+  /// for a large range of the top phase).
+  FloatRangeBounds splitBounds(std::uint32_t begin, std::uint32_t end) const
+  {
+    FloatRangeBounds bounds;
+    std::mutex merge;
+    this->forChunks(begin, end, [&](std::uint32_t b, std::uint32_t e) {
+      FloatRangeBounds chunk;
+      for (std::uint32_t i = b; i < e; ++i)
+      {
+        extendRange(chunk, Refs[i]);
+      }
+      std::lock_guard<std::mutex> lock(merge);
+      bounds.box.extend(chunk.box);
+      bounds.centroids.extend(chunk.centroids);
+    });
+    return bounds;
+  }
+
+  VTKRT_ALWAYS_INLINE static void extendRange(FloatRangeBounds& bounds, const FloatRef& r)
+  {
+#if VTKRT_CORE_SSE
+    const __m128 lo = _mm_load_ps(r.lo);
+    const __m128 hi = _mm_load_ps(r.hi);
+    _mm_store_ps(bounds.box.lo, _mm_min_ps(_mm_load_ps(bounds.box.lo), lo));
+    _mm_store_ps(bounds.box.hi, _mm_max_ps(_mm_load_ps(bounds.box.hi), hi));
+    const __m128 c = centroid2(lo, hi);
+    _mm_store_ps(bounds.centroids.lo, _mm_min_ps(_mm_load_ps(bounds.centroids.lo), c));
+    _mm_store_ps(bounds.centroids.hi, _mm_max_ps(_mm_load_ps(bounds.centroids.hi), c));
+#else
+    bounds.box.extend(boxOf(r));
+    BinBox c;
+    for (int k = 0; k < 3; ++k)
+    {
+      c.lo[k] = c.hi[k] = r.centroid2(k);
+    }
+    c.lo[3] = c.hi[3] = 0.0f;
+    bounds.centroids.extend(c);
+#endif
+  }
+
+#if VTKRT_CORE_SSE
+  /// lo + hi with lane 3 zero (lo's lane 3 is the id's bits, often a
+  /// denormal float, which an addition would make slow).
+  VTKRT_ALWAYS_INLINE static __m128 centroid2(__m128 lo, __m128 hi)
+  {
+    const __m128 xyz = _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1));
+    return _mm_add_ps(_mm_and_ps(lo, xyz), hi);
+  }
+#endif
+
+  /// r's bins on the three axes: the binning and the partition both use
+  /// this, so they agree on every reference.
+  VTKRT_ALWAYS_INLINE static void binsOf(const FloatRef& r, const BinMap& map, std::int32_t out[4])
+  {
+#if VTKRT_CORE_SSE
+    const __m128 c = centroid2(_mm_load_ps(r.lo), _mm_load_ps(r.hi));
+    __m128 f = _mm_mul_ps(_mm_sub_ps(c, _mm_load_ps(map.min)), _mm_load_ps(map.scale));
+    f = _mm_min_ps(_mm_max_ps(f, _mm_setzero_ps()), _mm_set1_ps(map.last));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_cvttps_epi32(f));
+#else
+    for (int k = 0; k < 3; ++k)
+    {
+      // As maxps then minps: NaN (0 times an infinite scale) goes to 0.
+      float f = (r.centroid2(k) - map.min[k]) * map.scale[k];
+      f = f > 0.0f ? f : 0.0f;
+      f = f < map.last ? f : map.last;
+      out[k] = static_cast<std::int32_t>(f);
+    }
+    out[3] = 0;
+#endif
+  }
+
+  std::uint32_t medianSplit(std::uint32_t begin, std::uint32_t end, const FloatRangeBounds& bounds)
   {
     const std::uint32_t mid = begin + (end - begin) / 2;
-    const Vec3<double> ext = centroids.diagonal();
-    if (ext.x > 0.0 || ext.y > 0.0 || ext.z > 0.0)
+    const int axis = largestAxis(bounds.centroids);
+    if (axis >= 0)
     {
-      const int axis = centroids.largestAxis();
-      std::nth_element(Refs.begin() + begin, Refs.begin() + mid, Refs.begin() + end, AxisLess{ axis });
+      std::nth_element(Refs.begin() + begin, Refs.begin() + mid, Refs.begin() + end, FloatAxisLess{ axis });
     }
     return mid;
   }
 
+  /// The axis of the largest extent, -1 when the box is a point.
+  static int largestAxis(const BinBox& b)
+  {
+    int axis = -1;
+    float extent = 0.0f;
+    for (int k = 0; k < 3; ++k)
+    {
+      if (b.hi[k] - b.lo[k] > extent)
+      {
+        extent = b.hi[k] - b.lo[k];
+        axis = k;
+      }
+    }
+    return axis;
+  }
+
   /// The split position, or `end` when a leaf is cheaper (only considered
   /// when the range fits in a leaf).
-  std::uint32_t split(std::uint32_t begin, std::uint32_t end, const AABB<double>& box, const AABB<double>& centroids)
+  std::uint32_t split(std::uint32_t begin, std::uint32_t end, const FloatRangeBounds& bounds)
   {
     const std::uint32_t count = end - begin;
     Bins bins;
     // Small ranges get fewer bins: the sweeps cost O(bins) per node.
     bins.nb = std::min(Options.numBins, std::max<std::uint32_t>(2, count));
-    const BinFrame frame(box);
-    fillBins(bins, begin, end, centroids, frame);
+    fillBins(bins, begin, end, bounds);
     Candidate best;
     for (int axis = 0; axis < 3; ++axis)
     {
@@ -99,25 +245,24 @@ private:
     }
     if (best.axis < 0)
     {
-      return count <= Options.maxLeafSize ? end : medianSplit(begin, end, centroids);
+      return count <= Options.maxLeafSize ? end : medianSplit(begin, end, bounds);
     }
-    // Decided in the frame: the box's area there is at most 3 at any scale.
-    if (leafIsCheaper(Options, count, best.cost, double(frame.toBin(box).halfArea())))
+    if (leafIsCheaper(Options, count, best.cost, double(bounds.box.halfArea())))
     {
       return end;
     }
     const int axis = best.axis;
-    const std::uint32_t bin = best.bin;
-    const double lo = centroids.min[axis];
-    const double axisScale = bins.scale[axis];
-    const std::uint32_t nb = bins.nb;
-    auto it = std::partition(Refs.begin() + begin, Refs.begin() + end, [&](const BuildRef& r) {
-      return binOf(r.centroid()[axis], lo, axisScale, nb) < bin;
+    const auto bin = static_cast<std::int32_t>(best.bin);
+    const BinMap& map = bins.map;
+    auto it = std::partition(Refs.begin() + begin, Refs.begin() + end, [&](const FloatRef& r) {
+      std::int32_t b[4];
+      binsOf(r, map, b);
+      return b[axis] < bin;
     });
     const std::uint32_t mid = static_cast<std::uint32_t>(it - Refs.begin());
     if (mid == begin || mid == end)
     {
-      return medianSplit(begin, end, centroids);
+      return medianSplit(begin, end, bounds);
     }
     return mid;
   }
@@ -125,29 +270,31 @@ private:
   /// Empties bins.nb bins per axis, then bins [begin, end) on all three
   /// axes in one pass over the primitives (in parallel chunks for a large
   /// range of the top phase, each into bins of its own, merged after).
-  void fillBins(Bins& bins, std::uint32_t begin, std::uint32_t end, const AABB<double>& centroids,
-    const BinFrame& frame) const
+  void fillBins(Bins& bins, std::uint32_t begin, std::uint32_t end, const FloatRangeBounds& bounds) const
   {
     for (int axis = 0; axis < 3; ++axis)
     {
-      const double extent = centroids.max[axis] - centroids.min[axis];
-      bins.active[axis] = extent > 0.0;
-      bins.scale[axis] = bins.active[axis] ? bins.nb / extent : 0.0;
+      const float extent = bounds.centroids.hi[axis] - bounds.centroids.lo[axis];
+      bins.active[axis] = extent > 0.0f;
+      bins.map.min[axis] = bounds.centroids.lo[axis];
+      bins.map.scale[axis] = bins.active[axis] ? static_cast<float>(bins.nb) / extent : 0.0f;
     }
+    bins.map.min[3] = bins.map.scale[3] = 0.0f;
+    bins.map.last = static_cast<float>(bins.nb - 1);
     clearBins(bins);
     std::mutex merge;
-    forChunks(begin, end, [&](std::uint32_t b, std::uint32_t e) {
+    this->forChunks(begin, end, [&](std::uint32_t b, std::uint32_t e) {
       if (b == begin && e == end)
       {
-        binRange(bins, b, e, centroids, frame);
+        binRange(bins, b, e);
         return;
       }
       Bins chunk;
       chunk.nb = bins.nb;
-      std::copy(bins.scale, bins.scale + 3, chunk.scale);
+      chunk.map = bins.map;
       std::copy(bins.active, bins.active + 3, chunk.active);
       clearBins(chunk);
-      binRange(chunk, b, e, centroids, frame);
+      binRange(chunk, b, e);
       std::lock_guard<std::mutex> lock(merge);
       for (int axis = 0; axis < 3; ++axis)
       {
@@ -172,29 +319,38 @@ private:
     }
   }
 
-  /// Bins [begin, end) into `bins` (scale and active in locals: the pass
+  /// Bins [begin, end) into `bins` (map and active in locals: the pass
   /// writes bins, and so never reloads them).
-  void binRange(Bins& bins, std::uint32_t begin, std::uint32_t end, const AABB<double>& centroids,
-    const BinFrame& frame) const
+  void binRange(Bins& bins, std::uint32_t begin, std::uint32_t end) const
   {
-    const std::uint32_t nb = bins.nb;
-    const double scale[3] = { bins.scale[0], bins.scale[1], bins.scale[2] };
+    const BinMap map = bins.map;
     const bool active[3] = { bins.active[0], bins.active[1], bins.active[2] };
     for (std::uint32_t i = begin; i < end; ++i)
     {
-      const BuildRef& r = Refs[i];
-      const Vec3<double> c = r.centroid();
-      const BinBox box = frame.toBin(r.box);
+      const FloatRef& r = Refs[i];
+      std::int32_t b[4];
+      binsOf(r, map, b);
       for (int axis = 0; axis < 3; ++axis)
       {
         if (active[axis])
         {
-          Bin& bin = bins.axis(axis)[binOf(c[axis], centroids.min[axis], scale[axis], nb)];
-          bin.box.extend(box);
+          Bin& bin = bins.axis(axis)[b[axis]];
+          extendBin(bin.box, r);
           bin.count++;
         }
       }
     }
+  }
+
+  /// A bin's box extended by a reference's (lane 3 is never read).
+  VTKRT_ALWAYS_INLINE static void extendBin(BinBox& box, const FloatRef& r)
+  {
+#if VTKRT_CORE_SSE
+    _mm_store_ps(box.lo, _mm_min_ps(_mm_load_ps(box.lo), _mm_load_ps(r.lo)));
+    _mm_store_ps(box.hi, _mm_max_ps(_mm_load_ps(box.hi), _mm_load_ps(r.hi)));
+#else
+    box.extend(boxOf(r));
+#endif
   }
 
   /// The SAH cost of every bin boundary on `axis` (right sides accumulated
@@ -235,13 +391,6 @@ private:
       }
     }
     best = local;
-  }
-
-  static std::uint32_t binOf(double c, double lo, double scale, std::uint32_t nb)
-  {
-    const double f = (c - lo) * scale;
-    const std::uint32_t b = f > 0.0 ? static_cast<std::uint32_t>(f) : 0u;
-    return std::min(b, nb - 1);
   }
 };
 

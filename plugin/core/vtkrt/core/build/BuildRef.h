@@ -47,6 +47,13 @@ VTKRT_ALWAYS_INLINE inline void extendBox(AABB<double>& a, const Vec3<double>& p
   extendBox(a, p, p);
 }
 
+/// A range's box and the box of its centroids.
+struct RangeBounds
+{
+  AABB<double> box;
+  AABB<double> centroids;
+};
+
 /// Total order on (centroid[axis], id): makes median splits and sorts
 /// independent of the input order's ties.
 struct AxisLess

@@ -1,11 +1,12 @@
 // The builder that BuildOptions::quality picks: Fast -> LBVH, Medium ->
-// binned SAH, High -> full-sweep SAH.
+// binned SAH (on float references), High -> full-sweep SAH.
 #ifndef vtkrt_core_build_DefaultBuilder_h
 #define vtkrt_core_build_DefaultBuilder_h
 
 #include "vtkrt/core/BVH.h"
 #include "vtkrt/core/build/BinnedSAHBuilder.h"
 #include "vtkrt/core/build/BuildRef.h"
+#include "vtkrt/core/build/FloatRef.h"
 #include "vtkrt/core/build/LBVHBuilder.h"
 #include "vtkrt/core/build/Parallel.h"
 #include "vtkrt/core/build/SweepSAHBuilder.h"
@@ -16,15 +17,13 @@
 namespace vtkrt::core::detail
 {
 
-/// bvh.nodes and bvh.primIndex from `refs` with the builder `Builder` (the
-/// refs may be reordered).
+/// bvh.nodes and bvh.primIndex from `builder`'s build over `n` references.
 template <class Builder>
-void buildWith(BuildRefs& refs, const BuildOptions& options, BVH& bvh)
+void buildWith(Builder& builder, std::size_t n, const BuildOptions& options, BVH& bvh)
 {
-  Builder builder(refs, options);
   bvh.nodes = builder.build();
-  bvh.primIndex.resize(refs.size());
-  parallelChunks(refs.size(), options, [&](std::size_t b, std::size_t e) {
+  bvh.primIndex.resize(n);
+  parallelChunks(n, options, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i)
     {
       bvh.primIndex[i] = builder.idAt(static_cast<std::uint32_t>(i));
@@ -32,22 +31,34 @@ void buildWith(BuildRefs& refs, const BuildOptions& options, BVH& bvh)
   });
 }
 
-/// buildWith the builder of options.quality (an unknown value: binned SAH).
-inline void buildWithDefaultBuilder(BuildRefs& refs, const BuildOptions& options, BVH& bvh)
+/// Whether options.quality builds on float references (the binned SAH,
+/// also for an unknown value) rather than double ones.
+inline bool buildsOnFloatRefs(const BuildOptions& options)
 {
-  switch (options.quality)
+  return options.quality != BuildQuality::Fast && options.quality != BuildQuality::High;
+}
+
+/// The double-reference builders (Fast -> LBVH, High -> full-sweep SAH);
+/// the refs may be reordered.
+inline void buildWithDoubleRefs(BuildRefs& refs, const BuildOptions& options, BVH& bvh)
+{
+  if (options.quality == BuildQuality::Fast)
   {
-    case BuildQuality::Fast:
-      buildWith<LBVHBuilder>(refs, options, bvh);
-      return;
-    case BuildQuality::High:
-      buildWith<SweepSAHBuilder>(refs, options, bvh);
-      return;
-    case BuildQuality::Medium:
-    default:
-      buildWith<BinnedSAHBuilder>(refs, options, bvh);
-      return;
+    LBVHBuilder builder(refs, options);
+    buildWith(builder, refs.size(), options, bvh);
+    return;
   }
+  SweepSAHBuilder builder(refs, options);
+  buildWith(builder, refs.size(), options, bvh);
+}
+
+/// The binned SAH over float references; leafBounds(id) gives the exact
+/// boxes (called from several threads).
+template <class LeafBoundsFn>
+void buildWithFloatRefs(FloatRefs& refs, const LeafBoundsFn& leafBounds, const BuildOptions& options, BVH& bvh)
+{
+  BinnedSAHBuilder<LeafBoundsFn> builder(refs, options, leafBounds);
+  buildWith(builder, refs.size(), options, bvh);
 }
 
 } // namespace vtkrt::core::detail

@@ -28,6 +28,7 @@ private:
   /// The split needs no bounds: merging them bottom-up is O(n) in total
   /// instead of a pass over the range at every level.
   static constexpr bool kBottomUpBounds = true;
+  static constexpr bool kSplitNeedsBounds = false;
 
   /// Positions ahead whose reference is fetched early: the build reads the
   /// references in Morton order through Perm, a random walk over the array
@@ -65,12 +66,12 @@ private:
   void finish() { std::vector<std::uint64_t>().swap(Codes); }
 
   /// Morton order keeps the middle a spatial median already.
-  std::uint32_t medianSplit(std::uint32_t begin, std::uint32_t end, const AABB<double>&) const
+  std::uint32_t medianSplit(std::uint32_t begin, std::uint32_t end, const RangeBounds&) const
   {
     return begin + (end - begin) / 2;
   }
 
-  std::uint32_t split(std::uint32_t begin, std::uint32_t end, const AABB<double>&, const AABB<double>&) const
+  std::uint32_t split(std::uint32_t begin, std::uint32_t end, const RangeBounds&) const
   {
     return end - begin <= Options.maxLeafSize ? end : mortonSplit(begin, end);
   }

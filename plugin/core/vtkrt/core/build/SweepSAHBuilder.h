@@ -25,6 +25,7 @@ private:
   friend class TopDownBuilder<SweepSAHBuilder>;
 
   static constexpr bool kBottomUpBounds = false;
+  static constexpr bool kSplitNeedsBounds = true;
 
   /// The best split found so far: the first `split` entries of Order[axis].
   struct Candidate
@@ -80,8 +81,9 @@ private:
     std::vector<std::uint32_t>().swap(Scratch);
   }
 
-  std::uint32_t medianSplit(std::uint32_t begin, std::uint32_t end, const AABB<double>& centroids)
+  std::uint32_t medianSplit(std::uint32_t begin, std::uint32_t end, const RangeBounds& bounds)
   {
+    const AABB<double>& centroids = bounds.centroids;
     const std::uint32_t mid = begin + (end - begin) / 2;
     const Vec3<double> ext = centroids.diagonal();
     const bool spread = ext.x > 0.0 || ext.y > 0.0 || ext.z > 0.0;
@@ -91,8 +93,10 @@ private:
 
   /// The split position, or `end` when a leaf is cheaper (only considered
   /// when the range fits in a leaf).
-  std::uint32_t split(std::uint32_t begin, std::uint32_t end, const AABB<double>& box, const AABB<double>& centroids)
+  std::uint32_t split(std::uint32_t begin, std::uint32_t end, const RangeBounds& bounds)
   {
+    const AABB<double>& box = bounds.box;
+    const AABB<double>& centroids = bounds.centroids;
     const std::uint32_t count = end - begin;
     std::vector<double> rightArea(count);
     Candidate best;
@@ -105,7 +109,7 @@ private:
     }
     if (best.axis < 0)
     {
-      return count <= Options.maxLeafSize ? end : medianSplit(begin, end, centroids);
+      return count <= Options.maxLeafSize ? end : medianSplit(begin, end, bounds);
     }
     if (leafIsCheaper(Options, count, best.cost, box.halfArea()))
     {

@@ -43,16 +43,21 @@ inline std::uint32_t ceilLog2(std::uint64_t x)
   return r;
 }
 
-/// What a builder provides (private, with TopDownBuilder<Builder> a friend):
-///   static constexpr bool kBottomUpBounds: boxes merged from the children
-///     instead of a pass over each range before its split;
+/// What a builder provides (private, with TopDownBuilder<Builder, Ref> a
+/// friend):
+///   static constexpr bool kBottomUpBounds: node boxes merged from the
+///     children (a leaf's from leafBox) instead of the split's bounds;
+///   static constexpr bool kSplitNeedsBounds: splitBounds(begin, end) is
+///     passed to the split (else default bounds);
 ///   void prepare(), void finish(): before and after the recursion;
-///   const BuildRef& refAt(pos) const: the primitive at position pos;
+///   const Ref& refAt(pos) const: the primitive at position pos;
 ///   void prefetchAfter(pos) const: optional, fetch refAt(pos + a few) early;
-///   medianSplit(begin, end, centroids): the split at the depth cap;
-///   split(begin, end, box, centroids): the builder's own split, or `end`
-///     for a leaf (box and centroids are empty when kBottomUpBounds).
-template <class Builder>
+///   splitBounds(begin, end), leafBox(begin, end): optional, by default
+///     from a pass over the double references (RangeBounds, its box);
+///   medianSplit(begin, end, bounds): the split at the depth cap;
+///   split(begin, end, bounds): the builder's own split, or `end` for a
+///     leaf.
+template <class Builder, class Ref = BuildRef>
 class TopDownBuilder
 {
 public:
@@ -62,7 +67,7 @@ public:
   /// tasks to balance any thread count this runs on.
   static constexpr std::size_t kTopTasks = 64;
 
-  TopDownBuilder(BuildRefs& refs, const BuildOptions& options)
+  TopDownBuilder(HugePageArray<Ref>& refs, const BuildOptions& options)
     : Refs(refs)
     , Options(options)
   {
@@ -98,7 +103,7 @@ public:
   }
 
 protected:
-  BuildRefs& Refs;
+  HugePageArray<Ref>& Refs;
   BuildOptions Options;
 
   void prefetchAfter(std::uint32_t) const {}
@@ -140,6 +145,19 @@ protected:
     return box;
   }
 
+  RangeBounds splitBounds(std::uint32_t begin, std::uint32_t end) const
+  {
+    RangeBounds bounds;
+    bounds.box = rangeBounds(begin, end, bounds.centroids);
+    return bounds;
+  }
+
+  AABB<double> leafBox(std::uint32_t begin, std::uint32_t end) const
+  {
+    AABB<double> centroids;
+    return rangeBounds(begin, end, centroids);
+  }
+
 private:
   /// A task's nodes (root first, child indices into them), in its own
   /// part of the tree's array: room for the most nodes its range can make.
@@ -170,8 +188,8 @@ private:
   const Builder& self() const { return static_cast<const Builder&>(*this); }
 
   /// Where to split [begin, end), or `end` for a leaf.
-  std::uint32_t chooseSplit(std::uint32_t begin, std::uint32_t end, std::uint32_t depth,
-    const AABB<double>& box, const AABB<double>& centroids)
+  template <class Bounds>
+  std::uint32_t chooseSplit(std::uint32_t begin, std::uint32_t end, std::uint32_t depth, const Bounds& bounds)
   {
     const std::uint32_t count = end - begin;
     if (count <= 1 || depth >= kMaxDepth)
@@ -189,9 +207,9 @@ private:
       {
         return end;
       }
-      return self().medianSplit(begin, end, centroids);
+      return self().medianSplit(begin, end, bounds);
     }
-    return self().split(begin, end, box, centroids);
+    return self().split(begin, end, bounds);
   }
 
   /// Where [begin, end) splits (`end`: a leaf) and its box (empty for an
@@ -199,18 +217,20 @@ private:
   /// disjoint ranges.
   std::uint32_t splitRange(std::uint32_t begin, std::uint32_t end, std::uint32_t depth, AABB<double>& box)
   {
-    constexpr bool bottomUp = Builder::kBottomUpBounds;
-    AABB<double> centroids;
-    box = AABB<double>();
-    if (!bottomUp)
+    decltype(self().splitBounds(begin, end)) bounds{};
+    if constexpr (Builder::kSplitNeedsBounds)
     {
-      box = rangeBounds(begin, end, centroids);
+      bounds = self().splitBounds(begin, end);
     }
-    std::uint32_t mid = chooseSplit(begin, end, depth, box, centroids);
+    std::uint32_t mid = chooseSplit(begin, end, depth, bounds);
     mid = mid == begin ? end : mid;
-    if (mid == end && bottomUp)
+    if constexpr (Builder::kBottomUpBounds)
     {
-      box = rangeBounds(begin, end, centroids);
+      box = mid == end ? self().leafBox(begin, end) : AABB<double>();
+    }
+    else
+    {
+      box = bounds.box;
     }
     return mid;
   }
