@@ -64,12 +64,13 @@ core::ScaledFrame buildFrame(std::size_t count, const std::function<core::AABB<d
   return core::ScaledFrame::of(all);
 }
 
-/// Takes a BVH built in `frame`'s coordinates into `g`: its skipped-primitive
+/// Takes a tree built in `frame`'s coordinates into `g`: its skipped-primitive
 /// count and, when it is not empty, the local origin (the center of what is
 /// traced: NaN primitives are not in the tree; in model coordinates with
-/// the frame's scale), the bounds relative to it and the GPU nodes. Returns
-/// the origin in the frame's coordinates, or nothing for an empty tree.
-std::optional<Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh, const core::ScaledFrame& frame)
+/// the frame's scale), the bounds relative to it and the GPU nodes (moved
+/// out of `bvh`). Returns the origin in the frame's coordinates, or nothing
+/// for an empty tree.
+std::optional<Vec3<double>> adoptBVH(Geometry& g, core::GpuBVH& bvh, const core::ScaledFrame& frame)
 {
   g.SkippedPrimitives = bvh.stats.skippedPrimitives;
   // A tree of more than a root whose depth says 0 did not count it: the
@@ -79,23 +80,16 @@ std::optional<Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh, const co
   {
     return std::nullopt;
   }
-  const core::AABB<double> b = bvh.bounds();
-  const Vec3<double> origin = b.center();
+  const Vec3<double> origin = bvh.origin;
   const Vec3<double> modelOrigin = frame.toModel(origin);
   g.Origin = { { modelOrigin.x, modelOrigin.y, modelOrigin.z } };
   g.Scale = frame.scale;
   for (int k = 0; k < 3; ++k)
   {
-    g.LocalBounds[2 * k] = b.min[k] - origin[k];
-    g.LocalBounds[2 * k + 1] = b.max[k] - origin[k];
+    g.LocalBounds[2 * k] = bvh.bounds.min[k] - origin[k];
+    g.LocalBounds[2 * k + 1] = bvh.bounds.max[k] - origin[k];
   }
-  g.Nodes.resize(bvh.nodes.size());
-  smpFor(bvh.nodes.size(), [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i)
-    {
-      g.Nodes[i] = core::packGpuNode(bvh.nodes[i], origin);
-    }
-  });
+  g.Nodes = std::move(bvh.nodes);
   return origin;
 }
 
@@ -343,7 +337,7 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
   mesh.vertexCount = points.size();
   mesh.indices = triangles.pointIds.data();
   mesh.triangleCount = triangles.count;
-  const core::BVH bvh = core::buildBVHConcurrentBounds(
+  core::GpuBVH bvh = core::buildGpuBVHConcurrentBounds(
     mesh.triangleCount, [&mesh](std::size_t i) { return core::triangleBox(mesh, i); }, options);
   g->Spheres = false;
   g->VertexCount = points.size();
@@ -418,7 +412,7 @@ std::unique_ptr<Geometry> BuildSpheres(const std::vector<Vec3<double>>& modelCen
       : modelRadii[i];
   }
   core::SphereSet<double> set(centers, radii);
-  core::BVH bvh = core::buildSphereBVH(set, options);
+  core::GpuBVH bvh = core::buildGpuBVH(core::sphereBounds(set), options);
   const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh, frame);
   if (!adopted)
   {
@@ -521,7 +515,7 @@ std::unique_ptr<Geometry> BuildEllipsoids(const std::vector<std::array<double, 1
       }
     }
   }
-  core::BVH bvh = core::buildBVH(boxes, options);
+  core::GpuBVH bvh = core::buildGpuBVH(boxes, options);
   const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh, frame);
   if (!adopted)
   {

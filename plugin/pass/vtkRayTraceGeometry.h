@@ -26,10 +26,10 @@ namespace pass
 /// The frame the primitives are built in: that of the finite boxes' union.
 core::ScaledFrame buildFrame(std::size_t count, const std::function<core::AABB<double>(std::size_t)>& boxOf);
 
-/// Takes a BVH built in `frame`'s coordinates into `g` (nodes, local origin
-/// and bounds); returns the origin in the frame's coordinates, or nothing
+/// Takes a tree built in `frame`'s coordinates into `g` (nodes, moved out
+/// of `bvh`, local origin and bounds); returns the origin in the frame's coordinates, or nothing
 /// for an empty tree.
-std::optional<core::Vec3<double>> adoptBVH(Geometry& g, const core::BVH& bvh, const core::ScaledFrame& frame);
+std::optional<core::Vec3<double>> adoptBVH(Geometry& g, core::GpuBVH& bvh, const core::ScaledFrame& frame);
 
 /// The points as double vectors (empty for null points).
 void ReadPoints(vtkPoints* pts, core::NoFillArray<core::Vec3<double>>& out);

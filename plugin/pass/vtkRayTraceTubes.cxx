@@ -97,7 +97,7 @@ std::unique_ptr<Geometry> BuildTubes(vtkPolyData* poly, const core::BuildOptions
   }
   g->TriangulationSeconds = SecondsSince(start);
   // Bare segments: each frame's radii grow the boxes in the shader.
-  const core::BVH bvh = core::buildBVH(boxes, options);
+  core::GpuBVH bvh = core::buildGpuBVH(boxes, options);
   const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh, frame);
   g->SkippedPrimitives += skipped;
   g->VertexCount = points.size();

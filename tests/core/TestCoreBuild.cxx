@@ -9,6 +9,7 @@
 // vertices (tight boxes, same answers as a rebuild).
 #include "CoreTestUtils.h"
 
+#include <cstring>
 #include <functional>
 #include <thread>
 
@@ -394,6 +395,43 @@ void testFloatReferenceFrames()
   }
 }
 
+/// A tree built straight into GPU nodes is packGpuNodes of the double tree
+/// (the same splits; a parent's packed box is the union of its children's),
+/// for every quality, with skipped primitives and far from the origin.
+void testGpuNodes()
+{
+  Rng rng(5);
+  MeshData m = makeIcosphere(5, 0.5, Vec3<double>(1e8, -3e7, 2.5));
+  for (auto& v : m.vertices)
+  {
+    v += 0.002 * rng.inBox(Vec3<double>(-1), Vec3<double>(1));
+  }
+  std::vector<AABB<double>> boxes = triangleBounds(m.view());
+  for (std::size_t i = 3; i < boxes.size(); i += 501)
+  {
+    boxes[i] = AABB<double>();
+  }
+  const char* names[] = { "fast", "binned", "sweep" };
+  for (int q = 0; q < 3; ++q)
+  {
+    BuildOptions opt;
+    opt.quality = BuildQuality(q);
+    opt.numThreads = 2;
+    auto boxOf = [&boxes](std::size_t i) { return boxes[i]; };
+    const BVH bvh = buildBVHConcurrentBounds(boxes.size(), boxOf, opt);
+    const GpuBVH gpu = buildGpuBVHConcurrentBounds(boxes.size(), boxOf, opt);
+    const std::vector<gpu::Node> packed = packGpuNodes(bvh.nodes, bvh.bounds().center());
+    VTKRT_CHECK_MSG(gpu.bounds == bvh.bounds() && gpu.origin == bvh.bounds().center() &&
+        gpu.primIndex == bvh.primIndex && gpu.nodes.size() == packed.size() &&
+        std::memcmp(gpu.nodes.data(), packed.data(), packed.size() * sizeof(gpu::Node)) == 0,
+      "%s: GPU nodes differ from the packed double tree", names[q]);
+    VTKRT_CHECK(gpu.stats.maxDepth == bvh.stats.maxDepth && gpu.stats.leafCount == bvh.stats.leafCount &&
+      gpu.stats.skippedPrimitives == bvh.stats.skippedPrimitives && gpu.stats.skippedPrimitives > 0);
+  }
+  const GpuBVH none = buildGpuBVHConcurrentBounds(0, [](std::size_t) { return AABB<double>(); });
+  VTKRT_CHECK(none.empty() && none.primIndex.empty());
+}
+
 } // namespace
 
 int main()
@@ -403,5 +441,6 @@ int main()
   testDepthCap();
   testRefit();
   testFloatReferenceFrames();
+  testGpuNodes();
   return testResult("TestCoreBuild");
 }

@@ -130,6 +130,19 @@ struct BVH
   }
 };
 
+/// A tree built straight into GPU nodes (boxes relative to `origin`,
+/// rounded outward: the same nodes as packGpuNodes(bvh.nodes, origin)).
+struct GpuBVH
+{
+  HugePageArray<gpu::Node> nodes;
+  std::vector<std::uint32_t> primIndex;
+  AABB<double> bounds; ///< the exact box of every built primitive
+  Vec3<double> origin; ///< bounds.center()
+  BuildStats stats;
+
+  bool empty() const { return nodes.empty(); }
+};
+
 /// Bits of a uint32 as a float (GLSL's uintBitsToFloat).
 inline float uintBitsToFloat(std::uint32_t u)
 {
@@ -170,6 +183,18 @@ inline float relativeUpper(double x, double origin)
 }
 } // namespace detail
 
+/// A gpu::Node's box: `box` relative to `origin`, rounded outward (as
+/// packGpuNode). Monotone in each coordinate, so the box of a union is the
+/// union of the packed boxes.
+inline void packGpuBox(gpu::Node& o, const AABB<double>& box, const Vec3<double>& origin)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    o.lo[k] = detail::relativeLower(box.min[k], origin[k]);
+    o.hi[k] = detail::relativeUpper(box.max[k], origin[k]);
+  }
+}
+
 /// Float GPU copy of one node (gpu::Node, see GpuLayout.h), its box
 /// relative to `origin` (use the same origin for the vertices, see
 /// LocalFrame.h) and rounded outward so float traversal never misses what
@@ -180,11 +205,7 @@ inline float relativeUpper(double x, double origin)
 inline gpu::Node packGpuNode(const BVHNode& n, const Vec3<double>& origin = Vec3<double>(0.0))
 {
   gpu::Node o;
-  for (int k = 0; k < 3; ++k)
-  {
-    o.lo[k] = detail::relativeLower(n.min[k], origin[k]);
-    o.hi[k] = detail::relativeUpper(n.max[k], origin[k]);
-  }
+  packGpuBox(o, n.bounds(), origin);
   o.index = n.index;
   o.count = n.count;
   return o;

@@ -28,13 +28,14 @@ namespace vtkrt::core
 
 namespace detail
 {
-inline void setBuildStats(BVH& bvh, std::size_t count, std::size_t built, const BuildOptions& options,
+template <class Tree>
+void setBuildStats(Tree& bvh, std::size_t count, std::size_t built, const BuildOptions& options,
   std::chrono::steady_clock::time_point start)
 {
   bvh.stats.inputPrimitives = count;
   bvh.stats.builtPrimitives = built;
   bvh.stats.skippedPrimitives = count - built;
-  computeTreeStats(bvh, options);
+  computeTreeStats(bvh.nodes, bvh.stats, options);
   bvh.stats.buildSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -56,10 +57,11 @@ BVH buildOnFloatRefs(std::size_t count, BoundsFn& boundsOf, const BuildOptions& 
   std::chrono::steady_clock::time_point start)
 {
   BVH bvh;
-  FloatRefs refs = fillFloatRefs(count, boundsOf, options);
+  AABB<double> root;
+  FloatRefs refs = fillFloatRefs(count, boundsOf, options, root);
   const std::size_t built = refs.size();
   auto leafBounds = [&boundsOf](std::uint32_t id) { return boundsOf(std::size_t(id)); };
-  buildWithFloatRefs(refs, leafBounds, options, bvh);
+  buildWithFloatRefs(refs, leafBounds, DoubleNodes(), options, bvh);
   setBuildStats(bvh, count, built, options, start);
   return bvh;
 }
@@ -134,6 +136,46 @@ BVH buildBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const Build
       refs.end());
   }
   return detail::buildFromRefs(refs, count, options, start);
+}
+
+/// buildBVHConcurrentBounds straight into GPU nodes: the same tree as
+/// packGpuNodes(bvh.nodes, origin) with origin the center of the built
+/// primitives' box, without the double nodes (the binned SAH; the other
+/// qualities build those and pack them).
+template <class BoundsFn>
+GpuBVH buildGpuBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options = BuildOptions())
+{
+  const auto start = std::chrono::steady_clock::now();
+  GpuBVH gpu;
+  if (!detail::buildsOnFloatRefs(options))
+  {
+    BVH bvh = buildBVHConcurrentBounds(count, boundsOf, options);
+    gpu.bounds = bvh.bounds();
+    gpu.origin = bvh.empty() ? Vec3<double>(0.0) : gpu.bounds.center();
+    gpu.nodes.resize(bvh.nodes.size());
+    detail::parallelChunks(bvh.nodes.size(), options, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i)
+      {
+        gpu.nodes[i] = packGpuNode(bvh.nodes[i], gpu.origin);
+      }
+    });
+    gpu.primIndex = std::move(bvh.primIndex);
+    gpu.stats = bvh.stats;
+    return gpu;
+  }
+  detail::FloatRefs refs = detail::fillFloatRefs(count, boundsOf, options, gpu.bounds);
+  gpu.origin = refs.empty() ? Vec3<double>(0.0) : gpu.bounds.center();
+  const std::size_t built = refs.size();
+  auto leafBounds = [&boundsOf](std::uint32_t id) { return boundsOf(std::size_t(id)); };
+  detail::buildWithFloatRefs(refs, leafBounds, detail::GpuNodes{ gpu.origin }, options, gpu);
+  detail::setBuildStats(gpu, count, built, options, start);
+  return gpu;
+}
+
+/// buildGpuBVHConcurrentBounds over given bounds (primitive id = index).
+inline GpuBVH buildGpuBVH(const std::vector<AABB<double>>& bounds, const BuildOptions& options = BuildOptions())
+{
+  return buildGpuBVHConcurrentBounds(bounds.size(), [&bounds](std::size_t i) { return bounds[i]; }, options);
 }
 
 /// Builds a BVH over primitives given by their bounds (primitive id = index

@@ -40,17 +40,18 @@ struct FloatAxisLess
   }
 };
 
-template <class LeafBoundsFn>
-class BinnedSAHBuilder : public TopDownBuilder<BinnedSAHBuilder<LeafBoundsFn>, FloatRef>
+template <class LeafBoundsFn, class Format = DoubleNodes>
+class BinnedSAHBuilder : public TopDownBuilder<BinnedSAHBuilder<LeafBoundsFn, Format>, FloatRef, Format>
 {
-  using Base = TopDownBuilder<BinnedSAHBuilder<LeafBoundsFn>, FloatRef>;
+  using Base = TopDownBuilder<BinnedSAHBuilder<LeafBoundsFn, Format>, FloatRef, Format>;
 
 public:
   static constexpr std::uint32_t kMaxBins = 64;
 
   /// leafBounds(id): primitive id's exact box; called from several threads.
-  BinnedSAHBuilder(FloatRefs& refs, const BuildOptions& options, const LeafBoundsFn& leafBounds)
-    : Base(refs, options)
+  BinnedSAHBuilder(FloatRefs& refs, const BuildOptions& options, const LeafBoundsFn& leafBounds,
+    const Format& format = Format())
+    : Base(refs, options, format)
     , LeafBounds(leafBounds)
   {
     this->Options.numBins = std::max<std::uint32_t>(2, std::min<std::uint32_t>(this->Options.numBins, kMaxBins));

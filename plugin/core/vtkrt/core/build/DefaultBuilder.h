@@ -17,9 +17,10 @@
 namespace vtkrt::core::detail
 {
 
-/// bvh.nodes and bvh.primIndex from `builder`'s build over `n` references.
-template <class Builder>
-void buildWith(Builder& builder, std::size_t n, const BuildOptions& options, BVH& bvh)
+/// bvh.nodes and bvh.primIndex from `builder`'s build over `n` references
+/// (a BVH or a GpuBVH).
+template <class Builder, class Tree>
+void buildWith(Builder& builder, std::size_t n, const BuildOptions& options, Tree& bvh)
 {
   bvh.nodes = builder.build();
   bvh.primIndex.resize(n);
@@ -52,12 +53,13 @@ inline void buildWithDoubleRefs(BuildRefs& refs, const BuildOptions& options, BV
   buildWith(builder, refs.size(), options, bvh);
 }
 
-/// The binned SAH over float references; leafBounds(id) gives the exact
-/// boxes (called from several threads).
-template <class LeafBoundsFn>
-void buildWithFloatRefs(FloatRefs& refs, const LeafBoundsFn& leafBounds, const BuildOptions& options, BVH& bvh)
+/// The binned SAH over float references into nodes of `format`;
+/// leafBounds(id) gives the exact boxes (called from several threads).
+template <class LeafBoundsFn, class Format, class Tree>
+void buildWithFloatRefs(
+  FloatRefs& refs, const LeafBoundsFn& leafBounds, const Format& format, const BuildOptions& options, Tree& bvh)
 {
-  BinnedSAHBuilder<LeafBoundsFn> builder(refs, options, leafBounds);
+  BinnedSAHBuilder<LeafBoundsFn, Format> builder(refs, options, leafBounds, format);
   buildWith(builder, refs.size(), options, bvh);
 }
 

@@ -84,12 +84,13 @@ inline bool isBuildable(const AABB<double>& box)
 }
 
 /// The references of the valid boxes among boundsOf(0 .. count-1), in id
-/// order, in the frame of their union; boundsOf is called from several
-/// threads at once (twice a primitive: the frame, then the references).
+/// order, in the frame of their union `root`; boundsOf is called from
+/// several threads at once (twice a primitive: the frame, then the
+/// references).
 template <class BoundsFn>
-FloatRefs fillFloatRefs(std::size_t count, BoundsFn& boundsOf, const BuildOptions& options)
+FloatRefs fillFloatRefs(std::size_t count, BoundsFn& boundsOf, const BuildOptions& options, AABB<double>& root)
 {
-  AABB<double> root;
+  root = AABB<double>();
   std::atomic<bool> allValid{ true };
   std::mutex merge;
   parallelChunks(count, options, [&](std::size_t b, std::size_t e) {

@@ -20,6 +20,7 @@
 
 #include "vtkrt/core/BVH.h"
 #include "vtkrt/core/build/BuildRef.h"
+#include "vtkrt/core/build/NodeFormats.h"
 #include "vtkrt/core/build/Parallel.h"
 
 #include <algorithm>
@@ -57,19 +58,26 @@ inline std::uint32_t ceilLog2(std::uint64_t x)
 ///   medianSplit(begin, end, bounds): the split at the depth cap;
 ///   split(begin, end, bounds): the builder's own split, or `end` for a
 ///     leaf.
-template <class Builder, class Ref = BuildRef>
+///
+/// Format (NodeFormats.h) says what the nodes are and how their boxes are
+/// written and merged.
+template <class Builder, class Ref = BuildRef, class Format = DoubleNodes>
 class TopDownBuilder
 {
 public:
+  using Node = typename Format::Node;
+  using Nodes = HugePageArray<Node>;
+
   /// The smallest task size: smaller subtrees are not worth a task.
   static constexpr std::size_t kTaskPrimitives = 16384;
   /// The top phase stops at ranges of 1/kTopTasks of the primitives, enough
   /// tasks to balance any thread count this runs on.
   static constexpr std::size_t kTopTasks = 64;
 
-  TopDownBuilder(HugePageArray<Ref>& refs, const BuildOptions& options)
+  TopDownBuilder(HugePageArray<Ref>& refs, const BuildOptions& options, const Format& format = Format())
     : Refs(refs)
     , Options(options)
+    , NodeFormat(format)
   {
     if (Options.maxLeafSize < 1)
     {
@@ -80,18 +88,18 @@ public:
   /// The id of the primitive at leaf position pos (after build()).
   std::uint32_t idAt(std::uint32_t pos) const { return self().refAt(pos).id; }
 
-  BVHNodes build()
+  Nodes build()
   {
     if (Refs.empty())
     {
-      return BVHNodes();
+      return Nodes();
     }
     self().prepare();
     const std::size_t n = Refs.size();
     TaskSize = std::max(kTaskPrimitives, n / kTopTasks);
     std::vector<Task> tasks;
-    BVHNodes top(1);
-    BVHNodes nodes;
+    Nodes top(1);
+    Nodes nodes;
     TopPhase = true;
     buildTop(top, tasks);
     TopPhase = false;
@@ -105,6 +113,7 @@ public:
 protected:
   HugePageArray<Ref>& Refs;
   BuildOptions Options;
+  Format NodeFormat;
 
   void prefetchAfter(std::uint32_t) const {}
 
@@ -163,13 +172,13 @@ private:
   /// part of the tree's array: room for the most nodes its range can make.
   struct TaskNodes
   {
-    BVHNode* first = nullptr;
+    Node* first = nullptr;
     std::size_t used = 0;
-    BVHNode& operator[](std::size_t i) { return first[i]; }
-    const BVHNode& operator[](std::size_t i) const { return first[i]; }
+    Node& operator[](std::size_t i) { return first[i]; }
+    const Node& operator[](std::size_t i) const { return first[i]; }
     std::size_t size() const { return used; }
     /// A node setNode then writes in full.
-    void emplace_back() { ::new (static_cast<void*>(first + used++)) BVHNode; }
+    void emplace_back() { ::new (static_cast<void*>(first + used++)) Node; }
   };
 
   /// A subtree built apart: its range, where its root goes in the top
@@ -236,12 +245,16 @@ private:
   }
 
   /// nodes[slot] for [begin, end) split at mid with `box`: a leaf when mid
-  /// is `end`, else an interior node whose two children are appended.
-  template <class Nodes>
-  static void setNode(Nodes& nodes, std::size_t slot, std::uint32_t begin, std::uint32_t mid,
-    std::uint32_t end, const AABB<double>& box)
+  /// is `end`, else an interior node whose two children are appended (its
+  /// box merged from theirs later when kBottomUpBounds).
+  template <class NodeArray>
+  void setNode(NodeArray& nodes, std::size_t slot, std::uint32_t begin, std::uint32_t mid,
+    std::uint32_t end, const AABB<double>& box) const
   {
-    nodes[slot].setBounds(box);
+    if (mid == end || !Builder::kBottomUpBounds)
+    {
+      NodeFormat.write(nodes[slot], box);
+    }
     if (mid == end)
     {
       nodes[slot].index = begin;
@@ -258,8 +271,8 @@ private:
   /// Splits [begin, end) into nodes[slot] and, when it is an interior node,
   /// appends its two children; returns the split (`end` for a leaf, whose
   /// node is then complete).
-  template <class Nodes>
-  std::uint32_t splitNode(Nodes& nodes, std::size_t slot, std::uint32_t begin,
+  template <class NodeArray>
+  std::uint32_t splitNode(NodeArray& nodes, std::size_t slot, std::uint32_t begin,
     std::uint32_t end, std::uint32_t depth)
   {
     AABB<double> box;
@@ -270,8 +283,8 @@ private:
 
   /// Builds the subtree of [begin, end) into nodes[slot] and nodes appended
   /// to `nodes` (depth first), on this thread.
-  template <class Nodes>
-  void buildNode(Nodes& nodes, std::size_t slot, std::uint32_t begin, std::uint32_t end,
+  template <class NodeArray>
+  void buildNode(NodeArray& nodes, std::size_t slot, std::uint32_t begin, std::uint32_t end,
     std::uint32_t depth)
   {
     const std::uint32_t mid = splitNode(nodes, slot, begin, end, depth);
@@ -300,7 +313,7 @@ private:
   /// passes in parallel chunks when large), their nodes then appended to
   /// `top` in level order; each range at or under the task size becomes a
   /// task whose root goes in top[slot].
-  void buildTop(BVHNodes& top, std::vector<Task>& tasks)
+  void buildTop(Nodes& top, std::vector<Task>& tasks)
   {
     std::vector<Range> level{ Range{ 0, 0, static_cast<std::uint32_t>(Refs.size()), 0 } };
     while (!level.empty())
@@ -391,14 +404,14 @@ private:
   /// touched; with huge pages a part's first write commits a whole huge
   /// page, so most of the array is committed until joinTasks gives back
   /// what lies past the tree.
-  BVHNodes placeTasks(const BVHNodes& top, std::vector<Task>& tasks) const
+  Nodes placeTasks(const Nodes& top, std::vector<Task>& tasks) const
   {
     std::size_t capacity = top.size();
     for (const Task& t : tasks)
     {
       capacity += 2 * std::size_t(t.end - t.begin);
     }
-    BVHNodes nodes(capacity);
+    Nodes nodes(capacity);
     std::copy(top.begin(), top.end(), nodes.begin());
     std::size_t offset = top.size();
     for (Task& t : tasks)
@@ -412,15 +425,15 @@ private:
   /// Moves each task's nodes but its root (which replaces its slot) down
   /// after the top nodes and the tasks before it, child indices renumbered;
   /// the array then ends at the tree's last node (giveBackPastSize).
-  void joinTasks(BVHNodes& nodes, std::size_t topCount, std::vector<Task>& tasks) const
+  void joinTasks(Nodes& nodes, std::size_t topCount, std::vector<Task>& tasks) const
   {
     std::size_t next = topCount;
     for (Task& t : tasks)
     {
       // The part's nodes move down (next <= their place), in order.
       const std::size_t base = next;
-      auto remap = [base](BVHNode node) {
-        if (!node.isLeaf())
+      auto remap = [base](Node node) {
+        if (node.count == 0)
         {
           node.index = static_cast<std::uint32_t>(base + node.index - 1);
         }
@@ -439,7 +452,7 @@ private:
       // The top's boxes from their children, which come after them.
       for (std::size_t i = topCount; i-- > 0;)
       {
-        if (!nodes[i].isLeaf())
+        if (nodes[i].count == 0)
         {
           mergeChildBounds(nodes, i);
         }
@@ -447,13 +460,11 @@ private:
     }
   }
 
-  template <class Nodes>
-  static void mergeChildBounds(Nodes& nodes, std::size_t slot)
+  template <class NodeArray>
+  void mergeChildBounds(NodeArray& nodes, std::size_t slot) const
   {
     const std::size_t first = nodes[slot].index;
-    AABB<double> box = nodes[first].bounds();
-    box.extend(nodes[first + 1].bounds());
-    nodes[slot].setBounds(box);
+    NodeFormat.merge(nodes[slot], nodes[first], nodes[first + 1]);
   }
 };
 

@@ -3,6 +3,7 @@
 #define vtkrt_core_build_TreeStats_h
 
 #include "vtkrt/core/BVH.h"
+#include "vtkrt/core/build/NodeFormats.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -11,31 +12,32 @@
 namespace vtkrt::core
 {
 
-/// Depth, leaf count and SAH cost of a finished tree (parents precede
-/// children in the layout, so one forward pass suffices).
-inline void computeTreeStats(BVH& bvh, const BuildOptions& options = BuildOptions())
+/// Depth, leaf count and SAH cost of a finished tree's nodes (BVHNode or
+/// gpu::Node; parents precede children in the layout, so one forward pass
+/// suffices).
+template <class Nodes>
+void computeTreeStats(const Nodes& nodes, BuildStats& s, const BuildOptions& options = BuildOptions())
 {
-  BuildStats& s = bvh.stats;
-  s.nodeCount = bvh.nodes.size();
+  s.nodeCount = nodes.size();
   s.leafCount = 0;
   s.maxDepth = 0;
   s.maxLeafPrimitives = 0;
   s.sahCost = 0.0;
-  if (bvh.nodes.empty())
+  if (nodes.empty())
   {
     return;
   }
   // A byte a node (depths stay under 256), written before it is read: no
   // zero fill of a node-sized array.
-  NoFillArray<std::uint8_t> depth(bvh.nodes.size());
+  NoFillArray<std::uint8_t> depth(nodes.size());
   depth[0] = 0;
-  const double rootArea = bvh.nodes[0].bounds().halfArea();
-  for (std::size_t i = 0; i < bvh.nodes.size(); ++i)
+  const double rootArea = nodeHalfArea(nodes[0]);
+  for (std::size_t i = 0; i < nodes.size(); ++i)
   {
-    const BVHNode& n = bvh.nodes[i];
-    const double rel = rootArea > 0.0 ? n.bounds().halfArea() / rootArea : 1.0;
+    const auto& n = nodes[i];
+    const double rel = rootArea > 0.0 ? nodeHalfArea(n) / rootArea : 1.0;
     s.maxDepth = std::max<std::uint32_t>(s.maxDepth, depth[i]);
-    if (n.isLeaf())
+    if (n.count > 0)
     {
       s.leafCount++;
       s.maxLeafPrimitives = std::max(s.maxLeafPrimitives, n.count);
@@ -47,6 +49,11 @@ inline void computeTreeStats(BVH& bvh, const BuildOptions& options = BuildOption
       s.sahCost += rel * options.traversalCost;
     }
   }
+}
+
+inline void computeTreeStats(BVH& bvh, const BuildOptions& options = BuildOptions())
+{
+  computeTreeStats(bvh.nodes, bvh.stats, options);
 }
 
 } // namespace vtkrt::core
