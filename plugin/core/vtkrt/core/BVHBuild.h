@@ -1,9 +1,11 @@
 // Building a BVH over a generic list of primitive bounds (centroid = box
 // center), so one builder serves triangles, spheres and instances. The
-// public entry: buildBVH, buildBVHConcurrentBounds, refit, computeTreeStats.
-// The builders live in build/, one a file (LBVHBuilder, BinnedSAHBuilder,
-// SweepSAHBuilder over the shared TopDownBuilder recursion); DefaultBuilder
-// picks one by BuildOptions::quality.
+// public entry: buildBVH, buildBVHConcurrentBounds (double nodes, BVH),
+// buildGpuBVH, buildGpuBVHConcurrentBounds (the GPU's float nodes, GpuBVH),
+// refit, computeTreeStats. The builders live in build/, one a file
+// (LBVHBuilder, BinnedSAHBuilder, SweepSAHBuilder over the shared
+// TopDownBuilder recursion, writing either node format of NodeFormats.h);
+// DefaultBuilder picks one by BuildOptions::quality.
 //
 // Determinism: the tree depends only on the input, never on the thread count
 // (build/TopDownBuilder.h says how).
@@ -51,7 +53,19 @@ inline BVH buildFromRefs(BuildRefs& refs, std::size_t count, const BuildOptions&
   return bvh;
 }
 
-/// The binned SAH build; boundsOf is called from several threads.
+/// The binned SAH build over filled references into `tree` (a BVH or a
+/// GpuBVH, nodes of `format`); boundsOf is called from several threads.
+template <class BoundsFn, class Format, class Tree>
+void buildOnFloatRefs(FloatRefs& refs, std::size_t count, BoundsFn& boundsOf, const Format& format,
+  const BuildOptions& options, std::chrono::steady_clock::time_point start, Tree& tree)
+{
+  const std::size_t built = refs.size();
+  auto leafBounds = [&boundsOf](std::uint32_t id) { return boundsOf(std::size_t(id)); };
+  buildWithFloatRefs(refs, leafBounds, format, options, tree);
+  setBuildStats(tree, count, built, options, start);
+}
+
+/// The binned SAH build of double nodes.
 template <class BoundsFn>
 BVH buildOnFloatRefs(std::size_t count, BoundsFn& boundsOf, const BuildOptions& options,
   std::chrono::steady_clock::time_point start)
@@ -59,10 +73,7 @@ BVH buildOnFloatRefs(std::size_t count, BoundsFn& boundsOf, const BuildOptions& 
   BVH bvh;
   AABB<double> root;
   FloatRefs refs = fillFloatRefs(count, boundsOf, options, root);
-  const std::size_t built = refs.size();
-  auto leafBounds = [&boundsOf](std::uint32_t id) { return boundsOf(std::size_t(id)); };
-  buildWithFloatRefs(refs, leafBounds, DoubleNodes(), options, bvh);
-  setBuildStats(bvh, count, built, options, start);
+  buildOnFloatRefs(refs, count, boundsOf, DoubleNodes(), options, start, bvh);
   return bvh;
 }
 } // namespace detail
@@ -165,10 +176,7 @@ GpuBVH buildGpuBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const
   }
   detail::FloatRefs refs = detail::fillFloatRefs(count, boundsOf, options, gpu.bounds);
   gpu.origin = refs.empty() ? Vec3<double>(0.0) : gpu.bounds.center();
-  const std::size_t built = refs.size();
-  auto leafBounds = [&boundsOf](std::uint32_t id) { return boundsOf(std::size_t(id)); };
-  detail::buildWithFloatRefs(refs, leafBounds, detail::GpuNodes{ gpu.origin }, options, gpu);
-  detail::setBuildStats(gpu, count, built, options, start);
+  detail::buildOnFloatRefs(refs, count, boundsOf, detail::GpuNodes{ gpu.origin }, options, start, gpu);
   return gpu;
 }
 

@@ -24,10 +24,13 @@
 //                fetch<Record> per record)
 //   BVHBuild.h   buildBVH(vector<AABB<double>>, options): generic builder
 //                (Fast = LBVH, Medium = binned SAH, High = sweep SAH);
+//                buildGpuBVH: the same tree as GpuBVH{gpu::Node per node,
+//                primIndex, origin}, never held in double;
 //                refit(bvh, boundsOf) after primitives moved
-//   build/       the builders, one a file (LBVHBuilder, BinnedSAHBuilder,
-//                SweepSAHBuilder over TopDownBuilder; DefaultBuilder picks
-//                by quality), parallelChunks, TreeStats, Refit
+//   build/       the builders, one a file (LBVHBuilder, BinnedSAHBuilder on
+//                FloatRef, SweepSAHBuilder over TopDownBuilder; NodeFormats:
+//                BVHNode or gpu::Node; DefaultBuilder picks by quality),
+//                parallelChunks, TreeStats, Refit
 //   BVHTraversal.h closestHit / anyHit / allHits (ray + intersector callable),
 //                closestPoint (point + callable, max distance), queryBox;
 //                also over the packed float copy (GpuNodeSource)
