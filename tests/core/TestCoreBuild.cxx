@@ -336,11 +336,33 @@ void testRefit()
   }
 }
 
+/// The SAH cost of the subtree under `root`, relative to root's box.
+double subtreeSAH(const BVH& bvh, std::uint32_t root, const BuildOptions& opt)
+{
+  const double rootArea = bvh.nodes[root].bounds().halfArea();
+  double cost = 0.0;
+  std::vector<std::uint32_t> stack{ root };
+  while (!stack.empty())
+  {
+    const BVHNode& n = bvh.nodes[stack.back()];
+    stack.pop_back();
+    const double rel = n.bounds().halfArea() / rootArea;
+    cost += rel * (n.isLeaf() ? opt.intersectionCost * n.count : opt.traversalCost);
+    if (!n.isLeaf())
+    {
+      stack.push_back(n.index);
+      stack.push_back(n.index + 1);
+    }
+  }
+  return cost;
+}
+
 /// The binned SAH decides its splits on float references in the frame of
 /// the primitives' union: a mesh scaled by a power of two (down to 1e-90,
 /// up to 1e90) builds the same tree as at unit scale, one 1e8 away from
-/// the origin a tree as good, and one whose boxes span the whole double
-/// range a valid tree; every node box is the exact double one.
+/// the origin or far from an outlier a tree as good, and one whose boxes
+/// span the whole double range a valid tree; every node box is the exact
+/// double one.
 void testFloatReferenceFrames()
 {
   Rng rng(4);
@@ -375,6 +397,22 @@ void testFloatReferenceFrames()
     checkStructure("offset 1e8", b, triangleBounds(m.view()), opt.maxLeafSize);
     VTKRT_CHECK_MSG(b.stats.sahCost <= ref.stats.sahCost * 1.01, "offset 1e8: SAH %g against %g at the origin",
       b.stats.sahCost, ref.stats.sahCost);
+  }
+  for (const double distance : { 1e5, 1e7, 1e12 })
+  {
+    // The mesh far from one tiny box at the origin, on the frame's min
+    // side: the mesh spans a few float steps of the frame, and its subtree
+    // is as good as the mesh's own tree all the same.
+    const MeshData m = transformed(1.0, Vec3<double>(distance, 0.0, 0.0));
+    std::vector<AABB<double>> boxes = triangleBounds(m.view());
+    boxes.emplace_back(Vec3<double>(0.0), Vec3<double>(1e-3));
+    const BVH b = buildBVH(boxes, opt);
+    checkStructure("far cluster", b, boxes, opt.maxLeafSize);
+    const std::uint32_t first = b.nodes[0].index;
+    const std::uint32_t cluster = b.nodes[first].bounds().min.x > 1.0 ? first : first + 1;
+    const double sah = subtreeSAH(b, cluster, opt);
+    VTKRT_CHECK_MSG(sah <= ref.stats.sahCost * 1.01, "cluster at %g: SAH %g against %g alone", distance, sah,
+      ref.stats.sahCost);
   }
   {
     // The unit mesh's boxes, twice, at -1e308 and +1e308 (the union's
@@ -427,6 +465,21 @@ void testGpuNodes()
       "%s: GPU nodes differ from the packed double tree", names[q]);
     VTKRT_CHECK(gpu.stats.maxDepth == bvh.stats.maxDepth && gpu.stats.leafCount == bvh.stats.leafCount &&
       gpu.stats.skippedPrimitives == bvh.stats.skippedPrimitives && gpu.stats.skippedPrimitives > 0);
+  }
+  {
+    // Signed zeros: around an origin of exactly 0, leaves whose lower x is
+    // -0 and 1e-60 (both packed to a zero) under one parent.
+    const std::vector<AABB<double>> zeros = { AABB<double>(Vec3<double>(-1.0), Vec3<double>(-0.5, 1.0, 1.0)),
+      AABB<double>(Vec3<double>(0.5, -1.0, -1.0), Vec3<double>(1.0)),
+      AABB<double>(Vec3<double>(1e-60, -1.0, -1.0), Vec3<double>(0.2, 1.0, 1.0)),
+      AABB<double>(Vec3<double>(-0.0, -1.0, -1.0), Vec3<double>(0.3, 1.0, 1.0)) };
+    BuildOptions single;
+    single.maxLeafSize = 1;
+    const BVH bvh = buildBVH(zeros, single);
+    const GpuBVH gpu = buildGpuBVH(zeros, single);
+    const std::vector<gpu::Node> packed = packGpuNodes(bvh.nodes, gpu.origin);
+    VTKRT_CHECK(gpu.origin == Vec3<double>(0.0) && gpu.nodes.size() == packed.size() &&
+      std::memcmp(gpu.nodes.data(), packed.data(), packed.size() * sizeof(gpu::Node)) == 0);
   }
   const GpuBVH none = buildGpuBVHConcurrentBounds(0, [](std::size_t) { return AABB<double>(); });
   VTKRT_CHECK(none.empty() && none.primIndex.empty());

@@ -137,10 +137,15 @@ struct GpuBVH
   HugePageArray<gpu::Node> nodes;
   std::vector<std::uint32_t> primIndex;
   AABB<double> bounds; ///< the exact box of every built primitive
-  Vec3<double> origin; ///< bounds.center()
-  BuildStats stats;
+  Vec3<double> origin; ///< originOf(bounds)
+  BuildStats stats;      ///< sahCost from the float boxes
 
   bool empty() const { return nodes.empty(); }
+  /// The nodes' origin for a tree of these bounds: its center, 0 when empty.
+  static Vec3<double> originOf(const AABB<double>& bounds)
+  {
+    return bounds.isEmpty() ? Vec3<double>(0.0) : bounds.center();
+  }
 };
 
 /// Bits of a uint32 as a float (GLSL's uintBitsToFloat).
@@ -188,10 +193,11 @@ inline float relativeUpper(double x, double origin)
 /// union of the packed boxes.
 inline void packGpuBox(gpu::Node& o, const AABB<double>& box, const Vec3<double>& origin)
 {
+  // + 0.0f makes a zero +0: a union's -0 and +0 ends then pack alike.
   for (int k = 0; k < 3; ++k)
   {
-    o.lo[k] = detail::relativeLower(box.min[k], origin[k]);
-    o.hi[k] = detail::relativeUpper(box.max[k], origin[k]);
+    o.lo[k] = detail::relativeLower(box.min[k], origin[k]) + 0.0f;
+    o.hi[k] = detail::relativeUpper(box.max[k], origin[k]) + 0.0f;
   }
 }
 

@@ -56,7 +56,7 @@ inline BVH buildFromRefs(BuildRefs& refs, std::size_t count, const BuildOptions&
 /// The binned SAH build over filled references into `tree` (a BVH or a
 /// GpuBVH, nodes of `format`); boundsOf is called from several threads.
 template <class BoundsFn, class Format, class Tree>
-void buildOnFloatRefs(FloatRefs& refs, std::size_t count, BoundsFn& boundsOf, const Format& format,
+void buildTreeOnFloatRefs(FloatRefs& refs, std::size_t count, BoundsFn& boundsOf, const Format& format,
   const BuildOptions& options, std::chrono::steady_clock::time_point start, Tree& tree)
 {
   const std::size_t built = refs.size();
@@ -73,7 +73,7 @@ BVH buildOnFloatRefs(std::size_t count, BoundsFn& boundsOf, const BuildOptions& 
   BVH bvh;
   AABB<double> root;
   FloatRefs refs = fillFloatRefs(count, boundsOf, options, root);
-  buildOnFloatRefs(refs, count, boundsOf, DoubleNodes(), options, start, bvh);
+  buildTreeOnFloatRefs(refs, count, boundsOf, DoubleNodes(), options, start, bvh);
   return bvh;
 }
 } // namespace detail
@@ -102,7 +102,7 @@ BVH buildBVH(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options
   for (std::size_t i = 0; i < count; ++i)
   {
     const AABB<double> b = boundsOf(i);
-    if (b.isEmpty() || !b.isFinite())
+    if (!detail::isBuildable(b))
     {
       continue;
     }
@@ -131,7 +131,7 @@ BVH buildBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const Build
     for (std::size_t i = b; i < e; ++i)
     {
       const AABB<double> box = boundsOf(i);
-      const bool ok = !box.isEmpty() && box.isFinite();
+      const bool ok = detail::isBuildable(box);
       refs[i] = { ok ? box : AABB<double>(), static_cast<std::uint32_t>(i) };
       valid = valid && ok;
     }
@@ -162,7 +162,7 @@ GpuBVH buildGpuBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const
   {
     BVH bvh = buildBVHConcurrentBounds(count, boundsOf, options);
     gpu.bounds = bvh.bounds();
-    gpu.origin = bvh.empty() ? Vec3<double>(0.0) : gpu.bounds.center();
+    gpu.origin = GpuBVH::originOf(gpu.bounds);
     gpu.nodes.resize(bvh.nodes.size());
     detail::parallelChunks(bvh.nodes.size(), options, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i)
@@ -175,8 +175,8 @@ GpuBVH buildGpuBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const
     return gpu;
   }
   detail::FloatRefs refs = detail::fillFloatRefs(count, boundsOf, options, gpu.bounds);
-  gpu.origin = refs.empty() ? Vec3<double>(0.0) : gpu.bounds.center();
-  detail::buildOnFloatRefs(refs, count, boundsOf, detail::GpuNodes{ gpu.origin }, options, start, gpu);
+  gpu.origin = GpuBVH::originOf(gpu.bounds);
+  detail::buildTreeOnFloatRefs(refs, count, boundsOf, detail::GpuNodes{ gpu.origin }, options, start, gpu);
   return gpu;
 }
 

@@ -13,6 +13,7 @@
 #include "vtkrt/core/build/TopDownBuilder.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <mutex>
@@ -128,8 +129,22 @@ private:
   }
 
   /// [begin, end)'s box and centroid box in the frame (in parallel chunks
-  /// for a large range of the top phase).
-  FloatRangeBounds splitBounds(std::uint32_t begin, std::uint32_t end) const
+  /// for a large range of the top phase). A range too small for the float
+  /// steps at its coordinates first gets a frame of its own, so that its
+  /// splits are not decided on a coarse grid (siblings' costs are never
+  /// compared, so ranges may differ in frame).
+  FloatRangeBounds splitBounds(std::uint32_t begin, std::uint32_t end)
+  {
+    FloatRangeBounds bounds = boundsInFrame(begin, end);
+    if (isCoarseInFrame(bounds.box))
+    {
+      reframe(begin, end);
+      bounds = boundsInFrame(begin, end);
+    }
+    return bounds;
+  }
+
+  FloatRangeBounds boundsInFrame(std::uint32_t begin, std::uint32_t end) const
   {
     FloatRangeBounds bounds;
     std::mutex merge;
@@ -144,6 +159,39 @@ private:
       bounds.centroids.extend(chunk.centroids);
     });
     return bounds;
+  }
+
+  /// Whether a box spans fewer than 2^12 float steps of its coordinates.
+  static bool isCoarseInFrame(const BinBox& box)
+  {
+    float extent = 0.0f, magnitude = 0.0f;
+    for (int k = 0; k < 3; ++k)
+    {
+      extent = std::max(extent, box.hi[k] - box.lo[k]);
+      magnitude = std::max(magnitude, std::max(std::abs(box.lo[k]), std::abs(box.hi[k])));
+    }
+    return extent < magnitude * 0x1p-12f;
+  }
+
+  /// Rewrites [begin, end)'s references in the frame of their exact box
+  /// (which spans [0, 1] there: a range is reframed at most once per factor
+  /// 2^12 by which it is smaller than its frame).
+  void reframe(std::uint32_t begin, std::uint32_t end)
+  {
+    AABB<double> exact;
+    std::mutex merge;
+    this->forChunks(begin, end, [&](std::uint32_t b, std::uint32_t e) {
+      const AABB<double> chunk = leafBox(b, e);
+      std::lock_guard<std::mutex> lock(merge);
+      exact.extend(chunk);
+    });
+    const RefFrame frame(exact);
+    this->forChunks(begin, end, [&](std::uint32_t b, std::uint32_t e) {
+      for (std::uint32_t i = b; i < e; ++i)
+      {
+        Refs[i] = frame.toRef(LeafBounds(Refs[i].id), Refs[i].id);
+      }
+    });
   }
 
   VTKRT_ALWAYS_INLINE static void extendRange(FloatRangeBounds& bounds, const FloatRef& r)

@@ -47,6 +47,13 @@ VTKRT_ALWAYS_INLINE inline void extendBox(AABB<double>& a, const Vec3<double>& p
   extendBox(a, p, p);
 }
 
+/// Whether the builders take a primitive with this box (empty, NaN or
+/// infinite ones are skipped).
+inline bool isBuildable(const AABB<double>& box)
+{
+  return !box.isEmpty() && box.isFinite();
+}
+
 /// A range's box and the box of its centroids.
 struct RangeBounds
 {

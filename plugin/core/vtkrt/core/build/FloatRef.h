@@ -56,11 +56,12 @@ struct RefFrame
     }
     int exponent = 0;
     std::frexp(largest, &exponent);
-    pre = std::ldexp(1.0, -exponent);
+    // Clamped so that both scales stay finite for subnormal input.
+    pre = std::ldexp(1.0, -std::max(exponent, -1020));
     origin = root.min * pre;
     const Vec3<double> d = root.max * pre - origin;
     const double extent = std::max(d.x, std::max(d.y, d.z));
-    post = extent > 0.0 ? 1.0 / extent : 1.0;
+    post = extent > 0.0 ? std::min(1.0 / extent, 0x1p1000) : 1.0;
   }
 
   FloatRef toRef(const AABB<double>& box, std::uint32_t id) const
@@ -76,12 +77,6 @@ struct RefFrame
     return r;
   }
 };
-
-/// Whether the builders skip a primitive with this box.
-inline bool isBuildable(const AABB<double>& box)
-{
-  return !box.isEmpty() && box.isFinite();
-}
 
 /// The references of the valid boxes among boundsOf(0 .. count-1), in id
 /// order, in the frame of their union `root`; boundsOf is called from
@@ -123,8 +118,9 @@ FloatRefs fillFloatRefs(std::size_t count, BoundsFn& boundsOf, const BuildOption
     for (std::size_t i = b; i < e; ++i)
     {
       const AABB<double> box = boundsOf(i);
-      refs[i] = frame.toRef(isBuildable(box) ? box : root, static_cast<std::uint32_t>(i));
-      refs[i].lo[0] = isBuildable(box) ? refs[i].lo[0] : skipped;
+      const bool buildable = isBuildable(box);
+      refs[i] = frame.toRef(buildable ? box : root, static_cast<std::uint32_t>(i));
+      refs[i].lo[0] = buildable ? refs[i].lo[0] : skipped;
     }
   });
   if (!allValid)
