@@ -1,8 +1,9 @@
 // The binned SAH builder's references: 32-byte float boxes in the build's
-// frame (the valid boxes' corner at the origin, their largest extent 1),
-// half the bytes of a double reference, each pass over them in SSE. Only
-// the splits are decided on them: every node box is the exact double box,
-// merged up from the leaves' primitives.
+// frame (the valid boxes' corner at the origin, their largest extent 1; a
+// range far smaller than its frame gets one of its own), half the bytes of
+// a double reference, each pass over them in SSE. Only the splits are
+// decided on them: every node box is the exact double box, merged up from
+// the leaves' primitives.
 #ifndef vtkrt_core_build_FloatRef_h
 #define vtkrt_core_build_FloatRef_h
 
