@@ -20,9 +20,9 @@
 #include "vtkrt/core/build/TreeStats.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <mutex>
 #include <vector>
 
 namespace vtkrt::core
@@ -42,15 +42,49 @@ void setBuildStats(Tree& bvh, std::size_t count, std::size_t built, const BuildO
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// The build from filled double references (valid boxes only, ascending ids).
-inline BVH buildFromRefs(BuildRefs& refs, std::size_t count, const BuildOptions& options,
-  std::chrono::steady_clock::time_point start)
+/// The build from filled double references (valid boxes only, ascending
+/// ids) into `tree` (a BVH or a GpuBVH, nodes of `format`).
+template <class Format, class Tree>
+void buildFromRefs(BuildRefs& refs, std::size_t count, const Format& format, const BuildOptions& options,
+  std::chrono::steady_clock::time_point start, Tree& tree)
 {
-  BVH bvh;
   const std::size_t built = refs.size();
-  buildWithDoubleRefs(refs, options, bvh);
-  setBuildStats(bvh, count, built, options, start);
-  return bvh;
+  buildWithDoubleRefs(refs, format, options, tree);
+  setBuildStats(tree, count, built, options, start);
+}
+
+/// The double references of the valid boxes among boundsOf(0 .. count-1),
+/// in id order, and their union `root`; boundsOf is called from several
+/// threads at once.
+template <class BoundsFn>
+BuildRefs fillDoubleRefs(std::size_t count, BoundsFn& boundsOf, const BuildOptions& options, AABB<double>& root)
+{
+  BuildRefs refs(count);
+  root = AABB<double>();
+  bool allValid = true;
+  std::mutex merge;
+  parallelChunks(count, options, [&](std::size_t b, std::size_t e) {
+    AABB<double> chunk;
+    bool valid = true;
+    for (std::size_t i = b; i < e; ++i)
+    {
+      const AABB<double> box = boundsOf(i);
+      const bool ok = isBuildable(box);
+      refs[i] = { ok ? box : AABB<double>(), static_cast<std::uint32_t>(i) };
+      extendBox(chunk, refs[i].box);
+      valid = valid && ok;
+    }
+    std::lock_guard<std::mutex> lock(merge);
+    root.extend(chunk);
+    allValid = allValid && valid;
+  });
+  if (!allValid)
+  {
+    // Drop the skipped ones, keeping the order (what buildBVH's loop does).
+    refs.erase(std::remove_if(refs.begin(), refs.end(), [](const BuildRef& r) { return r.box.isEmpty(); }),
+      refs.end());
+  }
+  return refs;
 }
 
 /// The binned SAH build over filled references into `tree` (a BVH or a
@@ -108,7 +142,9 @@ BVH buildBVH(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options
     }
     refs.push_back({ b, static_cast<std::uint32_t>(i) });
   }
-  return detail::buildFromRefs(refs, count, options, start);
+  BVH bvh;
+  detail::buildFromRefs(refs, count, detail::DoubleNodes(), options, start, bvh);
+  return bvh;
 }
 
 /// The same tree as buildBVH(count, boundsOf, options), with boundsOf called
@@ -124,35 +160,16 @@ BVH buildBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const Build
   {
     return detail::buildOnFloatRefs(count, boundsOf, options, start);
   }
-  detail::BuildRefs refs(count);
-  std::atomic<bool> allValid{ true };
-  detail::parallelChunks(count, options, [&](std::size_t b, std::size_t e) {
-    bool valid = true;
-    for (std::size_t i = b; i < e; ++i)
-    {
-      const AABB<double> box = boundsOf(i);
-      const bool ok = detail::isBuildable(box);
-      refs[i] = { ok ? box : AABB<double>(), static_cast<std::uint32_t>(i) };
-      valid = valid && ok;
-    }
-    if (!valid)
-    {
-      allValid = false;
-    }
-  });
-  if (!allValid)
-  {
-    // Drop the skipped ones, keeping the order (what buildBVH's loop does).
-    refs.erase(std::remove_if(refs.begin(), refs.end(), [](const detail::BuildRef& r) { return r.box.isEmpty(); }),
-      refs.end());
-  }
-  return detail::buildFromRefs(refs, count, options, start);
+  AABB<double> root;
+  detail::BuildRefs refs = detail::fillDoubleRefs(count, boundsOf, options, root);
+  BVH bvh;
+  detail::buildFromRefs(refs, count, detail::DoubleNodes(), options, start, bvh);
+  return bvh;
 }
 
 /// buildBVHConcurrentBounds straight into GPU nodes: the same tree as
 /// packGpuNodes(bvh.nodes, origin) with origin the center of the built
-/// primitives' box, without the double nodes (the binned SAH; the other
-/// qualities build those and pack them).
+/// primitives' box, never held in double nodes.
 template <class BoundsFn>
 GpuBVH buildGpuBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options = BuildOptions())
 {
@@ -160,18 +177,9 @@ GpuBVH buildGpuBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const
   GpuBVH gpu;
   if (!detail::buildsOnFloatRefs(options))
   {
-    BVH bvh = buildBVHConcurrentBounds(count, boundsOf, options);
-    gpu.bounds = bvh.bounds();
+    detail::BuildRefs refs = detail::fillDoubleRefs(count, boundsOf, options, gpu.bounds);
     gpu.origin = GpuBVH::originOf(gpu.bounds);
-    gpu.nodes.resize(bvh.nodes.size());
-    detail::parallelChunks(bvh.nodes.size(), options, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i)
-      {
-        gpu.nodes[i] = packGpuNode(bvh.nodes[i], gpu.origin);
-      }
-    });
-    gpu.primIndex = std::move(bvh.primIndex);
-    gpu.stats = bvh.stats;
+    detail::buildFromRefs(refs, count, detail::GpuNodes{ gpu.origin }, options, start, gpu);
     return gpu;
   }
   detail::FloatRefs refs = detail::fillFloatRefs(count, boundsOf, options, gpu.bounds);

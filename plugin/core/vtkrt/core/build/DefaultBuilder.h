@@ -39,17 +39,18 @@ inline bool buildsOnFloatRefs(const BuildOptions& options)
   return options.quality != BuildQuality::Fast && options.quality != BuildQuality::High;
 }
 
-/// The double-reference builders (Fast -> LBVH, High -> full-sweep SAH);
-/// the refs may be reordered.
-inline void buildWithDoubleRefs(BuildRefs& refs, const BuildOptions& options, BVH& bvh)
+/// The double-reference builders (Fast -> LBVH, High -> full-sweep SAH)
+/// into nodes of `format`; the refs may be reordered.
+template <class Format, class Tree>
+void buildWithDoubleRefs(BuildRefs& refs, const Format& format, const BuildOptions& options, Tree& bvh)
 {
   if (options.quality == BuildQuality::Fast)
   {
-    LBVHBuilder builder(refs, options);
+    LBVHBuilder<Format> builder(refs, options, format);
     buildWith(builder, refs.size(), options, bvh);
     return;
   }
-  SweepSAHBuilder builder(refs, options);
+  SweepSAHBuilder<Format> builder(refs, options, format);
   buildWith(builder, refs.size(), options, bvh);
 }
 

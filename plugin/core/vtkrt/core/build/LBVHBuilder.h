@@ -17,13 +17,19 @@
 namespace vtkrt::core::detail
 {
 
-class LBVHBuilder : public TopDownBuilder<LBVHBuilder>
+/// Format: the nodes it writes (NodeFormats.h).
+template <class Format = DoubleNodes>
+class LBVHBuilder : public TopDownBuilder<LBVHBuilder<Format>, BuildRef, Format>
 {
+  using Base = TopDownBuilder<LBVHBuilder<Format>, BuildRef, Format>;
+
 public:
-  using TopDownBuilder::TopDownBuilder;
+  using Base::Base;
 
 private:
-  friend class TopDownBuilder<LBVHBuilder>;
+  friend Base;
+  using Base::Options;
+  using Base::Refs;
 
   /// The split needs no bounds: merging them bottom-up is O(n) in total
   /// instead of a pass over the range at every level.

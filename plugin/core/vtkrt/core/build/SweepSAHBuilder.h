@@ -16,13 +16,19 @@
 namespace vtkrt::core::detail
 {
 
-class SweepSAHBuilder : public TopDownBuilder<SweepSAHBuilder>
+/// Format: the nodes it writes (NodeFormats.h).
+template <class Format = DoubleNodes>
+class SweepSAHBuilder : public TopDownBuilder<SweepSAHBuilder<Format>, BuildRef, Format>
 {
+  using Base = TopDownBuilder<SweepSAHBuilder<Format>, BuildRef, Format>;
+
 public:
-  using TopDownBuilder::TopDownBuilder;
+  using Base::Base;
 
 private:
-  friend class TopDownBuilder<SweepSAHBuilder>;
+  friend Base;
+  using Base::Options;
+  using Base::Refs;
 
   static constexpr bool kBottomUpBounds = false;
   static constexpr bool kSplitNeedsBounds = true;
