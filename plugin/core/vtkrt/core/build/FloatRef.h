@@ -13,7 +13,6 @@
 #include "vtkrt/core/build/Parallel.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -87,7 +86,7 @@ template <class BoundsFn>
 FloatRefs fillFloatRefs(std::size_t count, BoundsFn& boundsOf, const BuildOptions& options, AABB<double>& root)
 {
   root = AABB<double>();
-  std::atomic<bool> allValid{ true };
+  bool allValid = true;
   std::mutex merge;
   parallelChunks(count, options, [&](std::size_t b, std::size_t e) {
     AABB<double> chunk;
