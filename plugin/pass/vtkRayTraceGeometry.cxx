@@ -80,7 +80,7 @@ std::optional<Vec3<double>> adoptBVH(Geometry& g, core::GpuBVH& bvh, const core:
   {
     return std::nullopt;
   }
-  const Vec3<double> origin = bvh.origin;
+  const Vec3<double> origin = bvh.origin();
   const Vec3<double> modelOrigin = frame.toModel(origin);
   g.Origin = { { modelOrigin.x, modelOrigin.y, modelOrigin.z } };
   g.Scale = frame.scale;

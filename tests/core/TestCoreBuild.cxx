@@ -459,7 +459,7 @@ void testGpuNodes()
     const BVH bvh = buildBVHConcurrentBounds(boxes.size(), boxOf, opt);
     const GpuBVH gpu = buildGpuBVHConcurrentBounds(boxes.size(), boxOf, opt);
     const std::vector<gpu::Node> packed = packGpuNodes(bvh.nodes, bvh.bounds().center());
-    VTKRT_CHECK_MSG(gpu.bounds == bvh.bounds() && gpu.origin == bvh.bounds().center() &&
+    VTKRT_CHECK_MSG(gpu.bounds == bvh.bounds() && gpu.origin() == bvh.bounds().center() &&
         gpu.primIndex == bvh.primIndex && gpu.nodes.size() == packed.size() &&
         std::memcmp(gpu.nodes.data(), packed.data(), packed.size() * sizeof(gpu::Node)) == 0,
       "%s: GPU nodes differ from the packed double tree", names[q]);
@@ -477,8 +477,8 @@ void testGpuNodes()
     single.maxLeafSize = 1;
     const BVH bvh = buildBVH(zeros, single);
     const GpuBVH gpu = buildGpuBVH(zeros, single);
-    const std::vector<gpu::Node> packed = packGpuNodes(bvh.nodes, gpu.origin);
-    VTKRT_CHECK(gpu.origin == Vec3<double>(0.0) && gpu.nodes.size() == packed.size() &&
+    const std::vector<gpu::Node> packed = packGpuNodes(bvh.nodes, gpu.origin());
+    VTKRT_CHECK(gpu.origin() == Vec3<double>(0.0) && gpu.nodes.size() == packed.size() &&
       std::memcmp(gpu.nodes.data(), packed.data(), packed.size() * sizeof(gpu::Node)) == 0);
   }
   const GpuBVH none = buildGpuBVHConcurrentBounds(0, [](std::size_t) { return AABB<double>(); });

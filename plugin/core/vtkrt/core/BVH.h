@@ -137,10 +137,11 @@ struct GpuBVH
   HugePageArray<gpu::Node> nodes;
   std::vector<std::uint32_t> primIndex;
   AABB<double> bounds; ///< the exact box of every built primitive
-  Vec3<double> origin; ///< originOf(bounds)
-  BuildStats stats;      ///< sahCost from the float boxes
+  BuildStats stats;    ///< sahCost from the float boxes
 
   bool empty() const { return nodes.empty(); }
+  /// What the nodes' boxes are relative to: originOf(bounds).
+  Vec3<double> origin() const { return originOf(bounds); }
   /// The nodes' origin for a tree of these bounds: its center, 0 when empty.
   static Vec3<double> originOf(const AABB<double>& bounds)
   {

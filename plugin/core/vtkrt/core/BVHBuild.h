@@ -99,16 +99,27 @@ void buildTreeOnFloatRefs(FloatRefs& refs, std::size_t count, BoundsFn& boundsOf
   setBuildStats(tree, count, built, options, start);
 }
 
-/// The binned SAH build of double nodes.
-template <class BoundsFn>
-BVH buildOnFloatRefs(std::size_t count, BoundsFn& boundsOf, const BuildOptions& options,
-  std::chrono::steady_clock::time_point start)
+/// The build over boundsOf (called from several threads) into `tree`, a
+/// BVH or a GpuBVH whose node format formatOf(root) gives; `root`: the
+/// union of the valid boxes.
+template <class BoundsFn, class FormatOf, class Tree>
+void buildConcurrent(std::size_t count, BoundsFn& boundsOf, const BuildOptions& options,
+  std::chrono::steady_clock::time_point start, FormatOf formatOf, AABB<double>& root, Tree& tree)
 {
-  BVH bvh;
-  AABB<double> root;
-  FloatRefs refs = fillFloatRefs(count, boundsOf, options, root);
-  buildTreeOnFloatRefs(refs, count, boundsOf, DoubleNodes(), options, start, bvh);
-  return bvh;
+  if (buildsOnFloatRefs(options))
+  {
+    FloatRefs refs = fillFloatRefs(count, boundsOf, options, root);
+    buildTreeOnFloatRefs(refs, count, boundsOf, formatOf(root), options, start, tree);
+    return;
+  }
+  BuildRefs refs = fillDoubleRefs(count, boundsOf, options, root);
+  buildFromRefs(refs, count, formatOf(root), options, start, tree);
+}
+
+/// The double nodes' format, whatever the root.
+inline DoubleNodes doubleNodes(const AABB<double>&)
+{
+  return DoubleNodes();
 }
 } // namespace detail
 
@@ -129,7 +140,10 @@ BVH buildBVH(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options
       boxes[i] = boundsOf(i);
     }
     auto boxOf = [&boxes](std::size_t i) { return boxes[i]; };
-    return detail::buildOnFloatRefs(count, boxOf, options, start);
+    BVH bvh;
+    AABB<double> root;
+    detail::buildConcurrent(count, boxOf, options, start, detail::doubleNodes, root, bvh);
+    return bvh;
   }
   detail::BuildRefs refs;
   refs.reserve(count);
@@ -155,15 +169,9 @@ BVH buildBVH(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options
 template <class BoundsFn>
 BVH buildBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options = BuildOptions())
 {
-  const auto start = std::chrono::steady_clock::now();
-  if (detail::buildsOnFloatRefs(options))
-  {
-    return detail::buildOnFloatRefs(count, boundsOf, options, start);
-  }
-  AABB<double> root;
-  detail::BuildRefs refs = detail::fillDoubleRefs(count, boundsOf, options, root);
   BVH bvh;
-  detail::buildFromRefs(refs, count, detail::DoubleNodes(), options, start, bvh);
+  AABB<double> root;
+  detail::buildConcurrent(count, boundsOf, options, std::chrono::steady_clock::now(), detail::doubleNodes, root, bvh);
   return bvh;
 }
 
@@ -173,18 +181,9 @@ BVH buildBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const Build
 template <class BoundsFn>
 GpuBVH buildGpuBVHConcurrentBounds(std::size_t count, BoundsFn&& boundsOf, const BuildOptions& options = BuildOptions())
 {
-  const auto start = std::chrono::steady_clock::now();
   GpuBVH gpu;
-  if (!detail::buildsOnFloatRefs(options))
-  {
-    detail::BuildRefs refs = detail::fillDoubleRefs(count, boundsOf, options, gpu.bounds);
-    gpu.origin = GpuBVH::originOf(gpu.bounds);
-    detail::buildFromRefs(refs, count, detail::GpuNodes{ gpu.origin }, options, start, gpu);
-    return gpu;
-  }
-  detail::FloatRefs refs = detail::fillFloatRefs(count, boundsOf, options, gpu.bounds);
-  gpu.origin = GpuBVH::originOf(gpu.bounds);
-  detail::buildTreeOnFloatRefs(refs, count, boundsOf, detail::GpuNodes{ gpu.origin }, options, start, gpu);
+  auto gpuNodes = [](const AABB<double>& root) { return detail::GpuNodes{ GpuBVH::originOf(root) }; };
+  detail::buildConcurrent(count, boundsOf, options, std::chrono::steady_clock::now(), gpuNodes, gpu.bounds, gpu);
   return gpu;
 }
 

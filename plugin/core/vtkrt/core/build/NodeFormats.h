@@ -56,8 +56,7 @@ inline double nodeHalfArea(const BVHNode& n)
 }
 inline double nodeHalfArea(const gpu::Node& n)
 {
-  const double dx = double(n.hi[0]) - n.lo[0], dy = double(n.hi[1]) - n.lo[1], dz = double(n.hi[2]) - n.lo[2];
-  return dx >= 0.0 && dy >= 0.0 && dz >= 0.0 ? dx * dy + dy * dz + dz * dx : 0.0;
+  return AABB<double>(Vec3<double>(n.lo), Vec3<double>(n.hi)).halfArea();
 }
 
 } // namespace vtkrt::core

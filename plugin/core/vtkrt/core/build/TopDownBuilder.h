@@ -44,8 +44,7 @@ inline std::uint32_t ceilLog2(std::uint64_t x)
   return r;
 }
 
-/// What a builder provides (private, with TopDownBuilder<Builder, Ref> a
-/// friend):
+/// What a builder provides (private, with its TopDownBuilder a friend):
 ///   static constexpr bool kBottomUpBounds: node boxes merged from the
 ///     children (a leaf's from leafBox) instead of the split's bounds;
 ///   static constexpr bool kSplitNeedsBounds: splitBounds(begin, end) is
@@ -99,11 +98,10 @@ public:
     TaskSize = std::max(kTaskPrimitives, n / kTopTasks);
     std::vector<Task> tasks;
     Nodes top(1);
-    Nodes nodes;
     TopPhase = true;
     buildTop(top, tasks);
     TopPhase = false;
-    nodes = placeTasks(top, tasks);
+    Nodes nodes = placeTasks(top, tasks);
     runTasks(tasks);
     joinTasks(nodes, top.size(), tasks);
     self().finish();
