@@ -82,15 +82,21 @@ int queryMismatches(const BVH& bvh, const MeshData& m, Rng& rng, int rays)
   return mismatches;
 }
 
+/// Moves every vertex of `m` by up to `amount` on each axis.
+void jitter(MeshData& m, double amount, Rng& rng)
+{
+  for (auto& v : m.vertices)
+  {
+    v += amount * rng.inBox(Vec3<double>(-1), Vec3<double>(1));
+  }
+}
+
 void testDeterminismAndQuality()
 {
   Rng rng(1);
   // ~100k triangles: a noisy sphere plus a soup, enough for parallel tasks.
   MeshData m = makeIcosphere(6, 0.5, Vec3<double>(0.5)); // 81920 triangles
-  for (auto& v : m.vertices)
-  {
-    v += 0.003 * rng.inBox(Vec3<double>(-1), Vec3<double>(1));
-  }
+  jitter(m, 0.003, rng);
   const MeshData soup = makeTriangleSoup(rng, 20000, 0.02);
   for (std::size_t i = 0; i < soup.indices.size(); ++i)
   {
@@ -367,10 +373,7 @@ void testFloatReferenceFrames()
 {
   Rng rng(4);
   MeshData unit = makeIcosphere(5, 0.5, Vec3<double>(0.5)); // 20480 triangles
-  for (auto& v : unit.vertices)
-  {
-    v += 0.002 * rng.inBox(Vec3<double>(-1), Vec3<double>(1));
-  }
+  jitter(unit, 0.002, rng);
   BuildOptions opt;
   opt.numThreads = 2;
   const BVH ref = buildTriangleBVH(unit.view(), opt);
@@ -440,10 +443,7 @@ void testGpuNodes()
 {
   Rng rng(5);
   MeshData m = makeIcosphere(5, 0.5, Vec3<double>(1e8, -3e7, 2.5));
-  for (auto& v : m.vertices)
-  {
-    v += 0.002 * rng.inBox(Vec3<double>(-1), Vec3<double>(1));
-  }
+  jitter(m, 0.002, rng);
   std::vector<AABB<double>> boxes = triangleBounds(m.view());
   for (std::size_t i = 3; i < boxes.size(); i += 501)
   {

@@ -60,24 +60,10 @@ template <class BoundsFn>
 BuildRefs fillDoubleRefs(std::size_t count, BoundsFn& boundsOf, const BuildOptions& options, AABB<double>& root)
 {
   BuildRefs refs(count);
-  root = AABB<double>();
-  bool allValid = true;
-  std::mutex merge;
-  parallelChunks(count, options, [&](std::size_t b, std::size_t e) {
-    AABB<double> chunk;
-    bool valid = true;
-    for (std::size_t i = b; i < e; ++i)
-    {
-      const AABB<double> box = boundsOf(i);
-      const bool ok = isBuildable(box);
-      refs[i] = { ok ? box : AABB<double>(), static_cast<std::uint32_t>(i) };
-      extendBox(chunk, refs[i].box);
-      valid = valid && ok;
-    }
-    std::lock_guard<std::mutex> lock(merge);
-    root.extend(chunk);
-    allValid = allValid && valid;
-  });
+  const bool allValid = unionOfBuildable(count, boundsOf, options, root,
+    [&refs](std::size_t i, const AABB<double>& box, bool valid) {
+      refs[i] = { valid ? box : AABB<double>(), static_cast<std::uint32_t>(i) };
+    });
   if (!allValid)
   {
     // Drop the skipped ones, keeping the order (what buildBVH's loop does).

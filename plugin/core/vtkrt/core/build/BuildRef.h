@@ -4,10 +4,12 @@
 
 #include "vtkrt/core/AABB.h"
 #include "vtkrt/core/HugePageArray.h"
+#include "vtkrt/core/build/Parallel.h"
 #include "vtkrt/core/simd/Dispatch.h" // VTKRT_ALWAYS_INLINE
 
 #include <algorithm>
 #include <cstdint>
+#include <mutex>
 
 namespace vtkrt::core::detail
 {
@@ -52,6 +54,37 @@ VTKRT_ALWAYS_INLINE inline void extendBox(AABB<double>& a, const Vec3<double>& p
 inline bool isBuildable(const AABB<double>& box)
 {
   return !box.isEmpty() && box.isFinite();
+}
+
+/// The union `root` of the valid boxes among boundsOf(0 .. count-1), with
+/// visit(i, box, valid) on each (boundsOf and visit run on several threads
+/// at once, on disjoint indices); whether every box was valid.
+template <class BoundsFn, class Visit>
+bool unionOfBuildable(std::size_t count, BoundsFn& boundsOf, const BuildOptions& options, AABB<double>& root,
+  Visit visit)
+{
+  root = AABB<double>();
+  bool allValid = true;
+  std::mutex merge;
+  parallelChunks(count, options, [&](std::size_t b, std::size_t e) {
+    AABB<double> chunk;
+    bool valid = true;
+    for (std::size_t i = b; i < e; ++i)
+    {
+      const AABB<double> box = boundsOf(i);
+      const bool ok = isBuildable(box);
+      if (ok)
+      {
+        extendBox(chunk, box);
+      }
+      visit(i, box, ok);
+      valid = valid && ok;
+    }
+    std::lock_guard<std::mutex> lock(merge);
+    root.extend(chunk);
+    allValid = allValid && valid;
+  });
+  return allValid;
 }
 
 /// A range's box and the box of its centroids.

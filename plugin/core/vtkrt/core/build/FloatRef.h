@@ -16,7 +16,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <mutex>
 
 namespace vtkrt::core::detail
 {
@@ -85,28 +84,7 @@ struct RefFrame
 template <class BoundsFn>
 FloatRefs fillFloatRefs(std::size_t count, BoundsFn& boundsOf, const BuildOptions& options, AABB<double>& root)
 {
-  root = AABB<double>();
-  bool allValid = true;
-  std::mutex merge;
-  parallelChunks(count, options, [&](std::size_t b, std::size_t e) {
-    AABB<double> chunk;
-    bool valid = true;
-    for (std::size_t i = b; i < e; ++i)
-    {
-      const AABB<double> box = boundsOf(i);
-      if (isBuildable(box))
-      {
-        extendBox(chunk, box);
-      }
-      else
-      {
-        valid = false;
-      }
-    }
-    std::lock_guard<std::mutex> lock(merge);
-    root.extend(chunk);
-    allValid = allValid && valid;
-  });
+  const bool allValid = unionOfBuildable(count, boundsOf, options, root, [](std::size_t, const AABB<double>&, bool) {});
   if (root.isEmpty())
   {
     return FloatRefs();
