@@ -64,7 +64,7 @@ void vtkRayTracePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastFeatureKey: " << this->Internal->Programs.GetLastKey() << "\n";
   const FrameCounters& c = this->Internal->Counters;
   os << indent << "Last frame: BVH builds " << c.BVHBuilds << ", geometry bytes "
-     << c.GeometryBytesUploaded << ", frame bytes " << c.FrameBytesUploaded << ", shader compiles "
+     << c.GeometryBytesUploaded << " (borrowed " << c.GeometryBytesBorrowed << "), frame bytes " << c.FrameBytesUploaded << ", shader compiles "
      << c.ShaderCompiles << ", traced primitives " << c.TracedPrimitives << "\n";
   os << indent << "Last frame seconds: extraction " << c.ExtractionSeconds << ", triangulation "
      << c.TriangulationSeconds << ", build " << c.BuildSeconds << ", packing " << c.PackingSeconds
@@ -188,6 +188,10 @@ int vtkRayTracePass::GetLastBVHBuilds() const
 vtkTypeInt64 vtkRayTracePass::GetLastGeometryBytesUploaded() const
 {
   return static_cast<vtkTypeInt64>(this->Internal->Counters.GeometryBytesUploaded);
+}
+vtkTypeInt64 vtkRayTracePass::GetLastGeometryBytesBorrowed() const
+{
+  return static_cast<vtkTypeInt64>(this->Internal->Counters.GeometryBytesBorrowed);
 }
 vtkTypeInt64 vtkRayTracePass::GetLastFrameBytesUploaded() const
 {

@@ -152,9 +152,14 @@ public:
    * a still frame, or a camera move in WORLD precision mode), shader
    * programs compiled,
    * primitives in the traced instances, traced instances.
+   * Of the geometry bytes, GetLastGeometryBytesBorrowed() counts those the
+   * GL buffers took from the pass's geometry cache as they are instead of
+   * a copy (a CPU renderer that takes user memory, as llvmpipe, and a
+   * scene of one traced geometry).
    */
   int GetLastBVHBuilds() const;
   vtkTypeInt64 GetLastGeometryBytesUploaded() const;
+  vtkTypeInt64 GetLastGeometryBytesBorrowed() const;
   vtkTypeInt64 GetLastFrameBytesUploaded() const;
   int GetLastShaderCompiles() const;
   vtkTypeInt64 GetLastTracedPrimitives() const;

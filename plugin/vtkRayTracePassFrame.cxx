@@ -164,20 +164,25 @@ void vtkRayTracePass::Internals::UploadGeometry(
   const vtkRayTracePass& pass, vtkOpenGLRenderWindow* win, std::size_t limit)
 {
   // Packed straight into the mapped GPU buffers: no copy of the scene on
-  // the way; with room to append what changes later.
+  // the way; with room to append what changes later. A scene of one
+  // geometry lends its arrays instead where the buffers can take them.
   vtkrt::pass::PhaseClock clock;
   vtkrt::pass::GeometryLayout layout = vtkrt::pass::LayOutGeometry(this->Scene);
   std::string error;
   this->GeometryValid = vtkrt::pass::SceneBuffers::Fits(layout, limit, error);
   if (this->GeometryValid)
   {
+    const std::shared_ptr<const vtkrt::pass::Geometry> sole = this->Scene.SoleGeometry();
+    const vtkrt::pass::GeometryLoans loans = sole ? vtkrt::pass::LendableArrays(*sole) : vtkrt::pass::GeometryLoans();
     this->Counters.PackingSeconds += clock.Lap();
     this->GeometryCapacity = vtkrt::pass::WithRoom(layout, limit, this->GeometryLastAppend);
-    const vtkrt::pass::GeometryTargets targets = this->Buffers.MapGeometry(layout, this->GeometryCapacity);
+    const vtkrt::pass::GeometryTargets targets =
+      this->Buffers.MapGeometry(layout, this->GeometryCapacity, loans, sole);
     this->Counters.UploadSeconds += clock.Lap();
     vtkrt::pass::WriteGeometry(this->Scene, layout, targets);
     this->Counters.PackingSeconds += clock.Lap();
     this->Counters.GeometryBytesUploaded += this->Buffers.UnmapGeometry(win);
+    this->Counters.GeometryBytesBorrowed += targets.BorrowedBytes;
     this->Counters.UploadSeconds += clock.Lap();
   }
   else

@@ -124,11 +124,7 @@ std::size_t TextureBuffer::Upload(vtkOpenGLRenderWindow* win, const void* data, 
   const float* ptr = texels == 0 ? zero : static_cast<const float*>(data);
   const std::size_t n = texels == 0 ? 1 : texels;
   this->Buffer->Upload(ptr, 4 * n, vtkOpenGLBufferObject::TextureBuffer);
-  if (this->Pinned.Data())
-  {
-    glFinish(); // frames in flight may still read the pinned storage
-    this->Pinned.Free();
-  }
+  this->FreeOwnStorage();
   this->Texture->SetContext(win);
   // RGBA32UI (read by a usamplerBuffer): integer fields come back bit
   // exact, floats are reinterpreted in the shader.
@@ -175,7 +171,7 @@ void* TextureBuffer::MapRange(std::size_t first, std::size_t texels)
   this->RangeFirst = first;
   this->RangeTexels = texels;
   this->Mapped = false;
-  if (texels == 0 || first + texels > this->Capacity)
+  if (texels == 0 || first + texels > this->Capacity || this->Borrowed)
   {
     this->RangeTexels = 0;
     return nullptr;
@@ -225,14 +221,42 @@ std::size_t TextureBuffer::UnmapRange()
   return bytes;
 }
 
+bool TextureBuffer::Borrow(
+  const void* data, std::size_t texels, std::size_t readablePastEnd, std::shared_ptr<const void> keep)
+{
+  const std::size_t bytes = core::gpu::kTexelBytes * texels;
+  const bool fits = data && texels > 0 && reinterpret_cast<std::uintptr_t>(data) % 4096 == 0 &&
+    readablePastEnd >= kPinnedSlack;
+  if (!fits || !RendererPinsMemory() || !this->AdoptStorage(data, bytes))
+  {
+    return false;
+  }
+  this->Borrowed = std::move(keep);
+  this->BorrowPending = true;
+  this->Texels = texels;
+  this->Capacity = texels;
+  this->Mapped = false;
+  return true;
+}
+
 std::size_t TextureBuffer::Unmap(vtkOpenGLRenderWindow* win)
 {
   const std::size_t n = this->Capacity;
   bool adopted = false;
-  if (this->Pending.Data())
+  if (this->BorrowPending)
   {
-    adopted = this->AdoptPending(core::gpu::kTexelBytes * n);
-    if (!adopted)
+    this->BorrowPending = false;
+    adopted = true;
+  }
+  else if (this->Pending.Data())
+  {
+    adopted = this->AdoptStorage(this->Pending.Data(), core::gpu::kTexelBytes * n);
+    if (adopted)
+    {
+      this->Pinned.Swap(this->Pending);
+      this->Pending.Free();
+    }
+    else
     {
       this->Buffer->Upload(
         static_cast<const float*>(this->Pending.Data()), 4 * n, vtkOpenGLBufferObject::TextureBuffer);
@@ -252,12 +276,11 @@ std::size_t TextureBuffer::Unmap(vtkOpenGLRenderWindow* win)
       reinterpret_cast<const float*>(this->Staging.get()), 4 * n, vtkOpenGLBufferObject::TextureBuffer);
     this->Staging.reset();
   }
-  if (!adopted && this->Pinned.Data())
+  if (!adopted)
   {
-    // The buffer has storage of the driver's now: pinned memory of an
+    // The buffer has storage of the driver's now: memory of ours of an
     // earlier upload is no longer what it reads (MapRange must not write there).
-    glFinish(); // frames in flight may still read it
-    this->Pinned.Free();
+    this->FreeOwnStorage();
   }
   this->Texture->SetContext(win);
   this->Texture->SetInternalFormat(GL_RGBA32UI);
@@ -265,40 +288,41 @@ std::size_t TextureBuffer::Unmap(vtkOpenGLRenderWindow* win)
   return core::gpu::kTexelBytes * this->Texels;
 }
 
-bool TextureBuffer::AdoptPending(std::size_t bytes)
+bool TextureBuffer::AdoptStorage(const void* data, std::size_t bytes)
 {
   if (!this->Buffer->GenerateBuffer(vtkOpenGLBufferObject::TextureBuffer))
   {
     return false;
   }
   glBindBuffer(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, static_cast<GLuint>(this->Buffer->GetHandle()));
-  glBufferData(
-    GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, static_cast<GLsizeiptr>(bytes), this->Pending.Data(), GL_STATIC_DRAW);
+  glBufferData(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, static_cast<GLsizeiptr>(bytes), data, GL_STATIC_DRAW);
   const bool adopted = glGetError() == GL_NO_ERROR;
   glBindBuffer(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, 0);
-  if (!adopted)
+  if (adopted)
   {
-    return false;
+    // The buffer no longer reads the storage it had.
+    this->FreeOwnStorage();
   }
-  if (this->Pinned.Data())
+  return adopted;
+}
+
+void TextureBuffer::FreeOwnStorage()
+{
+  if (this->Pinned.Data() || this->Borrowed)
   {
-    glFinish(); // frames in flight may still read the old storage
+    glFinish(); // frames in flight may still read it
   }
-  this->Pinned.Swap(this->Pending);
-  this->Pending.Free();
-  return true;
+  this->Pinned.Free();
+  this->Borrowed.reset();
 }
 
 void TextureBuffer::Release(vtkWindow* w)
 {
   this->Texture->ReleaseGraphicsResources(w);
   this->Buffer->ReleaseGraphicsResources();
-  if (this->Pinned.Data())
-  {
-    glFinish(); // frames in flight may still read the pinned storage
-    this->Pinned.Free();
-  }
+  this->FreeOwnStorage();
   this->Pending.Free();
+  this->BorrowPending = false;
   this->Texels = 0;
   this->Capacity = 0;
 }
@@ -376,17 +400,35 @@ bool SceneBuffers::Fits(const ColorsLayout& layout, std::size_t limit, std::stri
   return fitsLimit(layout.Words / 4, limit, "'s colors", error);
 }
 
-GeometryTargets SceneBuffers::MapGeometry(const GeometryLayout& layout, const GeometrySizes& capacity)
+GeometryTargets SceneBuffers::MapGeometry(const GeometryLayout& layout, GeometrySizes& capacity,
+  const GeometryLoans& loans, const std::shared_ptr<const void>& keep)
 {
   const std::array<std::size_t, 6> used = geometryTexels(layout);
-  const std::array<std::size_t, 6> room = geometryTexels(capacity);
   const std::array<TextureBuffer*, 6> buffers = this->GeometryBuffers();
-  std::array<void*, 6> storage{};
+  const std::array<const LentArray*, 6> lent = { { &loans.Nodes, &loans.Triangles, &loans.TriangleVertices,
+    nullptr, nullptr, &loans.Normals } };
+  std::array<bool, 6> borrowed{};
   for (std::size_t k = 0; k < buffers.size(); ++k)
   {
-    storage[k] = buffers[k]->Map(used[k], room[k]);
+    const LentArray* loan = lent[k];
+    borrowed[k] = loan && loan->Texels == used[k] &&
+      buffers[k]->Borrow(loan->Data, loan->Texels, loan->ReadablePastEnd, keep);
   }
-  return targetsOf(storage, GeometrySizes());
+  // A borrowed buffer has no room: what shares its size appends nothing.
+  capacity.Nodes = borrowed[0] ? layout.Nodes : capacity.Nodes;
+  capacity.Triangles = borrowed[1] || borrowed[2] ? layout.Triangles : capacity.Triangles;
+  capacity.Normals = borrowed[5] ? layout.Normals : capacity.Normals;
+  const std::array<std::size_t, 6> room = geometryTexels(capacity);
+  std::array<void*, 6> storage{};
+  std::size_t borrowedTexels = 0;
+  for (std::size_t k = 0; k < buffers.size(); ++k)
+  {
+    storage[k] = borrowed[k] ? nullptr : buffers[k]->Map(used[k], room[k]);
+    borrowedTexels += borrowed[k] ? used[k] : 0;
+  }
+  GeometryTargets out = targetsOf(storage, GeometrySizes());
+  out.BorrowedBytes = core::gpu::kTexelBytes * borrowedTexels;
+  return out;
 }
 
 std::size_t SceneBuffers::UnmapGeometry(vtkOpenGLRenderWindow* win)

@@ -26,6 +26,7 @@ namespace pass
 {
 struct ColorsLayout;
 struct GeometryLayout;
+struct GeometryLoans;
 struct GeometrySizes;
 struct GeometryTargets;
 struct PackedTextures;
@@ -75,8 +76,15 @@ public:
   /// With `capacity` (at least `texels`), the buffer has room for that
   /// many texels, which MapRange() writes later without a new buffer.
   void* Map(std::size_t texels, std::size_t capacity = 0);
-  /// Makes what Map() gave the texture buffer's contents. Returns the bytes
-  /// uploaded.
+  /// Instead of Map(): takes `texels` texels at `data` as the buffer's
+  /// storage as they are, no copy, where Map() would hand out memory of
+  /// ours (llvmpipe) and `data` is page-aligned with enough bytes readable
+  /// past its end. `keep` keeps the memory until the buffer lets go of it;
+  /// nothing may write it meanwhile (the buffer has no room: MapRange()
+  /// gives nothing). False when it cannot: nothing changed.
+  bool Borrow(const void* data, std::size_t texels, std::size_t readablePastEnd, std::shared_ptr<const void> keep);
+  /// Makes what Map() gave (or Borrow() took) the texture buffer's
+  /// contents. Returns the bytes uploaded.
   std::size_t Unmap(vtkOpenGLRenderWindow* win);
   /// Storage for texels [first, first + texels) of the buffer made by
   /// Map(), within its capacity, to write before UnmapRange(); the other
@@ -98,9 +106,15 @@ private:
   std::unique_ptr<unsigned char[]> Staging; ///< Map()'s storage when the buffer does not map
   PinnedStorage Pinned;  ///< the buffer's storage when it uses ours
   PinnedStorage Pending; ///< Map()'s pinned storage until Unmap()
+  std::shared_ptr<const void> Borrowed; ///< keeps the storage Borrow() took
+  bool BorrowPending = false;           ///< Borrow() took storage, Unmap() not called yet
 
-  /// Makes Pending the buffer's storage; false when the driver refuses.
-  bool AdoptPending(std::size_t bytes);
+  /// Makes `bytes` at `data` (page-aligned, ours) the buffer's storage;
+  /// false when the driver refuses.
+  bool AdoptStorage(const void* data, std::size_t bytes);
+  /// Lets go of memory of ours that the buffer used as storage, once
+  /// frames in flight are done with it.
+  void FreeOwnStorage();
 };
 
 /// The scene's buffers, named as the shader's samplers.
@@ -122,7 +136,10 @@ public:
   /// The geometry buffers' storage for the layout, for WriteGeometry; then
   /// UnmapGeometry, which returns the bytes uploaded.
   /// The buffers get room for `capacity`.
-  GeometryTargets MapGeometry(const GeometryLayout& layout, const GeometrySizes& capacity);
+  /// The buffers borrow what they can of `loans` (owned by `keep`): their
+  /// targets are null and `capacity` shrinks to what they hold.
+  GeometryTargets MapGeometry(const GeometryLayout& layout, GeometrySizes& capacity,
+    const GeometryLoans& loans, const std::shared_ptr<const void>& keep);
   std::size_t UnmapGeometry(vtkOpenGLRenderWindow* win);
   /// The geometry buffers' storage past `from` up to `to` (both within the
   /// capacity MapGeometry gave), for WriteAppended; then UnmapAppended,

@@ -114,11 +114,24 @@ void writePlaced(const Geometry& g, const GeometryPlacement& place, const Geomet
   }
   else
   {
-    copyAt(g.Triangles.data(), g.Triangles.size(), out.Triangles, from.Triangles, place.PrimitiveBase);
-    copyAt(g.TriangleVertices.data(), g.TriangleVertices.size(), out.TriangleVertices, from.Triangles,
-      place.PrimitiveBase);
-    copyAt(g.Normals.data(), g.Normals.size(), out.Normals, from.Normals, place.NormalBase);
-    copyAt(g.CellNormals.data(), g.CellNormals.size(), out.Normals, from.Normals, place.CellNormalBase);
+    if (out.Triangles)
+    {
+      copyAt(g.Triangles.data(), g.Triangles.size(), out.Triangles, from.Triangles, place.PrimitiveBase);
+    }
+    if (out.TriangleVertices)
+    {
+      copyAt(g.TriangleVertices.data(), g.TriangleVertices.size(), out.TriangleVertices, from.Triangles,
+        place.PrimitiveBase);
+    }
+    if (out.Normals)
+    {
+      copyAt(g.Normals.data(), g.Normals.size(), out.Normals, from.Normals, place.NormalBase);
+      copyAt(g.CellNormals.data(), g.CellNormals.size(), out.Normals, from.Normals, place.CellNormalBase);
+    }
+  }
+  if (!out.Nodes)
+  {
+    return;
   }
   // Local child / primitive indices become global ones.
   core::gpu::Node* nodes = out.Nodes + (place.Root - from.Nodes);
@@ -165,6 +178,42 @@ GeometrySizes SizesPast(const GeometrySizes& from, const GeometrySizes& to)
   out.Triangles = to.Triangles - from.Triangles;
   out.SphereTexels = to.SphereTexels - from.SphereTexels;
   out.Normals = to.Normals - from.Normals;
+  return out;
+}
+
+namespace
+{
+template <class Record>
+LentArray lentArrayOf(const core::HugePageArray<Record>& records)
+{
+  LentArray out;
+  if (!records.empty())
+  {
+    out.Data = records.data();
+    out.Texels = records.size() * core::gpu::texelsOf<Record>();
+    out.ReadablePastEnd = core::readableBytesPastEnd(records);
+  }
+  return out;
+}
+} // namespace
+
+GeometryLoans LendableArrays(const Geometry& sole)
+{
+  GeometryLoans out;
+  out.Nodes = lentArrayOf(sole.Nodes);
+  if (!sole.Spheres)
+  {
+    out.Triangles = lentArrayOf(sole.Triangles);
+    out.TriangleVertices = lentArrayOf(sole.TriangleVertices);
+    if (sole.CellNormals.empty())
+    {
+      out.Normals = lentArrayOf(sole.Normals);
+    }
+    else if (sole.Normals.empty())
+    {
+      out.Normals = lentArrayOf(sole.CellNormals);
+    }
+  }
   return out;
 }
 

@@ -58,7 +58,8 @@ struct GeometryLayout : GeometrySizes
 GeometrySizes WithRoom(const GeometrySizes& used, std::size_t limit, const GeometrySizes& lastAppend);
 
 /// Storage that WriteGeometry fills in place (the GPU buffers themselves,
-/// from the record at `From` on): nothing is packed twice.
+/// from the record at `From` on): nothing is packed twice. A null pointer:
+/// the buffer has its contents already (a lent array), nothing to write.
 struct GeometryTargets
 {
   core::gpu::Node* Nodes = nullptr;
@@ -68,7 +69,30 @@ struct GeometryTargets
   std::uint32_t* SphereIds = nullptr;
   core::gpu::Normal* Normals = nullptr;
   GeometrySizes From; ///< the records the pointers above point at
+  std::size_t BorrowedBytes = 0; ///< what the buffers with null pointers hold
 };
+
+/// A cache array that is a geometry buffer's whole contents as they are.
+struct LentArray
+{
+  const void* Data = nullptr; ///< null: nothing to lend
+  std::size_t Texels = 0;
+  std::size_t ReadablePastEnd = 0; ///< bytes past the last texel that may be read
+};
+
+/// What a scene of one geometry may lend the geometry buffers instead of
+/// a copy (see LendableArrays).
+struct GeometryLoans
+{
+  LentArray Nodes, Triangles, TriangleVertices, Normals;
+};
+
+/// The arrays of `sole`, the layout's only geometry, that are their
+/// buffers' contents as they are: its nodes (its root and first primitive
+/// are at 0, so no index moves), triangles, triangle vertices, and its
+/// point or cell normals when it has only one kind. The sphere buffer is
+/// padded per geometry: not lent.
+GeometryLoans LendableArrays(const Geometry& sole);
 
 /// Where a colors entry starts in the packed colors (a whole texel).
 struct ColorsPlacement

@@ -69,6 +69,11 @@ bool& usedFlag(std::unique_ptr<T>& entry)
   return entry->Used;
 }
 template <class T>
+bool& usedFlag(std::shared_ptr<T>& entry)
+{
+  return entry->Used;
+}
+template <class T>
 bool& usedFlag(T& entry)
 {
   return entry.Used;
@@ -642,6 +647,28 @@ core::BuildOptions Scene::SphereOptions() const
   options.traversalCost = 3.0;
   options.maxLeafSize = 16;
   return options;
+}
+
+std::shared_ptr<const Geometry> Scene::SoleGeometry() const
+{
+  std::shared_ptr<const Geometry> sole;
+  std::size_t count = 0;
+  const auto visit = [&](const std::shared_ptr<Geometry>& g) {
+    if (!g->Empty())
+    {
+      sole = g;
+      ++count;
+    }
+  };
+  for (const auto& e : this->TriangleCache)
+  {
+    visit(e.second);
+  }
+  for (const auto& e : this->SphereCache)
+  {
+    visit(e.second);
+  }
+  return count == 1 ? sole : nullptr;
 }
 
 void Scene::Clear()

@@ -70,6 +70,10 @@ public:
       }
     }
   }
+  /// The only geometry ForEachGeometry visits, when there is exactly one,
+  /// else null.
+  std::shared_ptr<const Geometry> SoleGeometry() const;
+
   /// Every cached colors entry, in a stable order.
   template <class Fn>
   void ForEachColors(Fn&& fn) const
@@ -163,9 +167,11 @@ private:
   int BuildQuality = 1;
   bool TraceTranslucency = true;
   std::uint32_t LeafSize = 4;
-  std::map<const void*, std::unique_ptr<Geometry>> TriangleCache;
+  // Shared: the GPU buffers may hold a geometry's arrays as their storage
+  // after the cache lets go of it (SoleGeometry()).
+  std::map<const void*, std::shared_ptr<Geometry>> TriangleCache;
   /// Points as spheres: (polydata, null); glyphs: (mapper, dataset).
-  std::map<std::pair<const void*, const void*>, std::unique_ptr<Geometry>> SphereCache;
+  std::map<std::pair<const void*, const void*>, std::shared_ptr<Geometry>> SphereCache;
   std::map<std::pair<const void*, const void*>, std::unique_ptr<Colors>> ColorCache;
   /// Whether a glyph source that is not a vtkSphereSource is a sphere, per
   /// mapper, decided once per (source data, MTime).

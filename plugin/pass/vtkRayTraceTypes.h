@@ -223,6 +223,7 @@ struct FrameCounters
   int BVHBuilds = 0;      ///< bottom level (per data object)
   int TopLevelBuilds = 0; ///< over the instances
   std::size_t GeometryBytesUploaded = 0;
+  std::size_t GeometryBytesBorrowed = 0; ///< of those, taken from the cache as they are
   std::size_t FrameBytesUploaded = 0;
   int ShaderCompiles = 0;
   std::size_t TracedPrimitives = 0;

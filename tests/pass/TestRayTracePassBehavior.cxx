@@ -9,6 +9,10 @@
 //                     its own records and colors (appended, then packed anew
 //                     when out of room or under a lowered texel limit);
 //                     images and picks equal a fresh pass's
+//   BorrowedGeometry  a scene of one mesh: on llvmpipe its cached arrays are
+//                     the GL buffers' storage (no copy); a second prop, a
+//                     new mesh and a new window switch between that and
+//                     copies, each image the same as a copying pass's
 //   Lifecycle         the pass removed and installed again, its window
 //                     destroyed and replaced
 //   MovedBetweenWindows one pass moved between two live windows' renderers and
@@ -43,6 +47,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <map>
 #include <sstream>
@@ -503,6 +508,95 @@ void TestManyActors()
   NoVTKOutput("many actors");
 }
 
+// A scene of one mesh large enough for arrays of their own mappings: on
+// llvmpipe the GL buffers take the pass's cached nodes, triangles, triangle
+// vertices and normals as their storage instead of a copy. A second prop
+// makes it copy everything (one buffer holds both); after its removal, a
+// new mesh borrows the new arrays (the copies let go), and so does a new
+// window. Each image equals that of a fresh pass that copies
+// (VTKRT_NO_PINNED_MEMORY), in a second window.
+void TestBorrowedGeometry()
+{
+  auto win = MakeWindow(200, 200);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  vtkNew<vtkSphereSource> meshSource;
+  meshSource->SetThetaResolution(1024);
+  meshSource->SetPhiResolution(512);
+  vtkNew<vtkPolyDataMapper> meshMapper;
+  meshMapper->SetInputConnection(meshSource->GetOutputPort());
+  vtkNew<vtkActor> mesh;
+  mesh->SetMapper(meshMapper);
+  ren->AddActor(mesh);
+  ren->ResetCamera();
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+
+  win->Render();
+  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const char* noPinning = std::getenv("VTKRT_NO_PINNED_MEMORY");
+  const bool borrows = renderer && std::strstr(renderer, "llvmpipe") && !(noPinning && *noPinning);
+  auto freshWin = MakeWindow(200, 200);
+  const auto sameAsCopying = [&](const std::string& what) {
+    setenv("VTKRT_NO_PINNED_MEMORY", "1", 1);
+    SameAsFreshPass(win, ren, freshWin, what);
+    if (noPinning)
+    {
+      setenv("VTKRT_NO_PINNED_MEMORY", noPinning, 1);
+    }
+    else
+    {
+      unsetenv("VTKRT_NO_PINNED_MEMORY");
+    }
+  };
+  // Nodes, triangles, vertices and normals borrowed: all but a few texels
+  // (the empty sphere buffers' zero texel, an empty top level).
+  const auto check = [&](const std::string& what, bool borrowed) {
+    const vtkTypeInt64 uploaded = pass->GetLastGeometryBytesUploaded();
+    const vtkTypeInt64 lent = pass->GetLastGeometryBytesBorrowed();
+    std::ostringstream s;
+    s << what << ": " << lent << " of " << uploaded << " geometry bytes borrowed";
+    Check(uploaded > 0 && (borrowed ? lent > 0 && uploaded - lent <= 256 : lent == 0), s.str());
+    sameAsCopying(what);
+  };
+  check("one mesh", borrows);
+
+  vtkNew<vtkSphereSource> ballSource;
+  ballSource->SetRadius(0.1);
+  ballSource->SetCenter(0.5, 0.0, 0.0);
+  vtkNew<vtkPolyDataMapper> ballMapper;
+  ballMapper->SetInputConnection(ballSource->GetOutputPort());
+  vtkNew<vtkActor> ball;
+  ball->SetMapper(ballMapper);
+  ren->AddActor(ball);
+  win->Render();
+  check("a ball beside it", false);
+  // Removed: its records stay unused in the buffers, nothing is written.
+  ren->RemoveActor(ball);
+  win->Render();
+  Check(pass->GetLastGeometryBytesUploaded() == 0, "the ball removed: nothing written");
+  sameAsCopying("the ball removed");
+
+  meshSource->SetThetaResolution(1000);
+  win->Render();
+  Check(pass->GetLastBVHBuilds() == 1, "a new mesh is built");
+  check("a new mesh", borrows);
+  ren->GetActiveCamera()->Azimuth(30);
+  win->Render();
+  Check(pass->GetLastGeometryBytesUploaded() == 0, "a camera move uploads nothing");
+  sameAsCopying("a camera move");
+
+  win->RemoveRenderer(ren);
+  win->Finalize();
+  auto win2 = MakeWindow(200, 200);
+  win2->AddRenderer(ren);
+  win = win2;
+  win->Render();
+  check("a new window", borrows);
+  NoGLError(win, "borrowed geometry");
+  NoVTKOutput("borrowed geometry");
+}
+
 // Removing the pass gives raster back; the pass survives its window being
 // destroyed and renders the same renderer in a new window.
 void TestLifecycle()
@@ -656,6 +750,7 @@ int main(int argc, char* argv[])
     { "ManyActors", TestManyActors },
     { "IncrementalUpload", TestIncrementalUpload },
     { "ScalarChange", TestScalarChange },
+    { "BorrowedGeometry", TestBorrowedGeometry },
     { "Lifecycle", TestLifecycle },
     { "MovedBetweenWindows", TestMovedBetweenWindows },
     { "App", TestApp },

@@ -160,6 +160,17 @@ using HugePageArray = std::vector<T, NoFillAllocator<T>>;
 template <class T>
 using NoFillArray = std::vector<T, NoFillAllocator<T, false>>;
 
+/// Bytes that may be read past the last element of `array`: the rest of
+/// its own mapping for a large array, none for a block of malloc's, which
+/// may end there.
+template <class T>
+std::size_t readableBytesPastEnd(const HugePageArray<T>& array)
+{
+  const std::size_t capacityBytes = array.capacity() * sizeof(T);
+  return detail::usesHugePages(capacityBytes) ? detail::hugePageBytes(capacityBytes) - array.size() * sizeof(T)
+                                              : 0;
+}
+
 /// Gives back the memory of `array` past its size, for an array sized for
 /// the most it could hold that holds less: the pages of its own mapping
 /// past the size (the capacity stays, read as zeros if used again), or, a
