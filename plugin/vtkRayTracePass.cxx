@@ -63,9 +63,9 @@ void vtkRayTracePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DelegatePass: " << this->DelegatePass << "\n";
   os << indent << "LastFeatureKey: " << this->Internal->Programs.GetLastKey() << "\n";
   const FrameCounters& c = this->Internal->Counters;
-  os << indent << "Last frame: BVH builds " << c.BVHBuilds << ", geometry bytes "
-     << c.GeometryBytesUploaded << " (borrowed " << c.GeometryBytesBorrowed << "), frame bytes " << c.FrameBytesUploaded << ", shader compiles "
-     << c.ShaderCompiles << ", traced primitives " << c.TracedPrimitives << "\n";
+  os << indent << "Last frame: BVH builds " << c.BVHBuilds << ", geometry bytes " << c.GeometryBytesUploaded
+     << " (borrowed " << c.GeometryBytesBorrowed << "), frame bytes " << c.FrameBytesUploaded
+     << ", shader compiles " << c.ShaderCompiles << ", traced primitives " << c.TracedPrimitives << "\n";
   os << indent << "Last frame seconds: extraction " << c.ExtractionSeconds << ", triangulation "
      << c.TriangulationSeconds << ", build " << c.BuildSeconds << ", packing " << c.PackingSeconds
      << ", upload " << c.UploadSeconds << ", shader compile " << c.ShaderCompileSeconds << "\n";

@@ -6,6 +6,7 @@
 #include "vtkrt/core/HugePageArray.h"
 
 #include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLError.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
@@ -123,6 +124,7 @@ std::size_t TextureBuffer::Upload(vtkOpenGLRenderWindow* win, const void* data, 
   static const float zero[4] = { 0, 0, 0, 0 };
   const float* ptr = texels == 0 ? zero : static_cast<const float*>(data);
   const std::size_t n = texels == 0 ? 1 : texels;
+  this->LeaveOwnStorage();
   this->Buffer->Upload(ptr, 4 * n, vtkOpenGLBufferObject::TextureBuffer);
   this->FreeOwnStorage();
   this->Texture->SetContext(win);
@@ -143,6 +145,10 @@ void* TextureBuffer::Map(std::size_t texels, std::size_t capacity)
   this->Capacity = n;
   this->Mapped = false;
   void* storage = RendererPinsMemory() ? this->Pending.Allocate(bytes) : nullptr;
+  if (!storage)
+  {
+    this->LeaveOwnStorage();
+  }
   if (!storage && this->Buffer->GenerateBuffer(vtkOpenGLBufferObject::TextureBuffer) && this->Buffer->Bind())
   {
     glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(bytes), nullptr, GL_STATIC_DRAW);
@@ -258,6 +264,7 @@ std::size_t TextureBuffer::Unmap(vtkOpenGLRenderWindow* win)
     }
     else
     {
+      this->LeaveOwnStorage();
       this->Buffer->Upload(
         static_cast<const float*>(this->Pending.Data()), 4 * n, vtkOpenGLBufferObject::TextureBuffer);
       this->Pending.Free();
@@ -272,6 +279,7 @@ std::size_t TextureBuffer::Unmap(vtkOpenGLRenderWindow* win)
   }
   else
   {
+    this->LeaveOwnStorage();
     this->Buffer->Upload(
       reinterpret_cast<const float*>(this->Staging.get()), 4 * n, vtkOpenGLBufferObject::TextureBuffer);
     this->Staging.reset();
@@ -294,6 +302,7 @@ bool TextureBuffer::AdoptStorage(const void* data, std::size_t bytes)
   {
     return false;
   }
+  vtkOpenGLClearErrorMacro(); // the next error is this call's
   glBindBuffer(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, static_cast<GLuint>(this->Buffer->GetHandle()));
   glBufferData(GL_EXTERNAL_VIRTUAL_MEMORY_BUFFER_AMD, static_cast<GLsizeiptr>(bytes), data, GL_STATIC_DRAW);
   const bool adopted = glGetError() == GL_NO_ERROR;
@@ -304,6 +313,14 @@ bool TextureBuffer::AdoptStorage(const void* data, std::size_t bytes)
     this->FreeOwnStorage();
   }
   return adopted;
+}
+
+void TextureBuffer::LeaveOwnStorage()
+{
+  if (this->Pinned.Data() || this->Borrowed)
+  {
+    this->Buffer->ReleaseGraphicsResources();
+  }
 }
 
 void TextureBuffer::FreeOwnStorage()
@@ -416,7 +433,7 @@ GeometryTargets SceneBuffers::MapGeometry(const GeometryLayout& layout, Geometry
   }
   // A borrowed buffer has no room: what shares its size appends nothing.
   capacity.Nodes = borrowed[0] ? layout.Nodes : capacity.Nodes;
-  capacity.Triangles = borrowed[1] || borrowed[2] ? layout.Triangles : capacity.Triangles;
+  capacity.Triangles = (borrowed[1] || borrowed[2]) ? layout.Triangles : capacity.Triangles;
   capacity.Normals = borrowed[5] ? layout.Normals : capacity.Normals;
   const std::array<std::size_t, 6> room = geometryTexels(capacity);
   std::array<void*, 6> storage{};

@@ -115,6 +115,10 @@ private:
   /// Lets go of memory of ours that the buffer used as storage, once
   /// frames in flight are done with it.
   void FreeOwnStorage();
+  /// Before the buffer gets storage of the driver's: a new GL buffer when
+  /// the current one uses memory of ours, which glBufferData of the same
+  /// size would write into (Mesa updates such a buffer in place).
+  void LeaveOwnStorage();
 };
 
 /// The scene's buffers, named as the shader's samplers.
