@@ -49,6 +49,7 @@ void vtkRayTracePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "QualityPreset: " << this->GetQualityPresetAsString() << "\n";
   os << indent << "IdMode: " << this->IdMode << "\n";
   os << indent << "BuildQuality: " << this->BuildQuality << "\n";
+  os << indent << "BackgroundBuildThreshold: " << this->BackgroundBuildThreshold << "\n";
   os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
   os << indent << "ProgressiveAccumulation: " << this->ProgressiveAccumulation << "\n";
   os << indent << "Shadows: " << this->Shadows << "\n";
@@ -63,7 +64,8 @@ void vtkRayTracePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DelegatePass: " << this->DelegatePass << "\n";
   os << indent << "LastFeatureKey: " << this->Internal->Programs.GetLastKey() << "\n";
   const FrameCounters& c = this->Internal->Counters;
-  os << indent << "Last frame: BVH builds " << c.BVHBuilds << ", geometry bytes " << c.GeometryBytesUploaded
+  os << indent << "Last frame: BVH builds " << c.BVHBuilds << " (background builds taken "
+     << c.BackgroundBuildsTaken << "), geometry bytes " << c.GeometryBytesUploaded
      << " (borrowed " << c.GeometryBytesBorrowed << "), frame bytes " << c.FrameBytesUploaded
      << ", shader compiles " << c.ShaderCompiles << ", traced primitives " << c.TracedPrimitives << "\n";
   os << indent << "Last frame seconds: extraction " << c.ExtractionSeconds << ", triangulation "
@@ -184,6 +186,14 @@ int vtkRayTracePass::GetAccumulatedFrames() const
 int vtkRayTracePass::GetLastBVHBuilds() const
 {
   return this->Internal->Counters.BVHBuilds;
+}
+int vtkRayTracePass::GetLastBackgroundBuildsTaken() const
+{
+  return this->Internal->Counters.BackgroundBuildsTaken;
+}
+void vtkRayTracePass::WaitForBackgroundBuilds()
+{
+  this->Internal->Scene.WaitForBackgroundBuilds();
 }
 vtkTypeInt64 vtkRayTracePass::GetLastGeometryBytesUploaded() const
 {

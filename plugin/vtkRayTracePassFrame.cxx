@@ -52,6 +52,7 @@ void vtkRayTracePass::Internals::Extract(
   const vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren)
 {
   this->Scene.SetBuildQuality(pass.BuildQuality);
+  this->Scene.SetBackgroundBuildThreshold(pass.BackgroundBuildThreshold);
   this->Scene.SetLeafSize(pass.LeafSize);
   this->Scene.SetTraceTranslucency(pass.TraceTranslucency);
   // Hardware selection reports ids per prop: an actor's plain lines cannot

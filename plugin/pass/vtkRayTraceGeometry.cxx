@@ -1,5 +1,7 @@
 #include "vtkRayTraceGeometry.h"
 
+#include "vtkRayTraceRefinement.h"
+
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
@@ -308,7 +310,8 @@ std::uint64_t GeometryFingerprint(vtkPolyData* poly)
   return h == 0 ? 1 : h;
 }
 
-std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOptions& options)
+std::unique_ptr<Geometry> BuildTriangles(
+  vtkPolyData* poly, const core::BuildOptions& options, RefinementInput* refinement)
 {
   auto g = std::make_unique<Geometry>();
   const auto start = std::chrono::steady_clock::now();
@@ -387,6 +390,13 @@ std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOpt
   readNormals(poly->GetPointData()->GetNormals(), points.size(), g->Normals);
   readNormals(poly->GetCellData()->GetNormals(), static_cast<std::size_t>(poly->GetNumberOfCells()),
     g->CellNormals);
+  if (refinement)
+  {
+    refinement->Triangulation = shared;
+    refinement->Frame = frame;
+    refinement->Points = std::move(points);
+    refinement->Order = std::move(bvh.primIndex);
+  }
   return g;
 }
 

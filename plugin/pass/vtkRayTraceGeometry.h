@@ -22,6 +22,7 @@ namespace vtkrt
 {
 namespace pass
 {
+struct RefinementInput;
 
 /// The frame the primitives are built in: that of the finite boxes' union.
 core::ScaledFrame buildFrame(std::size_t count, const std::function<core::AABB<double>(std::size_t)>& boxOf);
@@ -53,8 +54,10 @@ std::uint64_t GeometryFingerprint(vtkPolyData* poly);
 
 /// Triangles of polys (fan, as VTK's raster) and strips (VTK's winding),
 /// with their VTK cell ids, point normals when the data has them, and the
-/// BVH over them.
-std::unique_ptr<Geometry> BuildTriangles(vtkPolyData* poly, const core::BuildOptions& options);
+/// BVH over them. With `refinement`, what a background build of a better
+/// tree over the same triangles needs is moved there (RefinementInput).
+std::unique_ptr<Geometry> BuildTriangles(
+  vtkPolyData* poly, const core::BuildOptions& options, RefinementInput* refinement = nullptr);
 
 /// Spheres (centers, radii, VTK point ids) and the BVH over them.
 std::unique_ptr<Geometry> BuildSpheres(const std::vector<core::Vec3<double>>& centers,

@@ -297,13 +297,27 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     if (!sameBuild || !builtFrom(*entry, source))
     {
       const auto start = std::chrono::steady_clock::now();
-      entry = BuildTriangles(poly, this->Options());
+      const bool background = this->BuildsInBackground(poly);
+      core::BuildOptions options = this->Options();
+      options.quality = background ? core::BuildQuality::Fast : options.quality;
+      RefinementInput refinement;
+      entry = BuildTriangles(poly, options, background ? &refinement : nullptr);
       entry->SourceFingerprint = fingerprint;
       counters.AddBuild(*entry, SecondsSince(start));
       entry->Quality = this->BuildQuality;
       entry->LeafSize = this->LeafSize;
       setBuiltFrom(*entry, source);
       entry->Keep = poly;
+      this->GeometryDirty = true;
+      if (background && !entry->Empty())
+      {
+        this->Refinements.Start(poly, entry, std::move(refinement), BackgroundBuildOptions(this->Options()));
+      }
+    }
+    else if (std::shared_ptr<Geometry> refined = this->Refinements.TakeDone(poly, *entry))
+    {
+      entry = std::move(refined);
+      ++counters.BackgroundBuildsTaken;
       this->GeometryDirty = true;
     }
     if (!entry->Used)
@@ -527,6 +541,10 @@ void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkPro
   this->GeometryDirty = this->GeometryDirty || trianglesDropped || spheresDropped;
   this->ColorsDirty = (!keep && dropUnused(this->ColorCache)) || this->ColorsDirty;
   dropUnused(this->GlyphSourceCache);
+  this->Refinements.Tidy([this](const void* key) -> const Geometry* {
+    const auto entry = this->TriangleCache.find(key);
+    return entry == this->TriangleCache.end() ? nullptr : entry->second.get();
+  });
   this->Textures.EndFrame();
   counters.TracedInstances = static_cast<int>(this->Instances.size());
   for (const Instance& inst : this->Instances)
@@ -671,8 +689,24 @@ std::shared_ptr<const Geometry> Scene::SoleGeometry() const
   return count == 1 ? sole : nullptr;
 }
 
+bool Scene::BuildsInBackground(vtkPolyData* poly) const
+{
+  if (this->BackgroundBuildThreshold <= 0 || this->BuildQuality == 0)
+  {
+    return false;
+  }
+  // A cell of k points is k - 2 triangles, fan or strip.
+  vtkIdType triangles = 0;
+  for (vtkCellArray* cells : { poly->GetPolys(), poly->GetStrips() })
+  {
+    triangles += cells->GetNumberOfConnectivityIds() - 2 * cells->GetNumberOfCells();
+  }
+  return triangles >= this->BackgroundBuildThreshold;
+}
+
 void Scene::Clear()
 {
+  this->Refinements.LetGoAll();
   this->TriangleCache.clear();
   this->SphereCache.clear();
   this->ColorCache.clear();

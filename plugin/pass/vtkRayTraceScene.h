@@ -7,6 +7,7 @@
 
 #include "vtkRayTraceGlyphs.h"
 #include "vtkRayTraceRasterCells.h"
+#include "vtkRayTraceRefinement.h"
 #include "vtkRayTraceTextures.h"
 #include "vtkRayTraceTypes.h"
 
@@ -112,6 +113,12 @@ public:
   /// built with another quality is rebuilt on its next use.
   void SetBuildQuality(int quality) { this->BuildQuality = quality; }
 
+  /// Triangle meshes of at least this many triangles (0: none) are built
+  /// fast first and with BuildQuality in the background (BackgroundBuilds).
+  void SetBackgroundBuildThreshold(vtkIdType triangles) { this->BackgroundBuildThreshold = triangles; }
+  /// Waits for the background builds; the next Extract takes them.
+  void WaitForBackgroundBuilds() { this->Refinements.WaitAll(); }
+
   /// Maximum triangles per leaf of the triangle BVHs (>= 1, default 4).
   /// Triangle geometry built with another leaf size is rebuilt on its next
   /// use; sphere BVHs keep their own leaf size.
@@ -163,8 +170,12 @@ private:
 
   core::BuildOptions Options() const;
   core::BuildOptions SphereOptions() const; ///< Options() tuned for cheap sphere tests
+  /// Whether poly's triangles are built fast first, BuildQuality's tree in
+  /// the background.
+  bool BuildsInBackground(vtkPolyData* poly) const;
 
   int BuildQuality = 1;
+  vtkIdType BackgroundBuildThreshold = 0;
   bool TraceTranslucency = true;
   std::uint32_t LeafSize = 4;
   // Shared: the GPU buffers may hold a geometry's arrays as their storage
@@ -189,6 +200,7 @@ private:
   std::vector<Instance> Instances;
   bool GeometryDirty = true;
   bool ColorsDirty = true;
+  BackgroundBuilds Refinements; ///< waits for its builds when destroyed
 };
 
 } // namespace pass

@@ -221,6 +221,7 @@ struct Features
 struct FrameCounters
 {
   int BVHBuilds = 0;      ///< bottom level (per data object)
+  int BackgroundBuildsTaken = 0; ///< refined trees taking their fast tree's place
   int TopLevelBuilds = 0; ///< over the instances
   std::size_t GeometryBytesUploaded = 0;
   std::size_t GeometryBytesBorrowed = 0; ///< of those, taken from the cache as they are

@@ -3,6 +3,10 @@
 //                     moves, property/light changes, data and feature changes
 //   ManyActors        more than 8 actors: a top-level BVH, rebuilt only when
 //                     an actor moves
+//   BackgroundBuild   a mesh over BackgroundBuildThreshold: traced first on a
+//                     fast tree, then on the tree built in the background
+//                     (same images and picks as a pass that builds it at
+//                     once); a mesh changed or a pass deleted while it builds
 //   Lifecycle         the pass removed and installed again, its window
 //                     destroyed and replaced
 //   MovedBetweenWindows one pass moved between two live windows' renderers and
@@ -19,7 +23,9 @@
 #include "vtkActorCollection.h"
 #include "vtkCamera.h"
 #include "vtkElevationFilter.h"
+#include "vtkDataObject.h"
 #include "vtkFloatArray.h"
+#include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
@@ -34,7 +40,10 @@
 #include "vtkPropPicker.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
+#include "vtkSelection.h"
+#include "vtkSelectionNode.h"
 #include "vtkSphereSource.h"
+#include "vtkVariant.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -206,6 +215,119 @@ void TestManyActors()
   NoVTKOutput("many actors");
 }
 
+/// The cell id under the window's center (hardware selection through the pass).
+vtkIdType CenterCell(vtkRenderer* ren, vtkRenderWindow* win)
+{
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(ren);
+  selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_CELLS);
+  const int* size = win->GetSize();
+  const auto x = static_cast<unsigned int>(size[0] / 2);
+  const auto y = static_cast<unsigned int>(size[1] / 2);
+  selector->SetArea(x, y, x, y);
+  vtkSmartPointer<vtkSelection> selection;
+  selection.TakeReference(selector->Select());
+  vtkSelectionNode* node = selection && selection->GetNumberOfNodes() > 0 ? selection->GetNode(0) : nullptr;
+  vtkAbstractArray* ids = node ? node->GetSelectionList() : nullptr;
+  return ids && ids->GetNumberOfValues() > 0 ? ids->GetVariantValue(0).ToLongLong() : -1;
+}
+
+// A mesh over the pass's BackgroundBuildThreshold: the first frame builds a
+// fast tree and starts the SAH tree's build; a frame after it is done takes
+// it (no build, a new upload), with the same image and center pick as the
+// fast tree and as a pass that builds SAH at once. A mesh changed while its
+// build runs is built again (the stale build is let go); a pass deleted
+// while it builds waits for it. BuildQuality 0 or a threshold of 0: none.
+void TestBackgroundBuild()
+{
+  auto win = MakeWindow(200, 200);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  vtkNew<vtkSphereSource> source;
+  source->SetThetaResolution(200);
+  source->SetPhiResolution(100);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(source->GetOutputPort());
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  ren->AddActor(actor);
+  ren->ResetCamera();
+  ren->GetActiveCamera()->Azimuth(20);
+  vtkNew<vtkRayTracePass> pass;
+  pass->SetBackgroundBuildThreshold(1000);
+  ren->SetPass(pass);
+
+  win->Render();
+  Check(pass->GetLastBVHBuilds() == 1 && pass->GetLastBackgroundBuildsTaken() == 0,
+    "first frame: the fast tree built, none taken yet");
+  auto fast = Grab(win);
+  pass->WaitForBackgroundBuilds();
+  win->Render();
+  Check(pass->GetLastBVHBuilds() == 0 && pass->GetLastBackgroundBuildsTaken() == 1 &&
+      pass->GetLastGeometryBytesUploaded() > 0,
+    "after the wait: the background tree taken and uploaded, nothing built");
+  auto refined = Grab(win);
+  Check(RootMeanSquareError(fast, refined) == 0.0, "the same image on both trees");
+  win->Render();
+  Check(pass->GetLastBackgroundBuildsTaken() == 0 && pass->GetLastGeometryBytesUploaded() == 0,
+    "the next frame: nothing taken, nothing uploaded");
+
+  // The same scene, SAH built at once.
+  vtkNew<vtkRayTracePass> atOnce;
+  atOnce->SetBackgroundBuildThreshold(0);
+  ren->SetPass(atOnce);
+  win->Render();
+  Check(atOnce->GetLastBVHBuilds() == 1, "threshold 0: built at once");
+  Check(RootMeanSquareError(Grab(win), refined) == 0.0, "the background tree's image equals the SAH tree's");
+  atOnce->WaitForBackgroundBuilds();
+  win->Render();
+  Check(atOnce->GetLastBackgroundBuildsTaken() == 0, "threshold 0: nothing built in the background");
+  const vtkIdType atOnceCell = CenterCell(ren, win);
+  ren->SetPass(pass);
+  win->Render();
+  const vtkIdType refinedCell = CenterCell(ren, win);
+  Check(atOnceCell >= 0 && refinedCell == atOnceCell,
+    "the same center pick as the SAH tree's (" + std::to_string(refinedCell) + ", " +
+      std::to_string(atOnceCell) + ")");
+
+  // Changed while its build runs: built again, the stale build let go.
+  source->SetThetaResolution(180);
+  win->Render();
+  source->SetThetaResolution(190);
+  win->Render();
+  Check(pass->GetLastBVHBuilds() == 1, "changed twice: built again");
+  pass->WaitForBackgroundBuilds();
+  win->Render();
+  Check(pass->GetLastBackgroundBuildsTaken() == 1, "the latest mesh's tree taken");
+  auto changed = Grab(win);
+  ren->SetPass(atOnce);
+  win->Render();
+  Check(RootMeanSquareError(Grab(win), changed) == 0.0, "changed mesh: the same image as the SAH tree's");
+  ren->SetPass(pass);
+
+  // BuildQuality 0: the fast tree is the one asked for.
+  pass->SetBuildQuality(0);
+  win->Render();
+  pass->WaitForBackgroundBuilds();
+  win->Render();
+  Check(pass->GetLastBackgroundBuildsTaken() == 0, "BuildQuality 0: nothing built in the background");
+  pass->SetBuildQuality(1);
+
+  // Deleted while it builds: the pass waits for its build.
+  {
+    vtkNew<vtkRayTracePass> shortLived;
+    shortLived->SetBackgroundBuildThreshold(1000);
+    ren->SetPass(shortLived);
+    win->Render();
+    ren->SetPass(pass);
+    ren->ReleaseGraphicsResources(win);
+  }
+  win->Render();
+  Check(pass->GetLastTracedPrimitives() > 0, "a pass deleted while it builds: the other pass traces on");
+  NoGLError(win, "background build");
+  NoVTKOutput("background build");
+}
+
 // Removing the pass gives raster back; the pass survives its window being
 // destroyed and renders the same renderer in a new window.
 void TestLifecycle()
@@ -357,6 +479,7 @@ int main(int argc, char* argv[])
   const std::map<std::string, std::function<void()>> cases = {
     { "Counters", TestCounters },
     { "ManyActors", TestManyActors },
+    { "BackgroundBuild", TestBackgroundBuild },
     { "Lifecycle", TestLifecycle },
     { "MovedBetweenWindows", TestMovedBetweenWindows },
     { "App", TestApp },

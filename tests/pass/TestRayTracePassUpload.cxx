@@ -389,6 +389,9 @@ void TestBorrowedGeometry()
   ren->AddActor(mesh);
   ren->ResetCamera();
   vtkNew<vtkRayTracePass> pass;
+  // Each mesh's arrays as built, not a tree taken later from a background
+  // build (TestRayTracePassBehavior BackgroundBuild).
+  pass->SetBackgroundBuildThreshold(0);
   ren->SetPass(pass);
 
   win->Render();

@@ -48,8 +48,9 @@ private:
   static constexpr int kPrefixShift = 63 - kRadixBits * kRadixPasses; ///< the prefix is bits [31, 63)
   static constexpr std::size_t kHistogramChunks = 16;
 
-  std::vector<std::uint64_t> Codes; ///< Morton codes by position, ascending
-  std::vector<std::uint32_t> Perm;  ///< Refs index at each position
+  // Written in full right after they are sized: no zero fill.
+  HugePageArray<std::uint64_t> Codes; ///< Morton codes by position, ascending
+  HugePageArray<std::uint32_t> Perm;  ///< Refs index at each position
 
   /// The refs themselves never move (a permutation of large refs costs
   /// random writes over the whole array): positions go through Perm.
@@ -69,7 +70,7 @@ private:
   }
 
   void prepare() { sortByMortonCode(); }
-  void finish() { std::vector<std::uint64_t>().swap(Codes); }
+  void finish() { HugePageArray<std::uint64_t>().swap(Codes); }
 
   /// Morton order keeps the middle a spatial median already.
   std::uint32_t medianSplit(std::uint32_t begin, std::uint32_t end, const RangeBounds&) const
@@ -118,7 +119,7 @@ private:
     std::sort(Perm.begin(), Perm.end(), [this](std::uint32_t a, std::uint32_t b) {
       return Codes[a] < Codes[b] || (Codes[a] == Codes[b] && Refs[a].id < Refs[b].id);
     });
-    std::vector<std::uint64_t> sorted(n);
+    HugePageArray<std::uint64_t> sorted(n);
     for (std::size_t i = 0; i < n; ++i)
     {
       sorted[i] = Codes[Perm[i]];
@@ -236,8 +237,8 @@ private:
   void radixPasses(std::vector<std::uint32_t>& hist)
   {
     const std::size_t n = Codes.size();
-    std::vector<std::uint64_t> codes2(n);
-    std::vector<std::uint32_t> perm2(n);
+    HugePageArray<std::uint64_t> codes2(n);
+    HugePageArray<std::uint32_t> perm2(n);
     for (int p = 0; p < kRadixPasses; ++p)
     {
       const int shift = kPrefixShift + kRadixBits * p;

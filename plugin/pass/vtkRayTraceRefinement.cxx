@@ -1,0 +1,204 @@
+#include "vtkRayTraceRefinement.h"
+
+#include "vtkRayTraceGeometry.h"
+#include "vtkSurfaceTriangulation.h"
+
+#include "vtkrt/core/BVHBuild.h"
+#include "vtkrt/core/Mesh.h"
+#include "vtkrt/core/SurfaceTriangulation.h"
+#include "vtkrt/core/build/Parallel.h"
+
+#include <algorithm>
+#include <limits>
+#if defined(__linux__)
+#include <sys/resource.h> // setpriority
+#include <sys/syscall.h>  // SYS_gettid
+#include <unistd.h>       // syscall
+#endif
+#include <system_error>
+#include <utility>
+
+namespace vtkrt
+{
+namespace pass
+{
+
+BVHRefinement::BVHRefinement(
+  std::shared_ptr<const Geometry> fast, RefinementInput input, const core::BuildOptions& options)
+  : Fast(std::move(fast))
+  , Input(std::move(input))
+  , Options(options)
+{
+  try
+  {
+    this->Worker = std::thread([this]() { this->Run(); });
+  }
+  catch (const std::system_error&)
+  {
+    this->Finished.store(true, std::memory_order_release); // no thread: no refinement
+  }
+}
+
+BVHRefinement::~BVHRefinement()
+{
+  this->Wait();
+}
+
+void BVHRefinement::Wait()
+{
+  if (this->Worker.joinable())
+  {
+    this->Worker.join();
+  }
+}
+
+std::shared_ptr<Geometry> BVHRefinement::Take()
+{
+  if (!this->Done())
+  {
+    return nullptr;
+  }
+  this->Wait();
+  return std::move(this->Result);
+}
+
+namespace
+{
+/// Gives the calling thread (and the threads it starts) the lowest CPU
+/// priority: the frames drawn meanwhile keep the cores, the build takes
+/// what they leave.
+void lowerThreadPriority()
+{
+#if defined(__linux__)
+  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 19);
+#endif
+}
+} // namespace
+
+void BVHRefinement::Run()
+{
+  lowerThreadPriority();
+  try
+  {
+    const core::SurfaceTriangles& triangles = this->Input.Triangulation->GetTriangles();
+    core::TriangleMesh<double> mesh;
+    mesh.vertices = this->Input.Points.data();
+    mesh.vertexCount = this->Input.Points.size();
+    mesh.indices = triangles.pointIds.data();
+    mesh.triangleCount = triangles.count;
+    core::GpuBVH bvh = core::buildGpuBVHConcurrentBounds(
+      mesh.triangleCount, [&mesh](std::size_t i) { return core::triangleBox(mesh, i); }, this->Options);
+    auto g = std::make_shared<Geometry>();
+    g->Spheres = false;
+    g->VertexCount = this->Fast->VertexCount;
+    adoptBVH(*g, bvh, this->Input.Frame);
+    const std::size_t n = bvh.primIndex.size();
+    // The same triangles in the same frame (the origin is the center of
+    // their bounds): the fast records, reordered, are the new ones.
+    if (g->Origin == this->Fast->Origin && n == this->Fast->Triangles.size() &&
+      this->Input.Order.size() == n)
+    {
+      std::vector<std::uint32_t> fastPosition(mesh.triangleCount, std::numeric_limits<std::uint32_t>::max());
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        fastPosition[this->Input.Order[k]] = static_cast<std::uint32_t>(k);
+      }
+      g->PrimitiveCount = n;
+      g->Triangles.resize(n);
+      g->TriangleVertices.resize(n);
+      core::detail::parallelChunks(n, this->Options, [&](std::size_t b, std::size_t e) {
+        for (std::size_t k = b; k < e; ++k)
+        {
+          const std::uint32_t from = fastPosition[bvh.primIndex[k]];
+          g->Triangles[k] = this->Fast->Triangles[from];
+          g->TriangleVertices[k] = this->Fast->TriangleVertices[from];
+        }
+      });
+      g->MaximumId = this->Fast->MaximumId;
+      g->Normals = this->Fast->Normals;
+      g->CellNormals = this->Fast->CellNormals;
+      this->Result = std::move(g);
+    }
+  }
+  catch (const std::exception&)
+  {
+    this->Result.reset(); // out of memory: the fast tree stays
+  }
+  this->Finished.store(true, std::memory_order_release);
+}
+
+void BackgroundBuilds::Start(
+  const void* key, std::shared_ptr<const Geometry> fast, RefinementInput input, const core::BuildOptions& options)
+{
+  auto running = this->Running.find(key);
+  if (running != this->Running.end())
+  {
+    this->LetGo.push_back(std::move(running->second));
+    this->Running.erase(running);
+  }
+  this->Running[key] = std::make_unique<BVHRefinement>(std::move(fast), std::move(input), options);
+}
+
+std::shared_ptr<Geometry> BackgroundBuilds::TakeDone(const void* key, const Geometry& current)
+{
+  auto running = this->Running.find(key);
+  if (running == this->Running.end() || !running->second->Done() || running->second->Refines() != &current)
+  {
+    return nullptr;
+  }
+  std::shared_ptr<Geometry> refined = running->second->Take();
+  this->Running.erase(running);
+  if (refined)
+  {
+    // The cache key and the bookkeeping of the geometry it stands in for.
+    refined->SourceTime = current.SourceTime;
+    refined->SourceParts = current.SourceParts;
+    refined->SourceFingerprint = current.SourceFingerprint;
+    refined->SourceKey = current.SourceKey;
+    refined->Quality = current.Quality;
+    refined->LeafSize = current.LeafSize;
+    refined->Keep = current.Keep;
+    refined->KeepData = current.KeepData;
+    refined->Used = current.Used;
+    refined->TriangulationSeconds = current.TriangulationSeconds;
+    refined->BuildSeconds = current.BuildSeconds;
+  }
+  return refined;
+}
+
+void BackgroundBuilds::LetGoAll()
+{
+  for (auto& running : this->Running)
+  {
+    this->LetGo.push_back(std::move(running.second));
+  }
+  this->Running.clear();
+  this->FreeFinished();
+}
+
+void BackgroundBuilds::WaitAll()
+{
+  for (auto& running : this->Running)
+  {
+    running.second->Wait();
+  }
+}
+
+void BackgroundBuilds::FreeFinished()
+{
+  this->LetGo.erase(std::remove_if(this->LetGo.begin(), this->LetGo.end(),
+                      [](const std::unique_ptr<BVHRefinement>& r) { return r->Done(); }),
+    this->LetGo.end());
+}
+
+core::BuildOptions BackgroundBuildOptions(const core::BuildOptions& options)
+{
+  core::BuildOptions out = options;
+  out.parallelFor = nullptr;
+  const unsigned cores = std::thread::hardware_concurrency();
+  out.numThreads = cores > 1 ? cores - 1 : 1;
+  return out;
+}
+
+} // namespace pass
+} // namespace vtkrt

@@ -1,0 +1,126 @@
+// Private to vtkRayTracePass: a large mesh's first frame is traced on a
+// fast tree (LBVH) while the tree of the pass's BuildQuality is built on a
+// thread of its own; a later frame takes the better tree in its place. The
+// records are the same triangles in the new leaf order, so the images and
+// picks are those of the better tree built at once. No GL here.
+#ifndef vtkRayTraceRefinement_h
+#define vtkRayTraceRefinement_h
+
+#include "vtkRayTraceTypes.h"
+
+#include "vtkrt/core/BVH.h"
+#include "vtkrt/core/HugePageArray.h"
+#include "vtkrt/core/LocalFrame.h"
+
+#include "vtkSmartPointer.h"
+
+#include <atomic>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <thread>
+#include <vector>
+
+class vtkSurfaceTriangulation;
+
+namespace vtkrt
+{
+namespace pass
+{
+
+/// What BuildTriangles hands a refinement of the geometry it built: the
+/// triangles, their points in the build's local frame, and the leaf order
+/// of its (fast) tree.
+struct RefinementInput
+{
+  vtkSmartPointer<vtkSurfaceTriangulation> Triangulation; ///< never changed once made
+  core::ScaledFrame Frame;
+  core::NoFillArray<core::Vec3<double>> Points;
+  std::vector<std::uint32_t> Order; ///< triangle at each leaf position of the fast tree
+};
+
+/// One geometry's better tree, built on a thread of its own from the
+/// moment it is made. Everything it reads is its own or never changes
+/// while it runs (the fast geometry's arrays); it is made, asked and
+/// destroyed on the render thread only.
+class BVHRefinement
+{
+public:
+  /// Starts building `fast`'s triangles again with `options` (its own
+  /// threads: options.parallelFor must be empty).
+  BVHRefinement(std::shared_ptr<const Geometry> fast, RefinementInput input, const core::BuildOptions& options);
+  /// Waits for the build: a refinement never outlives what it reads.
+  ~BVHRefinement();
+  BVHRefinement(const BVHRefinement&) = delete;
+  BVHRefinement& operator=(const BVHRefinement&) = delete;
+
+  bool Done() const { return this->Finished.load(std::memory_order_acquire); }
+  void Wait();
+  /// Once Done(): the refined geometry (arrays and frame; the cache's key
+  /// fields are the caller's to copy), or null when the build could not
+  /// stand in for the fast one. Takes it.
+  std::shared_ptr<Geometry> Take();
+  /// The fast geometry it refines.
+  const Geometry* Refines() const { return this->Fast.get(); }
+
+private:
+  void Run();
+
+  std::shared_ptr<const Geometry> Fast;
+  RefinementInput Input;
+  core::BuildOptions Options;
+  std::shared_ptr<Geometry> Result;
+  std::atomic<bool> Finished{ false };
+  std::thread Worker;
+};
+
+/// Options for a background build of `options`' quality: the same builder
+/// on threads of its own, leaving a core to the renderer where there are
+/// several.
+core::BuildOptions BackgroundBuildOptions(const core::BuildOptions& options);
+
+/// The background builds of one scene's geometry, by cache key.
+class BackgroundBuilds
+{
+public:
+  /// Starts refining `fast`, the cache entry of `key` (a build still
+  /// running for the key is let go).
+  void Start(
+    const void* key, std::shared_ptr<const Geometry> fast, RefinementInput input, const core::BuildOptions& options);
+  /// The refined geometry of `key` when its build is done and refines
+  /// `current`, with `current`'s cache key fields; else null.
+  std::shared_ptr<Geometry> TakeDone(const void* key, const Geometry& current);
+  /// Lets go of the builds whose geometry is no longer `current(key)` and
+  /// frees those let go that have finished (never waits).
+  template <class CurrentFn>
+  void Tidy(CurrentFn&& current)
+  {
+    for (auto it = this->Running.begin(); it != this->Running.end();)
+    {
+      if (current(it->first) == it->second->Refines())
+      {
+        ++it;
+        continue;
+      }
+      this->LetGo.push_back(std::move(it->second));
+      it = this->Running.erase(it);
+    }
+    this->FreeFinished();
+  }
+  /// Lets go of every build (they finish on their own).
+  void LetGoAll();
+  /// Waits for the builds still to be taken.
+  void WaitAll();
+  bool Empty() const { return this->Running.empty(); }
+
+private:
+  void FreeFinished();
+
+  std::map<const void*, std::unique_ptr<BVHRefinement>> Running;
+  std::vector<std::unique_ptr<BVHRefinement>> LetGo;
+};
+
+} // namespace pass
+} // namespace vtkrt
+
+#endif
