@@ -2,7 +2,8 @@
 # Builds vtkrt's tests with sanitizers in their own build folder and runs a
 # subset of them: `scripts/sanitize.sh asan` (AddressSanitizer and
 # UndefinedBehaviorSanitizer over the core and locator labels) or
-# `scripts/sanitize.sh tsan` (ThreadSanitizer over the locator's thread tests).
+# `scripts/sanitize.sh tsan` (ThreadSanitizer over the locator's thread tests
+# and the pass's background builds).
 # VTKRT_SANITIZE_TESTS overrides the ctest selection (ctest arguments);
 # VTKRT_JOBS the parallelism (default 2).
 set -euo pipefail
@@ -26,8 +27,8 @@ case "$mode" in
     ;;
   tsan)
     sanitize="thread"
-    targets=(TestBVHCellLocator)
-    default_tests=(-R '^locator\.(Threads|FreshLocatorThreads)$')
+    targets=(TestBVHCellLocator TestRayTracePassBehavior)
+    default_tests=(-R '^(locator\.(Threads|FreshLocatorThreads)|pass\.BackgroundBuild)$')
     # TBB is not instrumented, so TSan cannot see its task hand-offs and
     # reports the builder's parallel loops as races; VTK's STDThread pool
     # synchronises through pthreads, which TSan sees.

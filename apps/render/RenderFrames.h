@@ -23,7 +23,8 @@ vtkSmartPointer<vtkEGLHeadlessRenderWindow> NewWindow(const Options& opt, vtkRen
 double RenderFirstFrame(vtkEGLHeadlessRenderWindow* window, CapturingOutputWindow* output);
 
 // Orbits one full turn in `frames` steps, then returns to the requested view
-// exactly; the mean milliseconds of a step, 0 when `frames` is 0.
+// exactly; the mean milliseconds of a step, 0 when `frames` is 0. The pass's
+// background builds are waited for and taken first, untimed.
 double SteadyFrameMilliseconds(
   vtkEGLHeadlessRenderWindow* window, vtkRenderer* renderer, int frames);
 
