@@ -224,15 +224,16 @@ public:
   /**
    * Meshes of at least this many triangles (default 1,000,000; 0: never)
    * are first traced on a fast tree (LBVH) while the tree of BuildQuality
-   * is built on a thread of the pass's own; a later frame takes it in its
-   * place (the same triangles, so the same images). Their first frame is
-   * shorter by most of the build (at 4M triangles, 1.2 s of a 1.5 s first
-   * frame on two cores); frames drawn before the better tree is taken are
-   * slower, sharing the cores with its build. No effect with BuildQuality 0.
-   * WaitForBackgroundBuilds() waits for them (then the next frame takes
-   * them); the pass waits for them when it is deleted.
+   * is built on a low-priority thread of the pass's own, one mesh at a
+   * time; a later frame takes it in its place. The triangles are the same,
+   * so are the images and picks (with MaximumTraversalSteps 0, the
+   * default: a step cap cuts walks by tree). Their first frame is shorter
+   * by most of the build; the frames before the better tree is taken trace
+   * the fast one. No effect with BuildQuality 0.
+   * WaitForBackgroundBuilds() waits for the builds (the next frame takes
+   * them); the pass waits for running ones when it is deleted.
    */
-  vtkSetMacro(BackgroundBuildThreshold, vtkIdType);
+  vtkSetClampMacro(BackgroundBuildThreshold, vtkIdType, 0, VTK_ID_MAX);
   vtkGetMacro(BackgroundBuildThreshold, vtkIdType);
   void WaitForBackgroundBuilds();
   ///@}

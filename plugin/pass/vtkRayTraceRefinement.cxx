@@ -9,6 +9,7 @@
 #include "vtkrt/core/build/Parallel.h"
 
 #include <algorithm>
+#include <atomic>
 #include <limits>
 #if defined(__linux__)
 #include <sys/resource.h> // setpriority
@@ -29,6 +30,23 @@ BVHRefinement::BVHRefinement(
   , Input(std::move(input))
   , Options(options)
 {
+}
+
+BVHRefinement::~BVHRefinement()
+{
+  if (this->Worker.joinable())
+  {
+    this->Worker.join();
+  }
+}
+
+void BVHRefinement::Launch()
+{
+  if (this->Started)
+  {
+    return;
+  }
+  this->Started = true;
   try
   {
     this->Worker = std::thread([this]() { this->Run(); });
@@ -39,13 +57,9 @@ BVHRefinement::BVHRefinement(
   }
 }
 
-BVHRefinement::~BVHRefinement()
-{
-  this->Wait();
-}
-
 void BVHRefinement::Wait()
 {
+  this->Launch();
   if (this->Worker.joinable())
   {
     this->Worker.join();
@@ -58,7 +72,7 @@ std::shared_ptr<Geometry> BVHRefinement::Take()
   {
     return nullptr;
   }
-  this->Wait();
+  this->Wait(); // the thread has ended: a join without a wait
   return std::move(this->Result);
 }
 
@@ -106,10 +120,16 @@ void BVHRefinement::Run()
       g->PrimitiveCount = n;
       g->Triangles.resize(n);
       g->TriangleVertices.resize(n);
+      std::atomic<bool> sameTriangles{ true };
       core::detail::parallelChunks(n, this->Options, [&](std::size_t b, std::size_t e) {
         for (std::size_t k = b; k < e; ++k)
         {
           const std::uint32_t from = fastPosition[bvh.primIndex[k]];
+          if (from >= n)
+          {
+            sameTriangles = false; // a triangle the fast tree left out
+            return;
+          }
           g->Triangles[k] = this->Fast->Triangles[from];
           g->TriangleVertices[k] = this->Fast->TriangleVertices[from];
         }
@@ -117,7 +137,10 @@ void BVHRefinement::Run()
       g->MaximumId = this->Fast->MaximumId;
       g->Normals = this->Fast->Normals;
       g->CellNormals = this->Fast->CellNormals;
-      this->Result = std::move(g);
+      if (sameTriangles)
+      {
+        this->Result = std::move(g);
+      }
     }
   }
   catch (const std::exception&)
@@ -133,10 +156,48 @@ void BackgroundBuilds::Start(
   auto running = this->Running.find(key);
   if (running != this->Running.end())
   {
-    this->LetGo.push_back(std::move(running->second));
+    this->Release(std::move(running->second));
     this->Running.erase(running);
   }
-  this->Running[key] = std::make_unique<BVHRefinement>(std::move(fast), std::move(input), options);
+  auto build = std::make_unique<BVHRefinement>(std::move(fast), std::move(input), options);
+  this->Arrival[build.get()] = this->Arrivals++;
+  this->Running[key] = std::move(build);
+  this->LaunchNext();
+}
+
+void BackgroundBuilds::Release(std::unique_ptr<BVHRefinement> build)
+{
+  this->Arrival.erase(build.get());
+  if (build->Launched() && !build->Done())
+  {
+    this->LetGo.push_back(std::move(build));
+  }
+}
+
+void BackgroundBuilds::LaunchNext()
+{
+  const auto running = [](const std::unique_ptr<BVHRefinement>& b) { return b->Launched() && !b->Done(); };
+  if (std::any_of(this->LetGo.begin(), this->LetGo.end(), running))
+  {
+    return;
+  }
+  BVHRefinement* oldest = nullptr;
+  for (const auto& entry : this->Running)
+  {
+    if (running(entry.second))
+    {
+      return;
+    }
+    if (!entry.second->Launched() &&
+      (!oldest || this->Arrival.at(entry.second.get()) < this->Arrival.at(oldest)))
+    {
+      oldest = entry.second.get();
+    }
+  }
+  if (oldest)
+  {
+    oldest->Launch();
+  }
 }
 
 std::shared_ptr<Geometry> BackgroundBuilds::TakeDone(const void* key, const Geometry& current)
@@ -147,7 +208,9 @@ std::shared_ptr<Geometry> BackgroundBuilds::TakeDone(const void* key, const Geom
     return nullptr;
   }
   std::shared_ptr<Geometry> refined = running->second->Take();
+  this->Arrival.erase(running->second.get());
   this->Running.erase(running);
+  this->LaunchNext();
   if (refined)
   {
     // The cache key and the bookkeeping of the geometry it stands in for.
@@ -170,7 +233,7 @@ void BackgroundBuilds::LetGoAll()
 {
   for (auto& running : this->Running)
   {
-    this->LetGo.push_back(std::move(running.second));
+    this->Release(std::move(running.second));
   }
   this->Running.clear();
   this->FreeFinished();
@@ -178,9 +241,17 @@ void BackgroundBuilds::LetGoAll()
 
 void BackgroundBuilds::WaitAll()
 {
+  // In their order of coming, one at a time, as they would run.
+  std::vector<BVHRefinement*> queue;
   for (auto& running : this->Running)
   {
-    running.second->Wait();
+    queue.push_back(running.second.get());
+  }
+  std::sort(queue.begin(), queue.end(),
+    [this](BVHRefinement* a, BVHRefinement* b) { return this->Arrival.at(a) < this->Arrival.at(b); });
+  for (BVHRefinement* build : queue)
+  {
+    build->Wait();
   }
 }
 

@@ -39,22 +39,26 @@ struct RefinementInput
   std::vector<std::uint32_t> Order; ///< triangle at each leaf position of the fast tree
 };
 
-/// One geometry's better tree, built on a thread of its own from the
-/// moment it is made. Everything it reads is its own or never changes
-/// while it runs (the fast geometry's arrays); it is made, asked and
-/// destroyed on the render thread only.
+/// One geometry's better tree, built on a thread of its own once
+/// launched. Everything it reads is its own or never changes while it runs
+/// (the fast geometry's arrays); it is made, asked and destroyed on the
+/// render thread only.
 class BVHRefinement
 {
 public:
-  /// Starts building `fast`'s triangles again with `options` (its own
-  /// threads: options.parallelFor must be empty).
+  /// Will build `fast`'s triangles again with `options` (its own threads:
+  /// options.parallelFor must be empty).
   BVHRefinement(std::shared_ptr<const Geometry> fast, RefinementInput input, const core::BuildOptions& options);
   /// Waits for the build: a refinement never outlives what it reads.
   ~BVHRefinement();
   BVHRefinement(const BVHRefinement&) = delete;
   BVHRefinement& operator=(const BVHRefinement&) = delete;
 
+  /// Starts the build on its thread (once).
+  void Launch();
+  bool Launched() const { return this->Started; }
   bool Done() const { return this->Finished.load(std::memory_order_acquire); }
+  /// Launches it if need be and waits for it.
   void Wait();
   /// Once Done(): the refined geometry (arrays and frame; the cache's key
   /// fields are the caller's to copy), or null when the build could not
@@ -70,6 +74,7 @@ private:
   RefinementInput Input;
   core::BuildOptions Options;
   std::shared_ptr<Geometry> Result;
+  bool Started = false;
   std::atomic<bool> Finished{ false };
   std::thread Worker;
 };
@@ -79,12 +84,17 @@ private:
 /// several.
 core::BuildOptions BackgroundBuildOptions(const core::BuildOptions& options);
 
-/// The background builds of one scene's geometry, by cache key.
+/// The background builds of one scene's geometry, by cache key. One runs
+/// at a time, the others wait their turn in the order they came (a mesh
+/// changing every frame, or many large meshes, hold one build's threads and
+/// memory, and the ones waiting); a build let go before its turn never
+/// runs, one let go while it runs finishes on its own (it cannot be
+/// stopped) and is freed after.
 class BackgroundBuilds
 {
 public:
-  /// Starts refining `fast`, the cache entry of `key` (a build still
-  /// running for the key is let go).
+  /// Queues the refinement of `fast`, the cache entry of `key` (the
+  /// previous one for the key is let go).
   void Start(
     const void* key, std::shared_ptr<const Geometry> fast, RefinementInput input, const core::BuildOptions& options);
   /// The refined geometry of `key` when its build is done and refines
@@ -102,22 +112,29 @@ public:
         ++it;
         continue;
       }
-      this->LetGo.push_back(std::move(it->second));
+      this->Release(std::move(it->second));
       it = this->Running.erase(it);
     }
     this->FreeFinished();
+    this->LaunchNext();
   }
-  /// Lets go of every build (they finish on their own).
+  /// Lets go of every build.
   void LetGoAll();
   /// Waits for the builds still to be taken.
   void WaitAll();
   bool Empty() const { return this->Running.empty(); }
 
 private:
+  /// A build let go: dropped when it never ran, else kept until it ends.
+  void Release(std::unique_ptr<BVHRefinement> build);
   void FreeFinished();
+  /// Launches the oldest waiting build when none is running.
+  void LaunchNext();
 
-  std::map<const void*, std::unique_ptr<BVHRefinement>> Running;
-  std::vector<std::unique_ptr<BVHRefinement>> LetGo;
+  std::map<const void*, std::unique_ptr<BVHRefinement>> Running; ///< by key, launched or waiting
+  std::map<const BVHRefinement*, std::uint64_t> Arrival;          ///< Running's order of coming
+  std::uint64_t Arrivals = 0;
+  std::vector<std::unique_ptr<BVHRefinement>> LetGo; ///< launched, let go, not yet finished
 };
 
 } // namespace pass

@@ -252,6 +252,61 @@ bool Scene::IsTraceable(vtkProp* prop, bool translucency)
   return representation != VTK_POINTS || (!glyphs && property->GetRenderPointsAsSpheres());
 }
 
+const std::shared_ptr<Geometry>& Scene::TriangleGeometry(vtkPolyData* poly, FrameCounters& counters)
+{
+  // Keyed by what the triangles are made of: new scalars (colors) keep
+  // the BVH and its records.
+  const GeometrySource source = GeometrySourceOf(poly);
+  auto& entry = this->TriangleCache[poly];
+  const bool sameBuild = entry && entry->Quality == this->BuildQuality && entry->LeafSize == this->LeafSize;
+  std::uint64_t fingerprint = 0;
+  if (sameBuild && !builtFrom(*entry, source))
+  {
+    // Data that changed once is likely to change again (a pipeline
+    // running again, a time series over one mesh): from its first
+    // rebuild on, its contents are fingerprinted, and the same contents
+    // keep the BVH.
+    fingerprint = GeometryFingerprint(poly);
+    if (fingerprint != 0 && fingerprint == entry->SourceFingerprint)
+    {
+      setBuiltFrom(*entry, source);
+    }
+  }
+  if (!sameBuild || !builtFrom(*entry, source))
+  {
+    const auto start = std::chrono::steady_clock::now();
+    const bool background = this->BuildsInBackground(poly);
+    core::BuildOptions options = this->Options();
+    options.quality = background ? core::BuildQuality::Fast : options.quality;
+    RefinementInput refinement;
+    entry = BuildTriangles(poly, options, background ? &refinement : nullptr);
+    entry->SourceFingerprint = fingerprint;
+    counters.AddBuild(*entry, SecondsSince(start));
+    entry->Quality = this->BuildQuality;
+    entry->LeafSize = this->LeafSize;
+    setBuiltFrom(*entry, source);
+    entry->Keep = poly;
+    this->GeometryDirty = true;
+    if (background && !entry->Empty())
+    {
+      this->Refinements.Start(poly, entry, std::move(refinement), BackgroundBuildOptions(this->Options()));
+    }
+  }
+  else if (!entry->Used)
+  {
+    // Taken at the geometry's first use in a frame only: every instance of
+    // a frame traces the same tree.
+    if (std::shared_ptr<Geometry> refined = this->Refinements.TakeDone(poly, *entry))
+    {
+      entry = std::move(refined);
+      ++counters.BackgroundBuildsTaken;
+      this->GeometryDirty = true;
+    }
+  }
+  entry->Used = true;
+  return entry;
+}
+
 bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
   FrameCounters& counters, const double* blockColor, double blockOpacity)
 {
@@ -276,54 +331,7 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
   if (property->GetRepresentation() != VTK_POINTS &&
     (poly->GetNumberOfPolys() > 0 || poly->GetNumberOfStrips() > 0))
   {
-    // Keyed by what the triangles are made of: new scalars (colors) keep
-    // the BVH and its records.
-    const GeometrySource source = GeometrySourceOf(poly);
-    auto& entry = this->TriangleCache[poly];
-    const bool sameBuild = entry && entry->Quality == this->BuildQuality && entry->LeafSize == this->LeafSize;
-    std::uint64_t fingerprint = 0;
-    if (sameBuild && !builtFrom(*entry, source))
-    {
-      // Data that changed once is likely to change again (a pipeline
-      // running again, a time series over one mesh): from its first
-      // rebuild on, its contents are fingerprinted, and the same contents
-      // keep the BVH.
-      fingerprint = GeometryFingerprint(poly);
-      if (fingerprint != 0 && fingerprint == entry->SourceFingerprint)
-      {
-        setBuiltFrom(*entry, source);
-      }
-    }
-    if (!sameBuild || !builtFrom(*entry, source))
-    {
-      const auto start = std::chrono::steady_clock::now();
-      const bool background = this->BuildsInBackground(poly);
-      core::BuildOptions options = this->Options();
-      options.quality = background ? core::BuildQuality::Fast : options.quality;
-      RefinementInput refinement;
-      entry = BuildTriangles(poly, options, background ? &refinement : nullptr);
-      entry->SourceFingerprint = fingerprint;
-      counters.AddBuild(*entry, SecondsSince(start));
-      entry->Quality = this->BuildQuality;
-      entry->LeafSize = this->LeafSize;
-      setBuiltFrom(*entry, source);
-      entry->Keep = poly;
-      this->GeometryDirty = true;
-      if (background && !entry->Empty())
-      {
-        this->Refinements.Start(poly, entry, std::move(refinement), BackgroundBuildOptions(this->Options()));
-      }
-    }
-    else if (std::shared_ptr<Geometry> refined = this->Refinements.TakeDone(poly, *entry))
-    {
-      entry = std::move(refined);
-      ++counters.BackgroundBuildsTaken;
-      this->GeometryDirty = true;
-    }
-    if (!entry->Used)
-    {
-      entry->Used = true;
-    }
+    const std::shared_ptr<Geometry>& entry = this->TriangleGeometry(poly, counters);
     if (!entry->Empty())
     {
       Instance tri = inst;

@@ -139,6 +139,9 @@ public:
   vtkProp* StandInOwner(vtkProp* prop) const { return this->RasterStandIns.OwnerOf(prop); }
 
 private:
+  /// poly's triangles, from the cache when they are current (with the tree
+  /// built in the background once it is done), else built; marked used.
+  const std::shared_ptr<Geometry>& TriangleGeometry(vtkPolyData* poly, FrameCounters& counters);
   /// One polydata of `actor`; a composite block's color and opacity
   /// (negative: none) replace the property's.
   bool AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,

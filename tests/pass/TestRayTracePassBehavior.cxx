@@ -305,6 +305,45 @@ void TestBackgroundBuild()
   Check(RootMeanSquareError(Grab(win), changed) == 0.0, "changed mesh: the same image as the SAH tree's");
   ren->SetPass(pass);
 
+  // Two actors on the mesh and a second mesh: two builds, one after the
+  // other, each taken once, by the first of its instances in a frame.
+  vtkNew<vtkActor> twin;
+  twin->SetMapper(mapper);
+  twin->SetPosition(0.2, 0.0, 0.0);
+  vtkNew<vtkSphereSource> otherSource;
+  otherSource->SetThetaResolution(150);
+  otherSource->SetPhiResolution(80);
+  otherSource->SetCenter(0.0, 0.6, 0.0);
+  otherSource->SetRadius(0.2);
+  vtkNew<vtkPolyDataMapper> otherMapper;
+  otherMapper->SetInputConnection(otherSource->GetOutputPort());
+  vtkNew<vtkActor> other;
+  other->SetMapper(otherMapper);
+  ren->AddActor(twin);
+  ren->AddActor(other);
+  source->SetThetaResolution(200);
+  int built = 0, taken = 0;
+  for (int frame = 0; frame < 4; ++frame)
+  {
+    win->Render(); // builds taken whenever they are done
+    built += pass->GetLastBVHBuilds();
+    taken += pass->GetLastBackgroundBuildsTaken();
+  }
+  pass->WaitForBackgroundBuilds();
+  win->Render();
+  taken += pass->GetLastBackgroundBuildsTaken();
+  win->Render();
+  Check(built == 2 && taken == 2 && pass->GetLastBackgroundBuildsTaken() == 0 && pass->GetLastBVHBuilds() == 0,
+    "two actors and a second mesh: " + std::to_string(built) + " fast builds, " + std::to_string(taken) +
+      " trees taken (2, 2), nothing left");
+  auto both = Grab(win);
+  ren->SetPass(atOnce);
+  win->Render();
+  Check(RootMeanSquareError(Grab(win), both) == 0.0, "two actors and a second mesh: the SAH trees' image");
+  ren->SetPass(pass);
+  ren->RemoveActor(twin);
+  ren->RemoveActor(other);
+
   // BuildQuality 0: the fast tree is the one asked for.
   pass->SetBuildQuality(0);
   win->Render();
