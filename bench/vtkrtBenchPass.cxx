@@ -240,7 +240,7 @@ Timing Measure(vtkRenderWindow* win, const std::function<void(vtkRenderer*)>& se
   {
     t.Phases[k] = 1e3 * phases[k];
   }
-  if (trace)
+  if (trace && pass->GetNumberOfBackgroundBuilds() > 0)
   {
     // Steady frames on the trees the pass keeps: a frame takes the ones
     // built in the background, untimed, as the raster side draws nothing

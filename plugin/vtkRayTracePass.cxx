@@ -195,6 +195,10 @@ void vtkRayTracePass::WaitForBackgroundBuilds()
 {
   this->Internal->Scene.WaitForBackgroundBuilds();
 }
+int vtkRayTracePass::GetNumberOfBackgroundBuilds() const
+{
+  return this->Internal->Scene.GetNumberOfBackgroundBuilds();
+}
 vtkTypeInt64 vtkRayTracePass::GetLastGeometryBytesUploaded() const
 {
   return static_cast<vtkTypeInt64>(this->Internal->Counters.GeometryBytesUploaded);

@@ -231,11 +231,14 @@ public:
    * by most of the build; the frames before the better tree is taken trace
    * the fast one. No effect with BuildQuality 0.
    * WaitForBackgroundBuilds() waits for the builds (the next frame takes
-   * them); the pass waits for running ones when it is deleted.
+   * them); GetNumberOfBackgroundBuilds() counts the meshes whose build is
+   * not taken yet (waiting, running or done); the pass waits for running
+   * builds when it is deleted.
    */
   vtkSetClampMacro(BackgroundBuildThreshold, vtkIdType, 0, VTK_ID_MAX);
   vtkGetMacro(BackgroundBuildThreshold, vtkIdType);
   void WaitForBackgroundBuilds();
+  int GetNumberOfBackgroundBuilds() const;
   ///@}
 
   ///@{

@@ -51,7 +51,8 @@ double SteadyFrameMilliseconds(
   {
     return 0.0;
   }
-  if (auto* pass = vtkRayTracePass::SafeDownCast(renderer->GetPass()))
+  auto* pass = vtkRayTracePass::SafeDownCast(renderer->GetPass());
+  if (pass && pass->GetNumberOfBackgroundBuilds() > 0)
   {
     // Timed on the trees the pass keeps: a large mesh's, built in the
     // background after the first frame, is taken by an untimed frame.

@@ -176,13 +176,22 @@ std::unique_ptr<Stage> MakeStage(vtkPolyData* mesh, const Scene& scene, const Po
   return st;
 }
 
-/// The first frame, then `frames` timed steady frames.
+/// The first frame, then `frames` timed steady frames. Between them,
+/// untimed, the pass's background builds are waited for and taken (a tree
+/// taken later would restart an accumulation at a frame that depends on the
+/// machine's load).
 void TimeFrames(Stage& st, int frames)
 {
   auto t0 = Clock::now();
   st.Window->Render();
   st.Window->WaitForCompletion();
   st.FirstSeconds = Seconds(t0, Clock::now());
+  if (st.Pass && st.Pass->GetNumberOfBackgroundBuilds() > 0)
+  {
+    st.Pass->WaitForBackgroundBuilds();
+    st.Window->Render();
+    st.Window->WaitForCompletion();
+  }
   std::vector<double> times;
   for (int f = 0; f < frames; ++f)
   {

@@ -122,7 +122,8 @@ public:
   void LetGoAll();
   /// Waits for the builds still to be taken.
   void WaitAll();
-  bool Empty() const { return this->Running.empty(); }
+  /// The builds not taken yet (waiting, running or done).
+  int Size() const { return static_cast<int>(this->Running.size()); }
 
 private:
   /// A build let go: dropped when it never ran, else kept until it ends.

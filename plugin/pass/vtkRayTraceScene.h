@@ -118,6 +118,7 @@ public:
   void SetBackgroundBuildThreshold(vtkIdType triangles) { this->BackgroundBuildThreshold = triangles; }
   /// Waits for the background builds; the next Extract takes them.
   void WaitForBackgroundBuilds() { this->Refinements.WaitAll(); }
+  int GetNumberOfBackgroundBuilds() const { return this->Refinements.Size(); }
 
   /// Maximum triangles per leaf of the triangle BVHs (>= 1, default 4).
   /// Triangle geometry built with another leaf size is rebuilt on its next

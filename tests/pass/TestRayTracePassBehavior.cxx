@@ -258,14 +258,15 @@ void TestBackgroundBuild()
   ren->SetPass(pass);
 
   win->Render();
-  Check(pass->GetLastBVHBuilds() == 1 && pass->GetLastBackgroundBuildsTaken() == 0,
-    "first frame: the fast tree built, none taken yet");
+  Check(pass->GetLastBVHBuilds() == 1 && pass->GetLastBackgroundBuildsTaken() == 0 &&
+      pass->GetNumberOfBackgroundBuilds() == 1,
+    "first frame: the fast tree built, its background build not taken yet");
   auto fast = Grab(win);
   pass->WaitForBackgroundBuilds();
   win->Render();
   Check(pass->GetLastBVHBuilds() == 0 && pass->GetLastBackgroundBuildsTaken() == 1 &&
-      pass->GetLastGeometryBytesUploaded() > 0,
-    "after the wait: the background tree taken and uploaded, nothing built");
+      pass->GetLastGeometryBytesUploaded() > 0 && pass->GetNumberOfBackgroundBuilds() == 0,
+    "after the wait: the background tree taken and uploaded, nothing built, none left");
   auto refined = Grab(win);
   Check(RootMeanSquareError(fast, refined) == 0.0, "the same image on both trees");
   win->Render();
