@@ -86,6 +86,7 @@ int RunOffscreen(Scene& scene, const Options& opt, CapturingOutputWindow* output
   timings.FirstFrame = RenderFirstFrame(window, output);
   Progress::End();
   KeepPassPhases(scene.Renderer, timings);
+  TakeBackgroundBuilds(window, scene.Renderer);
   timings.SteadyFrame = SteadyFrameMilliseconds(window, scene.Renderer, opt.Frames);
   const auto accumulationStart = Clock::now();
   timings.AccumulatedFrames = AccumulateFrames(window, scene.Renderer, opt.Trace.Progressive);

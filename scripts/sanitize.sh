@@ -27,8 +27,8 @@ case "$mode" in
     ;;
   tsan)
     sanitize="thread"
-    targets=(TestBVHCellLocator TestRayTracePassBehavior)
-    default_tests=(-R '^(locator\.(Threads|FreshLocatorThreads)|pass\.BackgroundBuild)$')
+    targets=(TestBVHCellLocator TestRayTracePassBehavior TestRayTraceRefinement)
+    default_tests=(-R '^(locator\.(Threads|FreshLocatorThreads)|pass\.(BackgroundBuild|Queue))$')
     # TBB is not instrumented, so TSan cannot see its task hand-offs and
     # reports the builder's parallel loops as races; VTK's STDThread pool
     # synchronises through pthreads, which TSan sees.

@@ -44,20 +44,23 @@ double RenderFirstFrame(vtkEGLHeadlessRenderWindow* window, CapturingOutputWindo
   return Milliseconds(start, end);
 }
 
+void TakeBackgroundBuilds(vtkEGLHeadlessRenderWindow* window, vtkRenderer* renderer)
+{
+  auto* pass = vtkRayTracePass::SafeDownCast(renderer->GetPass());
+  if (pass && pass->GetNumberOfBackgroundBuilds() > 0)
+  {
+    pass->WaitForBackgroundBuilds();
+    window->Render();
+    window->WaitForCompletion();
+  }
+}
+
 double SteadyFrameMilliseconds(
   vtkEGLHeadlessRenderWindow* window, vtkRenderer* renderer, int frames)
 {
   if (frames <= 0)
   {
     return 0.0;
-  }
-  auto* pass = vtkRayTracePass::SafeDownCast(renderer->GetPass());
-  if (pass && pass->GetNumberOfBackgroundBuilds() > 0)
-  {
-    // Timed on the trees the pass keeps: a large mesh's, built in the
-    // background after the first frame, is taken by an untimed frame.
-    pass->WaitForBackgroundBuilds();
-    window->Render();
   }
   vtkCamera* camera = renderer->GetActiveCamera();
   vtkNew<vtkCamera> saved;

@@ -22,9 +22,13 @@ vtkSmartPointer<vtkEGLHeadlessRenderWindow> NewWindow(const Options& opt, vtkRen
 // anything else VTK says is passed on to stderr.
 double RenderFirstFrame(vtkEGLHeadlessRenderWindow* window, CapturingOutputWindow* output);
 
+// Waits for the pass's background builds and takes them with a frame: the
+// timed orbit and the accumulation then run on the trees the pass keeps (a
+// tree taken later would restart an accumulation).
+void TakeBackgroundBuilds(vtkEGLHeadlessRenderWindow* window, vtkRenderer* renderer);
+
 // Orbits one full turn in `frames` steps, then returns to the requested view
-// exactly; the mean milliseconds of a step, 0 when `frames` is 0. The pass's
-// background builds are waited for and taken first, untimed.
+// exactly; the mean milliseconds of a step, 0 when `frames` is 0.
 double SteadyFrameMilliseconds(
   vtkEGLHeadlessRenderWindow* window, vtkRenderer* renderer, int frames);
 

@@ -92,6 +92,11 @@ void lowerThreadPriority()
 void BVHRefinement::Run()
 {
   lowerThreadPriority();
+  if (!this->Input.Triangulation)
+  {
+    this->Finished.store(true, std::memory_order_release); // nothing to build from
+    return;
+  }
   try
   {
     const core::SurfaceTriangles& triangles = this->Input.Triangulation->GetTriangles();
@@ -153,63 +158,68 @@ void BVHRefinement::Run()
 void BackgroundBuilds::Start(
   const void* key, std::shared_ptr<const Geometry> fast, RefinementInput input, const core::BuildOptions& options)
 {
-  auto running = this->Running.find(key);
-  if (running != this->Running.end())
+  auto queued = this->Queue.find(key);
+  if (queued != this->Queue.end())
   {
-    this->Release(std::move(running->second));
-    this->Running.erase(running);
+    this->Release(std::move(queued->second.Build));
+    this->Queue.erase(queued);
   }
-  auto build = std::make_unique<BVHRefinement>(std::move(fast), std::move(input), options);
-  this->Arrival[build.get()] = this->Arrivals++;
-  this->Running[key] = std::move(build);
+  Queued& entry = this->Queue[key];
+  entry.Build = std::make_unique<BVHRefinement>(std::move(fast), std::move(input), options);
+  entry.Arrival = this->Arrivals++;
   this->LaunchNext();
 }
 
 void BackgroundBuilds::Release(std::unique_ptr<BVHRefinement> build)
 {
-  this->Arrival.erase(build.get());
   if (build->Launched() && !build->Done())
   {
     this->LetGo.push_back(std::move(build));
   }
 }
 
+bool BackgroundBuilds::IsLaunched(const void* key) const
+{
+  const auto queued = this->Queue.find(key);
+  return queued != this->Queue.end() && queued->second.Build->Launched();
+}
+
 void BackgroundBuilds::LaunchNext()
 {
-  const auto running = [](const std::unique_ptr<BVHRefinement>& b) { return b->Launched() && !b->Done(); };
-  if (std::any_of(this->LetGo.begin(), this->LetGo.end(), running))
+  const auto running = [](const BVHRefinement& b) { return b.Launched() && !b.Done(); };
+  if (std::any_of(this->LetGo.begin(), this->LetGo.end(),
+        [&](const std::unique_ptr<BVHRefinement>& b) { return running(*b); }))
   {
     return;
   }
-  BVHRefinement* oldest = nullptr;
-  for (const auto& entry : this->Running)
+  const Queued* oldest = nullptr;
+  for (const auto& queued : this->Queue)
   {
-    if (running(entry.second))
+    if (running(*queued.second.Build))
     {
       return;
     }
-    if (!entry.second->Launched() &&
-      (!oldest || this->Arrival.at(entry.second.get()) < this->Arrival.at(oldest)))
+    if (!queued.second.Build->Launched() && (!oldest || queued.second.Arrival < oldest->Arrival))
     {
-      oldest = entry.second.get();
+      oldest = &queued.second;
     }
   }
   if (oldest)
   {
-    oldest->Launch();
+    oldest->Build->Launch();
   }
 }
 
 std::shared_ptr<Geometry> BackgroundBuilds::TakeDone(const void* key, const Geometry& current)
 {
-  auto running = this->Running.find(key);
-  if (running == this->Running.end() || !running->second->Done() || running->second->Refines() != &current)
+  auto queued = this->Queue.find(key);
+  if (queued == this->Queue.end() || !queued->second.Build->Done() ||
+    queued->second.Build->Refines() != &current)
   {
     return nullptr;
   }
-  std::shared_ptr<Geometry> refined = running->second->Take();
-  this->Arrival.erase(running->second.get());
-  this->Running.erase(running);
+  std::shared_ptr<Geometry> refined = queued->second.Build->Take();
+  this->Queue.erase(queued);
   this->LaunchNext();
   if (refined)
   {
@@ -231,27 +241,30 @@ std::shared_ptr<Geometry> BackgroundBuilds::TakeDone(const void* key, const Geom
 
 void BackgroundBuilds::LetGoAll()
 {
-  for (auto& running : this->Running)
+  for (auto& queued : this->Queue)
   {
-    this->Release(std::move(running.second));
+    this->Release(std::move(queued.second.Build));
   }
-  this->Running.clear();
+  this->Queue.clear();
   this->FreeFinished();
 }
 
 void BackgroundBuilds::WaitAll()
 {
-  // In their order of coming, one at a time, as they would run.
-  std::vector<BVHRefinement*> queue;
-  for (auto& running : this->Running)
-  {
-    queue.push_back(running.second.get());
-  }
-  std::sort(queue.begin(), queue.end(),
-    [this](BVHRefinement* a, BVHRefinement* b) { return this->Arrival.at(a) < this->Arrival.at(b); });
-  for (BVHRefinement* build : queue)
+  for (const std::unique_ptr<BVHRefinement>& build : this->LetGo)
   {
     build->Wait();
+  }
+  this->LetGo.clear();
+  std::vector<const Queued*> order;
+  for (const auto& queued : this->Queue)
+  {
+    order.push_back(&queued.second);
+  }
+  std::sort(order.begin(), order.end(), [](const Queued* a, const Queued* b) { return a->Arrival < b->Arrival; });
+  for (const Queued* queued : order)
+  {
+    queued->Build->Wait();
   }
 }
 

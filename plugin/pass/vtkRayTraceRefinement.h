@@ -105,25 +105,28 @@ public:
   template <class CurrentFn>
   void Tidy(CurrentFn&& current)
   {
-    for (auto it = this->Running.begin(); it != this->Running.end();)
+    for (auto it = this->Queue.begin(); it != this->Queue.end();)
     {
-      if (current(it->first) == it->second->Refines())
+      if (current(it->first) == it->second.Build->Refines())
       {
         ++it;
         continue;
       }
-      this->Release(std::move(it->second));
-      it = this->Running.erase(it);
+      this->Release(std::move(it->second.Build));
+      it = this->Queue.erase(it);
     }
     this->FreeFinished();
     this->LaunchNext();
   }
   /// Lets go of every build.
   void LetGoAll();
-  /// Waits for the builds still to be taken.
+  /// Waits for every build, those let go first, then the others one at a
+  /// time in their order of coming.
   void WaitAll();
   /// The builds not taken yet (waiting, running or done).
-  int Size() const { return static_cast<int>(this->Running.size()); }
+  int Size() const { return static_cast<int>(this->Queue.size()); }
+  /// Whether the build of `key` has been launched (for tests).
+  bool IsLaunched(const void* key) const;
 
 private:
   /// A build let go: dropped when it never ran, else kept until it ends.
@@ -132,10 +135,14 @@ private:
   /// Launches the oldest waiting build when none is running.
   void LaunchNext();
 
-  std::map<const void*, std::unique_ptr<BVHRefinement>> Running; ///< by key, launched or waiting
-  std::map<const BVHRefinement*, std::uint64_t> Arrival;          ///< Running's order of coming
+  struct Queued
+  {
+    std::unique_ptr<BVHRefinement> Build;
+    std::uint64_t Arrival = 0; ///< its place in the order of coming
+  };
+  std::map<const void*, Queued> Queue; ///< by key: waiting, running or done
   std::uint64_t Arrivals = 0;
-  std::vector<std::unique_ptr<BVHRefinement>> LetGo; ///< launched, let go, not yet finished
+  std::vector<std::unique_ptr<BVHRefinement>> LetGo; ///< launched and let go, until they end
 };
 
 } // namespace pass

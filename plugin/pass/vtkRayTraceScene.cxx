@@ -648,11 +648,16 @@ bool Scene::HasTextureCutOuts() const
 
 core::BuildOptions Scene::Options() const
 {
+  return TriangleBuildOptions(this->BuildQuality, this->LeafSize);
+}
+
+core::BuildOptions TriangleBuildOptions(int buildQuality, std::uint32_t leafSize)
+{
   core::BuildOptions options;
-  options.quality = this->BuildQuality == 0
+  options.quality = buildQuality == 0
     ? core::BuildQuality::Fast
-    : (this->BuildQuality == 2 ? core::BuildQuality::High : core::BuildQuality::Medium);
-  options.maxLeafSize = this->LeafSize;
+    : (buildQuality == 2 ? core::BuildQuality::High : core::BuildQuality::Medium);
+  options.maxLeafSize = leafSize;
   // The builder's parallel work goes to VTK's SMP pool, as the locator's:
   // threads of its own would compete with the pool's spinning workers.
   options.parallelFor = [](std::size_t n, const std::function<void(std::size_t, std::size_t)>& body) {

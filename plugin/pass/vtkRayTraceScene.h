@@ -35,6 +35,10 @@ namespace pass
 /// its coefficient (the specular one too when `specularToo`).
 void ApplyBlockColor(Instance& inst, vtkProperty* property, const double color[3], bool specularToo);
 
+/// The options of the triangle BVHs for the pass's BuildQuality and
+/// LeafSize, their parallel work on VTK's SMP pool.
+core::BuildOptions TriangleBuildOptions(int buildQuality, std::uint32_t leafSize);
+
 /// Renderer props -> instances, with geometry cached by (data object, MTime).
 class Scene
 {

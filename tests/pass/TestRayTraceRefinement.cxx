@@ -1,13 +1,18 @@
 // The pass's background build from the inside (pass/vtkRayTraceRefinement):
 //   SameTree  the tree and records a background build hands over are, bit
-//             for bit, those BuildTriangles makes at that quality at once,
-//             on a sphere with a NaN point and a degenerate triangle and on
-//             the bunny; and the fast tree they replace is another tree
+//             for bit, those the scene builds at that quality and leaf size
+//             at once, on a sphere with a NaN point and a degenerate
+//             triangle and on the bunny; the fast tree they replace is
+//             another tree
+//   Queue     one build runs at a time, in the order they came; a stale
+//             geometry takes nothing; builds let go or left waiting are
+//             dropped safely
 // TestRayTraceRefinement <Case>.
 #include "vtkrtPassTestUtils.h"
 
 #include "vtkRayTraceGeometry.h"
 #include "vtkRayTraceRefinement.h"
+#include "vtkRayTraceScene.h"
 
 #include "vtkCellArray.h"
 #include "vtkPolyData.h"
@@ -29,14 +34,14 @@ bool SameBytes(const Array& a, const Array& b)
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
 }
 
-/// Builds `poly` fast with a refinement to `quality`, and at `quality` at
-/// once; checks the refinement's geometry against the one built at once.
-void CheckSameTree(vtkPolyData* poly, const std::string& what)
+/// Builds `poly` fast with a refinement to `quality` and `leafSize`, and so
+/// at once, as the scene does; checks the refinement's geometry against the
+/// one built at once.
+void CheckSameTree(vtkPolyData* poly, int quality, std::uint32_t leafSize, const std::string& name)
 {
   using namespace vtkrt;
-  core::BuildOptions options;
-  options.quality = core::BuildQuality::Medium;
-  options.maxLeafSize = 4;
+  const std::string what = name + ", quality " + std::to_string(quality) + ", leaves of " + std::to_string(leafSize);
+  const core::BuildOptions options = pass::TriangleBuildOptions(quality, leafSize);
   core::BuildOptions fastOptions = options;
   fastOptions.quality = core::BuildQuality::Fast;
   pass::RefinementInput input;
@@ -84,9 +89,85 @@ void TestSameTree()
   sphere->GetPolys()->InsertNextCell(3, nanTriangle);
   sphere->GetPolys()->InsertNextCell(3, flatTriangle);
   sphere->GetPointData()->SetNormals(nullptr);
-  CheckSameTree(sphere, "sphere with a NaN and a degenerate triangle");
-  CheckSameTree(ReadPolyData("bunny.vtp"), "bunny");
+  vtkSmartPointer<vtkPolyData> bunny = ReadPolyData("bunny.vtp");
+  for (int quality : { 1, 2 })
+  {
+    for (std::uint32_t leafSize : { 4u, 7u })
+    {
+      CheckSameTree(sphere, quality, leafSize, "sphere with a NaN and a degenerate triangle");
+      CheckSameTree(bunny, quality, leafSize, "bunny");
+    }
+  }
   NoVTKOutput("same tree");
+}
+
+/// A fast geometry of a sphere of `resolution` with what its refinement needs.
+std::shared_ptr<const vtkrt::pass::Geometry> FastSphere(int resolution, vtkrt::pass::RefinementInput& input)
+{
+  vtkNew<vtkSphereSource> source;
+  source->SetThetaResolution(resolution);
+  source->SetPhiResolution(resolution);
+  source->Update();
+  return vtkrt::pass::BuildTriangles(source->GetOutput(), vtkrt::pass::TriangleBuildOptions(0, 4), &input);
+}
+
+void TestQueue()
+{
+  using namespace vtkrt;
+  const core::BuildOptions options = pass::BackgroundBuildOptions(pass::TriangleBuildOptions(1, 4));
+  const int keys[3] = { 0, 1, 2 };
+  {
+    pass::BackgroundBuilds builds;
+    pass::RefinementInput in0, in1;
+    const auto g0 = FastSphere(60, in0);
+    const auto g1 = FastSphere(70, in1);
+    builds.Start(&keys[0], g0, std::move(in0), options);
+    builds.Start(&keys[1], g1, std::move(in1), options);
+    Check(builds.Size() == 2 && builds.IsLaunched(&keys[0]) && !builds.IsLaunched(&keys[1]),
+      "two builds: the first launched, the second waiting");
+    builds.WaitAll();
+    Check(builds.Size() == 2 && builds.IsLaunched(&keys[1]), "after the wait: both ran, neither taken");
+    Check(!builds.TakeDone(&keys[1], *g0), "a geometry it does not refine takes nothing");
+    const std::shared_ptr<pass::Geometry> t1 = builds.TakeDone(&keys[1], *g1);
+    const std::shared_ptr<pass::Geometry> t0 = builds.TakeDone(&keys[0], *g0);
+    Check(t0 && t1 && t0->PrimitiveCount == g0->PrimitiveCount && t1->PrimitiveCount == g1->PrimitiveCount &&
+        builds.Size() == 0,
+      "each taken by its own geometry, in any order; none left");
+  }
+  {
+    pass::BackgroundBuilds builds;
+    pass::RefinementInput in0, in1, in2, in0b;
+    const auto g0 = FastSphere(400, in0);
+    const auto g1 = FastSphere(60, in1);
+    const auto g2 = FastSphere(60, in2);
+    const auto g0b = FastSphere(80, in0b);
+    builds.Start(&keys[0], g0, std::move(in0), options);
+    builds.Start(&keys[1], g1, std::move(in1), options);
+    builds.Start(&keys[2], g2, std::move(in2), options);
+    // The first key's build let go (running, or done and dropped), a new
+    // one queued behind the others; the second key's geometry gone.
+    builds.Start(&keys[0], g0b, std::move(in0b), options);
+    builds.Tidy([&](const void* key) -> const pass::Geometry* {
+      return key == &keys[0] ? g0b.get() : key == &keys[2] ? g2.get() : nullptr;
+    });
+    Check(builds.Size() == 2, "a build replaced and one whose geometry went: two left");
+    builds.WaitAll();
+    Check(builds.TakeDone(&keys[0], *g0b) && builds.TakeDone(&keys[2], *g2) && builds.Size() == 0,
+      "the replacing build and the remaining one taken");
+  }
+  {
+    pass::BackgroundBuilds builds;
+    pass::RefinementInput in0, in1;
+    const auto g0 = FastSphere(300, in0);
+    const auto g1 = FastSphere(60, in1);
+    builds.Start(&keys[0], g0, std::move(in0), options);
+    builds.Start(&keys[1], g1, std::move(in1), options);
+    // Destroyed with one build launched and one never launched: it waits
+    // for the first, drops the second (ASan and TSan runs see the rest).
+    Check(builds.IsLaunched(&keys[0]) && !builds.IsLaunched(&keys[1]),
+      "destroyed with one build launched, one waiting");
+  }
+  NoVTKOutput("queue");
 }
 } // namespace
 
@@ -95,6 +176,7 @@ int main(int argc, char* argv[])
   Output = vtkrtTestOutputWindow::Install();
   const std::map<std::string, std::function<void()>> cases = {
     { "SameTree", TestSameTree },
+    { "Queue", TestQueue },
   };
   return RunCase(argc, argv, cases);
 }
