@@ -30,6 +30,8 @@ namespace
 /// Bytes a pinned buffer has beyond its last texel: the renderer reads
 /// whole vectors of texels.
 constexpr std::size_t kPinnedSlack = 4096;
+/// The alignment the driver asks of memory of ours it takes as storage.
+constexpr std::size_t kPinnedAlignment = 4096;
 
 /// Whether the current context renders on the CPU and takes memory of ours
 /// as a buffer's storage (llvmpipe with GL_AMD_pinned_memory). A GPU's
@@ -78,7 +80,7 @@ void* PinnedStorage::Allocate(std::size_t bytes)
     this->Memory = core::detail::mapHugePages(total);
   }
 #if defined(__linux__)
-  else if (posix_memalign(&this->Memory, 4096, total) != 0)
+  else if (posix_memalign(&this->Memory, kPinnedAlignment, total) != 0)
   {
     this->Memory = nullptr;
   }
@@ -231,7 +233,7 @@ bool TextureBuffer::Borrow(
   const void* data, std::size_t texels, std::size_t readablePastEnd, std::shared_ptr<const void> keep)
 {
   const std::size_t bytes = core::gpu::kTexelBytes * texels;
-  const bool fits = data && texels > 0 && reinterpret_cast<std::uintptr_t>(data) % 4096 == 0 &&
+  const bool fits = data && texels > 0 && reinterpret_cast<std::uintptr_t>(data) % kPinnedAlignment == 0 &&
     readablePastEnd >= kPinnedSlack;
   if (!fits || !RendererPinsMemory() || !this->AdoptStorage(data, bytes))
   {

@@ -310,6 +310,18 @@ std::uint64_t GeometryFingerprint(vtkPolyData* poly)
   return h == 0 ? 1 : h;
 }
 
+core::GpuBVH BuildTriangleBVH(const core::SurfaceTriangles& triangles,
+  const core::NoFillArray<Vec3<double>>& points, const core::BuildOptions& options)
+{
+  core::TriangleMesh<double> mesh;
+  mesh.vertices = points.data();
+  mesh.vertexCount = points.size();
+  mesh.indices = triangles.pointIds.data();
+  mesh.triangleCount = triangles.count;
+  return core::buildGpuBVHConcurrentBounds(
+    mesh.triangleCount, [&mesh](std::size_t i) { return core::triangleBox(mesh, i); }, options);
+}
+
 std::unique_ptr<Geometry> BuildTriangles(
   vtkPolyData* poly, const core::BuildOptions& options, RefinementInput* refinement)
 {
@@ -335,13 +347,7 @@ std::unique_ptr<Geometry> BuildTriangles(
   const auto edgeFlagCount = static_cast<std::size_t>(poly->GetNumberOfPoints());
   g->TriangulationSeconds = SecondsSince(start);
 
-  core::TriangleMesh<double> mesh;
-  mesh.vertices = points.data();
-  mesh.vertexCount = points.size();
-  mesh.indices = triangles.pointIds.data();
-  mesh.triangleCount = triangles.count;
-  core::GpuBVH bvh = core::buildGpuBVHConcurrentBounds(
-    mesh.triangleCount, [&mesh](std::size_t i) { return core::triangleBox(mesh, i); }, options);
+  core::GpuBVH bvh = BuildTriangleBVH(triangles, points, options);
   g->Spheres = false;
   g->VertexCount = points.size();
   const std::optional<Vec3<double>> adopted = adoptBVH(*g, bvh, frame);

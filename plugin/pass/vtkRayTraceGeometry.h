@@ -20,6 +20,10 @@ class vtkPolyData;
 
 namespace vtkrt
 {
+namespace core
+{
+struct SurfaceTriangles;
+}
 namespace pass
 {
 struct RefinementInput;
@@ -51,6 +55,11 @@ GeometrySource GeometrySourceOf(vtkPolyData* poly);
 /// types, sizes): equal fingerprints, equal geometry. 0 when an array is
 /// not in one contiguous block (not worth copying to hash).
 std::uint64_t GeometryFingerprint(vtkPolyData* poly);
+
+/// The GPU tree over `triangles` whose points are `points` (in the build's
+/// local frame): what BuildTriangles builds, and a background build again.
+core::GpuBVH BuildTriangleBVH(const core::SurfaceTriangles& triangles,
+  const core::NoFillArray<core::Vec3<double>>& points, const core::BuildOptions& options);
 
 /// Triangles of polys (fan, as VTK's raster) and strips (VTK's winding),
 /// with their VTK cell ids, point normals when the data has them, and the

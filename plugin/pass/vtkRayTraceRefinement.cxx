@@ -3,8 +3,6 @@
 #include "vtkRayTraceGeometry.h"
 #include "vtkSurfaceTriangulation.h"
 
-#include "vtkrt/core/BVHBuild.h"
-#include "vtkrt/core/Mesh.h"
 #include "vtkrt/core/SurfaceTriangulation.h"
 #include "vtkrt/core/build/Parallel.h"
 
@@ -87,6 +85,39 @@ void lowerThreadPriority()
   setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 19);
 #endif
 }
+
+/// `refined`'s triangle records: the fast ones in its leaf order
+/// (`leafOrder`, the triangle at each leaf position; `fastOrder`, the fast
+/// tree's). False when it holds a triangle the fast tree left out.
+bool reorderRecords(const Geometry& fast, const std::vector<std::uint32_t>& fastOrder,
+  const std::vector<std::uint32_t>& leafOrder, std::size_t triangleCount, const core::BuildOptions& options,
+  Geometry& refined)
+{
+  const std::size_t n = leafOrder.size();
+  std::vector<std::uint32_t> fastPosition(triangleCount, std::numeric_limits<std::uint32_t>::max());
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    fastPosition[fastOrder[k]] = static_cast<std::uint32_t>(k);
+  }
+  refined.PrimitiveCount = n;
+  refined.Triangles.resize(n);
+  refined.TriangleVertices.resize(n);
+  std::atomic<bool> sameTriangles{ true };
+  core::detail::parallelChunks(n, options, [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k)
+    {
+      const std::uint32_t from = fastPosition[leafOrder[k]];
+      if (from >= n)
+      {
+        sameTriangles = false;
+        return;
+      }
+      refined.Triangles[k] = fast.Triangles[from];
+      refined.TriangleVertices[k] = fast.TriangleVertices[from];
+    }
+  });
+  return sameTriangles;
+}
 } // namespace
 
 void BVHRefinement::Run()
@@ -100,52 +131,21 @@ void BVHRefinement::Run()
   try
   {
     const core::SurfaceTriangles& triangles = this->Input.Triangulation->GetTriangles();
-    core::TriangleMesh<double> mesh;
-    mesh.vertices = this->Input.Points.data();
-    mesh.vertexCount = this->Input.Points.size();
-    mesh.indices = triangles.pointIds.data();
-    mesh.triangleCount = triangles.count;
-    core::GpuBVH bvh = core::buildGpuBVHConcurrentBounds(
-      mesh.triangleCount, [&mesh](std::size_t i) { return core::triangleBox(mesh, i); }, this->Options);
+    core::GpuBVH bvh = BuildTriangleBVH(triangles, this->Input.Points, this->Options);
     auto g = std::make_shared<Geometry>();
     g->Spheres = false;
     g->VertexCount = this->Fast->VertexCount;
     adoptBVH(*g, bvh, this->Input.Frame);
-    const std::size_t n = bvh.primIndex.size();
     // The same triangles in the same frame (the origin is the center of
     // their bounds): the fast records, reordered, are the new ones.
-    if (g->Origin == this->Fast->Origin && n == this->Fast->Triangles.size() &&
-      this->Input.Order.size() == n)
+    const std::size_t n = bvh.primIndex.size();
+    if (g->Origin == this->Fast->Origin && n == this->Fast->Triangles.size() && this->Input.Order.size() == n &&
+      reorderRecords(*this->Fast, this->Input.Order, bvh.primIndex, triangles.count, this->Options, *g))
     {
-      std::vector<std::uint32_t> fastPosition(mesh.triangleCount, std::numeric_limits<std::uint32_t>::max());
-      for (std::size_t k = 0; k < n; ++k)
-      {
-        fastPosition[this->Input.Order[k]] = static_cast<std::uint32_t>(k);
-      }
-      g->PrimitiveCount = n;
-      g->Triangles.resize(n);
-      g->TriangleVertices.resize(n);
-      std::atomic<bool> sameTriangles{ true };
-      core::detail::parallelChunks(n, this->Options, [&](std::size_t b, std::size_t e) {
-        for (std::size_t k = b; k < e; ++k)
-        {
-          const std::uint32_t from = fastPosition[bvh.primIndex[k]];
-          if (from >= n)
-          {
-            sameTriangles = false; // a triangle the fast tree left out
-            return;
-          }
-          g->Triangles[k] = this->Fast->Triangles[from];
-          g->TriangleVertices[k] = this->Fast->TriangleVertices[from];
-        }
-      });
       g->MaximumId = this->Fast->MaximumId;
       g->Normals = this->Fast->Normals;
       g->CellNormals = this->Fast->CellNormals;
-      if (sameTriangles)
-      {
-        this->Result = std::move(g);
-      }
+      this->Result = std::move(g);
     }
   }
   catch (const std::exception&)

@@ -63,18 +63,13 @@ bool hasUntraceableCells(vtkPolyData* poly, vtkActor* actor, bool pointsAsSphere
 const char kTubesKey = 0;
 
 /// A cache entry's "used this frame" flag (entries held by pointer or by value).
-template <class T>
-bool& usedFlag(std::unique_ptr<T>& entry)
+template <class Pointer>
+auto usedFlag(Pointer& entry) -> decltype((entry->Used))
 {
   return entry->Used;
 }
 template <class T>
-bool& usedFlag(std::shared_ptr<T>& entry)
-{
-  return entry->Used;
-}
-template <class T>
-bool& usedFlag(T& entry)
+auto usedFlag(T& entry) -> decltype((entry.Used))
 {
   return entry.Used;
 }
@@ -276,10 +271,11 @@ const std::shared_ptr<Geometry>& Scene::TriangleGeometry(vtkPolyData* poly, Fram
   {
     const auto start = std::chrono::steady_clock::now();
     const bool background = this->BuildsInBackground(poly);
-    core::BuildOptions options = this->Options();
-    options.quality = background ? core::BuildQuality::Fast : options.quality;
+    const core::BuildOptions options = this->Options();
+    core::BuildOptions now = options;
+    now.quality = background ? core::BuildQuality::Fast : options.quality;
     RefinementInput refinement;
-    entry = BuildTriangles(poly, options, background ? &refinement : nullptr);
+    entry = BuildTriangles(poly, now, background ? &refinement : nullptr);
     entry->SourceFingerprint = fingerprint;
     counters.AddBuild(*entry, SecondsSince(start));
     entry->Quality = this->BuildQuality;
@@ -289,7 +285,7 @@ const std::shared_ptr<Geometry>& Scene::TriangleGeometry(vtkPolyData* poly, Fram
     this->GeometryDirty = true;
     if (background && !entry->Empty())
     {
-      this->Refinements.Start(poly, entry, std::move(refinement), BackgroundBuildOptions(this->Options()));
+      this->Refinements.Start(poly, entry, std::move(refinement), BackgroundBuildOptions(options));
     }
   }
   else if (!entry->Used)
@@ -684,21 +680,10 @@ std::shared_ptr<const Geometry> Scene::SoleGeometry() const
 {
   std::shared_ptr<const Geometry> sole;
   std::size_t count = 0;
-  const auto visit = [&](const std::shared_ptr<Geometry>& g) {
-    if (!g->Empty())
-    {
-      sole = g;
-      ++count;
-    }
-  };
-  for (const auto& e : this->TriangleCache)
-  {
-    visit(e.second);
-  }
-  for (const auto& e : this->SphereCache)
-  {
-    visit(e.second);
-  }
+  this->ForEachSharedGeometry([&](const std::shared_ptr<Geometry>& g) {
+    sole = g;
+    ++count;
+  });
   return count == 1 ? sole : nullptr;
 }
 

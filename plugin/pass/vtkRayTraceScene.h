@@ -60,20 +60,7 @@ public:
   template <class Fn>
   void ForEachGeometry(Fn&& fn) const
   {
-    for (const auto& e : this->TriangleCache)
-    {
-      if (!e.second->Empty())
-      {
-        fn(*e.second);
-      }
-    }
-    for (const auto& e : this->SphereCache)
-    {
-      if (!e.second->Empty())
-      {
-        fn(*e.second);
-      }
-    }
+    this->ForEachSharedGeometry([&fn](const std::shared_ptr<Geometry>& g) { fn(*g); });
   }
   /// The only geometry ForEachGeometry visits, when there is exactly one,
   /// else null.
@@ -144,6 +131,25 @@ public:
   vtkProp* StandInOwner(vtkProp* prop) const { return this->RasterStandIns.OwnerOf(prop); }
 
 private:
+  /// ForEachGeometry's walk, giving each entry as the caches hold it.
+  template <class Fn>
+  void ForEachSharedGeometry(Fn&& fn) const
+  {
+    for (const auto& e : this->TriangleCache)
+    {
+      if (!e.second->Empty())
+      {
+        fn(e.second);
+      }
+    }
+    for (const auto& e : this->SphereCache)
+    {
+      if (!e.second->Empty())
+      {
+        fn(e.second);
+      }
+    }
+  }
   /// poly's triangles, from the cache when they are current (with the tree
   /// built in the background once it is done), else built; marked used.
   const std::shared_ptr<Geometry>& TriangleGeometry(vtkPolyData* poly, FrameCounters& counters);

@@ -101,67 +101,77 @@ void TestSameTree()
   NoVTKOutput("same tree");
 }
 
-/// A fast geometry of a sphere of `resolution` with what its refinement needs.
-std::shared_ptr<const vtkrt::pass::Geometry> FastSphere(int resolution, vtkrt::pass::RefinementInput& input)
+/// A sphere built fast, with what its refinement needs.
+struct FastMesh
 {
+  std::shared_ptr<const vtkrt::pass::Geometry> Geometry;
+  vtkrt::pass::RefinementInput Input;
+};
+
+FastMesh FastSphere(int resolution)
+{
+  using namespace vtkrt;
   vtkNew<vtkSphereSource> source;
   source->SetThetaResolution(resolution);
   source->SetPhiResolution(resolution);
   source->Update();
-  return vtkrt::pass::BuildTriangles(source->GetOutput(), vtkrt::pass::TriangleBuildOptions(0, 4), &input);
+  FastMesh mesh;
+  mesh.Geometry = pass::BuildTriangles(source->GetOutput(), pass::TriangleBuildOptions(0, 4), &mesh.Input);
+  return mesh;
+}
+
+/// Queues `mesh`'s refinement under `key` (the meshes are built first, so
+/// that the builds are queued back to back).
+void Start(vtkrt::pass::BackgroundBuilds& builds, const void* key, FastMesh& mesh)
+{
+  using namespace vtkrt;
+  const core::BuildOptions options = pass::BackgroundBuildOptions(pass::TriangleBuildOptions(1, 4));
+  builds.Start(key, mesh.Geometry, std::move(mesh.Input), options);
 }
 
 void TestQueue()
 {
   using namespace vtkrt;
-  const core::BuildOptions options = pass::BackgroundBuildOptions(pass::TriangleBuildOptions(1, 4));
   const int keys[3] = { 0, 1, 2 };
   {
     pass::BackgroundBuilds builds;
-    pass::RefinementInput in0, in1;
-    const auto g0 = FastSphere(60, in0);
-    const auto g1 = FastSphere(70, in1);
-    builds.Start(&keys[0], g0, std::move(in0), options);
-    builds.Start(&keys[1], g1, std::move(in1), options);
+    FastMesh m0 = FastSphere(60), m1 = FastSphere(70);
+    Start(builds, &keys[0], m0);
+    Start(builds, &keys[1], m1);
     Check(builds.Size() == 2 && builds.IsLaunched(&keys[0]) && !builds.IsLaunched(&keys[1]),
       "two builds: the first launched, the second waiting");
     builds.WaitAll();
     Check(builds.Size() == 2 && builds.IsLaunched(&keys[1]), "after the wait: both ran, neither taken");
-    Check(!builds.TakeDone(&keys[1], *g0), "a geometry it does not refine takes nothing");
-    const std::shared_ptr<pass::Geometry> t1 = builds.TakeDone(&keys[1], *g1);
-    const std::shared_ptr<pass::Geometry> t0 = builds.TakeDone(&keys[0], *g0);
-    Check(t0 && t1 && t0->PrimitiveCount == g0->PrimitiveCount && t1->PrimitiveCount == g1->PrimitiveCount &&
-        builds.Size() == 0,
+    Check(!builds.TakeDone(&keys[1], *m0.Geometry), "a geometry it does not refine takes nothing");
+    const std::shared_ptr<pass::Geometry> t1 = builds.TakeDone(&keys[1], *m1.Geometry);
+    const std::shared_ptr<pass::Geometry> t0 = builds.TakeDone(&keys[0], *m0.Geometry);
+    Check(t0 && t1 && t0->PrimitiveCount == m0.Geometry->PrimitiveCount &&
+        t1->PrimitiveCount == m1.Geometry->PrimitiveCount && builds.Size() == 0,
       "each taken by its own geometry, in any order; none left");
   }
   {
     pass::BackgroundBuilds builds;
-    pass::RefinementInput in0, in1, in2, in0b;
-    const auto g0 = FastSphere(400, in0);
-    const auto g1 = FastSphere(60, in1);
-    const auto g2 = FastSphere(60, in2);
-    const auto g0b = FastSphere(80, in0b);
-    builds.Start(&keys[0], g0, std::move(in0), options);
-    builds.Start(&keys[1], g1, std::move(in1), options);
-    builds.Start(&keys[2], g2, std::move(in2), options);
+    FastMesh m0 = FastSphere(400), m1 = FastSphere(60), m2 = FastSphere(60), m0b = FastSphere(80);
+    Start(builds, &keys[0], m0);
+    Start(builds, &keys[1], m1);
+    Start(builds, &keys[2], m2);
     // The first key's build let go (running, or done and dropped), a new
     // one queued behind the others; the second key's geometry gone.
-    builds.Start(&keys[0], g0b, std::move(in0b), options);
+    Start(builds, &keys[0], m0b);
     builds.Tidy([&](const void* key) -> const pass::Geometry* {
-      return key == &keys[0] ? g0b.get() : key == &keys[2] ? g2.get() : nullptr;
+      return key == &keys[0] ? m0b.Geometry.get() : key == &keys[2] ? m2.Geometry.get() : nullptr;
     });
     Check(builds.Size() == 2, "a build replaced and one whose geometry went: two left");
     builds.WaitAll();
-    Check(builds.TakeDone(&keys[0], *g0b) && builds.TakeDone(&keys[2], *g2) && builds.Size() == 0,
+    Check(builds.TakeDone(&keys[0], *m0b.Geometry) && builds.TakeDone(&keys[2], *m2.Geometry) &&
+        builds.Size() == 0,
       "the replacing build and the remaining one taken");
   }
   {
     pass::BackgroundBuilds builds;
-    pass::RefinementInput in0, in1;
-    const auto g0 = FastSphere(300, in0);
-    const auto g1 = FastSphere(60, in1);
-    builds.Start(&keys[0], g0, std::move(in0), options);
-    builds.Start(&keys[1], g1, std::move(in1), options);
+    FastMesh m0 = FastSphere(300), m1 = FastSphere(60);
+    Start(builds, &keys[0], m0);
+    Start(builds, &keys[1], m1);
     // Destroyed with one build launched and one never launched: it waits
     // for the first, drops the second (ASan and TSan runs see the rest).
     Check(builds.IsLaunched(&keys[0]) && !builds.IsLaunched(&keys[1]),
