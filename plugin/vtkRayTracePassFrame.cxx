@@ -282,6 +282,7 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   f.LightComplexity = f.Lights > 0 ? ren->GetLightingComplexity() : 0;
   f.IdMode = pass.IdMode;
   f.TopLevel = topLevel;
+  f.SingleInstance = !topLevel && frame.Records.size() == 1;
   // Sub-pixel sampling goes through the accumulation buffer (not in id
   // mode: ids do not average).
   const bool sampled = !pass.IdMode && (pass.SamplesPerPixel > 1 || pass.ProgressiveAccumulation);
@@ -332,6 +333,16 @@ void vtkRayTracePass::Internals::SetUniforms(vtkShaderProgram* program, const Fe
     static_cast<float>(-dop[2]) };
   program->SetUniform3f("uViewBack", viewBack);
   program->SetUniformi("uNumberOfInstances", static_cast<int>(frame.Records.size()));
+  if (f.SingleInstance)
+  {
+    // The record's texels as uniforms: the same for every pixel, so not
+    // fetched per pixel.
+    static_assert(sizeof(vtkrt::core::gpu::InstanceRecord) % sizeof(vtkrt::core::gpu::Texel) == 0,
+      "InstanceRecord: whole texels");
+    glUniform4uiv(program->FindUniform("uInstance"),
+      static_cast<GLsizei>(sizeof(vtkrt::core::gpu::InstanceRecord) / sizeof(vtkrt::core::gpu::Texel)),
+      reinterpret_cast<const GLuint*>(frame.Records.data()));
+  }
   if (f.WorldCoordinates)
   {
     double eyeInShader[3];

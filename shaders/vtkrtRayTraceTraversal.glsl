@@ -201,6 +201,8 @@ bool anyHit(vec3 org, vec3 dir, float tmax)
   vec2 hitUV = vec2(0.0);
 #ifdef VTKRT_HAS_TOP_LEVEL
   traceTopLevel(org, dir, invDir, 0.0, t, hitInstance, hitPrimitive, hitUV, true);
+#elif defined(VTKRT_SINGLE_INSTANCE)
+  traceInstance(0, org, dir, invDir, 0.0, t, hitInstance, hitPrimitive, hitUV, true);
 #else
   for (int instance = 0; instance < uNumberOfInstances && hitInstance < 0; ++instance)
   {
@@ -221,6 +223,8 @@ void traceClosest(vec3 org, vec3 dir, vec3 invDir, float tMin, inout float tBest
   hitUV = vec2(0.0);
 #ifdef VTKRT_HAS_TOP_LEVEL
   traceTopLevel(org, dir, invDir, tMin, tBest, hitInstance, hitPrimitive, hitUV, false);
+#elif defined(VTKRT_SINGLE_INSTANCE)
+  traceInstance(0, org, dir, invDir, tMin, tBest, hitInstance, hitPrimitive, hitUV, false);
 #else
   for (int instance = 0; instance < uNumberOfInstances; ++instance)
   {

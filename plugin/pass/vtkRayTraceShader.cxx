@@ -43,7 +43,7 @@ std::string Features::Key() const
     << this->Textures << "B" << this->FaceCulling << "Y" << this->BackfaceProperties << "Z"
     << this->TextureCutOuts << "S" << this->StackSize << "R" << this->Translucent << "G"
     << this->SurfaceEdges << "V" << this->Wireframe << "J"
-    << this->Tubes;
+    << this->Tubes << "i" << this->SingleInstance;
   return s.str();
 }
 
@@ -77,6 +77,7 @@ std::string AssembleShader(const Features& f)
   define(f.IdMode, "VTKRT_ID_MODE");
   define(f.SelectIds, "VTKRT_SELECT_IDS");
   define(f.TopLevel, "VTKRT_HAS_TOP_LEVEL");
+  define(f.SingleInstance && !f.TopLevel, "VTKRT_SINGLE_INSTANCE");
   define(f.Translucent, "VTKRT_TRANSLUCENT");
   if (f.SamplesPerPixel > 0)
   {

@@ -193,6 +193,7 @@ struct Features
   bool SelectIds = false; ///< prop, VTK id and composite index per pixel (hardware selection)
   bool Fp64 = false;
   bool TopLevel = false;
+  bool SingleInstance = false; ///< one instance, its record in uniforms (no top level)
   int SamplesPerPixel = 0; ///< 0: one centered ray straight to the framebuffer
   bool Shadows = false;
   int AmbientOcclusionSamples = 0;

@@ -10,6 +10,10 @@
 //                     second prop, appends beside a partly borrowed layout
 //                     and a new window switch between that and copies, each
 //                     image the same as a copying pass's
+//   SingleInstance    a scene of one traced instance reads its record from
+//                     uniforms (not per pixel from the instance buffer): the
+//                     images and picks are those of the general shader, as
+//                     the instance moves, changes its colors and lighting
 // TestRayTracePassUpload <Case>.
 #include "vtkrtPassTestUtils.h"
 #include "vtkrtTestOutputWindow.h"
@@ -494,6 +498,90 @@ void TestBorrowedGeometry()
   NoGLError(win, "borrowed geometry");
   NoVTKOutput("borrowed geometry");
 }
+
+// One colored, lit, moved and scaled mesh: the shader of one instance
+// ("i1" in its feature key); with a small ball hidden inside it (the
+// general shader, "i0") every image is the same, bit for bit, and a pick on
+// the mesh finds it with either. Going back to one instance compiles nothing (the program is kept).
+void TestSingleInstance()
+{
+  auto win = MakeWindow(200, 200);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  vtkNew<vtkSphereSource> meshSource;
+  meshSource->SetThetaResolution(64);
+  meshSource->SetPhiResolution(32);
+  vtkNew<vtkElevationFilter> meshColors;
+  meshColors->SetInputConnection(meshSource->GetOutputPort());
+  meshColors->SetLowPoint(0.0, -0.5, 0.0);
+  meshColors->SetHighPoint(0.0, 0.5, 0.0);
+  vtkNew<vtkPolyDataMapper> meshMapper;
+  meshMapper->SetInputConnection(meshColors->GetOutputPort());
+  vtkNew<vtkActor> mesh;
+  mesh->SetMapper(meshMapper);
+  mesh->SetPosition(0.3, -0.2, 0.1);
+  mesh->SetScale(1.5, 1.0, 0.75);
+  mesh->RotateZ(30.0);
+  mesh->GetProperty()->SetSpecular(0.5);
+  mesh->GetProperty()->SetSpecularPower(20.0);
+  ren->AddActor(mesh);
+  ren->ResetCamera();
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+
+  // Inside the closed mesh, at its center: it changes neither the image
+  // nor the clipping range, and VTK's culling keeps it.
+  vtkNew<vtkSphereSource> ballSource;
+  ballSource->SetRadius(0.01);
+  vtkNew<vtkPolyDataMapper> ballMapper;
+  ballMapper->SetInputConnection(ballSource->GetOutputPort());
+  vtkNew<vtkActor> ball;
+  ball->SetMapper(ballMapper);
+  const auto keyHas = [&](const char* part) {
+    return std::string(pass->GetLastFeatureKey()).find(part) != std::string::npos;
+  };
+  const auto pickCenter = [&]() {
+    const double* center = mesh->GetCenter();
+    ren->SetWorldPoint(center[0], center[1], center[2], 1.0);
+    ren->WorldToDisplay();
+    double display[3];
+    ren->GetDisplayPoint(display);
+    vtkNew<vtkPropPicker> picker;
+    picker->Pick(display[0], display[1], 0.0, ren);
+    return picker->GetActor() == mesh;
+  };
+  const auto sameAsGeneral = [&](const std::string& what) {
+    win->Render();
+    Check(keyHas("i1") && pass->GetLastTracedInstances() == 1,
+      what + ": one instance, its record in uniforms (key " + pass->GetLastFeatureKey() + ")");
+    auto single = Grab(win);
+    Check(pickCenter(), what + ": a pick on the mesh finds it (one instance)");
+    ball->SetPosition(mesh->GetCenter());
+    ren->AddActor(ball);
+    win->Render();
+    Check(keyHas("i0") && pass->GetLastTracedInstances() == 2,
+      what + ": two instances, the general shader (key " + pass->GetLastFeatureKey() + ")");
+    const double rmse = RootMeanSquareError(single, Grab(win));
+    Check(rmse == 0.0, what + ": the same image as the general shader's (RGB RMSE " + std::to_string(rmse) + ")");
+    Check(pickCenter(), what + ": a pick on the mesh finds it (two instances)");
+    ren->RemoveActor(ball);
+    win->Render();
+    Check(keyHas("i1") && pass->GetLastShaderCompiles() == 0, what + ": one instance again, nothing compiled");
+  };
+  sameAsGeneral("one mesh");
+  mesh->SetPosition(-0.2, 0.1, 0.0);
+  mesh->RotateX(40.0);
+  sameAsGeneral("moved and turned");
+  mesh->GetProperty()->SetAmbient(0.3);
+  mesh->GetProperty()->SetDiffuseColor(0.9, 0.5, 0.1);
+  meshMapper->ScalarVisibilityOff();
+  sameAsGeneral("new colors");
+  ren->GetActiveCamera()->Elevation(35.0);
+  ren->GetActiveCamera()->OrthogonalizeViewUp();
+  sameAsGeneral("a camera move");
+  NoGLError(win, "single instance");
+  NoVTKOutput("single instance");
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -503,6 +591,7 @@ int main(int argc, char* argv[])
     { "IncrementalUpload", TestIncrementalUpload },
     { "ScalarChange", TestScalarChange },
     { "BorrowedGeometry", TestBorrowedGeometry },
+    { "SingleInstance", TestSingleInstance },
   };
   return RunCase(argc, argv, cases);
 }

@@ -413,9 +413,13 @@ inline void writeGlslRecord(std::ostream& s, const char* type, const char* name,
 /// One accessor per field of the records of a uniform buffer, for a shader
 /// that reads a record's fields at different places: <prefix><Member>(i)
 /// (an array field: <prefix><Member>(i, e), its elements whole texels).
+/// Where `single` is #defined, the shader's one record is the uniform array
+/// `uniformArray` instead (i is then 0): its reads are the same for every
+/// pixel, so they are not fetched per pixel.
 inline void writeGlslAccessors(std::ostream& s, const char* prefix, const char* buffer, const char* name,
-  std::initializer_list<GlslField> fields)
+  const char* single, const char* uniformArray, std::initializer_list<GlslField> fields)
 {
+  s << "#ifdef " << single << "\nuniform uvec4 " << uniformArray << "[VTKRT_" << name << "_TEXELS];\n#endif\n";
   for (const GlslField& f : fields)
   {
     const std::string member = std::string(1, static_cast<char>(std::toupper(f.name[0]))) + (f.name + 1);
@@ -426,7 +430,11 @@ inline void writeGlslAccessors(std::ostream& s, const char* prefix, const char* 
       return std::string("texelFetch(") + buffer + ", i * VTKRT_" + name + "_TEXELS + " + std::to_string(k) +
         (array ? " + e)" : ")");
     };
-    s << "  return " << glslElement(f, f.offset, texel) << ";\n}\n";
+    const auto uniformTexel = [&](std::size_t k) {
+      return std::string(uniformArray) + "[" + std::to_string(k) + (array ? " + e]" : "]");
+    };
+    s << "#ifdef " << single << "\n  return " << glslElement(f, f.offset, uniformTexel) << ";\n#else\n";
+    s << "  return " << glslElement(f, f.offset, texel) << ";\n#endif\n}\n";
   }
 }
 } // namespace detail
@@ -459,7 +467,8 @@ static_assert(texelsOf<Segment>() == kSegmentTexels, "Segment: 2 texels");
 /// triangle edge bits kEdge01, kEdge12, kEdge20, per record
 /// its struct, texel count VTKRT_<NAME>_TEXELS and reader fetch<Type>(b, i),
 /// and one accessor per instance record field (instanceBoxMin(i),
-/// instanceFlags(i) ...) reading the usamplerBuffer uInstances.
+/// instanceFlags(i) ...) reading the usamplerBuffer uInstances, or, in a
+/// shader of one instance (VTKRT_SINGLE_INSTANCE), the uniform uInstance.
 inline std::string glslLayout()
 {
   std::ostringstream s;
@@ -475,8 +484,8 @@ inline std::string glslLayout()
   detail::writeGlslRecord(s, #type, #NAME, texelsOf<type>(), Indexing::indexing, { fields });
   VTKRT_GPU_RECORDS(VTKRT_GPU_GLSL_RECORD, VTKRT_GPU_GLSL_FIELD, VTKRT_GPU_NO_FIELD)
   s << "uniform usamplerBuffer uInstances;\n";
-  detail::writeGlslAccessors(
-    s, "instance", "uInstances", "INSTANCE", { VTKRT_GPU_INSTANCE_FIELDS(VTKRT_GPU_GLSL_FIELD, VTKRT_GPU_NO_FIELD) });
+  detail::writeGlslAccessors(s, "instance", "uInstances", "INSTANCE", "VTKRT_SINGLE_INSTANCE", "uInstance",
+    { VTKRT_GPU_INSTANCE_FIELDS(VTKRT_GPU_GLSL_FIELD, VTKRT_GPU_NO_FIELD) });
 #undef VTKRT_GPU_GLSL_RECORD
 #undef VTKRT_GPU_GLSL_FIELD
   return s.str();
