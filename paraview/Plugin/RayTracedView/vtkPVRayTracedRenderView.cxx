@@ -219,6 +219,25 @@ int vtkPVRayTracedRenderView::GetLastTracedInstances()
   return this->EnableRayTracing ? this->Internal->Pass->GetLastTracedInstances() : 0;
 }
 
+int vtkPVRayTracedRenderView::GetNumberOfBackgroundBuilds()
+{
+  return this->Internal->Pass->GetNumberOfBackgroundBuilds();
+}
+
+void vtkPVRayTracedRenderView::SetBackgroundBuildThreshold(vtkIdType triangles)
+{
+  if (triangles != this->Internal->Pass->GetBackgroundBuildThreshold())
+  {
+    this->Internal->Pass->SetBackgroundBuildThreshold(triangles);
+    this->Modified();
+  }
+}
+
+vtkIdType vtkPVRayTracedRenderView::GetBackgroundBuildThreshold()
+{
+  return this->Internal->Pass->GetBackgroundBuildThreshold();
+}
+
 void vtkPVRayTracedRenderView::SelectCells(int region[4], const char* array)
 {
   if (!this->EnableRayTracing)

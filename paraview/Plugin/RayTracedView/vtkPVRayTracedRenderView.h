@@ -96,11 +96,22 @@ public:
 
   ///@{
   /**
+   * vtkRayTracePass::BackgroundBuildThreshold, whatever the quality preset
+   * (it changes the first frame, not the images).
+   */
+  void SetBackgroundBuildThreshold(vtkIdType triangles);
+  vtkIdType GetBackgroundBuildThreshold();
+  ///@}
+
+  ///@{
+  /**
    * What the pass traced in this process's last frame (primitives and
-   * instances; 0 when nothing was traced, e.g. with ray tracing off).
+   * instances; 0 when nothing was traced, e.g. with ray tracing off), and
+   * the meshes whose background build is not taken yet.
    */
   vtkTypeInt64 GetLastTracedPrimitives();
   int GetLastTracedInstances();
+  int GetNumberOfBackgroundBuilds();
   ///@}
 
   /**
