@@ -326,8 +326,25 @@ void vtkRayTracePass::Internals::SetUniforms(vtkShaderProgram* program, const Fe
   float m[16];
   toGLSL(camera.CameraToClip, m);
   program->SetUniformMatrix4x4("uCameraToClip", m);
-  toGLSL(camera.ClipToCamera, m);
-  program->SetUniformMatrix4x4("uClipToCamera", m);
+  if (f.ProjectiveRays)
+  {
+    toGLSL(camera.ClipToCamera, m);
+    program->SetUniformMatrix4x4("uClipToCamera", m);
+  }
+  else
+  {
+    float origin[3][3], direction[3][3];
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        origin[r][k] = static_cast<float>(camera.RayOrigin[r][k]);
+        direction[r][k] = static_cast<float>(camera.RayDirection[r][k]);
+      }
+    }
+    program->SetUniform3fv("uRayOrigin", 3, origin);
+    program->SetUniform3fv("uRayDirection", 3, direction);
+  }
   const double* dop = camera.DirectionOfProjection;
   const float viewBack[3] = { static_cast<float>(-dop[0]), static_cast<float>(-dop[1]),
     static_cast<float>(-dop[2]) };
@@ -433,6 +450,7 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
   this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(uploadStart);
   p.Lights = vtkrt::pass::CollectLights(ren, p.Camera.Origin, p.Camera.Scale);
   p.F = this->FrameFeatures(pass, ren, frame, p.Lights.size(), topLevel);
+  p.F.ProjectiveRays = !p.Camera.AffineRays;
   if (selectIds)
   {
     // Ids only: one centered ray a pixel, nothing shaded.

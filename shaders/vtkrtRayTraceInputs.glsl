@@ -6,8 +6,17 @@
 in vec2 texCoord;
 layout(location = 0) out vec4 fragOutput0;
 
-uniform mat4 uClipToCamera; // inverse of uCameraToClip
 uniform mat4 uCameraToClip; // VTK's world-to-clip matrix, translated by the eye
+#ifdef VTKRT_PROJECTIVE_RAYS
+uniform mat4 uClipToCamera; // inverse of uCameraToClip
+#else
+// The camera ray through (x, y) (normalized device coordinates) from
+// uRayOrigin[0] + x uRayOrigin[1] + y uRayOrigin[2] along uRayDirection[0] +
+// x uRayDirection[1] + y uRayDirection[2]: VTK's cameras' rays are affine in
+// x, y, unprojected once per frame in double (CameraFrame::AffineRays).
+uniform vec3 uRayOrigin[3];
+uniform vec3 uRayDirection[3];
+#endif
 uniform vec3 uViewBack;     // unit +z axis of VTK's view coordinates
 uniform int uNumberOfInstances;
 #ifdef VTKRT_WORLD_COORDINATES

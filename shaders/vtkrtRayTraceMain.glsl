@@ -16,6 +16,9 @@
 // point on the near plane (t = 0) to its point on the far plane (t = 1),
 // both from the inverse of VTK's own composite projection: images line up
 // with raster pixel for pixel and the clipping range is honoured exactly.
+// For VTK's cameras both points are affine in the pixel, so the CPU
+// unprojects three rays per frame and the shader combines them; an explicit
+// projective matrix gets the per-pixel unprojection (VTKRT_PROJECTIVE_RAYS).
 
 // Raster lines and points lying on a traced surface (VTK's pick outline,
 // wireframes, edges) pass the depth test as they do over raster's own
@@ -42,10 +45,15 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 {
   outColor = vec4(0.0);
   outDepth = 1.0;
+#ifdef VTKRT_PROJECTIVE_RAYS
   vec4 nearPoint = uClipToCamera * vec4(ndc, -1.0, 1.0);
   vec4 farPoint = uClipToCamera * vec4(ndc, 1.0, 1.0);
   vec3 org = nearPoint.xyz / nearPoint.w;
   vec3 dir = farPoint.xyz / farPoint.w - org;
+#else
+  vec3 org = uRayOrigin[0] + ndc.x * uRayOrigin[1] + ndc.y * uRayOrigin[2];
+  vec3 dir = uRayDirection[0] + ndc.x * uRayDirection[1] + ndc.y * uRayDirection[2];
+#endif
   vec3 invDir = safeInverse(dir);
 #ifdef VTKRT_TRANSLUCENT
   return traceTranslucentLayers(org, dir, invDir, outColor, outDepth);

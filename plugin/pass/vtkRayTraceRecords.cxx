@@ -56,6 +56,7 @@ void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCo
     this->CameraToClip->GetData()[i] *= normalize;
   }
   vtkMatrix4x4::Invert(this->CameraToClip, this->ClipToCamera);
+  this->SetAffineRays();
   int width = 0, height = 0, x0 = 0, y0 = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
   this->CameraToPixels->DeepCopy(this->CameraToClip);
@@ -65,6 +66,63 @@ void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCo
     this->CameraToPixels->SetElement(1, c, 0.5 * height * this->CameraToClip->GetElement(1, c));
   }
   cam->GetDirectionOfProjection(this->DirectionOfProjection);
+}
+
+void CameraFrame::UnprojectRay(double x, double y, double org[3], double dir[3]) const
+{
+  const double nearClip[4] = { x, y, -1.0, 1.0 };
+  const double farClip[4] = { x, y, 1.0, 1.0 };
+  double nearPoint[4], farPoint[4];
+  this->ClipToCamera->MultiplyPoint(nearClip, nearPoint);
+  this->ClipToCamera->MultiplyPoint(farClip, farPoint);
+  for (int k = 0; k < 3; ++k)
+  {
+    org[k] = nearPoint[k] / nearPoint[3];
+    dir[k] = farPoint[k] / farPoint[3] - org[k];
+  }
+}
+
+void CameraFrame::SetAffineRays()
+{
+  // The ray at (0, 0) and its steps along x and y; affine when the rays at
+  // the viewport's corners are where those steps put them (exactly so for
+  // VTK's cameras, whose unprojected w does not vary over a clip plane; a
+  // relative 1e-9 is far below float's rounding).
+  double org[3], dir[3], orgX[3], dirX[3], orgY[3], dirY[3];
+  this->UnprojectRay(0.0, 0.0, org, dir);
+  this->UnprojectRay(1.0, 0.0, orgX, dirX);
+  this->UnprojectRay(0.0, 1.0, orgY, dirY);
+  double size = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    this->RayOrigin[0][k] = org[k];
+    this->RayOrigin[1][k] = orgX[k] - org[k];
+    this->RayOrigin[2][k] = orgY[k] - org[k];
+    this->RayDirection[0][k] = dir[k];
+    this->RayDirection[1][k] = dirX[k] - dir[k];
+    this->RayDirection[2][k] = dirY[k] - dir[k];
+    for (int r = 0; r < 3; ++r)
+    {
+      size = std::max({ size, std::abs(this->RayOrigin[r][k]), std::abs(this->RayDirection[r][k]) });
+    }
+  }
+  bool affine = std::isfinite(size);
+  for (const double x : { -1.0, 1.0 })
+  {
+    for (const double y : { -1.0, 1.0 })
+    {
+      double cornerOrg[3], cornerDir[3];
+      this->UnprojectRay(x, y, cornerOrg, cornerDir);
+      for (int k = 0; k < 3; ++k)
+      {
+        const double o = this->RayOrigin[0][k] + x * this->RayOrigin[1][k] + y * this->RayOrigin[2][k];
+        const double d = this->RayDirection[0][k] + x * this->RayDirection[1][k] + y * this->RayDirection[2][k];
+        affine = affine && std::abs(o - cornerOrg[k]) <= 1e-9 * size &&
+          std::abs(d - cornerDir[k]) <= 1e-9 * size;
+      }
+    }
+  }
+  this->AffineRays = affine;
 }
 
 ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* ren,

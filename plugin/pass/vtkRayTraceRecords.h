@@ -45,8 +45,23 @@ struct CameraFrame
   /// CameraToClip with x and y times half the viewport's size in pixels:
   /// to homogeneous pixels from the viewport's center (edges are measured there).
   vtkNew<vtkMatrix4x4> CameraToPixels;
+  /// The camera ray of a point of the viewport (normalized device
+  /// coordinates x, y) runs from RayOrigin[0] + x RayOrigin[1] + y
+  /// RayOrigin[2] (on the near plane) along RayDirection[0] + x
+  /// RayDirection[1] + y RayDirection[2] (to the far plane): the rays are
+  /// affine in x, y for VTK's perspective and parallel cameras. False for a
+  /// projection whose rays are not (an explicit projective matrix): the
+  /// shader unprojects each pixel instead.
+  bool AffineRays = true;
+  double RayOrigin[3][3] = {};
+  double RayDirection[3][3] = {};
 
   void Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCoordinates, double scale);
+  /// RayOrigin, RayDirection and AffineRays from ClipToCamera.
+  void SetAffineRays();
+
+  /// The near and far points of the ray through (x, y), unprojected in double.
+  void UnprojectRay(double x, double y, double org[3], double dir[3]) const;
 
   /// A world point in shader coordinates.
   void ToShader(const double world[3], double out[3]) const

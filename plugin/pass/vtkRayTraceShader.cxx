@@ -43,7 +43,8 @@ std::string Features::Key() const
     << this->Textures << "B" << this->FaceCulling << "Y" << this->BackfaceProperties << "Z"
     << this->TextureCutOuts << "S" << this->StackSize << "R" << this->Translucent << "G"
     << this->SurfaceEdges << "V" << this->Wireframe << "J"
-    << this->Tubes << "i" << this->SingleInstance;
+    << this->Tubes << "i" << this->SingleInstance << "p"
+    << this->ProjectiveRays;
   return s.str();
 }
 
@@ -78,6 +79,7 @@ std::string AssembleShader(const Features& f)
   define(f.SelectIds, "VTKRT_SELECT_IDS");
   define(f.TopLevel, "VTKRT_HAS_TOP_LEVEL");
   define(f.SingleInstance && !f.TopLevel, "VTKRT_SINGLE_INSTANCE");
+  define(f.ProjectiveRays, "VTKRT_PROJECTIVE_RAYS");
   define(f.Translucent, "VTKRT_TRANSLUCENT");
   if (f.SamplesPerPixel > 0)
   {

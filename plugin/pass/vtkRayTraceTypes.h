@@ -194,6 +194,7 @@ struct Features
   bool Fp64 = false;
   bool TopLevel = false;
   bool SingleInstance = false; ///< one instance, its record in uniforms (no top level)
+  bool ProjectiveRays = false;  ///< camera rays unprojected per pixel (CameraFrame::AffineRays false)
   int SamplesPerPixel = 0; ///< 0: one centered ray straight to the framebuffer
   bool Shadows = false;
   int AmbientOcclusionSamples = 0;

@@ -13,6 +13,7 @@
 #include "vtkCamera.h"
 #include "vtkGlyph3DMapper.h"
 #include "vtkLookupTable.h"
+#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -563,6 +564,48 @@ void TestCoincidentLines()
   }
   NoVTKOutput("CoincidentLines");
 }
+
+// The camera rays of VTK's cameras are affine in the pixel ("p0" in the
+// feature key: the shader takes them from three uniforms each): a
+// perspective camera, an off-axis one (window center) and a parallel one.
+// An explicit projective matrix (a keystone: clip w grows with x) is not
+// affine ("p1": the shader unprojects each pixel). Each image against
+// raster's, blurred (silhouettes).
+void TestCameraRays()
+{
+  auto win = MakeWindow(320, 240);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  ren->AddActor(BunnyActor());
+  ren->AddActor(SphereGlyphActor());
+  ren->SetBackground(0.3, 0.3, 0.3);
+  vtkCamera* cam = ren->GetActiveCamera();
+  ren->ResetCamera();
+  cam->Azimuth(30);
+  cam->Elevation(15);
+  ren->ResetCameraClippingRange();
+  const auto compare = [&](const std::string& label, const char* rays) {
+    RasterAndTraced frames = CompareBlurred(win, ren, label, 2, 8.0, "CameraRays_" + label);
+    const std::string key = frames.Pass->GetLastFeatureKey();
+    Check(key.find(rays) != std::string::npos, label + ": rays " + rays + " (key " + key + ")");
+    ren->SetPass(nullptr);
+  };
+  compare("perspective", "p0");
+  cam->SetWindowCenter(0.3, -0.2);
+  compare("off-axis", "p0");
+  cam->SetWindowCenter(0.0, 0.0);
+  cam->ParallelProjectionOn();
+  compare("parallel", "p0");
+  cam->ParallelProjectionOff();
+  vtkNew<vtkMatrix4x4> keystone;
+  keystone->SetElement(3, 0, 0.15);
+  vtkNew<vtkMatrix4x4> projection;
+  vtkMatrix4x4::Multiply4x4(keystone, cam->GetProjectionTransformMatrix(320.0 / 240.0, -1.0, 1.0), projection);
+  cam->SetExplicitProjectionTransformMatrix(projection);
+  cam->UseExplicitProjectionTransformMatrixOn();
+  compare("keystone", "p1");
+  NoVTKOutput("CameraRays");
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -580,6 +623,7 @@ int main(int argc, char* argv[])
     { "Composite", TestComposite },
     { "PointsAsSpheres", TestPointsAsSpheres },
     { "CoincidentLines", TestCoincidentLines },
+    { "CameraRays", TestCameraRays },
   };
   return RunCase(argc, argv, cases);
 }
