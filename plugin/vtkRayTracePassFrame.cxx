@@ -2,6 +2,8 @@
 
 #include "vtkrt/core/GpuTraversal.h"
 
+#include <cstdlib>
+
 using vtkrt::pass::Features;
 using vtkrt::pass::Instance;
 
@@ -45,6 +47,14 @@ void ScissorTo(vtkOpenGLState* ostate, const int rect[4])
   const int x1 = std::min(rect[0] + rect[2], box[0] + box[2]);
   const int y1 = std::min(rect[1] + rect[3], box[1] + box[3]);
   ostate->vtkglScissor(x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0));
+}
+
+/// VTKRT_GENERAL_SHADER set (not empty, not 0): no shader of one instance,
+/// so that tests walk a one-mesh scene the general way too.
+bool GeneralShaderOnly()
+{
+  const char* value = std::getenv("VTKRT_GENERAL_SHADER");
+  return value && *value && std::strcmp(value, "0") != 0;
 }
 } // namespace
 
@@ -267,8 +277,8 @@ void vtkRayTracePass::Internals::UploadTextures(
 }
 
 Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
-  vtkOpenGLRenderer* ren, const vtkrt::pass::FrameRecords& frame, std::size_t lights,
-  bool topLevel) const
+  vtkOpenGLRenderer* ren, const vtkrt::pass::CameraFrame& camera, const vtkrt::pass::FrameRecords& frame,
+  std::size_t lights, bool topLevel) const
 {
   Features f;
   f.Triangles = this->Scene.HasTriangles();
@@ -282,7 +292,8 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   f.LightComplexity = f.Lights > 0 ? ren->GetLightingComplexity() : 0;
   f.IdMode = pass.IdMode;
   f.TopLevel = topLevel;
-  f.SingleInstance = !topLevel && frame.Records.size() == 1;
+  f.SingleInstance = !topLevel && frame.Records.size() == 1 && !GeneralShaderOnly();
+  f.ProjectiveRays = !camera.AffineRays;
   // Sub-pixel sampling goes through the accumulation buffer (not in id
   // mode: ids do not average).
   const bool sampled = !pass.IdMode && (pass.SamplesPerPixel > 1 || pass.ProgressiveAccumulation);
@@ -319,6 +330,50 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   return f;
 }
 
+namespace
+{
+/// Where the shader's camera rays come from: three rays unprojected once
+/// (affine cameras) or the inverse projection, unprojected per pixel.
+void SetCameraRayUniforms(vtkShaderProgram* program, const Features& f, const vtkrt::pass::CameraFrame& camera)
+{
+  if (f.ProjectiveRays)
+  {
+    float m[16];
+    toGLSL(camera.ClipToCamera, m);
+    program->SetUniformMatrix4x4("uClipToCamera", m);
+    return;
+  }
+  float origin[3][3], direction[3][3];
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      origin[r][k] = static_cast<float>(camera.RayOrigin[r][k]);
+      direction[r][k] = static_cast<float>(camera.RayDirection[r][k]);
+    }
+  }
+  program->SetUniform3fv("uRayOrigin", 3, origin);
+  program->SetUniform3fv("uRayDirection", 3, direction);
+}
+
+/// The instances the shader walks: their count for the loop over them, or
+/// the one instance's record as uniforms (the same for every pixel, so not
+/// fetched per pixel); with a top level, the records' buffer alone.
+void SetInstanceUniforms(vtkShaderProgram* program, const Features& f, const vtkrt::pass::FrameRecords& frame)
+{
+  if (f.SingleInstance)
+  {
+    glUniform4uiv(program->FindUniform("uInstance"),
+      static_cast<GLsizei>(vtkrt::core::gpu::texelsOf<vtkrt::core::gpu::InstanceRecord>()),
+      reinterpret_cast<const GLuint*>(frame.Records.data()));
+  }
+  else if (!f.TopLevel)
+  {
+    program->SetUniformi("uNumberOfInstances", static_cast<int>(frame.Records.size()));
+  }
+}
+} // namespace
+
 void vtkRayTracePass::Internals::SetUniforms(vtkShaderProgram* program, const Features& f,
   const vtkrt::pass::CameraFrame& camera, const vtkrt::pass::FrameRecords& frame,
   const std::vector<vtkrt::core::gpu::Light>& lights, double occlusionRadius) const
@@ -326,40 +381,12 @@ void vtkRayTracePass::Internals::SetUniforms(vtkShaderProgram* program, const Fe
   float m[16];
   toGLSL(camera.CameraToClip, m);
   program->SetUniformMatrix4x4("uCameraToClip", m);
-  if (f.ProjectiveRays)
-  {
-    toGLSL(camera.ClipToCamera, m);
-    program->SetUniformMatrix4x4("uClipToCamera", m);
-  }
-  else
-  {
-    float origin[3][3], direction[3][3];
-    for (int r = 0; r < 3; ++r)
-    {
-      for (int k = 0; k < 3; ++k)
-      {
-        origin[r][k] = static_cast<float>(camera.RayOrigin[r][k]);
-        direction[r][k] = static_cast<float>(camera.RayDirection[r][k]);
-      }
-    }
-    program->SetUniform3fv("uRayOrigin", 3, origin);
-    program->SetUniform3fv("uRayDirection", 3, direction);
-  }
+  SetCameraRayUniforms(program, f, camera);
   const double* dop = camera.DirectionOfProjection;
   const float viewBack[3] = { static_cast<float>(-dop[0]), static_cast<float>(-dop[1]),
     static_cast<float>(-dop[2]) };
   program->SetUniform3f("uViewBack", viewBack);
-  program->SetUniformi("uNumberOfInstances", static_cast<int>(frame.Records.size()));
-  if (f.SingleInstance)
-  {
-    // The record's texels as uniforms: the same for every pixel, so not
-    // fetched per pixel.
-    static_assert(sizeof(vtkrt::core::gpu::InstanceRecord) % sizeof(vtkrt::core::gpu::Texel) == 0,
-      "InstanceRecord: whole texels");
-    glUniform4uiv(program->FindUniform("uInstance"),
-      static_cast<GLsizei>(sizeof(vtkrt::core::gpu::InstanceRecord) / sizeof(vtkrt::core::gpu::Texel)),
-      reinterpret_cast<const GLuint*>(frame.Records.data()));
-  }
+  SetInstanceUniforms(program, f, frame);
   if (f.WorldCoordinates)
   {
     double eyeInShader[3];
@@ -449,8 +476,7 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
   }
   this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(uploadStart);
   p.Lights = vtkrt::pass::CollectLights(ren, p.Camera.Origin, p.Camera.Scale);
-  p.F = this->FrameFeatures(pass, ren, frame, p.Lights.size(), topLevel);
-  p.F.ProjectiveRays = !p.Camera.AffineRays;
+  p.F = this->FrameFeatures(pass, ren, p.Camera, frame, p.Lights.size(), topLevel);
   if (selectIds)
   {
     // Ids only: one centered ray a pixel, nothing shaded.

@@ -85,14 +85,16 @@ void CameraFrame::UnprojectRay(double x, double y, double org[3], double dir[3])
 void CameraFrame::SetAffineRays()
 {
   // The ray at (0, 0) and its steps along x and y; affine when the rays at
-  // the viewport's corners are where those steps put them (exactly so for
-  // VTK's cameras, whose unprojected w does not vary over a clip plane; a
-  // relative 1e-9 is far below float's rounding).
+  // the viewport's corners are where those steps put them, to a relative
+  // 1e-6 of the origins' and the directions' sizes: exactly so for VTK's
+  // cameras up to the inverse's rounding, far from it for a projective
+  // matrix (and a matrix too ill-conditioned to tell keeps the per-pixel
+  // unprojection, as good as any).
   double org[3], dir[3], orgX[3], dirX[3], orgY[3], dirY[3];
   this->UnprojectRay(0.0, 0.0, org, dir);
   this->UnprojectRay(1.0, 0.0, orgX, dirX);
   this->UnprojectRay(0.0, 1.0, orgY, dirY);
-  double size = 0.0;
+  double originSize = 0.0, directionSize = 0.0;
   for (int k = 0; k < 3; ++k)
   {
     this->RayOrigin[0][k] = org[k];
@@ -103,10 +105,12 @@ void CameraFrame::SetAffineRays()
     this->RayDirection[2][k] = dirY[k] - dir[k];
     for (int r = 0; r < 3; ++r)
     {
-      size = std::max({ size, std::abs(this->RayOrigin[r][k]), std::abs(this->RayDirection[r][k]) });
+      originSize = std::max(originSize, std::abs(this->RayOrigin[r][k]));
+      directionSize = std::max(directionSize, std::abs(this->RayDirection[r][k]));
     }
   }
-  bool affine = std::isfinite(size);
+  const double tolerance = 1e-6;
+  bool affine = std::isfinite(originSize) && std::isfinite(directionSize) && directionSize > 0.0;
   for (const double x : { -1.0, 1.0 })
   {
     for (const double y : { -1.0, 1.0 })
@@ -117,8 +121,8 @@ void CameraFrame::SetAffineRays()
       {
         const double o = this->RayOrigin[0][k] + x * this->RayOrigin[1][k] + y * this->RayOrigin[2][k];
         const double d = this->RayDirection[0][k] + x * this->RayDirection[1][k] + y * this->RayDirection[2][k];
-        affine = affine && std::abs(o - cornerOrg[k]) <= 1e-9 * size &&
-          std::abs(d - cornerDir[k]) <= 1e-9 * size;
+        affine = affine && std::abs(o - cornerOrg[k]) <= tolerance * originSize &&
+          std::abs(d - cornerDir[k]) <= tolerance * directionSize;
       }
     }
   }

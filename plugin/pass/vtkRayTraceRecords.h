@@ -50,8 +50,9 @@ struct CameraFrame
   /// RayOrigin[2] (on the near plane) along RayDirection[0] + x
   /// RayDirection[1] + y RayDirection[2] (to the far plane): the rays are
   /// affine in x, y for VTK's perspective and parallel cameras. False for a
-  /// projection whose rays are not (an explicit projective matrix): the
-  /// shader unprojects each pixel instead.
+  /// projection whose rays are not (an explicit projective matrix, or an
+  /// inverse too ill-conditioned to tell): the shader unprojects each pixel
+  /// instead.
   bool AffineRays = true;
   double RayOrigin[3][3] = {};
   double RayDirection[3][3] = {};

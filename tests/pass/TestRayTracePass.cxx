@@ -9,11 +9,16 @@
 #include "vtkrtPassTestUtils.h"
 #include "vtkrtTestOutputWindow.h"
 
+#include "vtkRayTraceRecords.h"
+
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkGlyph3DMapper.h"
 #include "vtkLookupTable.h"
+#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
+#include "vtkOpenGLCamera.h"
+#include "vtkOpenGLRenderer.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -42,6 +47,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -567,10 +573,11 @@ void TestCoincidentLines()
 
 // The camera rays of VTK's cameras are affine in the pixel ("p0" in the
 // feature key: the shader takes them from three uniforms each): a
-// perspective camera, an off-axis one (window center) and a parallel one.
-// An explicit projective matrix (a keystone: clip w grows with x) is not
-// affine ("p1": the shader unprojects each pixel). Each image against
-// raster's, blurred (silhouettes).
+// perspective camera, an off-axis one (window center) and a parallel one,
+// whose affine rays equal the unprojected ones at random points (camera-
+// relative and world coordinates). An explicit projective matrix (a
+// keystone: clip w grows with x) is not affine ("p1": the shader unprojects
+// each pixel). Each image against raster's, blurred (silhouettes).
 void TestCameraRays()
 {
   auto win = MakeWindow(320, 240);
@@ -584,11 +591,40 @@ void TestCameraRays()
   cam->Azimuth(30);
   cam->Elevation(15);
   ren->ResetCameraClippingRange();
+  const auto raysMatch = [&](const std::string& label, bool world) {
+    vtkrt::pass::CameraFrame frame;
+    frame.Set(vtkOpenGLRenderer::SafeDownCast(ren), vtkOpenGLCamera::SafeDownCast(cam), world, 1.0);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> ndc(-1.0, 1.0);
+    double worst = 0.0;
+    for (int i = 0; i < 100; ++i)
+    {
+      const double x = ndc(random), y = ndc(random);
+      double org[3], dir[3];
+      frame.UnprojectRay(x, y, org, dir);
+      for (int k = 0; k < 3; ++k)
+      {
+        const double o = frame.RayOrigin[0][k] + x * frame.RayOrigin[1][k] + y * frame.RayOrigin[2][k];
+        const double d = frame.RayDirection[0][k] + x * frame.RayDirection[1][k] + y * frame.RayDirection[2][k];
+        worst = std::max({ worst, std::abs(o - org[k]) / (std::abs(org[k]) + std::abs(dir[k])),
+          std::abs(d - dir[k]) / std::abs(vtkMath::Norm(dir)) });
+      }
+    }
+    std::ostringstream s;
+    s << label << (world ? ", world" : ", camera-relative") << ": affine rays equal the unprojected ones "
+      << "(worst relative difference " << worst << ")";
+    Check(frame.AffineRays && worst <= 1e-12, s.str());
+  };
   const auto compare = [&](const std::string& label, const char* rays) {
     RasterAndTraced frames = CompareBlurred(win, ren, label, 2, 8.0, "CameraRays_" + label);
     const std::string key = frames.Pass->GetLastFeatureKey();
     Check(key.find(rays) != std::string::npos, label + ": rays " + rays + " (key " + key + ")");
     ren->SetPass(nullptr);
+    if (std::string(rays) == "p0")
+    {
+      raysMatch(label, false);
+      raysMatch(label, true);
+    }
   };
   compare("perspective", "p0");
   cam->SetWindowCenter(0.3, -0.2);
@@ -604,6 +640,9 @@ void TestCameraRays()
   cam->SetExplicitProjectionTransformMatrix(projection);
   cam->UseExplicitProjectionTransformMatrixOn();
   compare("keystone", "p1");
+  vtkrt::pass::CameraFrame keystoneFrame;
+  keystoneFrame.Set(vtkOpenGLRenderer::SafeDownCast(ren), vtkOpenGLCamera::SafeDownCast(cam), false, 1.0);
+  Check(!keystoneFrame.AffineRays, "keystone: not affine");
   NoVTKOutput("CameraRays");
 }
 } // namespace

@@ -501,8 +501,8 @@ void TestBorrowedGeometry()
 
 // One colored, lit, moved and scaled mesh: the shader of one instance
 // ("i1" in its feature key); with a small ball hidden inside it (the
-// general shader, "i0") every image is the same, bit for bit, and a pick on
-// the mesh finds it with either. Going back to one instance compiles nothing (the program is kept).
+// general shader, "i0") every image is the same and a pick on the mesh
+// finds it with either. Back to one instance, the kept program is used.
 void TestSingleInstance()
 {
   auto win = MakeWindow(200, 200);
@@ -537,8 +537,11 @@ void TestSingleInstance()
   ballMapper->SetInputConnection(ballSource->GetOutputPort());
   vtkNew<vtkActor> ball;
   ball->SetMapper(ballMapper);
-  const auto keyHas = [&](const char* part) {
-    return std::string(pass->GetLastFeatureKey()).find(part) != std::string::npos;
+  // The key, and the shader it names: the define is there or not.
+  const auto shaderIs = [&](const char* part, bool single) {
+    const bool defined =
+      std::string(pass->GetLastFragmentShaderSource()).find("#define VTKRT_SINGLE_INSTANCE\n") != std::string::npos;
+    return std::string(pass->GetLastFeatureKey()).find(part) != std::string::npos && defined == single;
   };
   const auto pickCenter = [&]() {
     const double* center = mesh->GetCenter();
@@ -552,21 +555,26 @@ void TestSingleInstance()
   };
   const auto sameAsGeneral = [&](const std::string& what) {
     win->Render();
-    Check(keyHas("i1") && pass->GetLastTracedInstances() == 1,
+    Check(shaderIs("i1", true) && pass->GetLastTracedInstances() == 1,
       what + ": one instance, its record in uniforms (key " + pass->GetLastFeatureKey() + ")");
     auto single = Grab(win);
     Check(pickCenter(), what + ": a pick on the mesh finds it (one instance)");
     ball->SetPosition(mesh->GetCenter());
     ren->AddActor(ball);
     win->Render();
-    Check(keyHas("i0") && pass->GetLastTracedInstances() == 2,
+    Check(shaderIs("i0", false) && pass->GetLastTracedInstances() == 2,
       what + ": two instances, the general shader (key " + pass->GetLastFeatureKey() + ")");
-    const double rmse = RootMeanSquareError(single, Grab(win));
-    Check(rmse == 0.0, what + ": the same image as the general shader's (RGB RMSE " + std::to_string(rmse) + ")");
+    // Same values, same operations: the same image (a driver may contract
+    // the two programs' arithmetic differently: a step of 1 at most).
+    auto general = Grab(win);
+    const long differing = CountDifferingPixels(single, general, 1);
+    Check(differing == 0,
+      what + ": the same image as the general shader's (" + std::to_string(differing) +
+        " pixels differ by more than 1; RGB RMSE " + std::to_string(RootMeanSquareError(single, general)) + ")");
     Check(pickCenter(), what + ": a pick on the mesh finds it (two instances)");
     ren->RemoveActor(ball);
     win->Render();
-    Check(keyHas("i1") && pass->GetLastShaderCompiles() == 0, what + ": one instance again, nothing compiled");
+    Check(shaderIs("i1", true) && pass->GetLastShaderCompiles() == 0, what + ": one instance again, nothing compiled");
   };
   sameAsGeneral("one mesh");
   mesh->SetPosition(-0.2, 0.1, 0.0);
