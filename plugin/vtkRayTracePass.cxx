@@ -199,6 +199,11 @@ int vtkRayTracePass::GetNumberOfBackgroundBuilds() const
 {
   return this->Internal->Scene.GetNumberOfBackgroundBuilds();
 }
+
+vtkIdType vtkRayTracePass::GetNumberOfBackgroundBuildsTaken() const
+{
+  return this->Internal->Scene.GetNumberOfBackgroundBuildsTaken();
+}
 vtkTypeInt64 vtkRayTracePass::GetLastGeometryBytesUploaded() const
 {
   return static_cast<vtkTypeInt64>(this->Internal->Counters.GeometryBytesUploaded);

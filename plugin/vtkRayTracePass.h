@@ -232,13 +232,15 @@ public:
    * the fast one. No effect with BuildQuality 0.
    * WaitForBackgroundBuilds() waits for the builds (the next frame takes
    * them); GetNumberOfBackgroundBuilds() counts the meshes whose build is
-   * not taken yet (waiting, running or done); the pass waits for running
-   * builds when it is deleted.
+   * not taken yet (waiting, running or done), GetNumberOfBackgroundBuildsTaken()
+   * the trees frames have taken since the pass was made; the pass waits for
+   * running builds when it is deleted.
    */
   vtkSetClampMacro(BackgroundBuildThreshold, vtkIdType, 0, VTK_ID_MAX);
   vtkGetMacro(BackgroundBuildThreshold, vtkIdType);
   void WaitForBackgroundBuilds();
   int GetNumberOfBackgroundBuilds() const;
+  vtkIdType GetNumberOfBackgroundBuildsTaken() const;
   ///@}
 
   ///@{

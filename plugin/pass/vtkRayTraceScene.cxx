@@ -296,6 +296,7 @@ const std::shared_ptr<Geometry>& Scene::TriangleGeometry(vtkPolyData* poly, Fram
     {
       entry = std::move(refined);
       ++counters.BackgroundBuildsTaken;
+      ++this->BackgroundBuildsTaken;
       this->GeometryDirty = true;
     }
   }

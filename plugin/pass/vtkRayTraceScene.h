@@ -110,6 +110,9 @@ public:
   /// Waits for the background builds; the next Extract takes them.
   void WaitForBackgroundBuilds() { this->Refinements.WaitAll(); }
   int GetNumberOfBackgroundBuilds() const { return this->Refinements.Size(); }
+  /// Trees built in the background that frames have taken, since the scene
+  /// was made.
+  vtkIdType GetNumberOfBackgroundBuildsTaken() const { return this->BackgroundBuildsTaken; }
 
   /// Maximum triangles per leaf of the triangle BVHs (>= 1, default 4).
   /// Triangle geometry built with another leaf size is rebuilt on its next
@@ -215,6 +218,7 @@ private:
   bool GeometryDirty = true;
   bool ColorsDirty = true;
   BackgroundBuilds Refinements; ///< waits for its builds when destroyed
+  vtkIdType BackgroundBuildsTaken = 0;
 };
 
 } // namespace pass

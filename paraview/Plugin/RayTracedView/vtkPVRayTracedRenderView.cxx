@@ -224,6 +224,11 @@ int vtkPVRayTracedRenderView::GetNumberOfBackgroundBuilds()
   return this->Internal->Pass->GetNumberOfBackgroundBuilds();
 }
 
+vtkIdType vtkPVRayTracedRenderView::GetNumberOfBackgroundBuildsTaken()
+{
+  return this->Internal->Pass->GetNumberOfBackgroundBuildsTaken();
+}
+
 void vtkPVRayTracedRenderView::SetBackgroundBuildThreshold(vtkIdType triangles)
 {
   if (triangles != this->Internal->Pass->GetBackgroundBuildThreshold())

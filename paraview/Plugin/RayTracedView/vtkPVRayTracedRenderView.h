@@ -106,12 +106,14 @@ public:
   ///@{
   /**
    * What the pass traced in this process's last frame (primitives and
-   * instances; 0 when nothing was traced, e.g. with ray tracing off), and
-   * the meshes whose background build is not taken yet.
+   * instances; 0 when nothing was traced, e.g. with ray tracing off), the
+   * meshes whose background build is not taken yet, and the background
+   * builds taken since the view was made.
    */
   vtkTypeInt64 GetLastTracedPrimitives();
   int GetLastTracedInstances();
   int GetNumberOfBackgroundBuilds();
+  vtkIdType GetNumberOfBackgroundBuildsTaken();
   ///@}
 
   /**
