@@ -199,7 +199,6 @@ int vtkRayTracePass::GetNumberOfBackgroundBuilds() const
 {
   return this->Internal->Scene.GetNumberOfBackgroundBuilds();
 }
-
 vtkIdType vtkRayTracePass::GetNumberOfBackgroundBuildsTaken() const
 {
   return this->Internal->Scene.GetNumberOfBackgroundBuildsTaken();

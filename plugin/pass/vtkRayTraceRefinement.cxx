@@ -221,21 +221,6 @@ std::shared_ptr<Geometry> BackgroundBuilds::TakeDone(const void* key, const Geom
   std::shared_ptr<Geometry> refined = queued->second.Build->Take();
   this->Queue.erase(queued);
   this->LaunchNext();
-  if (refined)
-  {
-    // The cache key and the bookkeeping of the geometry it stands in for.
-    refined->SourceTime = current.SourceTime;
-    refined->SourceParts = current.SourceParts;
-    refined->SourceFingerprint = current.SourceFingerprint;
-    refined->SourceKey = current.SourceKey;
-    refined->Quality = current.Quality;
-    refined->LeafSize = current.LeafSize;
-    refined->Keep = current.Keep;
-    refined->KeepData = current.KeepData;
-    refined->Used = current.Used;
-    refined->TriangulationSeconds = current.TriangulationSeconds;
-    refined->BuildSeconds = current.BuildSeconds;
-  }
   return refined;
 }
 

@@ -98,7 +98,7 @@ public:
   void Start(
     const void* key, std::shared_ptr<const Geometry> fast, RefinementInput input, const core::BuildOptions& options);
   /// The refined geometry of `key` when its build is done and refines
-  /// `current`, with `current`'s cache key fields; else null.
+  /// `current`; else null. The caller gives it `current`'s place.
   std::shared_ptr<Geometry> TakeDone(const void* key, const Geometry& current);
   /// Lets go of the builds whose geometry is no longer `current(key)` and
   /// frees those let go that have finished (never waits).

@@ -96,6 +96,23 @@ void setBuiltFrom(Geometry& g, const GeometrySource& source)
   g.SourceParts = source.Parts;
 }
 
+/// A cache entry's key and bookkeeping, from the geometry `to` takes the
+/// place of.
+void takeCachePlace(const Geometry& from, Geometry& to)
+{
+  to.SourceTime = from.SourceTime;
+  to.SourceParts = from.SourceParts;
+  to.SourceFingerprint = from.SourceFingerprint;
+  to.SourceKey = from.SourceKey;
+  to.Quality = from.Quality;
+  to.LeafSize = from.LeafSize;
+  to.Keep = from.Keep;
+  to.KeepData = from.KeepData;
+  to.Used = from.Used;
+  to.TriangulationSeconds = from.TriangulationSeconds;
+  to.BuildSeconds = from.BuildSeconds;
+}
+
 /// Drops the entries no prop used this frame; returns whether any went.
 template <class Cache>
 bool dropUnused(Cache& cache)
@@ -294,6 +311,7 @@ const std::shared_ptr<Geometry>& Scene::TriangleGeometry(vtkPolyData* poly, Fram
     // a frame traces the same tree.
     if (std::shared_ptr<Geometry> refined = this->Refinements.TakeDone(poly, *entry))
     {
+      takeCachePlace(*entry, *refined);
       entry = std::move(refined);
       ++counters.BackgroundBuildsTaken;
       ++this->BackgroundBuildsTaken;

@@ -78,7 +78,7 @@ std::string AssembleShader(const Features& f)
   define(f.IdMode, "VTKRT_ID_MODE");
   define(f.SelectIds, "VTKRT_SELECT_IDS");
   define(f.TopLevel, "VTKRT_HAS_TOP_LEVEL");
-  define(f.SingleInstance && !f.TopLevel, "VTKRT_SINGLE_INSTANCE");
+  define(f.SingleInstance, "VTKRT_SINGLE_INSTANCE");
   define(f.ProjectiveRays, "VTKRT_PROJECTIVE_RAYS");
   define(f.Translucent, "VTKRT_TRANSLUCENT");
   if (f.SamplesPerPixel > 0)

@@ -78,6 +78,27 @@ bool PassPinsMemory()
   return false;
 }
 
+/// A sphere colored by its height (point scalars over [-0.5, 0.5] in y),
+/// the pipeline kept so that a case can change its stages.
+struct ElevationSphere
+{
+  vtkNew<vtkSphereSource> Source;
+  vtkNew<vtkElevationFilter> Colors;
+  vtkNew<vtkPolyDataMapper> Mapper;
+  vtkNew<vtkActor> Actor;
+
+  ElevationSphere(int theta, int phi)
+  {
+    this->Source->SetThetaResolution(theta);
+    this->Source->SetPhiResolution(phi);
+    this->Colors->SetInputConnection(this->Source->GetOutputPort());
+    this->Colors->SetLowPoint(0.0, -0.5, 0.0);
+    this->Colors->SetHighPoint(0.0, 0.5, 0.0);
+    this->Mapper->SetInputConnection(this->Colors->GetOutputPort());
+    this->Actor->SetMapper(this->Mapper);
+  }
+};
+
 /// Checks that `win`'s image equals that of a new pass tracing `ren`'s
 /// actors with its camera in `freshWin` (of the same size).
 void SameAsFreshPass(vtkRenderWindow* win, vtkRenderer* ren, vtkRenderWindow* freshWin, const std::string& what)
@@ -253,17 +274,11 @@ void TestScalarChange()
   auto win = MakeWindow(200, 200);
   vtkNew<vtkRenderer> ren;
   win->AddRenderer(ren);
-  vtkNew<vtkSphereSource> source;
-  source->SetThetaResolution(120);
-  source->SetPhiResolution(120);
-  vtkNew<vtkElevationFilter> elevation;
-  elevation->SetInputConnection(source->GetOutputPort());
-  elevation->SetLowPoint(0, -0.5, 0);
-  elevation->SetHighPoint(0, 0.5, 0);
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(elevation->GetOutputPort());
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
+  ElevationSphere sphere(120, 120);
+  vtkSphereSource* source = sphere.Source;
+  vtkElevationFilter* elevation = sphere.Colors;
+  vtkPolyDataMapper* mapper = sphere.Mapper;
+  vtkActor* actor = sphere.Actor;
   ren->AddActor(actor);
   ren->ResetCamera();
   vtkNew<vtkRayTracePass> pass;
@@ -508,17 +523,8 @@ void TestSingleInstance()
   auto win = MakeWindow(200, 200);
   vtkNew<vtkRenderer> ren;
   win->AddRenderer(ren);
-  vtkNew<vtkSphereSource> meshSource;
-  meshSource->SetThetaResolution(64);
-  meshSource->SetPhiResolution(32);
-  vtkNew<vtkElevationFilter> meshColors;
-  meshColors->SetInputConnection(meshSource->GetOutputPort());
-  meshColors->SetLowPoint(0.0, -0.5, 0.0);
-  meshColors->SetHighPoint(0.0, 0.5, 0.0);
-  vtkNew<vtkPolyDataMapper> meshMapper;
-  meshMapper->SetInputConnection(meshColors->GetOutputPort());
-  vtkNew<vtkActor> mesh;
-  mesh->SetMapper(meshMapper);
+  ElevationSphere sphere(64, 32);
+  vtkActor* mesh = sphere.Actor;
   mesh->SetPosition(0.3, -0.2, 0.1);
   mesh->SetScale(1.5, 1.0, 0.75);
   mesh->RotateZ(30.0);
@@ -582,7 +588,7 @@ void TestSingleInstance()
   sameAsGeneral("moved and turned");
   mesh->GetProperty()->SetAmbient(0.3);
   mesh->GetProperty()->SetDiffuseColor(0.9, 0.5, 0.1);
-  meshMapper->ScalarVisibilityOff();
+  sphere.Mapper->ScalarVisibilityOff();
   sameAsGeneral("new colors");
   ren->GetActiveCamera()->Elevation(35.0);
   ren->GetActiveCamera()->OrthogonalizeViewUp();

@@ -30,13 +30,19 @@ print("%s on %d rank(s)" % (case, ranks))
 view = ray_traced_view()
 SetActiveView(view)
 
-if case == "Mesh":
+
+def rendered_mesh():
+    """The Mesh scene rendered: its triangle count and the traced count."""
     source, _ = mesh(view)
     place_camera(view)
     Render(view)
-    triangles = source.GetDataInformation().GetNumberOfCells()
-    check(triangles > 10000 and traced_primitives(view) == triangles,
-          "the mesh's %d triangles are ray traced (traced: %d)" % (triangles, traced_primitives(view)))
+    return source.GetDataInformation().GetNumberOfCells(), traced_primitives(view)
+
+
+if case == "Mesh":
+    triangles, traced = rendered_mesh()
+    check(triangles > 10000 and traced == triangles,
+          "the mesh's %d triangles are ray traced (traced: %d)" % (triangles, traced))
 elif case == "Glyphs":
     source, _ = glyphs(view)
     place_camera(view, azimuth=20.0, elevation=25.0)
@@ -182,12 +188,9 @@ elif case == "BackgroundBuild":
     view.BackgroundBuildThreshold = 10000
     check(pass_threshold() == 10000 and taken() == 0,
           "the property reaches the pass (%s), nothing taken yet (%d)" % (pass_threshold(), taken()))
-    source, _ = mesh(view)
-    place_camera(view)
-    Render(view)
-    triangles = source.GetDataInformation().GetNumberOfCells()
-    check(triangles > 10000 and traced_primitives(view) == triangles,
-          "the mesh (%d triangles) is above the threshold, and traced (%d)" % (triangles, traced_primitives(view)))
+    triangles, traced = rendered_mesh()
+    check(triangles > 10000 and traced == triangles,
+          "the mesh (%d triangles) is above the threshold, and traced (%d)" % (triangles, traced))
     # Renders until no build is pending (ParaView may render several times
     # in one Render(): the tree may be taken already; the bound, under
     # ctest's timeout, only keeps a broken build from hanging the test).
