@@ -210,30 +210,31 @@ bool bvhPopAfterLeaf(float tmax, inout int sp, inout uint index, inout uint coun
 // the farther) and pops at dead ends, until the node at hand is a leaf.
 // Boxes grow by growBy (screen-sized spheres; 0 otherwise). Returns false
 // when the walk is over (nothing left, or the traversal step cap reached).
+// A do-while with the step guarded, not a while: llvmpipe runs a loop's
+// body once more, fully masked, after every lane has left at its top, so a
+// while loop would pay one extra node step per call.
 bool bvhDescend(vec3 org, vec3 invDir, vec3 parallelBias, vec3 growBy, float tmin, float tmax,
   inout int sp, inout int steps, inout uint index, inout uint count, inout bool culled)
 {
-  while (count == 0u)
+  bool walking = true;
+  do
   {
+    if (count == 0u)
+    {
 #if VTKRT_MAXIMUM_TRAVERSAL_STEPS > 0
-    // The traversal step cap (a speed/accuracy knob): what is not reached
-    // within the cap is missed.
-    if (++steps > VTKRT_MAXIMUM_TRAVERSAL_STEPS)
-    {
-      return false;
-    }
+      // The traversal step cap (a speed/accuracy knob): what is not reached
+      // within the cap is missed.
+      walking = ++steps <= VTKRT_MAXIMUM_TRAVERSAL_STEPS;
 #endif
-    Node n0 = fetchNode(uNodes, int(index));
-    Node n1 = fetchNode(uNodes, int(index) + 1);
-    float t0, t1;
-    bool h0 = intersectRayBoxConservative(org, invDir, parallelBias, n0.lo - growBy, n0.hi + growBy,
-                tmin, tmax, t0) && !culled;
-    bool h1 = intersectRayBoxConservative(org, invDir, parallelBias, n1.lo - growBy, n1.hi + growBy,
-                tmin, tmax, t1) && !culled;
-    if (!bvhInteriorStep(n0, h0, t0, n1, h1, t1, tmax, sp, index, count, culled))
-    {
-      return false;
+      Node n0 = fetchNode(uNodes, int(index));
+      Node n1 = fetchNode(uNodes, int(index) + 1);
+      float t0, t1;
+      bool h0 = intersectRayBoxConservative(org, invDir, parallelBias, n0.lo - growBy, n0.hi + growBy,
+                  tmin, tmax, t0) && !culled;
+      bool h1 = intersectRayBoxConservative(org, invDir, parallelBias, n1.lo - growBy, n1.hi + growBy,
+                  tmin, tmax, t1) && !culled;
+      walking = walking && bvhInteriorStep(n0, h0, t0, n1, h1, t1, tmax, sp, index, count, culled);
     }
-  }
-  return true;
+  } while (walking && count == 0u);
+  return walking;
 }

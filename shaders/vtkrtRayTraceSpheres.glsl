@@ -105,13 +105,15 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
       break;
     }
 #endif
-    // A leaf: its spheres [index, index + count).
+    // A leaf: its spheres [index, index + count), count >= 1 (do-while
+    // loops: see bvhDescend).
     int first = int(index);
 #ifdef VTKRT_HAS_ELLIPSOIDS
     if (ellipsoids)
     {
       int last = first + VTKRT_ELLIPSOID_TEXELS * int(count);
-      for (int i = first; i < last; i += VTKRT_ELLIPSOID_TEXELS)
+      int i = first;
+      do
       {
         Ellipsoid e = fetchEllipsoid(uSpheres, i);
         vec3 unitOrg = rowsPoint(e.rows[0], e.rows[1], e.rows[2], org);
@@ -122,25 +124,31 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
           tmax = t;
           sphere = i;
         }
-      }
+      } while ((i += VTKRT_ELLIPSOID_TEXELS) < last);
     }
     int end = ellipsoids ? first : first + int(count);
 #else
     int end = first + int(count);
 #endif
-    for (int i = first; i < end; ++i)
+    int i = first;
+    do
     {
-      Sphere s = fetchSphere(uSpheres, i);
-#ifdef VTKRT_SCREEN_SPHERES
-      s.radius += max(0.0, dot(radiusPlane.xyz, s.center) + radiusPlane.w);
+#ifdef VTKRT_HAS_ELLIPSOIDS
+      if (i < end) // an ellipsoid leaf has no spheres
 #endif
-      float t;
-      if (intersectRaySphere(org, dir, s.center, s.radius, tmin, tmax, t))
       {
-        tmax = t;
-        sphere = i;
+        Sphere s = fetchSphere(uSpheres, i);
+#ifdef VTKRT_SCREEN_SPHERES
+        s.radius += max(0.0, dot(radiusPlane.xyz, s.center) + radiusPlane.w);
+#endif
+        float t;
+        if (intersectRaySphere(org, dir, s.center, s.radius, tmin, tmax, t))
+        {
+          tmax = t;
+          sphere = i;
+        }
       }
-    }
+    } while (++i < end);
     if (stopAtFirstHit && sphere >= 0)
     {
       return true;

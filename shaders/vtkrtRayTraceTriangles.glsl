@@ -155,10 +155,11 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
       break;
     }
 #endif
-    // A leaf: its triangles [index, index + count).
-    int first = int(index);
-    int end = first + int(count);
-    for (int i = first; i < end; ++i)
+    // A leaf: its triangles [index, index + count), count >= 1 (a
+    // do-while: see bvhDescend).
+    int i = int(index);
+    int end = i + int(count);
+    do
     {
       Triangle triangle = fetchTriangle(uTriangles, i);
       vec3 h;
@@ -180,7 +181,7 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
         tri = i;
         uv = h.yz;
       }
-    }
+    } while (++i < end);
     if (stopAtFirstHit && tri >= 0)
     {
       return true;

@@ -129,9 +129,10 @@ bool traverseTubes(int root, vec3 org, vec3 dir, float tmin, inout float tmax, o
       break;
     }
 #endif
-    int first = int(index);
-    int last = first + VTKRT_SEGMENT_TEXELS * int(count);
-    for (int i = first; i < last; i += VTKRT_SEGMENT_TEXELS)
+    // A leaf: count >= 1 segments (a do-while: see bvhDescend).
+    int i = int(index);
+    int last = i + VTKRT_SEGMENT_TEXELS * int(count);
+    do
     {
       Segment s = fetchSegment(uSpheres, i);
       float t;
@@ -141,7 +142,7 @@ bool traverseTubes(int root, vec3 org, vec3 dir, float tmin, inout float tmax, o
         tmax = t;
         segment = i;
       }
-    }
+    } while ((i += VTKRT_SEGMENT_TEXELS) < last);
     if (stopAtFirstHit && segment >= 0)
     {
       return true;
