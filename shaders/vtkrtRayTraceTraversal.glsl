@@ -134,14 +134,16 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, float tMin, inout float tBes
     bool descended = false;
     if (count > 0)
     {
-      for (int i = index; i < index + count; ++i)
+      // A do-while (count >= 1): see bvhDescend.
+      int i = index;
+      do
       {
         traceInstance(i, org, dir, invDir, tMin, tBest, hitInstance, hitPrimitive, hitUV, stopAtFirstHit);
         if (stopAtFirstHit && hitInstance >= 0)
         {
           return;
         }
-      }
+      } while (++i < index + count);
     }
     else
     {
@@ -204,10 +206,12 @@ bool anyHit(vec3 org, vec3 dir, float tmax)
 #elif defined(VTKRT_SINGLE_INSTANCE)
   traceInstance(0, org, dir, invDir, 0.0, t, hitInstance, hitPrimitive, hitUV, true);
 #else
-  for (int instance = 0; instance < uNumberOfInstances && hitInstance < 0; ++instance)
+  // Do-whiles (a scene traced has an instance): see bvhDescend.
+  int instance = 0;
+  do
   {
     traceInstance(instance, org, dir, invDir, 0.0, t, hitInstance, hitPrimitive, hitUV, true);
-  }
+  } while (++instance < uNumberOfInstances && hitInstance < 0);
 #endif
   return hitInstance >= 0;
 }
@@ -226,9 +230,10 @@ void traceClosest(vec3 org, vec3 dir, vec3 invDir, float tMin, inout float tBest
 #elif defined(VTKRT_SINGLE_INSTANCE)
   traceInstance(0, org, dir, invDir, tMin, tBest, hitInstance, hitPrimitive, hitUV, false);
 #else
-  for (int instance = 0; instance < uNumberOfInstances; ++instance)
+  int instance = 0;
+  do
   {
     traceInstance(instance, org, dir, invDir, tMin, tBest, hitInstance, hitPrimitive, hitUV, false);
-  }
+  } while (++instance < uNumberOfInstances);
 #endif
 }
