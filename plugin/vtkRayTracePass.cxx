@@ -256,6 +256,10 @@ int vtkRayTracePass::GetLastTracedInstances() const
 {
   return this->Internal->Counters.TracedInstances;
 }
+vtkTypeInt64 vtkRayTracePass::GetLastTracedPixels() const
+{
+  return static_cast<vtkTypeInt64>(this->Internal->Counters.TracedPixels);
+}
 const char* vtkRayTracePass::GetLastFeatureKey() const
 {
   return this->Internal->Programs.GetLastKey().c_str();

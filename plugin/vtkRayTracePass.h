@@ -168,6 +168,12 @@ public:
   vtkTypeInt64 GetLastTracedPrimitives() const;
   int GetLastTracedInstances() const;
   /**
+   * Pixels given camera rays in the last frame: those where a traced
+   * instance can be (the tiles that the projections of the upper boxes of
+   * its BVH touch, or the rectangle around its box), not the whole viewport.
+   */
+  vtkTypeInt64 GetLastTracedPixels() const;
+  /**
    * Top-level BVH builds of the last frame: scenes with more than 8
    * instances walk a BVH over the instances' world boxes, rebuilt when an
    * instance moves or changes (never for a camera move).

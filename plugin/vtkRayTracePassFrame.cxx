@@ -2,6 +2,7 @@
 
 #include "vtkrt/core/GpuTraversal.h"
 
+#include <array>
 #include <cstdlib>
 
 using vtkrt::pass::Features;
@@ -36,18 +37,57 @@ void appendAsFloats(std::vector<float>& out, const std::vector<T>& values)
   }
 }
 
-/// Narrows drawing to the window rectangle `rect` within the scissor box
-/// (or, with no scissor test on, the viewport) in effect.
-void ScissorTo(vtkOpenGLState* ostate, const int rect[4])
+/// The scissor box in effect (or, with no scissor test on, the viewport).
+std::array<int, 4> DrawingBound(vtkOpenGLState* ostate)
 {
-  int box[4];
-  ostate->vtkglGetIntegerv(ostate->GetEnumState(GL_SCISSOR_TEST) ? GL_SCISSOR_BOX : GL_VIEWPORT, box);
-  ostate->vtkglEnable(GL_SCISSOR_TEST);
-  const int x0 = std::max(rect[0], box[0]), y0 = std::max(rect[1], box[1]);
-  const int x1 = std::min(rect[0] + rect[2], box[0] + box[2]);
-  const int y1 = std::min(rect[1] + rect[3], box[1] + box[3]);
-  ostate->vtkglScissor(x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0));
+  std::array<int, 4> box;
+  ostate->vtkglGetIntegerv(ostate->GetEnumState(GL_SCISSOR_TEST) ? GL_SCISSOR_BOX : GL_VIEWPORT, box.data());
+  return box;
 }
+
+/// The window rectangle `rect` (x, y, width, height) within `bound`.
+std::array<int, 4> Clipped(const int rect[4], const std::array<int, 4>& bound)
+{
+  const int x0 = std::max(rect[0], bound[0]), y0 = std::max(rect[1], bound[1]);
+  const int x1 = std::min(rect[0] + rect[2], bound[0] + bound[2]);
+  const int y1 = std::min(rect[1] + rect[3], bound[1] + bound[3]);
+  return { x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0) };
+}
+
+std::size_t ClippedArea(const int rect[4], const std::array<int, 4>& bound)
+{
+  const std::array<int, 4> r = Clipped(rect, bound);
+  return static_cast<std::size_t>(r[2]) * static_cast<std::size_t>(r[3]);
+}
+
+/// Narrows drawing to the window rectangle `rect` within `bound`; returns
+/// the pixels left.
+std::size_t ScissorTo(vtkOpenGLState* ostate, const int rect[4], const std::array<int, 4>& bound)
+{
+  ostate->vtkglEnable(GL_SCISSOR_TEST);
+  const std::array<int, 4> r = Clipped(rect, bound);
+  ostate->vtkglScissor(r[0], r[1], r[2], r[3]);
+  return static_cast<std::size_t>(r[2]) * static_cast<std::size_t>(r[3]);
+}
+
+/// Narrows drawing to the window rectangle `rect` within the drawing bound.
+std::size_t ScissorTo(vtkOpenGLState* ostate, const int rect[4])
+{
+  return ScissorTo(ostate, rect, DrawingBound(ostate));
+}
+
+/// VTKRT_FOOTPRINT_TILES=0: camera rays over the traced footprint's
+/// rectangle, not its tiles (tests compare the two).
+bool FootprintTiles()
+{
+  const char* value = std::getenv("VTKRT_FOOTPRINT_TILES");
+  return !value || std::strcmp(value, "0") != 0;
+}
+
+/// Traced tiles (TracedTiles) are this many pixels wide; more than
+/// kMaxFootprintDraws rectangles of them are traced as one rectangle.
+constexpr int kFootprintTile = 32;
+constexpr std::size_t kMaxFootprintDraws = 64;
 
 /// VTKRT_GENERAL_SHADER set (not empty, not 0): no shader of one instance,
 /// so that tests walk a one-mesh scene the general way too.
@@ -550,11 +590,22 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRen
   const bool narrowed = vtkrt::pass::TracedFootprint(p.Camera, p.Frame, ren, footprint);
   if (p.F.SamplesPerPixel == 0)
   {
-    if (narrowed)
+    // Finer still: only the tiles the instances' upper tree boxes reach.
+    const std::vector<std::array<int, 4>> tiles = FootprintTiles()
+      ? vtkrt::pass::TracedTiles(p.Camera, p.Frame, ren, kFootprintTile, kMaxFootprintDraws)
+      : std::vector<std::array<int, 4>>();
+    const std::array<int, 4> bound = DrawingBound(ostate);
+    for (const std::array<int, 4>& rect : tiles)
     {
-      ScissorTo(ostate, footprint);
+      this->Counters.TracedPixels += ScissorTo(ostate, rect.data(), bound);
+      tracer->Render();
     }
-    tracer->Render();
+    if (tiles.empty())
+    {
+      this->Counters.TracedPixels += narrowed ? ScissorTo(ostate, footprint, bound)
+                                              : static_cast<std::size_t>(bound[2]) * bound[3];
+      tracer->Render();
+    }
   }
   else
   {
@@ -570,6 +621,9 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRen
     signature.insert(signature.end(), key.begin(), key.end());
     const bool restart = !pass.ProgressiveAccumulation || this->Counters.GeometryBytesUploaded > 0 ||
       this->Counters.ShaderCompiles > 0;
+    const std::array<int, 4> bound = DrawingBound(ostate);
+    this->Counters.TracedPixels += narrowed ? ClippedArea(footprint, bound)
+                                            : static_cast<std::size_t>(bound[2]) * bound[3];
     this->Accumulated.Trace(win, ren, tracer, std::move(signature), restart, framesBefore,
       pass.SamplesPerPixel, narrowed ? footprint : nullptr);
     for (vtkTextureObject* t : p.Active)

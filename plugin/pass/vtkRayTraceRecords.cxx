@@ -371,6 +371,8 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
   out.ClipPlanes.clear();
   out.TooSmallProps.clear();
   out.WorldBoxes.resize(instances.size());
+  out.Outlines.resize(instances.size());
+  const int outlineDepth = OutlineDepth(instances.size());
   double eyeInShader[3];
   camera.ToShader(camera.Eye, eyeInShader);
   for (std::size_t i = 0; i < instances.size(); ++i)
@@ -402,6 +404,7 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     const ScreenSphereRadii screen =
       ComputeScreenSphereRadii(inst, ren, toShader->GetData(), eyeInShader, camera.Scale);
     out.WorldBoxes[i] = worldBox(inst);
+    out.Outlines[i] = OutlineOf(inst, toShader->GetData(), outlineDepth);
     if (screen.MaxWorld > 0.0)
     {
       // Grown by the radius bound rounded up to a power of two, so the top
@@ -471,64 +474,16 @@ void KeepTracedProps(const std::vector<bool>& traced, FrameRecords& frame)
     {
       frame.Records[kept] = frame.Records[i];
       frame.WorldBoxes[kept] = frame.WorldBoxes[i];
+      if (kept != i)
+      {
+        frame.Outlines[kept] = std::move(frame.Outlines[i]);
+      }
       ++kept;
     }
   }
   frame.Records.resize(kept);
   frame.WorldBoxes.resize(kept);
-}
-
-bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRenderer* ren,
-  int rect[4])
-{
-  int width = 0, height = 0, x0 = 0, y0 = 0;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-  if (width <= 0 || height <= 0 || frame.WorldBoxes.empty())
-  {
-    return false;
-  }
-  double lo[2] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
-  double hi[2] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-  for (const core::AABB<double>& box : frame.WorldBoxes)
-  {
-    for (int corner = 0; corner < 8; ++corner)
-    {
-      const double world[3] = { (corner & 1) ? box.max.x : box.min.x,
-        (corner & 2) ? box.max.y : box.min.y, (corner & 4) ? box.max.z : box.min.z };
-      double p[4] = { 0.0, 0.0, 0.0, 1.0 };
-      camera.ToShader(world, p);
-      camera.CameraToClip->MultiplyPoint(p, p);
-      // At or behind the eye plane the projection has no bound.
-      if (!(p[3] > 1e-12 * (std::abs(p[0]) + std::abs(p[1]) + std::abs(p[2]))))
-      {
-        return false;
-      }
-      for (int k = 0; k < 2; ++k)
-      {
-        lo[k] = std::min(lo[k], p[k] / p[3]);
-        hi[k] = std::max(hi[k], p[k] / p[3]);
-      }
-    }
-  }
-  const int size[2] = { width, height };
-  int first[2], last[2];
-  for (int k = 0; k < 2; ++k)
-  {
-    const double a = std::max(-1.0, lo[k]), b = std::min(1.0, hi[k]);
-    first[k] = static_cast<int>(std::floor((a * 0.5 + 0.5) * size[k])) - 1;
-    last[k] = static_cast<int>(std::ceil((b * 0.5 + 0.5) * size[k])) + 1;
-    first[k] = std::max(0, first[k]);
-    last[k] = std::min(size[k], last[k]);
-  }
-  if (first[0] == 0 && first[1] == 0 && last[0] == width && last[1] == height)
-  {
-    return false;
-  }
-  rect[0] = x0 + first[0];
-  rect[1] = y0 + first[1];
-  rect[2] = std::max(0, last[0] - first[0]);
-  rect[3] = std::max(0, last[1] - first[1]);
-  return true;
+  frame.Outlines.resize(kept);
 }
 
 } // namespace pass

@@ -6,6 +6,7 @@
 #ifndef vtkRayTraceRecords_h
 #define vtkRayTraceRecords_h
 
+#include "vtkRayTraceFootprint.h"
 #include "vtkRayTraceTypes.h"
 
 #include "vtkNew.h"
@@ -118,6 +119,8 @@ struct FrameRecords
   /// World boxes of the instances (camera independent; grown by the largest
   /// screen-sphere radius rounded up to a power of two).
   std::vector<core::AABB<double>> WorldBoxes;
+  /// The instances' outlines (their trees' upper boxes), for TracedTiles.
+  std::vector<InstanceOutline> Outlines;
   /// Prop indices of instances too small in the view for float to shade
   /// (below kSmallestShadedSize: their normals' squared lengths leave
   /// float's range), each once.
@@ -131,14 +134,6 @@ struct FrameRecords
 /// place in the uploaded buffers.
 bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlacements& places,
   const CameraFrame& camera, vtkRenderer* ren, FrameRecords& out);
-
-/// The pixels where a primary ray can meet the frame's instances: the
-/// window rectangle (x, y, width, height) around their world boxes'
-/// projections, a pixel wider on each side. False when it is the whole
-/// viewport anyway, or when a box reaches behind the eye (its projection
-/// is unbounded).
-bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRenderer* ren,
-  int rect[4]);
 
 /// Drops the records (and world boxes) of the props `traced` leaves out
 /// (indexed by prop index).

@@ -231,6 +231,7 @@ struct FrameCounters
   int ShaderCompiles = 0;
   std::size_t TracedPrimitives = 0;
   int TracedInstances = 0;
+  std::size_t TracedPixels = 0; ///< pixels given camera rays (the footprint's)
 
   /// Where the frame's CPU time went, in seconds (a first frame's cost).
   double ExtractionSeconds = 0.0;    ///< props to instances, without the two below

@@ -5,6 +5,13 @@
 //                     no GL error, no VTK error
 //   TooLarge          buffers over the texture-buffer limit: a clear error,
 //                     raster draws the props instead, nothing counts as traced
+//   Footprint         rays only within the traced instances' footprint: the
+//                     image of raster, sampled or not, boxes cut by the
+//                     viewport or behind the eye
+//   FootprintTiles    rays only in the tiles the instances' upper tree boxes
+//                     reach: the image of the whole footprint, bit for bit,
+//                     from fewer pixels, as the camera turns, zooms and enters
+//                     a box (tiles give way to the rectangle)
 // TestRayTracePassRobustness <Case>.
 #include "vtkrtPassTestUtils.h"
 #include "vtkrtTestOutputWindow.h"
@@ -318,6 +325,68 @@ void TestFootprint()
   NoVTKOutput("footprint");
 }
 
+void TestFootprintTiles()
+{
+  auto win = MakeWindow(240, 200);
+  vtkNew<vtkRenderer> ren;
+  ren->SetViewport(0.05, 0.1, 0.95, 1.0);
+  win->AddRenderer(ren);
+  // A long thin ellipsoid across the view, turned by its matrix, and a
+  // small ball in a corner: their rectangle is most of the viewport, their
+  // tiles a band and a spot.
+  auto rod = SphereActor(0, 0, 0, 1.0, 48);
+  rod->SetScale(3.0, 0.25, 0.25);
+  rod->RotateZ(35.0);
+  rod->RotateX(20.0);
+  rod->SetPosition(0.2, 0.1, -0.3);
+  ren->AddActor(rod);
+  ren->AddActor(SphereActor(2.2, -1.6, 0.3, 0.2, 24));
+  ren->ResetCamera();
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+  auto compare = [&](const std::string& what, const std::string& expect) {
+    ren->ResetCameraClippingRange();
+    setenv("VTKRT_FOOTPRINT_TILES", "0", 1);
+    win->Render();
+    auto whole = Grab(win);
+    const vtkTypeInt64 wholePixels = pass->GetLastTracedPixels();
+    unsetenv("VTKRT_FOOTPRINT_TILES");
+    win->Render();
+    auto tiled = Grab(win);
+    const vtkTypeInt64 tiledPixels = pass->GetLastTracedPixels();
+    const long off = CountDifferingPixels(whole, tiled, 0);
+    if (off != 0)
+    {
+      // The whole footprint's image stands where raster's does.
+      WriteFailedImages("FootprintTiles", whole, tiled);
+    }
+    Check(off == 0, "footprint tiles, " + what + ": " + std::to_string(off) + " pixels differ from the whole footprint's");
+    const bool fewer = 4 * tiledPixels < 3 * wholePixels;
+    const bool ok = expect == "fewer" ? fewer : (expect == "same" ? tiledPixels == wholePixels : tiledPixels <= wholePixels);
+    Check(tiledPixels > 0 && ok,
+      "footprint tiles, " + what + ": " + std::to_string(tiledPixels) + " pixels traced against " +
+        std::to_string(wholePixels) + " (expected " + expect + ")");
+  };
+  ren->SetPass(nullptr);
+  win->Render();
+  auto raster = Grab(win);
+  ren->SetPass(pass);
+  win->Render();
+  const long offRaster = CountDifferingPixels(raster, Grab(win), 48);
+  Check(offRaster <= 40, "footprint tiles: " + std::to_string(offRaster) + " pixels off raster");
+  compare("rod and ball", "fewer");
+  ren->GetActiveCamera()->Azimuth(50.0);
+  ren->GetActiveCamera()->Elevation(30.0);
+  ren->GetActiveCamera()->OrthogonalizeViewUp();
+  compare("turned", "fewer");
+  ren->GetActiveCamera()->Zoom(4.0);
+  compare("zoomed, cut by the viewport's edges", "no more");
+  ren->GetActiveCamera()->SetPosition(0.2, 0.1, -0.3); // inside the rod
+  ren->GetActiveCamera()->SetFocalPoint(2.2, -1.6, 0.3);
+  compare("the eye inside a box", "same");
+  NoVTKOutput("footprint tiles");
+}
+
 int main(int argc, char* argv[])
 {
   Output = vtkrtTestOutputWindow::Install();
@@ -326,6 +395,7 @@ int main(int argc, char* argv[])
     { "Degenerate", TestDegenerate },
     { "TooLarge", TestTooLarge },
     { "Footprint", TestFootprint },
+    { "FootprintTiles", TestFootprintTiles },
   };
   return RunCase(argc, argv, cases);
 }

@@ -1,0 +1,320 @@
+#include "vtkRayTraceFootprint.h"
+
+#include "vtkRayTraceRecords.h"
+
+#include "vtkMatrix4x4.h"
+#include "vtkRenderer.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vtkrt
+{
+namespace pass
+{
+namespace
+{
+/// Pixel rectangles [x0, x1) x [y0, y1) of a viewport, from the normalized
+/// device coordinates' extent [lo, hi], a pixel wider on each side.
+struct PixelRange
+{
+  int First[2];
+  int Last[2];
+};
+
+PixelRange pixelRange(const double lo[2], const double hi[2], const int size[2])
+{
+  PixelRange r;
+  for (int k = 0; k < 2; ++k)
+  {
+    const double a = std::max(-1.0, lo[k]), b = std::min(1.0, hi[k]);
+    r.First[k] = std::max(0, static_cast<int>(std::floor((a * 0.5 + 0.5) * size[k])) - 1);
+    r.Last[k] = std::min(size[k], static_cast<int>(std::ceil((b * 0.5 + 0.5) * size[k])) + 1);
+  }
+  return r;
+}
+
+/// Extends [lo, hi] by the projection of a shader-space point; false when
+/// it lies at or behind the eye plane (no bound).
+bool extendProjection(const vtkMatrix4x4* cameraToClip, const double shader[3], double lo[2], double hi[2])
+{
+  double p[4] = { shader[0], shader[1], shader[2], 1.0 };
+  const_cast<vtkMatrix4x4*>(cameraToClip)->MultiplyPoint(p, p);
+  if (!(p[3] > 1e-12 * (std::abs(p[0]) + std::abs(p[1]) + std::abs(p[2]))))
+  {
+    return false;
+  }
+  for (int k = 0; k < 2; ++k)
+  {
+    lo[k] = std::min(lo[k], p[k] / p[3]);
+    hi[k] = std::max(hi[k], p[k] / p[3]);
+  }
+  return true;
+}
+
+/// The normalized device extent of a box whose corner c is corner(c) in
+/// shader coordinates; false when it reaches behind the eye.
+template <class Corner>
+bool projectBox(const vtkMatrix4x4* cameraToClip, Corner&& corner, double lo[2], double hi[2])
+{
+  lo[0] = lo[1] = VTK_DOUBLE_MAX;
+  hi[0] = hi[1] = -VTK_DOUBLE_MAX;
+  for (int c = 0; c < 8; ++c)
+  {
+    double shader[3];
+    corner(c, shader);
+    if (!extendProjection(cameraToClip, shader, lo, hi))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// A grid of tiles over the viewport, marked where a box's pixels are.
+struct TileGrid
+{
+  int Size[2];
+  int Tile;
+  int Count[2];
+  std::vector<char> Covered;
+
+  TileGrid(const int size[2], int tile)
+    : Size{ size[0], size[1] }
+    , Tile(tile)
+    , Count{ (size[0] + tile - 1) / tile, (size[1] + tile - 1) / tile }
+    , Covered(static_cast<std::size_t>(Count[0]) * Count[1], 0)
+  {
+  }
+
+  void mark(const double lo[2], const double hi[2])
+  {
+    const PixelRange r = pixelRange(lo, hi, this->Size);
+    if (r.Last[0] <= r.First[0] || r.Last[1] <= r.First[1])
+    {
+      return;
+    }
+    for (int ty = r.First[1] / this->Tile; ty <= (r.Last[1] - 1) / this->Tile; ++ty)
+    {
+      std::fill_n(this->Covered.begin() + ty * this->Count[0] + r.First[0] / this->Tile,
+        (r.Last[0] - 1) / this->Tile - r.First[0] / this->Tile + 1, 1);
+    }
+  }
+
+  /// The covered tiles as rectangles (viewport pixels): runs of a row,
+  /// joined with the same runs of the rows above.
+  std::vector<std::array<int, 4>> rectangles() const
+  {
+    std::vector<std::array<int, 4>> rects;
+    std::vector<std::array<int, 4>> open; // the previous row's runs, growing upward
+    for (int ty = 0; ty < this->Count[1]; ++ty)
+    {
+      std::vector<std::array<int, 4>> row;
+      const int y0 = ty * this->Tile, y1 = std::min(this->Size[1], y0 + this->Tile);
+      for (int tx = 0; tx < this->Count[0];)
+      {
+        if (!this->Covered[ty * this->Count[0] + tx])
+        {
+          ++tx;
+          continue;
+        }
+        const int start = tx;
+        while (tx < this->Count[0] && this->Covered[ty * this->Count[0] + tx])
+        {
+          ++tx;
+        }
+        const int x0 = start * this->Tile, x1 = std::min(this->Size[0], tx * this->Tile);
+        row.push_back({ x0, y0, x1 - x0, y1 - y0 });
+      }
+      const bool same = row.size() == open.size() &&
+        std::equal(row.begin(), row.end(), open.begin(),
+          [](const std::array<int, 4>& a, const std::array<int, 4>& b) { return a[0] == b[0] && a[2] == b[2]; });
+      if (same)
+      {
+        for (std::size_t k = 0; k < open.size(); ++k)
+        {
+          open[k][3] += row[k][3];
+        }
+        continue;
+      }
+      rects.insert(rects.end(), open.begin(), open.end());
+      open = std::move(row);
+    }
+    rects.insert(rects.end(), open.begin(), open.end());
+    return rects;
+  }
+};
+} // namespace
+
+int OutlineDepth(std::size_t instances)
+{
+  int depth = 0;
+  while (depth < 8 && (instances << (depth + 1)) <= 4096)
+  {
+    ++depth;
+  }
+  return depth;
+}
+
+InstanceOutline OutlineOf(const Instance& inst, const double localToShader[16], int depth)
+{
+  InstanceOutline outline;
+  std::copy(localToShader, localToShader + 16, outline.LocalToShader.begin());
+  const Geometry& g = *inst.Geom;
+  // What the view sizes (screen-sized spheres, tubes, lines and edges of
+  // some pixels) reaches past the nodes' boxes.
+  if (g.ScreenSized || g.Tubes || inst.Wireframe || inst.SurfaceEdges || g.Nodes.size() == 0)
+  {
+    return outline;
+  }
+  std::vector<std::uint32_t> level{ 0u }, next;
+  for (int d = 0; !level.empty(); ++d)
+  {
+    next.clear();
+    for (const std::uint32_t n : level)
+    {
+      const core::gpu::Node& node = g.Nodes[n];
+      if (node.count > 0 || d == depth)
+      {
+        outline.Boxes.emplace_back(core::Vec3<float>(node.lo.x, node.lo.y, node.lo.z),
+          core::Vec3<float>(node.hi.x, node.hi.y, node.hi.z));
+      }
+      else
+      {
+        next.push_back(node.index);
+        next.push_back(node.index + 1);
+      }
+    }
+    std::swap(level, next);
+  }
+  return outline;
+}
+
+bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRenderer* ren,
+  int rect[4])
+{
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  if (width <= 0 || height <= 0 || frame.WorldBoxes.empty())
+  {
+    return false;
+  }
+  double lo[2] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
+  double hi[2] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  for (const core::AABB<double>& box : frame.WorldBoxes)
+  {
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      const double world[3] = { (corner & 1) ? box.max.x : box.min.x,
+        (corner & 2) ? box.max.y : box.min.y, (corner & 4) ? box.max.z : box.min.z };
+      double p[4] = { 0.0, 0.0, 0.0, 1.0 };
+      camera.ToShader(world, p);
+      camera.CameraToClip->MultiplyPoint(p, p);
+      // At or behind the eye plane the projection has no bound.
+      if (!(p[3] > 1e-12 * (std::abs(p[0]) + std::abs(p[1]) + std::abs(p[2]))))
+      {
+        return false;
+      }
+      for (int k = 0; k < 2; ++k)
+      {
+        lo[k] = std::min(lo[k], p[k] / p[3]);
+        hi[k] = std::max(hi[k], p[k] / p[3]);
+      }
+    }
+  }
+  const int size[2] = { width, height };
+  int first[2], last[2];
+  for (int k = 0; k < 2; ++k)
+  {
+    const double a = std::max(-1.0, lo[k]), b = std::min(1.0, hi[k]);
+    first[k] = static_cast<int>(std::floor((a * 0.5 + 0.5) * size[k])) - 1;
+    last[k] = static_cast<int>(std::ceil((b * 0.5 + 0.5) * size[k])) + 1;
+    first[k] = std::max(0, first[k]);
+    last[k] = std::min(size[k], last[k]);
+  }
+  if (first[0] == 0 && first[1] == 0 && last[0] == width && last[1] == height)
+  {
+    return false;
+  }
+  rect[0] = x0 + first[0];
+  rect[1] = y0 + first[1];
+  rect[2] = std::max(0, last[0] - first[0]);
+  rect[3] = std::max(0, last[1] - first[1]);
+  return true;
+}
+
+std::vector<std::array<int, 4>> TracedTiles(const CameraFrame& camera, const FrameRecords& frame,
+  vtkRenderer* ren, int tileSize, std::size_t maxRects)
+{
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  const int size[2] = { width, height };
+  if (width <= 0 || height <= 0 || tileSize <= 0 || frame.Outlines.size() != frame.WorldBoxes.size())
+  {
+    return {};
+  }
+  // Tiles of about a sixteenth of the viewport's smaller side (a power of
+  // two, 8 pixels or more), at most tileSize.
+  int tile = 8;
+  while (2 * tile <= tileSize && 2 * tile * 16 <= std::min(width, height))
+  {
+    tile *= 2;
+  }
+  TileGrid grid(size, tile);
+  double lo[2], hi[2];
+  for (std::size_t i = 0; i < frame.Outlines.size(); ++i)
+  {
+    const InstanceOutline& outline = frame.Outlines[i];
+    if (outline.Boxes.empty())
+    {
+      const core::AABB<double>& box = frame.WorldBoxes[i];
+      if (!projectBox(camera.CameraToClip, [&](int c, double shader[3]) {
+            const double world[3] = { (c & 1) ? box.max.x : box.min.x, (c & 2) ? box.max.y : box.min.y,
+              (c & 4) ? box.max.z : box.min.z };
+            camera.ToShader(world, shader);
+          }, lo, hi))
+      {
+        return {};
+      }
+      grid.mark(lo, hi);
+      continue;
+    }
+    const double* m = outline.LocalToShader.data();
+    for (const core::AABB<float>& box : outline.Boxes)
+    {
+      if (!projectBox(camera.CameraToClip, [&](int c, double shader[3]) {
+            const double p[3] = { (c & 1) ? box.max.x : box.min.x, (c & 2) ? box.max.y : box.min.y,
+              (c & 4) ? box.max.z : box.min.z };
+            for (int r = 0; r < 3; ++r)
+            {
+              shader[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
+            }
+          }, lo, hi))
+      {
+        return {};
+      }
+      grid.mark(lo, hi);
+    }
+  }
+  std::vector<std::array<int, 4>> rects = grid.rectangles();
+  std::size_t tiled = 0;
+  for (const auto& r : rects)
+  {
+    tiled += static_cast<std::size_t>(r[2]) * r[3];
+  }
+  int rect[4] = { x0, y0, width, height };
+  TracedFootprint(camera, frame, ren, rect);
+  if (rects.size() > maxRects || tiled >= static_cast<std::size_t>(rect[2]) * rect[3])
+  {
+    return {};
+  }
+  for (auto& r : rects)
+  {
+    r[0] += x0;
+    r[1] += y0;
+  }
+  return rects;
+}
+
+} // namespace pass
+} // namespace vtkrt

@@ -1,0 +1,59 @@
+// Private to vtkRayTracePass: the pixels where a camera ray can meet the
+// traced instances, so that no ray is cast elsewhere. No GL here.
+#ifndef vtkRayTraceFootprint_h
+#define vtkRayTraceFootprint_h
+
+#include "vtkRayTraceTypes.h"
+#include "vtkrt/core/AABB.h"
+
+#include <array>
+#include <vector>
+
+class vtkRenderer;
+
+namespace vtkrt
+{
+namespace pass
+{
+struct CameraFrame;
+struct FrameRecords;
+
+/// Where an instance's primitives are: the boxes of its BVH's nodes down to
+/// a depth (local coordinates, as the nodes hold them), and the map of
+/// local to shader coordinates. No boxes: only the instance's world box
+/// bounds it (primitives whose size depends on the view, as screen-sized
+/// spheres, tubes and lines are, or an empty tree).
+struct InstanceOutline
+{
+  std::array<double, 16> LocalToShader{}; ///< row-major
+  std::vector<core::AABB<float>> Boxes;
+};
+
+/// The outline of `inst` whose local to shader map is `localToShader`,
+/// with nodes down to `depth` (leaves above it stand for themselves).
+InstanceOutline OutlineOf(const Instance& inst, const double localToShader[16], int depth);
+
+/// The depth of the outlines of a frame of `instances` instances: about
+/// 4096 boxes in all, at most 8 levels (256 boxes) per instance.
+int OutlineDepth(std::size_t instances);
+
+/// The pixels where a primary ray can meet the frame's instances: the
+/// window rectangle (x, y, width, height) around their world boxes'
+/// projections, a pixel wider on each side. False when it is the whole
+/// viewport anyway, or when a box reaches behind the eye (its projection
+/// is unbounded).
+bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRenderer* ren,
+  int rect[4]);
+
+/// The same pixels, finer: window rectangles (x, y, width, height) covering
+/// the tiles (square, a sixteenth of the viewport's smaller side, 8 to
+/// tileSize pixels) that the projection of an
+/// instance's outline boxes (a pixel wider) touches. Empty when the tiles
+/// are no fewer pixels than TracedFootprint's rectangle, when a box reaches
+/// behind the eye, or when they would take more than maxRects draws.
+std::vector<std::array<int, 4>> TracedTiles(const CameraFrame& camera, const FrameRecords& frame,
+  vtkRenderer* ren, int tileSize, std::size_t maxRects);
+} // namespace pass
+} // namespace vtkrt
+
+#endif
