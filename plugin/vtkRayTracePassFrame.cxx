@@ -592,7 +592,8 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRen
   {
     // Finer still: only the tiles the instances' upper tree boxes reach.
     const std::vector<std::array<int, 4>> tiles = FootprintTiles()
-      ? vtkrt::pass::TracedTiles(p.Camera, p.Frame, ren, kFootprintTile, kMaxFootprintDraws)
+      ? vtkrt::pass::TracedTiles(
+          p.Camera, p.Frame, ren, narrowed ? footprint : nullptr, kFootprintTile, kMaxFootprintDraws)
       : std::vector<std::array<int, 4>>();
     const std::array<int, 4> bound = DrawingBound(ostate);
     for (const std::array<int, 4>& rect : tiles)

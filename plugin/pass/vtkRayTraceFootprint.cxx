@@ -244,7 +244,7 @@ bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRe
 }
 
 std::vector<std::array<int, 4>> TracedTiles(const CameraFrame& camera, const FrameRecords& frame,
-  vtkRenderer* ren, int tileSize, std::size_t maxRects)
+  vtkRenderer* ren, const int* footprint, int tileSize, std::size_t maxRects)
 {
   int width = 0, height = 0, x0 = 0, y0 = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
@@ -302,9 +302,9 @@ std::vector<std::array<int, 4>> TracedTiles(const CameraFrame& camera, const Fra
   {
     tiled += static_cast<std::size_t>(r[2]) * r[3];
   }
-  int rect[4] = { x0, y0, width, height };
-  TracedFootprint(camera, frame, ren, rect);
-  if (rects.size() > maxRects || tiled >= static_cast<std::size_t>(rect[2]) * rect[3])
+  const std::size_t rectangle = footprint ? static_cast<std::size_t>(footprint[2]) * footprint[3]
+                                          : static_cast<std::size_t>(width) * height;
+  if (rects.size() > maxRects || tiled >= rectangle)
   {
     return {};
   }

@@ -49,10 +49,11 @@ bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRe
 /// the tiles (square, a sixteenth of the viewport's smaller side, 8 to
 /// tileSize pixels) that the projection of an
 /// instance's outline boxes (a pixel wider) touches. Empty when the tiles
-/// are no fewer pixels than TracedFootprint's rectangle, when a box reaches
-/// behind the eye, or when they would take more than maxRects draws.
+/// are no fewer pixels than `footprint` (TracedFootprint's rectangle, or
+/// null for the whole viewport), when a box reaches behind the eye, or when
+/// they would take more than maxRects draws.
 std::vector<std::array<int, 4>> TracedTiles(const CameraFrame& camera, const FrameRecords& frame,
-  vtkRenderer* ren, int tileSize, std::size_t maxRects);
+  vtkRenderer* ren, const int* footprint, int tileSize, std::size_t maxRects);
 } // namespace pass
 } // namespace vtkrt
 
