@@ -168,7 +168,8 @@ public:
   vtkTypeInt64 GetLastTracedPrimitives() const;
   int GetLastTracedInstances() const;
   /**
-   * Pixels given camera rays in the last frame: those where a traced
+   * Pixels given camera rays in the last frame (once each, whatever the
+   * samples per pixel; 0 after a selection render): those where a traced
    * instance can be (the tiles that the projections of the upper boxes of
    * its BVH touch, or the rectangle around its box), not the whole viewport.
    */

@@ -54,12 +54,6 @@ std::array<int, 4> Clipped(const int rect[4], const std::array<int, 4>& bound)
   return { x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0) };
 }
 
-std::size_t ClippedArea(const int rect[4], const std::array<int, 4>& bound)
-{
-  const std::array<int, 4> r = Clipped(rect, bound);
-  return static_cast<std::size_t>(r[2]) * static_cast<std::size_t>(r[3]);
-}
-
 /// Narrows drawing to the window rectangle `rect` within `bound`; returns
 /// the pixels left.
 std::size_t ScissorTo(vtkOpenGLState* ostate, const int rect[4], const std::array<int, 4>& bound)
@@ -76,9 +70,9 @@ std::size_t ScissorTo(vtkOpenGLState* ostate, const int rect[4])
   return ScissorTo(ostate, rect, DrawingBound(ostate));
 }
 
-/// VTKRT_FOOTPRINT_TILES=0: camera rays over the traced footprint's
-/// rectangle, not its tiles (tests compare the two).
-bool FootprintTiles()
+/// False with VTKRT_FOOTPRINT_TILES=0: camera rays over the traced
+/// footprint's rectangle, not its tiles (tests compare the two).
+bool FootprintTilesAllowed()
 {
   const char* value = std::getenv("VTKRT_FOOTPRINT_TILES");
   return !value || std::strcmp(value, "0") != 0;
@@ -591,7 +585,10 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRen
   if (p.F.SamplesPerPixel == 0)
   {
     // Finer still: only the tiles the instances' upper tree boxes reach.
-    const std::vector<std::array<int, 4>> tiles = FootprintTiles()
+    // Tiles need camera-relative rays (WORLD mode's float rays far from the
+    // origin stray more than their margin) and VTK's affine camera rays.
+    const bool tiled = FootprintTilesAllowed() && !p.F.WorldCoordinates && p.Camera.AffineRays;
+    const std::vector<std::array<int, 4>> tiles = tiled
       ? vtkrt::pass::TracedTiles(
           p.Camera, p.Frame, ren, narrowed ? footprint : nullptr, kFootprintTile, kMaxFootprintDraws)
       : std::vector<std::array<int, 4>>();
@@ -622,9 +619,11 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRen
     signature.insert(signature.end(), key.begin(), key.end());
     const bool restart = !pass.ProgressiveAccumulation || this->Counters.GeometryBytesUploaded > 0 ||
       this->Counters.ShaderCompiles > 0;
-    const std::array<int, 4> bound = DrawingBound(ostate);
-    this->Counters.TracedPixels += narrowed ? ClippedArea(footprint, bound)
-                                            : static_cast<std::size_t>(bound[2]) * bound[3];
+    // The accumulation traces the footprint (or the viewport) into its own buffer.
+    int width = 0, height = 0;
+    ren->GetTiledSize(&width, &height);
+    this->Counters.TracedPixels += narrowed ? static_cast<std::size_t>(footprint[2]) * footprint[3]
+                                            : static_cast<std::size_t>(width) * height;
     this->Accumulated.Trace(win, ren, tracer, std::move(signature), restart, framesBefore,
       pass.SamplesPerPixel, narrowed ? footprint : nullptr);
     for (vtkTextureObject* t : p.Active)

@@ -27,48 +27,56 @@ PixelRange pixelRange(const double lo[2], const double hi[2], const int size[2])
   PixelRange r;
   for (int k = 0; k < 2; ++k)
   {
-    const double a = std::max(-1.0, lo[k]), b = std::min(1.0, hi[k]);
+    const double a = std::min(1.0, std::max(-1.0, lo[k])), b = std::min(1.0, std::max(-1.0, hi[k]));
     r.First[k] = std::max(0, static_cast<int>(std::floor((a * 0.5 + 0.5) * size[k])) - 1);
     r.Last[k] = std::min(size[k], static_cast<int>(std::ceil((b * 0.5 + 0.5) * size[k])) + 1);
   }
   return r;
 }
 
-/// Extends [lo, hi] by the projection of a shader-space point; false when
-/// it lies at or behind the eye plane (no bound).
-bool extendProjection(const vtkMatrix4x4* cameraToClip, const double shader[3], double lo[2], double hi[2])
+/// Where a box lies against the eye plane: wholly in front (its
+/// projection is bounded), wholly at or behind it (no camera ray, which
+/// starts on the near plane, reaches it) or across it (no bound).
+enum class Side
 {
-  double p[4] = { shader[0], shader[1], shader[2], 1.0 };
-  const_cast<vtkMatrix4x4*>(cameraToClip)->MultiplyPoint(p, p);
-  if (!(p[3] > 1e-12 * (std::abs(p[0]) + std::abs(p[1]) + std::abs(p[2]))))
-  {
-    return false;
-  }
-  for (int k = 0; k < 2; ++k)
-  {
-    lo[k] = std::min(lo[k], p[k] / p[3]);
-    hi[k] = std::max(hi[k], p[k] / p[3]);
-  }
-  return true;
-}
+  Front,
+  Behind,
+  Across
+};
 
-/// The normalized device extent of a box whose corner c is corner(c) in
-/// shader coordinates; false when it reaches behind the eye.
+/// The normalized device extent [lo, hi] of the box whose corner c is
+/// corner(c) in shader coordinates, over its corners in front of the eye.
 template <class Corner>
-bool projectBox(const vtkMatrix4x4* cameraToClip, Corner&& corner, double lo[2], double hi[2])
+Side projectBox(vtkMatrix4x4* cameraToClip, Corner&& corner, double lo[2], double hi[2])
 {
   lo[0] = lo[1] = VTK_DOUBLE_MAX;
   hi[0] = hi[1] = -VTK_DOUBLE_MAX;
+  int behind = 0;
   for (int c = 0; c < 8; ++c)
   {
-    double shader[3];
-    corner(c, shader);
-    if (!extendProjection(cameraToClip, shader, lo, hi))
+    double p[4] = { 0.0, 0.0, 0.0, 1.0 };
+    corner(c, p);
+    cameraToClip->MultiplyPoint(p, p);
+    if (!(p[3] > 1e-12 * (std::abs(p[0]) + std::abs(p[1]) + std::abs(p[2]))))
     {
-      return false;
+      ++behind;
+      continue;
+    }
+    for (int k = 0; k < 2; ++k)
+    {
+      lo[k] = std::min(lo[k], p[k] / p[3]);
+      hi[k] = std::max(hi[k], p[k] / p[3]);
     }
   }
-  return true;
+  return behind == 0 ? Side::Front : (behind == 8 ? Side::Behind : Side::Across);
+}
+
+/// A world box's corner c in shader coordinates.
+void worldCorner(const CameraFrame& camera, const core::AABB<double>& box, int c, double shader[3])
+{
+  const double world[3] = { (c & 1) ? box.max.x : box.min.x, (c & 2) ? box.max.y : box.min.y,
+    (c & 4) ? box.max.z : box.min.z };
+  camera.ToShader(world, shader);
 }
 
 /// A grid of tiles over the viewport, marked where a box's pixels are.
@@ -161,9 +169,9 @@ InstanceOutline OutlineOf(const Instance& inst, const double localToShader[16], 
   InstanceOutline outline;
   std::copy(localToShader, localToShader + 16, outline.LocalToShader.begin());
   const Geometry& g = *inst.Geom;
-  // What the view sizes (screen-sized spheres, tubes, lines and edges of
-  // some pixels) reaches past the nodes' boxes.
-  if (g.ScreenSized || g.Tubes || inst.Wireframe || inst.SurfaceEdges || g.Nodes.size() == 0)
+  // What the view sizes (screen-sized spheres, tubes, wires some pixels
+  // wide) reaches past the nodes' boxes; surface edges only color hits.
+  if (g.ScreenSized || g.Tubes || inst.Wireframe || g.Nodes.size() == 0)
   {
     return outline;
   }
@@ -203,45 +211,77 @@ bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRe
   double hi[2] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
   for (const core::AABB<double>& box : frame.WorldBoxes)
   {
-    for (int corner = 0; corner < 8; ++corner)
+    double boxLo[2], boxHi[2];
+    const Side side = projectBox(
+      camera.CameraToClip.Get(), [&](int c, double shader[3]) { worldCorner(camera, box, c, shader); }, boxLo, boxHi);
+    if (side == Side::Across)
     {
-      const double world[3] = { (corner & 1) ? box.max.x : box.min.x,
-        (corner & 2) ? box.max.y : box.min.y, (corner & 4) ? box.max.z : box.min.z };
-      double p[4] = { 0.0, 0.0, 0.0, 1.0 };
-      camera.ToShader(world, p);
-      camera.CameraToClip->MultiplyPoint(p, p);
-      // At or behind the eye plane the projection has no bound.
-      if (!(p[3] > 1e-12 * (std::abs(p[0]) + std::abs(p[1]) + std::abs(p[2]))))
-      {
-        return false;
-      }
-      for (int k = 0; k < 2; ++k)
-      {
-        lo[k] = std::min(lo[k], p[k] / p[3]);
-        hi[k] = std::max(hi[k], p[k] / p[3]);
-      }
+      return false;
+    }
+    for (int k = 0; k < 2; ++k)
+    {
+      lo[k] = std::min(lo[k], boxLo[k]);
+      hi[k] = std::max(hi[k], boxHi[k]);
     }
   }
   const int size[2] = { width, height };
-  int first[2], last[2];
-  for (int k = 0; k < 2; ++k)
-  {
-    const double a = std::max(-1.0, lo[k]), b = std::min(1.0, hi[k]);
-    first[k] = static_cast<int>(std::floor((a * 0.5 + 0.5) * size[k])) - 1;
-    last[k] = static_cast<int>(std::ceil((b * 0.5 + 0.5) * size[k])) + 1;
-    first[k] = std::max(0, first[k]);
-    last[k] = std::min(size[k], last[k]);
-  }
-  if (first[0] == 0 && first[1] == 0 && last[0] == width && last[1] == height)
+  const PixelRange r = pixelRange(lo, hi, size);
+  if (r.First[0] == 0 && r.First[1] == 0 && r.Last[0] == width && r.Last[1] == height)
   {
     return false;
   }
-  rect[0] = x0 + first[0];
-  rect[1] = y0 + first[1];
-  rect[2] = std::max(0, last[0] - first[0]);
-  rect[3] = std::max(0, last[1] - first[1]);
+  rect[0] = x0 + r.First[0];
+  rect[1] = y0 + r.First[1];
+  rect[2] = std::max(0, r.Last[0] - r.First[0]);
+  rect[3] = std::max(0, r.Last[1] - r.First[1]);
   return true;
 }
+
+namespace
+{
+/// Marks the tiles of instance i's outline boxes (or of its world box when
+/// it has none); false when a box lies across the eye plane.
+bool markInstance(const CameraFrame& camera, const FrameRecords& frame, std::size_t i, TileGrid& grid)
+{
+  const InstanceOutline& outline = frame.Outlines[i];
+  vtkMatrix4x4* cameraToClip = camera.CameraToClip.Get();
+  double lo[2], hi[2];
+  if (outline.Boxes.empty())
+  {
+    const core::AABB<double>& box = frame.WorldBoxes[i];
+    const Side side =
+      projectBox(cameraToClip, [&](int c, double shader[3]) { worldCorner(camera, box, c, shader); }, lo, hi);
+    if (side == Side::Front)
+    {
+      grid.mark(lo, hi);
+    }
+    return side != Side::Across;
+  }
+  const double* m = outline.LocalToShader.data();
+  for (const core::AABB<float>& box : outline.Boxes)
+  {
+    const Side side = projectBox(cameraToClip,
+      [&](int c, double shader[3]) {
+        const double p[3] = { (c & 1) ? box.max.x : box.min.x, (c & 2) ? box.max.y : box.min.y,
+          (c & 4) ? box.max.z : box.min.z };
+        for (int r = 0; r < 3; ++r)
+        {
+          shader[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
+        }
+      },
+      lo, hi);
+    if (side == Side::Across)
+    {
+      return false;
+    }
+    if (side == Side::Front)
+    {
+      grid.mark(lo, hi);
+    }
+  }
+  return true;
+}
+} // namespace
 
 std::vector<std::array<int, 4>> TracedTiles(const CameraFrame& camera, const FrameRecords& frame,
   vtkRenderer* ren, const int* footprint, int tileSize, std::size_t maxRects)
@@ -249,62 +289,34 @@ std::vector<std::array<int, 4>> TracedTiles(const CameraFrame& camera, const Fra
   int width = 0, height = 0, x0 = 0, y0 = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
   const int size[2] = { width, height };
-  if (width <= 0 || height <= 0 || tileSize <= 0 || frame.Outlines.size() != frame.WorldBoxes.size())
+  if (width <= 0 || height <= 0 || frame.Outlines.size() != frame.WorldBoxes.size())
   {
     return {};
   }
   // Tiles of about a sixteenth of the viewport's smaller side (a power of
-  // two, 8 pixels or more), at most tileSize.
+  // two), 8 pixels or more, at most tileSize unless that is under 8.
   int tile = 8;
   while (2 * tile <= tileSize && 2 * tile * 16 <= std::min(width, height))
   {
     tile *= 2;
   }
   TileGrid grid(size, tile);
-  double lo[2], hi[2];
   for (std::size_t i = 0; i < frame.Outlines.size(); ++i)
   {
-    const InstanceOutline& outline = frame.Outlines[i];
-    if (outline.Boxes.empty())
+    if (!markInstance(camera, frame, i, grid))
     {
-      const core::AABB<double>& box = frame.WorldBoxes[i];
-      if (!projectBox(camera.CameraToClip, [&](int c, double shader[3]) {
-            const double world[3] = { (c & 1) ? box.max.x : box.min.x, (c & 2) ? box.max.y : box.min.y,
-              (c & 4) ? box.max.z : box.min.z };
-            camera.ToShader(world, shader);
-          }, lo, hi))
-      {
-        return {};
-      }
-      grid.mark(lo, hi);
-      continue;
-    }
-    const double* m = outline.LocalToShader.data();
-    for (const core::AABB<float>& box : outline.Boxes)
-    {
-      if (!projectBox(camera.CameraToClip, [&](int c, double shader[3]) {
-            const double p[3] = { (c & 1) ? box.max.x : box.min.x, (c & 2) ? box.max.y : box.min.y,
-              (c & 4) ? box.max.z : box.min.z };
-            for (int r = 0; r < 3; ++r)
-            {
-              shader[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
-            }
-          }, lo, hi))
-      {
-        return {};
-      }
-      grid.mark(lo, hi);
+      return {};
     }
   }
   std::vector<std::array<int, 4>> rects = grid.rectangles();
-  std::size_t tiled = 0;
+  std::size_t tiledPixels = 0;
   for (const auto& r : rects)
   {
-    tiled += static_cast<std::size_t>(r[2]) * r[3];
+    tiledPixels += static_cast<std::size_t>(r[2]) * r[3];
   }
-  const std::size_t rectangle = footprint ? static_cast<std::size_t>(footprint[2]) * footprint[3]
-                                          : static_cast<std::size_t>(width) * height;
-  if (rects.size() > maxRects || tiled >= rectangle)
+  const std::size_t footprintPixels = footprint ? static_cast<std::size_t>(footprint[2]) * footprint[3]
+                                                : static_cast<std::size_t>(width) * height;
+  if (rects.size() > maxRects || tiledPixels >= footprintPixels)
   {
     return {};
   }

@@ -39,19 +39,21 @@ int OutlineDepth(std::size_t instances);
 
 /// The pixels where a primary ray can meet the frame's instances: the
 /// window rectangle (x, y, width, height) around their world boxes'
-/// projections, a pixel wider on each side. False when it is the whole
-/// viewport anyway, or when a box reaches behind the eye (its projection
-/// is unbounded).
+/// projections, a pixel wider on each side (boxes wholly behind the eye
+/// left out: no camera ray reaches them). False when it is the whole
+/// viewport anyway, or when a box lies across the eye plane (its
+/// projection is unbounded).
 bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRenderer* ren,
   int rect[4]);
 
-/// The same pixels, finer: window rectangles (x, y, width, height) covering
-/// the tiles (square, a sixteenth of the viewport's smaller side, 8 to
-/// tileSize pixels) that the projection of an
-/// instance's outline boxes (a pixel wider) touches. Empty when the tiles
-/// are no fewer pixels than `footprint` (TracedFootprint's rectangle, or
-/// null for the whole viewport), when a box reaches behind the eye, or when
-/// they would take more than maxRects draws.
+/// The same pixels, finer: window rectangles (x, y, width, height), none
+/// overlapping, covering the square tiles (a sixteenth of the viewport's
+/// smaller side, from 8 to tileSize pixels) that the projections of the
+/// instances' outline boxes, a pixel wider, touch. For camera-relative
+/// coordinates, whose float rays stray far less than that pixel. Empty when
+/// the tiles are no fewer pixels than `footprint` (TracedFootprint's
+/// rectangle, or null for the whole viewport), when a box lies across the
+/// eye plane, or when they take more than maxRects rectangles.
 std::vector<std::array<int, 4>> TracedTiles(const CameraFrame& camera, const FrameRecords& frame,
   vtkRenderer* ren, const int* footprint, int tileSize, std::size_t maxRects);
 } // namespace pass

@@ -135,7 +135,7 @@ struct FrameRecords
 bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlacements& places,
   const CameraFrame& camera, vtkRenderer* ren, FrameRecords& out);
 
-/// Drops the records (and world boxes) of the props `traced` leaves out
+/// Drops the records (with their world boxes and outlines) of the props `traced` leaves out
 /// (indexed by prop index).
 void KeepTracedProps(const std::vector<bool>& traced, FrameRecords& frame);
 

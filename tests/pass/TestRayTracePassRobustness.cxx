@@ -11,7 +11,8 @@
 //   FootprintTiles    rays only in the tiles the instances' upper tree boxes
 //                     reach: the image of the whole footprint, bit for bit,
 //                     from fewer pixels, as the camera turns, zooms and enters
-//                     a box (tiles give way to the rectangle)
+//                     a box, with view-sized (points as spheres, tubes, wires),
+//                     translucent and more than eight props
 // TestRayTracePassRobustness <Case>.
 #include "vtkrtPassTestUtils.h"
 #include "vtkrtTestOutputWindow.h"
@@ -27,8 +28,11 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
+#include "vtkCubeSource.h"
+#include "vtkLineSource.h"
 
 #include <functional>
 #include <iostream>
@@ -325,6 +329,92 @@ void TestFootprint()
   NoVTKOutput("footprint");
 }
 
+/// Renders with rays over the whole footprint rectangle, then over its
+/// tiles: the same image bit for bit, from `expect` pixels ("fewer": under
+/// three quarters of the rectangle's, "no more", or "same").
+void CompareTilesWithRectangle(vtkRenderWindow* win, vtkRenderer* ren, vtkRayTracePass* pass,
+  const std::string& what, const std::string& expect)
+{
+  ren->ResetCameraClippingRange();
+  setenv("VTKRT_FOOTPRINT_TILES", "0", 1);
+  win->Render();
+  auto whole = Grab(win);
+  const vtkTypeInt64 wholePixels = pass->GetLastTracedPixels();
+  unsetenv("VTKRT_FOOTPRINT_TILES");
+  win->Render();
+  auto tiled = Grab(win);
+  const vtkTypeInt64 tiledPixels = pass->GetLastTracedPixels();
+  const long off = CountDifferingPixels(whole, tiled, 0);
+  if (off != 0)
+  {
+    // The whole footprint's image stands where raster's does.
+    WriteFailedImages("FootprintTiles", whole, tiled);
+  }
+  Check(off == 0, "footprint tiles, " + what + ": " + std::to_string(off) + " pixels differ from the whole footprint's");
+  const bool fewer = 4 * tiledPixels < 3 * wholePixels;
+  const bool ok = expect == "fewer" ? fewer : (expect == "same" ? tiledPixels == wholePixels : tiledPixels <= wholePixels);
+  Check(tiledPixels > 0 && ok,
+    "footprint tiles, " + what + ": " + std::to_string(tiledPixels) + " pixels traced against " +
+      std::to_string(wholePixels) + " (expected " + expect + ")");
+}
+
+/// Props whose traced primitives the view sizes or that blend: points as
+/// spheres 14 pixels wide, a tube 8 pixels wide, a wireframe cube with
+/// 4-pixel wires, a translucent ball, and eight small balls (more than
+/// eight instances: the top-level walk).
+void AddViewSizedAndTranslucentProps(vtkRenderer* ren)
+{
+  vtkNew<vtkPoints> points;
+  for (int i = 0; i < 6; ++i)
+  {
+    points->InsertNextPoint(-2.0 + 0.3 * i, 1.2, 0.2 * i);
+  }
+  vtkNew<vtkCellArray> vertices;
+  for (vtkIdType i = 0; i < 6; ++i)
+  {
+    vertices->InsertNextCell(1, &i);
+  }
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(points);
+  cloud->SetVerts(vertices);
+  vtkNew<vtkPolyDataMapper> cloudMapper;
+  cloudMapper->SetInputData(cloud);
+  vtkNew<vtkActor> cloudActor;
+  cloudActor->SetMapper(cloudMapper);
+  cloudActor->GetProperty()->RenderPointsAsSpheresOn();
+  cloudActor->GetProperty()->SetPointSize(14.0);
+  ren->AddActor(cloudActor);
+  vtkNew<vtkLineSource> line;
+  line->SetPoint1(1.5, 1.3, -0.5);
+  line->SetPoint2(2.6, 0.2, 0.4);
+  vtkNew<vtkPolyDataMapper> lineMapper;
+  lineMapper->SetInputConnection(line->GetOutputPort());
+  vtkNew<vtkActor> tube;
+  tube->SetMapper(lineMapper);
+  tube->GetProperty()->RenderLinesAsTubesOn();
+  tube->GetProperty()->SetLineWidth(8.0);
+  ren->AddActor(tube);
+  vtkNew<vtkCubeSource> cube;
+  cube->SetCenter(-1.8, -1.2, 0.0);
+  cube->SetXLength(0.6);
+  cube->SetYLength(0.5);
+  cube->SetZLength(0.4);
+  vtkNew<vtkPolyDataMapper> cubeMapper;
+  cubeMapper->SetInputConnection(cube->GetOutputPort());
+  vtkNew<vtkActor> wires;
+  wires->SetMapper(cubeMapper);
+  wires->GetProperty()->SetRepresentationToWireframe();
+  wires->GetProperty()->SetLineWidth(4.0);
+  ren->AddActor(wires);
+  auto glass = SphereActor(0.8, 0.6, 0.5, 0.5, 32);
+  glass->GetProperty()->SetOpacity(0.4);
+  ren->AddActor(glass);
+  for (int i = 0; i < 8; ++i)
+  {
+    ren->AddActor(SphereActor(-0.6 + 0.25 * i, -1.5 + 0.05 * i, 0.3, 0.06, 12));
+  }
+}
+
 void TestFootprintTiles()
 {
   auto win = MakeWindow(240, 200);
@@ -343,30 +433,6 @@ void TestFootprintTiles()
   ren->AddActor(SphereActor(2.2, -1.6, 0.3, 0.2, 24));
   ren->ResetCamera();
   vtkNew<vtkRayTracePass> pass;
-  ren->SetPass(pass);
-  auto compare = [&](const std::string& what, const std::string& expect) {
-    ren->ResetCameraClippingRange();
-    setenv("VTKRT_FOOTPRINT_TILES", "0", 1);
-    win->Render();
-    auto whole = Grab(win);
-    const vtkTypeInt64 wholePixels = pass->GetLastTracedPixels();
-    unsetenv("VTKRT_FOOTPRINT_TILES");
-    win->Render();
-    auto tiled = Grab(win);
-    const vtkTypeInt64 tiledPixels = pass->GetLastTracedPixels();
-    const long off = CountDifferingPixels(whole, tiled, 0);
-    if (off != 0)
-    {
-      // The whole footprint's image stands where raster's does.
-      WriteFailedImages("FootprintTiles", whole, tiled);
-    }
-    Check(off == 0, "footprint tiles, " + what + ": " + std::to_string(off) + " pixels differ from the whole footprint's");
-    const bool fewer = 4 * tiledPixels < 3 * wholePixels;
-    const bool ok = expect == "fewer" ? fewer : (expect == "same" ? tiledPixels == wholePixels : tiledPixels <= wholePixels);
-    Check(tiledPixels > 0 && ok,
-      "footprint tiles, " + what + ": " + std::to_string(tiledPixels) + " pixels traced against " +
-        std::to_string(wholePixels) + " (expected " + expect + ")");
-  };
   ren->SetPass(nullptr);
   win->Render();
   auto raster = Grab(win);
@@ -374,16 +440,24 @@ void TestFootprintTiles()
   win->Render();
   const long offRaster = CountDifferingPixels(raster, Grab(win), 48);
   Check(offRaster <= 40, "footprint tiles: " + std::to_string(offRaster) + " pixels off raster");
-  compare("rod and ball", "fewer");
+  CompareTilesWithRectangle(win, ren, pass, "rod and ball", "fewer");
   ren->GetActiveCamera()->Azimuth(50.0);
   ren->GetActiveCamera()->Elevation(30.0);
   ren->GetActiveCamera()->OrthogonalizeViewUp();
-  compare("turned", "fewer");
+  CompareTilesWithRectangle(win, ren, pass, "turned", "fewer");
   ren->GetActiveCamera()->Zoom(4.0);
-  compare("zoomed, cut by the viewport's edges", "no more");
+  CompareTilesWithRectangle(win, ren, pass, "zoomed, cut by the viewport's edges", "no more");
   ren->GetActiveCamera()->SetPosition(0.2, 0.1, -0.3); // inside the rod
   ren->GetActiveCamera()->SetFocalPoint(2.2, -1.6, 0.3);
-  compare("the eye inside a box", "same");
+  CompareTilesWithRectangle(win, ren, pass, "the eye inside a box", "no more");
+  AddViewSizedAndTranslucentProps(ren);
+  ren->ResetCamera();
+  CompareTilesWithRectangle(win, ren, pass, "with view-sized, translucent and many props", "no more");
+  Check(pass->GetNumberOfTracedProps() == 14,
+    "footprint tiles: " + std::to_string(pass->GetNumberOfTracedProps()) + " props traced of 14");
+  ren->GetActiveCamera()->Zoom(1.6);
+  ren->GetActiveCamera()->Azimuth(-30.0);
+  CompareTilesWithRectangle(win, ren, pass, "with them, zoomed and turned", "no more");
   NoVTKOutput("footprint tiles");
 }
 
