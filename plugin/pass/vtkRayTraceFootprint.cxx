@@ -34,9 +34,10 @@ PixelRange pixelRange(const double lo[2], const double hi[2], const int size[2])
   return r;
 }
 
-/// Where a box lies against the eye plane: wholly in front (its
-/// projection is bounded), wholly at or behind it (no camera ray, which
-/// starts on the near plane, reaches it) or across it (no bound).
+/// Where a box lies against the near plane: wholly in front (its
+/// projection is bounded), wholly behind it (no camera ray, which starts on
+/// the near plane, reaches it) or across the eye plane with no near plane
+/// known (no bound).
 enum class Side
 {
   Front,
@@ -44,31 +45,75 @@ enum class Side
   Across
 };
 
-/// The normalized device extent [lo, hi] of the box whose corner c is
-/// corner(c) in shader coordinates, over its corners in front of the eye.
+/// Extends [lo, hi] by the projection of the clip-space point p (p[3] > 0).
+void extendProjection(const double p[4], double lo[2], double hi[2])
+{
+  for (int k = 0; k < 2; ++k)
+  {
+    lo[k] = std::min(lo[k], p[k] / p[3]);
+    hi[k] = std::max(hi[k], p[k] / p[3]);
+  }
+}
+
+/// The normalized device extent [lo, hi] of the part in front of the near
+/// plane of the box whose corner c is corner(c) in shader coordinates: its
+/// corners there and, for a box across it, where its edges cross it (the
+/// clipped box's vertices). nearW: the clip w of the near plane (0 when
+/// the projection has none: then a box across the eye plane has no bound).
 template <class Corner>
-Side projectBox(vtkMatrix4x4* cameraToClip, Corner&& corner, double lo[2], double hi[2])
+Side projectBox(vtkMatrix4x4* cameraToClip, double nearW, Corner&& corner, double lo[2], double hi[2])
 {
   lo[0] = lo[1] = VTK_DOUBLE_MAX;
   hi[0] = hi[1] = -VTK_DOUBLE_MAX;
+  double clip[8][4];
+  bool front[8];
   int behind = 0;
   for (int c = 0; c < 8; ++c)
   {
-    double p[4] = { 0.0, 0.0, 0.0, 1.0 };
+    double* p = clip[c];
+    p[0] = p[1] = p[2] = 0.0;
+    p[3] = 1.0;
     corner(c, p);
     cameraToClip->MultiplyPoint(p, p);
-    if (!(p[3] > 1e-12 * (std::abs(p[0]) + std::abs(p[1]) + std::abs(p[2]))))
+    // A hair in front of the near plane counts as on it, so rounding keeps
+    // what the rays can reach.
+    front[c] = nearW > 0.0 ? p[3] >= nearW * (1.0 - 1e-6)
+                           : p[3] > 1e-12 * (std::abs(p[0]) + std::abs(p[1]) + std::abs(p[2]));
+    behind += front[c] ? 0 : 1;
+    if (front[c])
     {
-      ++behind;
-      continue;
-    }
-    for (int k = 0; k < 2; ++k)
-    {
-      lo[k] = std::min(lo[k], p[k] / p[3]);
-      hi[k] = std::max(hi[k], p[k] / p[3]);
+      extendProjection(p, lo, hi);
     }
   }
-  return behind == 0 ? Side::Front : (behind == 8 ? Side::Behind : Side::Across);
+  if (behind == 0 || behind == 8)
+  {
+    return behind == 0 ? Side::Front : Side::Behind;
+  }
+  if (!(nearW > 0.0))
+  {
+    return Side::Across;
+  }
+  const double w = nearW * (1.0 - 1e-6);
+  for (int c = 0; c < 8; ++c)
+  {
+    for (int bit = 1; bit < 8; bit <<= 1)
+    {
+      const int d = c | bit;
+      if (d == c || front[c] == front[d])
+      {
+        continue;
+      }
+      const double s = (w - clip[c][3]) / (clip[d][3] - clip[c][3]);
+      double p[4];
+      for (int k = 0; k < 4; ++k)
+      {
+        p[k] = clip[c][k] + s * (clip[d][k] - clip[c][k]);
+      }
+      p[3] = w;
+      extendProjection(p, lo, hi);
+    }
+  }
+  return Side::Front;
 }
 
 /// A world box's corner c in shader coordinates.
@@ -212,8 +257,8 @@ bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRe
   for (const core::AABB<double>& box : frame.WorldBoxes)
   {
     double boxLo[2], boxHi[2];
-    const Side side = projectBox(
-      camera.CameraToClip.Get(), [&](int c, double shader[3]) { worldCorner(camera, box, c, shader); }, boxLo, boxHi);
+    const Side side = projectBox(camera.CameraToClip.Get(), camera.NearPlaneW(),
+      [&](int c, double shader[3]) { worldCorner(camera, box, c, shader); }, boxLo, boxHi);
     if (side == Side::Across)
     {
       return false;
@@ -240,17 +285,18 @@ bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRe
 namespace
 {
 /// Marks the tiles of instance i's outline boxes (or of its world box when
-/// it has none); false when a box lies across the eye plane.
+/// it has none); false when a box has no bounded projection (Side::Across).
 bool markInstance(const CameraFrame& camera, const FrameRecords& frame, std::size_t i, TileGrid& grid)
 {
   const InstanceOutline& outline = frame.Outlines[i];
   vtkMatrix4x4* cameraToClip = camera.CameraToClip.Get();
+  const double nearW = camera.NearPlaneW();
   double lo[2], hi[2];
   if (outline.Boxes.empty())
   {
     const core::AABB<double>& box = frame.WorldBoxes[i];
-    const Side side =
-      projectBox(cameraToClip, [&](int c, double shader[3]) { worldCorner(camera, box, c, shader); }, lo, hi);
+    const Side side = projectBox(
+      cameraToClip, nearW, [&](int c, double shader[3]) { worldCorner(camera, box, c, shader); }, lo, hi);
     if (side == Side::Front)
     {
       grid.mark(lo, hi);
@@ -260,7 +306,7 @@ bool markInstance(const CameraFrame& camera, const FrameRecords& frame, std::siz
   const double* m = outline.LocalToShader.data();
   for (const core::AABB<float>& box : outline.Boxes)
   {
-    const Side side = projectBox(cameraToClip,
+    const Side side = projectBox(cameraToClip, nearW,
       [&](int c, double shader[3]) {
         const double p[3] = { (c & 1) ? box.max.x : box.min.x, (c & 2) ? box.max.y : box.min.y,
           (c & 4) ? box.max.z : box.min.z };

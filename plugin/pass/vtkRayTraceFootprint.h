@@ -38,11 +38,11 @@ InstanceOutline OutlineOf(const Instance& inst, const double localToShader[16], 
 int OutlineDepth(std::size_t instances);
 
 /// The pixels where a primary ray can meet the frame's instances: the
-/// window rectangle (x, y, width, height) around their world boxes'
-/// projections, a pixel wider on each side (boxes wholly behind the eye
-/// left out: no camera ray reaches them). False when it is the whole
-/// viewport anyway, or when a box lies across the eye plane (its
-/// projection is unbounded).
+/// window rectangle (x, y, width, height) around the projections of their
+/// world boxes' parts in front of the near plane (where camera rays start),
+/// a pixel wider on each side. False when it is the whole viewport anyway,
+/// or when a box lies across the eye plane of a projection with no near
+/// plane of one depth (its projection is unbounded).
 bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRenderer* ren,
   int rect[4]);
 
@@ -52,8 +52,8 @@ bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRe
 /// instances' outline boxes, a pixel wider, touch. For camera-relative
 /// coordinates, whose float rays stray far less than that pixel. Empty when
 /// the tiles are no fewer pixels than `footprint` (TracedFootprint's
-/// rectangle, or null for the whole viewport), when a box lies across the
-/// eye plane, or when they take more than maxRects rectangles.
+/// rectangle, or null for the whole viewport), when TracedFootprint has no
+/// bound, or when they take more than maxRects rectangles.
 std::vector<std::array<int, 4>> TracedTiles(const CameraFrame& camera, const FrameRecords& frame,
   vtkRenderer* ren, const int* footprint, int tileSize, std::size_t maxRects);
 } // namespace pass

@@ -82,6 +82,17 @@ void CameraFrame::UnprojectRay(double x, double y, double org[3], double dir[3])
   }
 }
 
+double CameraFrame::NearPlaneW() const
+{
+  if (!this->AffineRays)
+  {
+    return 0.0;
+  }
+  double p[4] = { this->RayOrigin[0][0], this->RayOrigin[0][1], this->RayOrigin[0][2], 1.0 };
+  this->CameraToClip->MultiplyPoint(p, p);
+  return p[3] > 0.0 && std::isfinite(p[3]) ? p[3] : 0.0;
+}
+
 void CameraFrame::SetAffineRays()
 {
   // The ray at (0, 0) and its steps along x and y; affine when the rays at

@@ -62,6 +62,11 @@ struct CameraFrame
   /// RayOrigin, RayDirection and AffineRays from ClipToCamera.
   void SetAffineRays();
 
+  /// The clip w of the near plane, where every camera ray starts (one value
+  /// over the plane for VTK's cameras); 0 for a projection whose rays are
+  /// not affine.
+  double NearPlaneW() const;
+
   /// The near and far points of the ray through (x, y), unprojected in double.
   void UnprojectRay(double x, double y, double org[3], double dir[3]) const;
 

@@ -11,7 +11,7 @@
 //   FootprintTiles    rays only in the tiles the instances' upper tree boxes
 //                     reach: the image of the whole footprint, bit for bit,
 //                     from fewer pixels, as the camera turns, zooms and enters
-//                     a box, with view-sized (points as spheres, tubes, wires),
+//                     a box (its part in front of the near plane), with view-sized (points as spheres, tubes, wires),
 //                     translucent and more than eight props
 // TestRayTracePassRobustness <Case>.
 #include "vtkrtPassTestUtils.h"
@@ -449,7 +449,24 @@ void TestFootprintTiles()
   CompareTilesWithRectangle(win, ren, pass, "zoomed, cut by the viewport's edges", "no more");
   ren->GetActiveCamera()->SetPosition(0.2, 0.1, -0.3); // inside the rod
   ren->GetActiveCamera()->SetFocalPoint(2.2, -1.6, 0.3);
-  CompareTilesWithRectangle(win, ren, pass, "the eye inside a box", "no more");
+  CompareTilesWithRectangle(win, ren, pass, "the eye inside the rod", "no more");
+  // Inside the rod's box, beside the rod, facing the ball: the box lies
+  // across the eye plane, the tiles come from its part in front.
+  ren->GetActiveCamera()->SetPosition(1.8, -0.6, 0.3);
+  ren->GetActiveCamera()->SetFocalPoint(2.2, -1.6, 0.3);
+  ren->GetActiveCamera()->SetViewUp(0.0, 0.0, 1.0);
+  ren->GetActiveCamera()->SetViewAngle(30.0); // undo the zoom
+  CompareTilesWithRectangle(win, ren, pass, "the eye inside a box, beside the rod", "fewer");
+  // A floor of two triangles from behind the eye to far ahead: its box lies
+  // across the eye plane, and the floor just past the near plane, at the
+  // bottom of the view, is only where the box's edges cross that plane.
+  ren->RemoveAllViewProps();
+  ren->AddActor(FloorActor(5.0));
+  ren->AddActor(SphereActor(0.0, 0.3, -3.0, 0.3, 24));
+  ren->GetActiveCamera()->SetPosition(0.0, 0.4, 2.0);
+  ren->GetActiveCamera()->SetFocalPoint(0.0, 0.2, -3.0);
+  ren->GetActiveCamera()->SetViewUp(0.0, 1.0, 0.0);
+  CompareTilesWithRectangle(win, ren, pass, "a floor under the eye", "no more");
   AddViewSizedAndTranslucentProps(ren);
   ren->ResetCamera();
   CompareTilesWithRectangle(win, ren, pass, "with view-sized, translucent and many props", "no more");
