@@ -588,20 +588,18 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRen
     // Tiles need camera-relative rays (WORLD mode's float rays far from the
     // origin stray more than their margin) and VTK's affine camera rays.
     const bool tiled = FootprintTilesAllowed() && !p.F.WorldCoordinates && p.Camera.AffineRays;
-    const std::vector<std::array<int, 4>> tiles = tiled
+    std::vector<std::array<int, 4>> rects = tiled
       ? vtkrt::pass::TracedTiles(
           p.Camera, p.Frame, ren, narrowed ? footprint : nullptr, kFootprintTile, kMaxFootprintDraws)
       : std::vector<std::array<int, 4>>();
     const std::array<int, 4> bound = DrawingBound(ostate);
-    for (const std::array<int, 4>& rect : tiles)
+    if (rects.empty())
+    {
+      rects.push_back(narrowed ? std::array<int, 4>{ footprint[0], footprint[1], footprint[2], footprint[3] } : bound);
+    }
+    for (const std::array<int, 4>& rect : rects)
     {
       this->Counters.TracedPixels += ScissorTo(ostate, rect.data(), bound);
-      tracer->Render();
-    }
-    if (tiles.empty())
-    {
-      this->Counters.TracedPixels += narrowed ? ScissorTo(ostate, footprint, bound)
-                                              : static_cast<std::size_t>(bound[2]) * bound[3];
       tracer->Render();
     }
   }

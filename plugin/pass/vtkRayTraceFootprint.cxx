@@ -216,29 +216,10 @@ InstanceOutline OutlineOf(const Instance& inst, const double localToShader[16], 
   const Geometry& g = *inst.Geom;
   // What the view sizes (screen-sized spheres, tubes, wires some pixels
   // wide) reaches past the nodes' boxes; surface edges only color hits.
-  if (g.ScreenSized || g.Tubes || inst.Wireframe || g.Nodes.size() == 0)
+  if (!(g.ScreenSized || g.Tubes || inst.Wireframe || g.Nodes.size() == 0))
   {
-    return outline;
-  }
-  std::vector<std::uint32_t> level{ 0u }, next;
-  for (int d = 0; !level.empty(); ++d)
-  {
-    next.clear();
-    for (const std::uint32_t n : level)
-    {
-      const core::gpu::Node& node = g.Nodes[n];
-      if (node.count > 0 || d == depth)
-      {
-        outline.Boxes.emplace_back(core::Vec3<float>(node.lo.x, node.lo.y, node.lo.z),
-          core::Vec3<float>(node.hi.x, node.hi.y, node.hi.z));
-      }
-      else
-      {
-        next.push_back(node.index);
-        next.push_back(node.index + 1);
-      }
-    }
-    std::swap(level, next);
+    outline.Tree = &g;
+    outline.Depth = depth;
   }
   return outline;
 }
@@ -284,15 +265,16 @@ bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRe
 
 namespace
 {
-/// Marks the tiles of instance i's outline boxes (or of its world box when
-/// it has none); false when a box has no bounded projection (Side::Across).
+/// Marks the tiles of instance i's outline boxes, its tree's nodes down to
+/// the outline's depth (or of its world box when it has no tree); false
+/// when a box has no bounded projection (Side::Across).
 bool markInstance(const CameraFrame& camera, const FrameRecords& frame, std::size_t i, TileGrid& grid)
 {
   const InstanceOutline& outline = frame.Outlines[i];
   vtkMatrix4x4* cameraToClip = camera.CameraToClip.Get();
   const double nearW = camera.NearPlaneW();
   double lo[2], hi[2];
-  if (outline.Boxes.empty())
+  if (!outline.Tree)
   {
     const core::AABB<double>& box = frame.WorldBoxes[i];
     const Side side = projectBox(
@@ -304,12 +286,27 @@ bool markInstance(const CameraFrame& camera, const FrameRecords& frame, std::siz
     return side != Side::Across;
   }
   const double* m = outline.LocalToShader.data();
-  for (const core::AABB<float>& box : outline.Boxes)
+  struct Entry
   {
+    std::uint32_t Node;
+    int Depth;
+  };
+  std::vector<Entry> stack{ { 0u, 0 } };
+  while (!stack.empty())
+  {
+    const Entry e = stack.back();
+    stack.pop_back();
+    const core::gpu::Node& node = outline.Tree->Nodes[e.Node];
+    if (node.count == 0 && e.Depth < outline.Depth)
+    {
+      stack.push_back({ node.index, e.Depth + 1 });
+      stack.push_back({ node.index + 1, e.Depth + 1 });
+      continue;
+    }
     const Side side = projectBox(cameraToClip, nearW,
       [&](int c, double shader[3]) {
-        const double p[3] = { (c & 1) ? box.max.x : box.min.x, (c & 2) ? box.max.y : box.min.y,
-          (c & 4) ? box.max.z : box.min.z };
+        const double p[3] = { (c & 1) ? node.hi.x : node.lo.x, (c & 2) ? node.hi.y : node.lo.y,
+          (c & 4) ? node.hi.z : node.lo.z };
         for (int r = 0; r < 3; ++r)
         {
           shader[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];

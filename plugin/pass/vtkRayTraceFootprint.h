@@ -19,18 +19,20 @@ struct CameraFrame;
 struct FrameRecords;
 
 /// Where an instance's primitives are: the boxes of its BVH's nodes down to
-/// a depth (local coordinates, as the nodes hold them), and the map of
-/// local to shader coordinates. No boxes: only the instance's world box
+/// Depth (local coordinates, as the nodes hold them; leaves above it stand
+/// for themselves), read from Tree when the tiles are made, and the map of
+/// local to shader coordinates. No Tree: only the instance's world box
 /// bounds it (primitives whose size depends on the view, as screen-sized
 /// spheres, tubes and lines are, or an empty tree).
 struct InstanceOutline
 {
   std::array<double, 16> LocalToShader{}; ///< row-major
-  std::vector<core::AABB<float>> Boxes;
+  const Geometry* Tree = nullptr;
+  int Depth = 0;
 };
 
 /// The outline of `inst` whose local to shader map is `localToShader`,
-/// with nodes down to `depth` (leaves above it stand for themselves).
+/// with nodes down to `depth`.
 InstanceOutline OutlineOf(const Instance& inst, const double localToShader[16], int depth);
 
 /// The depth of the outlines of a frame of `instances` instances: about

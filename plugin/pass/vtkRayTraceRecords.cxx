@@ -82,6 +82,15 @@ void CameraFrame::UnprojectRay(double x, double y, double org[3], double dir[3])
   }
 }
 
+void CameraFrame::AffineRay(double x, double y, double org[3], double dir[3]) const
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    org[k] = this->RayOrigin[0][k] + x * this->RayOrigin[1][k] + y * this->RayOrigin[2][k];
+    dir[k] = this->RayDirection[0][k] + x * this->RayDirection[1][k] + y * this->RayDirection[2][k];
+  }
+}
+
 double CameraFrame::NearPlaneW() const
 {
   if (!this->AffineRays)
@@ -126,14 +135,13 @@ void CameraFrame::SetAffineRays()
   {
     for (const double y : { -1.0, 1.0 })
     {
-      double cornerOrg[3], cornerDir[3];
+      double cornerOrg[3], cornerDir[3], o[3], d[3];
       this->UnprojectRay(x, y, cornerOrg, cornerDir);
+      this->AffineRay(x, y, o, d);
       for (int k = 0; k < 3; ++k)
       {
-        const double o = this->RayOrigin[0][k] + x * this->RayOrigin[1][k] + y * this->RayOrigin[2][k];
-        const double d = this->RayDirection[0][k] + x * this->RayDirection[1][k] + y * this->RayDirection[2][k];
-        affine = affine && std::abs(o - cornerOrg[k]) <= tolerance * originSize &&
-          std::abs(d - cornerDir[k]) <= tolerance * directionSize;
+        affine = affine && std::abs(o[k] - cornerOrg[k]) <= tolerance * originSize &&
+          std::abs(d[k] - cornerDir[k]) <= tolerance * directionSize;
       }
     }
   }
@@ -485,10 +493,7 @@ void KeepTracedProps(const std::vector<bool>& traced, FrameRecords& frame)
     {
       frame.Records[kept] = frame.Records[i];
       frame.WorldBoxes[kept] = frame.WorldBoxes[i];
-      if (kept != i)
-      {
-        frame.Outlines[kept] = std::move(frame.Outlines[i]);
-      }
+      frame.Outlines[kept] = frame.Outlines[i];
       ++kept;
     }
   }

@@ -62,6 +62,10 @@ struct CameraFrame
   /// RayOrigin, RayDirection and AffineRays from ClipToCamera.
   void SetAffineRays();
 
+  /// The ray through (x, y) from RayOrigin and RayDirection (what the
+  /// shader computes for affine rays).
+  void AffineRay(double x, double y, double org[3], double dir[3]) const;
+
   /// The clip w of the near plane, where every camera ray starts (one value
   /// over the plane for VTK's cameras); 0 for a projection whose rays are
   /// not affine.

@@ -600,14 +600,13 @@ void TestCameraRays()
     for (int i = 0; i < 100; ++i)
     {
       const double x = ndc(random), y = ndc(random);
-      double org[3], dir[3];
+      double org[3], dir[3], o[3], d[3];
       frame.UnprojectRay(x, y, org, dir);
+      frame.AffineRay(x, y, o, d);
       for (int k = 0; k < 3; ++k)
       {
-        const double o = frame.RayOrigin[0][k] + x * frame.RayOrigin[1][k] + y * frame.RayOrigin[2][k];
-        const double d = frame.RayDirection[0][k] + x * frame.RayDirection[1][k] + y * frame.RayDirection[2][k];
-        worst = std::max({ worst, std::abs(o - org[k]) / (std::abs(org[k]) + std::abs(dir[k])),
-          std::abs(d - dir[k]) / std::abs(vtkMath::Norm(dir)) });
+        worst = std::max({ worst, std::abs(o[k] - org[k]) / (std::abs(org[k]) + std::abs(dir[k])),
+          std::abs(d[k] - dir[k]) / std::abs(vtkMath::Norm(dir)) });
       }
     }
     std::ostringstream s;
