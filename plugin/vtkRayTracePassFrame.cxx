@@ -78,6 +78,20 @@ bool FootprintTilesAllowed()
   return !value || std::strcmp(value, "0") != 0;
 }
 
+/// False with VTKRT_TILE_ENTRIES=0: camera rays walk from the tree's root,
+/// not from their tile's entries (tests compare the two).
+bool TileEntriesAllowed()
+{
+  const char* value = std::getenv("VTKRT_TILE_ENTRIES");
+  return !value || std::strcmp(value, "0") != 0;
+}
+
+/// A tile's entry list (MakeTileEntryLists) holds at most this many nodes.
+constexpr std::uint32_t kMaxTileEntries = 8;
+/// Trees shallower than this walk from the root: their walks are short, and
+/// the entries' setup costs what the levels skipped save.
+constexpr std::uint32_t kTileEntriesMinimumDepth = 19;
+
 /// Traced tiles (TracedTiles) are this many pixels wide; more than
 /// kMaxFootprintDraws rectangles of them are traced as one rectangle.
 constexpr int kFootprintTile = 32;
@@ -358,6 +372,12 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   }
   f.StackSize = static_cast<int>(
     topLevel ? vtkrt::core::kMaxStackSize : vtkrt::core::gpu::stackSizeForDepth(depth));
+  // Camera rays start from their tile's nodes where one deep triangle tree
+  // is walked by affine camera-relative rays with unsized boxes (wires grow
+  // them), and no step cap (it counts from the root).
+  f.TileEntries = TileEntriesAllowed() && f.SingleInstance && f.Triangles && !f.Spheres && !f.Wireframe &&
+    !f.WorldCoordinates && !f.ProjectiveRays && f.MaximumTraversalSteps == 0 &&
+    depth >= kTileEntriesMinimumDepth;
   GLint major = 0;
   glGetIntegerv(GL_MAJOR_VERSION, &major);
   f.Fp64 = major >= 4;
@@ -522,6 +542,7 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
     p.F.AmbientOcclusionSamples = 0;
     p.F.Lights = 0;
     p.F.LightComplexity = 0;
+    p.F.TileEntries = false;
     p.Lights.clear();
   }
   p.OcclusionRadius =
@@ -544,6 +565,18 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
     return false;
   }
   this->SetUniforms(p.Tracer->Program, p.F, p.Camera, frame, p.Lights, p.OcclusionRadius);
+  if (p.F.TileEntries)
+  {
+    const vtkrt::pass::TileEntryLists lists = vtkrt::pass::MakeTileEntryLists(
+      p.Camera, frame, ren, kFootprintTile, kMaxTileEntries, static_cast<std::uint32_t>(p.F.StackSize));
+    if (lists.Words != this->LastTileEntries || !this->Buffers.TileEntries.GetTexels())
+    {
+      this->Counters.FrameBytesUploaded +=
+        this->Buffers.TileEntries.Upload(win, lists.Words.data(), lists.Words.size() / 4);
+      this->LastTileEntries = lists.Words;
+    }
+    p.Tracer->Program->SetUniform4f("uTileGrid", lists.Grid);
+  }
   p.Active = this->Buffers.Bind(p.Tracer->Program);
   return true;
 }

@@ -67,6 +67,7 @@ struct vtkRayTracePass::Internals
   bool TexturesValid = true;
   std::size_t CheckedLimit = 0; ///< the texel limit the buffers were checked against
   std::vector<vtkrt::core::gpu::InstanceRecord> LastRecords; ///< the records on the GPU
+  std::vector<std::uint32_t> LastTileEntries; ///< the tile entry lists on the GPU
   std::vector<int> WarnedTooSmallProps; ///< what the last scale warning named
   vtkrt::pass::SceneBuffers Buffers;
   vtkrt::pass::ScenePlacements Places;

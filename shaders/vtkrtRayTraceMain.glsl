@@ -55,6 +55,9 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
   vec3 dir = uRayDirection[0] + ndc.x * uRayDirection[1] + ndc.y * uRayDirection[2];
 #endif
   vec3 invDir = safeInverse(dir);
+#ifdef VTKRT_TILE_ENTRIES
+  gTileList = tileListOf(ndc);
+#endif
 #ifdef VTKRT_TRANSLUCENT
   return traceTranslucentLayers(org, dir, invDir, outColor, outDepth);
 #else

@@ -105,6 +105,44 @@ bool intersectRayTriangle(RayTrianglePrecomputed r, vec3 v0, vec3 v1, vec3 v2, f
   return true;
 }
 
+#ifdef VTKRT_TILE_ENTRIES
+// Where the walks of camera rays start: per screen tile, the tree's nodes
+// that the tile's rays can reach (core::gpu::TileList and its node ids, four
+// a texel); list 0 holds the root alone, for every other ray.
+uniform usamplerBuffer uTileEntries;
+// Tiles per unit of [0, 1] viewport coordinates (xy), tiles in x and y (zw).
+uniform vec4 uTileGrid;
+// The list of the walks under way: the camera ray's tile (shadeRay), list 0
+// while anyHit walks.
+int gTileList = 0;
+
+// The tile list of the camera ray through ndc.
+int tileListOf(vec2 ndc)
+{
+  ivec2 t = clamp(ivec2(floor((ndc * 0.5 + 0.5) * uTileGrid.xy)), ivec2(0), ivec2(uTileGrid.zw) - 1);
+  return 1 + t.y * int(uTileGrid.z) + t.x;
+}
+
+// core::gpu::bvhStartFromEntries: each entry whose box the ray meets is
+// pushed, the nearest last, then the first pop. False when none is met.
+bool bvhStartFromEntries(vec3 org, vec3 invDir, vec3 parallelBias, float tmin, float tmax, int list,
+  inout int sp, inout uint index, inout uint count, inout bool culled)
+{
+  TileList tile = fetchTileList(uTileEntries, list);
+  int e = int(tile.first);
+  int end = e + int(tile.count);
+  do
+  {
+    Node n = fetchNode(uNodes, int(fetchPacked(uTileEntries, e)));
+    float tnear;
+    bool hit = intersectRayBoxConservative(org, invDir, parallelBias, n.lo, n.hi, tmin, tmax, tnear);
+    bvhStack[sp] = uvec3(n.index, n.count, floatBitsToUint(tnear));
+    sp += hit ? 1 : 0;
+  } while (++e < end);
+  return bvhPopAfterLeaf(tmax, sp, index, count, culled);
+}
+#endif
+
 // Closest hit in the triangle BVH whose root node is `root`: on a hit, tmax
 // becomes the hit distance, tri the triangle's leaf-order index (global) and
 // uv its barycentrics. stopAtFirstHit: any hit (core::anyHit) instead, for
@@ -123,15 +161,24 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
   uv = vec2(0.0);
   vec3 invDir = safeInverse(dir);
   vec3 parallelBias = parallelAxisBias(invDir);
-  // No test of the root's box: traceInstance has tested the instance's
-  // box, which bounds it.
-  Node rootNode = fetchNode(uNodes, root);
   RayTrianglePrecomputed pre = precomputeRayTriangle(org, dir);
   int sp = 0;
   int steps = 0;
+  bool culled = false;
+#ifdef VTKRT_TILE_ENTRIES
+  uint index = 0u;
+  uint count = 0u;
+  if (!bvhStartFromEntries(org, invDir, parallelBias, tmin, tmax, gTileList, sp, index, count, culled))
+  {
+    return false;
+  }
+#else
+  // No test of the root's box: traceInstance has tested the instance's
+  // box, which bounds it.
+  Node rootNode = fetchNode(uNodes, root);
   uint index = rootNode.index;
   uint count = rootNode.count;
-  bool culled = false;
+#endif
 #ifdef VTKRT_HAS_WIREFRAME
   uint bestCell = 0u; // the cell of the best wire hit (coincident wires)
 #endif

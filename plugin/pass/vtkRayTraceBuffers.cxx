@@ -498,7 +498,7 @@ std::vector<vtkTextureObject*> SceneBuffers::Bind(vtkShaderProgram* program)
     { "uSpheres", &this->Spheres }, { "uSphereIds", &this->SphereIds },
     { "uNormals", &this->Normals }, { "uColors", &this->Colors },
     { "uInstances", &this->Instances }, { "uTopNodes", &this->TopNodes },
-    { "uTextures", &this->Textures } };
+    { "uTextures", &this->Textures }, { "uTileEntries", &this->TileEntries } };
   for (const auto& sampler : samplers)
   {
     if (program->IsUniformUsed(sampler.first))
@@ -516,7 +516,7 @@ void SceneBuffers::Release(vtkWindow* w)
 {
   for (TextureBuffer* b : { &this->Nodes, &this->Triangles, &this->TriangleVertices,
          &this->Spheres, &this->SphereIds, &this->Normals, &this->Colors, &this->Instances,
-         &this->TopNodes, &this->Textures })
+         &this->TopNodes, &this->Textures, &this->TileEntries })
   {
     b->Release(w);
   }

@@ -126,7 +126,7 @@ class SceneBuffers
 {
 public:
   TextureBuffer Nodes, Triangles, TriangleVertices, Spheres, SphereIds, Normals, Colors, Instances,
-    TopNodes, Textures;
+    TopNodes, Textures, TileEntries;
 
   /// The geometry's buffers: nodes, triangles, triangle vertices, spheres,
   /// sphere ids, normals.

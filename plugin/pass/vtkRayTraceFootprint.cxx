@@ -2,11 +2,14 @@
 
 #include "vtkRayTraceRecords.h"
 
+#include "vtkrt/core/GpuTraversal.h"
+
 #include "vtkMatrix4x4.h"
 #include "vtkRenderer.h"
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 namespace vtkrt
 {
@@ -61,10 +64,12 @@ void extendProjection(const double p[4], double lo[2], double hi[2])
 /// clipped box's vertices). nearW: the clip w of the near plane (0 when
 /// the projection has none: then a box across the eye plane has no bound).
 template <class Corner>
-Side projectBox(vtkMatrix4x4* cameraToClip, double nearW, Corner&& corner, double lo[2], double hi[2])
+Side projectBox(vtkMatrix4x4* cameraToClip, double nearW, Corner&& corner, double lo[2], double hi[2],
+  double* nearest = nullptr)
 {
   lo[0] = lo[1] = VTK_DOUBLE_MAX;
   hi[0] = hi[1] = -VTK_DOUBLE_MAX;
+  double nearestDepth = VTK_DOUBLE_MAX;
   double clip[8][4];
   bool front[8];
   int behind = 0;
@@ -83,7 +88,13 @@ Side projectBox(vtkMatrix4x4* cameraToClip, double nearW, Corner&& corner, doubl
     if (front[c])
     {
       extendProjection(p, lo, hi);
+      nearestDepth = std::min(nearestDepth, p[2] / p[3]);
     }
+  }
+  if (nearest)
+  {
+    // A box across the near plane starts there.
+    *nearest = behind == 0 ? nearestDepth : -1.0;
   }
   if (behind == 0 || behind == 8)
   {
@@ -199,6 +210,16 @@ struct TileGrid
 };
 } // namespace
 
+int TileSizeFor(int width, int height, int maxTile)
+{
+  int tile = 8;
+  while (2 * tile <= maxTile && 2 * tile * 16 <= std::min(width, height))
+  {
+    tile *= 2;
+  }
+  return tile;
+}
+
 int OutlineDepth(std::size_t instances)
 {
   int depth = 0;
@@ -265,6 +286,23 @@ bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRe
 
 namespace
 {
+/// The projection of a tree node's box (projectBox), through the local
+/// to shader rows m.
+Side projectNode(vtkMatrix4x4* cameraToClip, double nearW, const double* m, const core::gpu::Node& node,
+  double lo[2], double hi[2], double* nearest = nullptr)
+{
+  return projectBox(cameraToClip, nearW,
+    [&](int c, double shader[3]) {
+      const double p[3] = { (c & 1) ? node.hi.x : node.lo.x, (c & 2) ? node.hi.y : node.lo.y,
+        (c & 4) ? node.hi.z : node.lo.z };
+      for (int r = 0; r < 3; ++r)
+      {
+        shader[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
+      }
+    },
+    lo, hi, nearest);
+}
+
 /// Marks the tiles of instance i's outline boxes, its tree's nodes down to
 /// the outline's depth (or of its world box when it has no tree); false
 /// when a box has no bounded projection (Side::Across).
@@ -303,16 +341,7 @@ bool markInstance(const CameraFrame& camera, const FrameRecords& frame, std::siz
       stack.push_back({ node.index + 1, e.Depth + 1 });
       continue;
     }
-    const Side side = projectBox(cameraToClip, nearW,
-      [&](int c, double shader[3]) {
-        const double p[3] = { (c & 1) ? node.hi.x : node.lo.x, (c & 2) ? node.hi.y : node.lo.y,
-          (c & 4) ? node.hi.z : node.lo.z };
-        for (int r = 0; r < 3; ++r)
-        {
-          shader[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
-        }
-      },
-      lo, hi);
+    const Side side = projectNode(cameraToClip, nearW, m, node, lo, hi);
     if (side == Side::Across)
     {
       return false;
@@ -336,14 +365,7 @@ std::vector<std::array<int, 4>> TracedTiles(const CameraFrame& camera, const Fra
   {
     return {};
   }
-  // Tiles of about a sixteenth of the viewport's smaller side (a power of
-  // two), 8 pixels or more, at most tileSize unless that is under 8.
-  int tile = 8;
-  while (2 * tile <= tileSize && 2 * tile * 16 <= std::min(width, height))
-  {
-    tile *= 2;
-  }
-  TileGrid grid(size, tile);
+  TileGrid grid(size, TileSizeFor(width, height, tileSize));
   for (std::size_t i = 0; i < frame.Outlines.size(); ++i)
   {
     if (!markInstance(camera, frame, i, grid))
@@ -369,6 +391,203 @@ std::vector<std::array<int, 4>> TracedTiles(const CameraFrame& camera, const Fra
     r[1] += y0;
   }
   return rects;
+}
+
+namespace
+{
+/// A node of a tile list: the tiles (inclusive ranges) its box reaches, its
+/// nearest normalized device depth, and at most how many levels lie below it.
+struct CutNode
+{
+  std::uint32_t Node;
+  std::uint32_t Height; ///< a leaf: 0
+  int First[2];
+  int Last[2];
+  double Nearest;
+  bool Reaches; ///< false: behind the near plane or outside the viewport
+};
+
+/// The tile lists' builder: each tile's list starts as the root and
+/// splits its shallowest node into the children that reach the tile while
+/// the list stays within maxEntries and the stack; the nodes' projections
+/// are made once a frame.
+class TileCuts
+{
+public:
+  TileCuts(const CameraFrame& camera, const InstanceOutline& outline, const int size[2], int tile)
+    : CameraToClip(camera.CameraToClip.Get())
+    , NearW(camera.NearPlaneW())
+    , Outline(outline)
+    , Size{ size[0], size[1] }
+    , Tile(tile)
+    , Count{ (size[0] + tile - 1) / tile, (size[1] + tile - 1) / tile }
+  {
+  }
+
+  /// The lists: headers, then each tile's node ids (global: root + local),
+  /// the nearest last.
+  TileEntryLists Lists(std::uint32_t root, std::uint32_t maxEntries, std::uint32_t stackSize)
+  {
+    const std::size_t tiles = static_cast<std::size_t>(this->Count[0]) * this->Count[1];
+    TileEntryLists out;
+    const std::size_t headerWords = 4 * (tiles + 1);
+    out.Words.assign(headerWords, 0u);
+    out.Words.push_back(root);
+    out.Words[0] = static_cast<std::uint32_t>(headerWords);
+    out.Words[1] = 1u;
+    std::vector<const CutNode*> list;
+    for (int ty = 0; ty < this->Count[1]; ++ty)
+    {
+      for (int tx = 0; tx < this->Count[0]; ++tx)
+      {
+        this->ListOf(tx, ty, maxEntries, stackSize, list);
+        std::uint32_t* header = out.Words.data() + 4 * (1 + static_cast<std::size_t>(ty) * this->Count[0] + tx);
+        header[0] = list.empty() ? out.Words[0] : static_cast<std::uint32_t>(out.Words.size());
+        header[1] = list.empty() ? 1u : static_cast<std::uint32_t>(list.size());
+        std::sort(list.begin(), list.end(), [](const CutNode* a, const CutNode* b) { return a->Nearest > b->Nearest; });
+        for (const CutNode* c : list)
+        {
+          out.Words.push_back(root + c->Node);
+        }
+        out.Entries += list.size();
+      }
+    }
+    out.Words.resize((out.Words.size() + 3) / 4 * 4, 0u);
+    out.Grid[0] = static_cast<float>(this->Size[0]) / static_cast<float>(this->Tile);
+    out.Grid[1] = static_cast<float>(this->Size[1]) / static_cast<float>(this->Tile);
+    out.Grid[2] = static_cast<float>(this->Count[0]);
+    out.Grid[3] = static_cast<float>(this->Count[1]);
+    return out;
+  }
+
+private:
+  vtkMatrix4x4* CameraToClip;
+  double NearW;
+  const InstanceOutline& Outline;
+  int Size[2];
+  int Tile;
+  int Count[2];
+  std::unordered_map<std::uint32_t, CutNode> Reached; ///< the projections made
+
+  /// Node `node` (local), `height` levels at most below it, projected.
+  const CutNode& Reach(std::uint32_t node, std::uint32_t height)
+  {
+    auto found = this->Reached.find(node);
+    if (found != this->Reached.end())
+    {
+      return found->second;
+    }
+    CutNode& out = this->Reached[node];
+    const core::gpu::Node& n = this->Outline.Tree->Nodes[node];
+    out.Node = node;
+    out.Height = n.count > 0 ? 0u : std::max(height, 1u);
+    double lo[2], hi[2];
+    const Side side =
+      projectNode(this->CameraToClip, this->NearW, this->Outline.LocalToShader.data(), n, lo, hi, &out.Nearest);
+    PixelRange r = side == Side::Across ? PixelRange{ { 0, 0 }, { this->Size[0], this->Size[1] } }
+                                        : pixelRange(lo, hi, this->Size);
+    out.Nearest = side == Side::Across ? -1.0 : out.Nearest;
+    out.Reaches = side != Side::Behind && r.Last[0] > r.First[0] && r.Last[1] > r.First[1];
+    for (int k = 0; k < 2; ++k)
+    {
+      out.First[k] = r.First[k] / this->Tile;
+      out.Last[k] = (r.Last[k] - 1) / this->Tile;
+    }
+    return out;
+  }
+
+  static bool Touches(const CutNode& c, int tx, int ty)
+  {
+    return c.Reaches && tx >= c.First[0] && tx <= c.Last[0] && ty >= c.First[1] && ty <= c.Last[1];
+  }
+
+  /// Tile (tx, ty)'s list, in no order; empty when no box reaches it.
+  void ListOf(int tx, int ty, std::uint32_t maxEntries, std::uint32_t stackSize, std::vector<const CutNode*>& list)
+  {
+    list.clear();
+    const CutNode& root = this->Reach(0u, this->Outline.Tree->MaxDepth);
+    if (!Touches(root, tx, ty))
+    {
+      return;
+    }
+    list.push_back(&root);
+    for (;;)
+    {
+      // The shallowest interior node (the tallest subtree) splits next.
+      std::size_t split = list.size();
+      std::uint32_t height = 0;
+      for (std::size_t k = 0; k < list.size(); ++k)
+      {
+        if (list[k]->Height > height)
+        {
+          split = k;
+          height = list[k]->Height;
+        }
+      }
+      if (split == list.size())
+      {
+        return;
+      }
+      const core::gpu::Node& n = this->Outline.Tree->Nodes[list[split]->Node];
+      const CutNode* children[2] = { &this->Reach(n.index, height - 1), &this->Reach(n.index + 1, height - 1) };
+      std::size_t size = list.size() - 1;
+      std::uint32_t tallest = 0;
+      for (std::size_t k = 0; k < list.size(); ++k)
+      {
+        tallest = k == split ? tallest : std::max(tallest, list[k]->Height);
+      }
+      for (const CutNode* c : children)
+      {
+        size += Touches(*c, tx, ty) ? 1 : 0;
+        tallest = Touches(*c, tx, ty) ? std::max(tallest, c->Height) : tallest;
+      }
+      if (size > maxEntries || !core::gpu::entriesFitStack(static_cast<std::uint32_t>(size), tallest, stackSize))
+      {
+        return;
+      }
+      list.erase(list.begin() + static_cast<std::ptrdiff_t>(split));
+      for (const CutNode* c : children)
+      {
+        if (Touches(*c, tx, ty))
+        {
+          list.push_back(c);
+        }
+      }
+      if (list.empty())
+      {
+        return;
+      }
+    }
+  }
+};
+
+/// The root's list for every ray: one tile over the viewport.
+TileEntryLists RootLists(std::uint32_t root)
+{
+  TileEntryLists out;
+  out.Words = { 8u, 1u, 0u, 0u, 8u, 1u, 0u, 0u, root, 0u, 0u, 0u };
+  return out;
+}
+} // namespace
+
+TileEntryLists MakeTileEntryLists(const CameraFrame& camera, const FrameRecords& frame, vtkRenderer* ren,
+  int tileSize, std::uint32_t maxEntries, std::uint32_t stackSize)
+{
+  if (frame.Records.size() != 1 || frame.Outlines.size() != 1)
+  {
+    return RootLists(0u);
+  }
+  const std::uint32_t root = frame.Records[0].root;
+  const InstanceOutline& outline = frame.Outlines[0];
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  if (!outline.Tree || outline.Tree->Nodes.size() == 0 || width <= 0 || height <= 0)
+  {
+    return RootLists(root);
+  }
+  const int size[2] = { width, height };
+  TileCuts cuts(camera, outline, size, TileSizeFor(width, height, tileSize));
+  return cuts.Lists(root, maxEntries, stackSize);
 }
 
 } // namespace pass

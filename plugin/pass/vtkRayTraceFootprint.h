@@ -35,6 +35,11 @@ struct InstanceOutline
 /// with nodes down to `depth`.
 InstanceOutline OutlineOf(const Instance& inst, const double localToShader[16], int depth);
 
+/// The side of the square tiles of a viewport: about a sixteenth of its
+/// smaller side (a power of two), 8 pixels or more, at most maxTile unless
+/// that is under 8.
+int TileSizeFor(int width, int height, int maxTile);
+
 /// The depth of the outlines of a frame of `instances` instances: about
 /// 4096 boxes in all, at most 8 levels (256 boxes) per instance.
 int OutlineDepth(std::size_t instances);
@@ -58,6 +63,28 @@ bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRe
 /// bound, or when they take more than maxRects rectangles.
 std::vector<std::array<int, 4>> TracedTiles(const CameraFrame& camera, const FrameRecords& frame,
   vtkRenderer* ren, const int* footprint, int tileSize, std::size_t maxRects);
+/// Where the walks of camera rays start, per screen tile (the shader's
+/// VTKRT_TILE_ENTRIES), for a frame of one triangle instance: Words is the
+/// uTileEntries buffer (core::gpu::TileList headers: list 0 the root alone,
+/// then one a tile, row by row; then their node ids), Grid the uTileGrid
+/// uniform (tiles per unit of viewport coordinates in x and y, tiles in x
+/// and y).
+struct TileEntryLists
+{
+  std::vector<std::uint32_t> Words;
+  float Grid[4] = { 1.0f, 1.0f, 1.0f, 1.0f };
+  std::size_t Entries = 0; ///< node ids over all tiles
+};
+
+/// The lists: for each tile (TileSizeFor(..., tileSize)), the deepest level
+/// of the instance's tree whose nodes (leaves above it standing for
+/// themselves) whose boxes' projections, a pixel wider, touch the tile are
+/// at most maxEntries and fit the shader's stack of stackSize entries with
+/// the walks below them (core::gpu::entriesFitStack), the nearest last; a
+/// tile no box touches gets the root's list. With no tree (or no bound) every
+/// tile gets the root's list.
+TileEntryLists MakeTileEntryLists(const CameraFrame& camera, const FrameRecords& frame, vtkRenderer* ren,
+  int tileSize, std::uint32_t maxEntries, std::uint32_t stackSize);
 } // namespace pass
 } // namespace vtkrt
 

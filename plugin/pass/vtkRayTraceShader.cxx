@@ -44,7 +44,7 @@ std::string Features::Key() const
     << this->TextureCutOuts << "S" << this->StackSize << "R" << this->Translucent << "G"
     << this->SurfaceEdges << "V" << this->Wireframe << "J"
     << this->Tubes << "i" << this->SingleInstance << "p"
-    << this->ProjectiveRays;
+    << this->ProjectiveRays << "e" << this->TileEntries;
   return s.str();
 }
 
@@ -80,6 +80,7 @@ std::string AssembleShader(const Features& f)
   define(f.TopLevel, "VTKRT_HAS_TOP_LEVEL");
   define(f.SingleInstance, "VTKRT_SINGLE_INSTANCE");
   define(f.ProjectiveRays, "VTKRT_PROJECTIVE_RAYS");
+  define(f.TileEntries, "VTKRT_TILE_ENTRIES");
   define(f.Translucent, "VTKRT_TRANSLUCENT");
   if (f.SamplesPerPixel > 0)
   {

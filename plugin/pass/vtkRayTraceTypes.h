@@ -195,6 +195,9 @@ struct Features
   bool TopLevel = false;
   bool SingleInstance = false; ///< one instance, its record in uniforms (no top level)
   bool ProjectiveRays = false;  ///< camera rays unprojected per pixel (CameraFrame::AffineRays false)
+  /// Camera rays start their walk from their screen tile's entry list
+  /// (TileEntryLists): one triangle instance, affine camera-relative rays.
+  bool TileEntries = false;
   int SamplesPerPixel = 0; ///< 0: one centered ray straight to the framebuffer
   bool Shadows = false;
   int AmbientOcclusionSamples = 0;

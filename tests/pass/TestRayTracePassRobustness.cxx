@@ -18,6 +18,7 @@
 #include "vtkrtTestOutputWindow.h"
 
 #include "vtkActor.h"
+#include "vtkAppendPolyData.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
@@ -25,6 +26,7 @@
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPlaneSource.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
@@ -471,6 +473,85 @@ void TestFootprintTiles()
   NoVTKOutput("footprint tiles");
 }
 
+/// Renders with every camera ray walking from the tree's root, then from
+/// its tile's entries: the same image, the second shader the one with tile
+/// entries. Where a ray meets two triangles at the same t (a shared edge),
+/// the walks' orders may pick either, whose shading differs in rounding: a
+/// few pixels may differ, none by more than 16 levels.
+void CompareEntriesWithRoot(vtkRenderWindow* win, vtkRenderer* ren, vtkRayTracePass* pass, const std::string& what)
+{
+  ren->ResetCameraClippingRange();
+  setenv("VTKRT_TILE_ENTRIES", "0", 1);
+  win->Render();
+  auto fromRoot = Grab(win);
+  const bool rootShader = std::string(pass->GetLastFragmentShaderSource()).find("#define VTKRT_TILE_ENTRIES") == std::string::npos;
+  unsetenv("VTKRT_TILE_ENTRIES");
+  win->Render();
+  auto fromEntries = Grab(win);
+  const bool entryShader = std::string(pass->GetLastFragmentShaderSource()).find("#define VTKRT_TILE_ENTRIES") != std::string::npos;
+  Check(rootShader && entryShader, "tile entries, " + what + ": the shaders with and without tile entries");
+  const long off = CountDifferingPixels(fromRoot, fromEntries, 0);
+  const long farOff = CountDifferingPixels(fromRoot, fromEntries, 16);
+  if (off > 20 || farOff > 0)
+  {
+    // The root walk's image stands where raster's does.
+    WriteFailedImages("TileEntries", fromRoot, fromEntries);
+  }
+  Check(off <= 20 && farOff == 0,
+    "tile entries, " + what + ": " + std::to_string(off) + " pixels differ from the root walk's, " +
+      std::to_string(farOff) + " by more than 16 levels");
+}
+
+void TestTileEntries()
+{
+  auto win = MakeWindow(240, 200);
+  vtkNew<vtkRenderer> ren;
+  ren->SetViewport(0.05, 0.1, 0.95, 1.0);
+  win->AddRenderer(ren);
+  // One mesh deep enough for tile entries (a fine sphere) and a floor,
+  // turned by its matrix: the floor's shadows come from rays that are not
+  // camera rays, which walk from the root.
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0.0, 0.8, 0.0);
+  sphere->SetThetaResolution(400);
+  sphere->SetPhiResolution(400);
+  vtkNew<vtkPlaneSource> floor;
+  floor->SetOrigin(-2.0, 0.0, -2.0);
+  floor->SetPoint1(2.0, 0.0, -2.0);
+  floor->SetPoint2(-2.0, 0.0, 2.0);
+  floor->SetResolution(8, 8);
+  vtkNew<vtkAppendPolyData> both;
+  both->AddInputConnection(sphere->GetOutputPort());
+  both->AddInputConnection(floor->GetOutputPort());
+  both->Update();
+  auto actor = MeshActor(both->GetOutput());
+  actor->RotateY(25.0);
+  actor->RotateX(10.0);
+  ren->AddActor(actor);
+  ren->GetActiveCamera()->SetPosition(1.0, 3.0, 5.0);
+  ren->GetActiveCamera()->SetFocalPoint(0.0, 0.5, 0.0);
+  ren->ResetCamera();
+  vtkNew<vtkRayTracePass> pass;
+  pass->SetShadows(true);
+  ren->SetPass(pass);
+  CompareEntriesWithRoot(win, ren, pass, "sphere over a floor, shadows");
+  ren->GetActiveCamera()->Zoom(3.0);
+  CompareEntriesWithRoot(win, ren, pass, "zoomed, cut by the viewport's edges");
+  ren->GetActiveCamera()->SetPosition(0.1, 0.9, 0.2); // inside the sphere
+  ren->GetActiveCamera()->SetFocalPoint(1.0, 0.2, -1.0);
+  CompareEntriesWithRoot(win, ren, pass, "the eye inside the sphere");
+  ren->GetActiveCamera()->SetPosition(0.3, 0.15, 2.5); // near the floor, boxes across the eye plane
+  ren->GetActiveCamera()->SetFocalPoint(0.0, 0.6, 0.0);
+  ren->GetActiveCamera()->SetViewAngle(60.0);
+  CompareEntriesWithRoot(win, ren, pass, "low over the floor");
+  pass->SetSamplesPerPixel(4);
+  CompareEntriesWithRoot(win, ren, pass, "four samples a pixel");
+  pass->SetSamplesPerPixel(1);
+  actor->GetProperty()->SetOpacity(0.5);
+  CompareEntriesWithRoot(win, ren, pass, "translucent");
+  NoVTKOutput("tile entries");
+}
+
 int main(int argc, char* argv[])
 {
   Output = vtkrtTestOutputWindow::Install();
@@ -480,6 +561,7 @@ int main(int argc, char* argv[])
     { "TooLarge", TestTooLarge },
     { "Footprint", TestFootprint },
     { "FootprintTiles", TestFootprintTiles },
+    { "TileEntries", TestTileEntries },
   };
   return RunCase(argc, argv, cases);
 }

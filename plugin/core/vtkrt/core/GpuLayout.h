@@ -134,6 +134,20 @@ struct Normal
 };
 #define VTKRT_GPU_NORMAL_FIELDS(FIELD, PAD) FIELD(Normal, direction) PAD(Normal, unused)
 
+/// Where the walks of the camera rays of one screen tile start
+/// (VTKRT_TILE_ENTRIES): node ids (into the nodes' buffer) at words
+/// [first, first + count) of the same buffer, four to a texel, count >= 1,
+/// each pushed on the walk's stack when the ray meets its box, in order
+/// (the nearest last, so that it is walked first).
+struct TileList
+{
+  std::uint32_t first;
+  std::uint32_t count;
+  std::uint32_t unused[2];
+};
+#define VTKRT_GPU_TILE_LIST_FIELDS(FIELD, PAD)                                                     \
+  FIELD(TileList, first) FIELD(TileList, count) PAD(TileList, unused)
+
 /// The per-instance record, rewritten every frame (its matrix and box are
 /// camera-relative). Scalar colors replace the ambient and diffuse colors,
 /// weighted by the two intensities (as VTK 9.1 does); screen-sized spheres
@@ -210,6 +224,7 @@ enum class Indexing
   RECORD(Ellipsoid, ELLIPSOID, ByTexel, VTKRT_GPU_ELLIPSOID_FIELDS(FIELD, PAD))                    \
   RECORD(Segment, SEGMENT, ByTexel, VTKRT_GPU_SEGMENT_FIELDS(FIELD, PAD))                          \
   RECORD(Normal, NORMAL, ByRecord, VTKRT_GPU_NORMAL_FIELDS(FIELD, PAD))                            \
+  RECORD(TileList, TILE_LIST, ByRecord, VTKRT_GPU_TILE_LIST_FIELDS(FIELD, PAD))                    \
   RECORD(InstanceRecord, INSTANCE, ByRecord, VTKRT_GPU_INSTANCE_FIELDS(FIELD, PAD))
 
 /// A field list entry that expands to nothing.

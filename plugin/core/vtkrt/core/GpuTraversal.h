@@ -106,6 +106,7 @@ struct ShaderInputs
   TexelBuffer uTriangles; ///< Triangles in leaf order
   TexelBuffer uSpheres;   ///< Spheres, or Ellipsoids or Segments (a texel index each), in leaf order
   TexelBuffer uTopNodes;  ///< the Nodes of the top-level BVH over the instance records
+  TexelBuffer uTileEntries; ///< TileLists (list 0: the root's), then their node ids, four a texel
   vec3 uCameraToAnchor = vec3(0.0f);
   int maximumTraversalSteps = 0; ///< VTKRT_MAXIMUM_TRAVERSAL_STEPS (0: no cap)
   bool screenSpheres = false;    ///< VTKRT_SCREEN_SPHERES
@@ -185,6 +186,43 @@ inline bool bvhPopAfterLeaf(
   return true;
 }
 
+/// The start of a walk from the entries of tile list `list` (the shader's
+/// VTKRT_TILE_ENTRIES): each entry node whose box the ray meets is pushed
+/// with its entry distance, in the list's order, then the first is popped
+/// as by bvhPopAfterLeaf. Every list has an entry (a do-while: see the
+/// shader's bvhDescend). False when the ray meets no entry's box. A list of
+/// l entries whose subtrees are at most h levels deep fits a stack of
+/// l + h entries (entriesFitStack).
+inline bool bvhStartFromEntries(BvhStack& stack, const ShaderInputs& u, const vec3& org, const vec3& invDir,
+  const vec3& parallelBias, float tmin, float tmax, int list, int& sp, std::uint32_t& index,
+  std::uint32_t& count, bool& culled)
+{
+  const TileList tile = fetchTileList(u.uTileEntries, list);
+  int e = static_cast<int>(tile.first);
+  const int end = e + static_cast<int>(tile.count);
+  do
+  {
+    const Node n = fetchNode(u.uNodes, static_cast<int>(fetchPacked(u.uTileEntries, e)));
+    float tnear;
+    const bool hit = intersectRayBoxConservative(org, invDir, parallelBias, n.lo, n.hi, tmin, tmax, tnear);
+    assert(sp < static_cast<int>(kMaxStackSize));
+    stack.entry[sp] = uvec3(n.index, n.count, glm::floatBitsToUint(tnear));
+    stack.deepest = std::max(stack.deepest, sp);
+    sp += hit ? 1 : 0;
+  } while (++e < end);
+  return bvhPopAfterLeaf(stack, tmax, sp, index, count, culled);
+}
+
+/// Whether a walk from a tile list of `entries` nodes, none with more than
+/// `height` levels below it (a leaf: 0), stays within a stack of
+/// `stackSize` entries: pushes up to entries - 1 below the node popped
+/// first, then one a level below it, and an interior step reads the entry
+/// above its top (a lone root: entries 0..depth, stackSizeForDepth).
+inline bool entriesFitStack(std::uint32_t entries, std::uint32_t height, std::uint32_t stackSize)
+{
+  return entries + height <= stackSize;
+}
+
 /// The interior part of the walk (see the shader): descends from the node at
 /// hand to a leaf, boxes grown by growBy; false when the walk is over.
 inline bool bvhDescend(BvhStack& stack, const ShaderInputs& u, const vec3& org, const vec3& invDir,
@@ -222,7 +260,7 @@ namespace detail
 /// walk prunes by it) on a hit. Grow: boxes grow by `grow` (spheres).
 template <bool Grow, class Leaf>
 inline void whileWhileWalk(const ShaderInputs& u, int root, const vec3& org, const vec3& dir, float tmin,
-  float& tmax, float grow, Leaf&& leaf)
+  float& tmax, float grow, Leaf&& leaf, int tileList = -1)
 {
   const vec3 invDir = safeInverse(dir);
   const vec3 parallelBias = parallelAxisBias(invDir);
@@ -242,6 +280,11 @@ inline void whileWhileWalk(const ShaderInputs& u, int root, const vec3& org, con
   std::uint32_t index = rootNode.index;
   std::uint32_t count = rootNode.count;
   bool culled = false;
+  if (tileList >= 0 &&
+    !bvhStartFromEntries(stack, u, org, invDir, parallelBias, tmin, tmax, tileList, sp, index, count, culled))
+  {
+    return;
+  }
   for (;;)
   {
     if (!bvhDescend(stack, u, org, invDir, parallelBias, Grow ? growBy : vec3(0.0f), tmin, tmax, sp,
@@ -267,9 +310,11 @@ inline void whileWhileWalk(const ShaderInputs& u, int root, const vec3& org, con
 
 /// Closest hit (any hit with stopAtFirstHit) in the triangle BVH whose root
 /// node is `root`: tmax becomes the hit's t, tri its leaf-order index into
-/// uTriangles, uv its barycentrics.
+/// uTriangles, uv its barycentrics. tileList >= 0: the walk starts from that
+/// list's entries (bvhStartFromEntries), which must hold every node the ray
+/// can reach.
 inline bool traverseTriangles(const ShaderInputs& u, int root, const vec3& org, const vec3& dir, float tmin,
-  float& tmax, int& tri, vec2& uv, bool stopAtFirstHit)
+  float& tmax, int& tri, vec2& uv, bool stopAtFirstHit, int tileList = -1)
 {
   tri = -1;
   uv = vec2(0.0f);
@@ -288,7 +333,7 @@ inline bool traverseTriangles(const ShaderInputs& u, int root, const vec3& org, 
       }
     }
     return stopAtFirstHit && tri >= 0;
-  });
+  }, tileList);
   return tri >= 0;
 }
 
