@@ -86,6 +86,14 @@ bool TileEntriesAllowed()
   return !value || std::strcmp(value, "0") != 0;
 }
 
+/// False with VTKRT_LEAF_TREES=0: one-leaf trees are walked as any tree
+/// (tests compare the two).
+bool LeafTreesAllowed()
+{
+  const char* value = std::getenv("VTKRT_LEAF_TREES");
+  return !value || std::strcmp(value, "0") != 0;
+}
+
 /// A tile's entry list (MakeTileEntryLists) holds at most this many nodes.
 constexpr std::uint32_t kMaxTileEntries = 8;
 /// Trees shallower than this walk from the root: their walks are short, and
@@ -365,10 +373,11 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   f.Wireframe = this->Scene.HasWireframe();
   // The stack as deep as the deepest bottom-level tree needs; the top-level
   // walk shares it, so with one it is the largest.
-  std::uint32_t depth = 0;
+  std::uint32_t depth = 0, triangleDepth = 0;
   for (const Instance& inst : this->Scene.GetInstances())
   {
     depth = std::max(depth, inst.Geom->MaxDepth);
+    triangleDepth = inst.Geom->Spheres ? triangleDepth : std::max(triangleDepth, inst.Geom->MaxDepth);
   }
   f.StackSize = static_cast<int>(
     topLevel ? vtkrt::core::kMaxStackSize : vtkrt::core::gpu::stackSizeForDepth(depth));
@@ -378,6 +387,8 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   f.TileEntries = TileEntriesAllowed() && f.SingleInstance && f.Triangles && !f.Spheres && !f.Wireframe &&
     !f.WorldCoordinates && !f.ProjectiveRays && f.MaximumTraversalSteps == 0 &&
     depth >= kTileEntriesMinimumDepth;
+  // Meshes of a few triangles (planes, quads) are one leaf each: nothing to walk.
+  f.LeafTrees = f.Triangles && triangleDepth == 0 && LeafTreesAllowed();
   GLint major = 0;
   glGetIntegerv(GL_MAJOR_VERSION, &major);
   f.Fp64 = major >= 4;

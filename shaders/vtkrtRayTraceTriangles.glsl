@@ -153,7 +153,8 @@ bool bvhStartFromEntries(vec3 org, vec3 invDir, vec3 parallelBias, float tmin, f
 // leaf or is done, and only then are leaf triangles tested, so the group
 // pays the masked leaf loop once for all its rays. The stack walk itself is
 // bvhInteriorStep and bvhPopAfterLeaf (vtkrtRayTraceKernels.glsl), shared
-// with traverseSpheres.
+// with traverseSpheres. With VTKRT_LEAF_TREES (every triangle tree is one
+// leaf) the root's triangles are tested and nothing is walked.
 bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tmax, out int tri,
   out vec2 uv, bool stopAtFirstHit)
 {
@@ -191,6 +192,7 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
     vec3 growBy = vec3(0.0);
     float reach = tmax;
 #endif
+#ifndef VTKRT_LEAF_TREES
     if (!bvhDescend(
       org, invDir, parallelBias, growBy, tmin, reach, sp, steps, index, count, culled))
     {
@@ -201,6 +203,7 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
     {
       break;
     }
+#endif
 #endif
     // A leaf: its triangles [index, index + count), count >= 1 (a
     // do-while: see bvhDescend).
@@ -233,6 +236,10 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
     {
       return true;
     }
+#ifdef VTKRT_LEAF_TREES
+    // Every triangle tree is one leaf, the root: no walk.
+    break;
+#endif
 #ifdef VTKRT_HAS_WIREFRAME
     reach = wireReach(tmax);
 #endif

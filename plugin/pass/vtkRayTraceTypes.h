@@ -198,6 +198,8 @@ struct Features
   /// Camera rays start their walk from their screen tile's entry list
   /// (TileEntryLists): one triangle instance, affine camera-relative rays.
   bool TileEntries = false;
+  /// Every triangle tree is one leaf: the shader tests its triangles, no walk.
+  bool LeafTrees = false;
   int SamplesPerPixel = 0; ///< 0: one centered ray straight to the framebuffer
   bool Shadows = false;
   int AmbientOcclusionSamples = 0;

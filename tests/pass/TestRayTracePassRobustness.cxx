@@ -473,33 +473,41 @@ void TestFootprintTiles()
   NoVTKOutput("footprint tiles");
 }
 
-/// Renders with every camera ray walking from the tree's root, then from
-/// its tile's entries: the same image, the second shader the one with tile
-/// entries. Where a ray meets two triangles at the same t (a shared edge),
-/// the walks' orders may pick either, whose shading differs in rounding: a
-/// few pixels may differ, none by more than 16 levels.
-void CompareEntriesWithRoot(vtkRenderWindow* win, vtkRenderer* ren, vtkRayTracePass* pass, const std::string& what)
+/// Renders with a shader feature turned off by its environment variable
+/// (`variable`=0), then on: the same image, the second shader the one that
+/// #defines `define`. Where a ray meets two triangles at the same t (a shared
+/// edge), walks in another order may pick either, whose shading differs in
+/// rounding: a few pixels may differ, none by more than 16 levels.
+void CompareWithFeatureOff(vtkRenderWindow* win, vtkRenderer* ren, vtkRayTracePass* pass,
+  const char* variable, const std::string& define, const std::string& what)
 {
   ren->ResetCameraClippingRange();
-  setenv("VTKRT_TILE_ENTRIES", "0", 1);
+  const std::string line = "#define " + define + "\n";
+  setenv(variable, "0", 1);
   win->Render();
-  auto fromRoot = Grab(win);
-  const bool rootShader = std::string(pass->GetLastFragmentShaderSource()).find("#define VTKRT_TILE_ENTRIES") == std::string::npos;
-  unsetenv("VTKRT_TILE_ENTRIES");
+  auto off = Grab(win);
+  const bool offShader = std::string(pass->GetLastFragmentShaderSource()).find(line) == std::string::npos;
+  unsetenv(variable);
   win->Render();
-  auto fromEntries = Grab(win);
-  const bool entryShader = std::string(pass->GetLastFragmentShaderSource()).find("#define VTKRT_TILE_ENTRIES") != std::string::npos;
-  Check(rootShader && entryShader, "tile entries, " + what + ": the shaders with and without tile entries");
-  const long off = CountDifferingPixels(fromRoot, fromEntries, 0);
-  const long farOff = CountDifferingPixels(fromRoot, fromEntries, 16);
-  if (off > 20 || farOff > 0)
+  auto on = Grab(win);
+  const bool onShader = std::string(pass->GetLastFragmentShaderSource()).find(line) != std::string::npos;
+  Check(offShader && onShader, what + ": the shaders with and without " + define);
+  const long differ = CountDifferingPixels(off, on, 0);
+  const long farOff = CountDifferingPixels(off, on, 16);
+  if (differ > 20 || farOff > 0)
   {
-    // The root walk's image stands where raster's does.
-    WriteFailedImages("TileEntries", fromRoot, fromEntries);
+    // The image without the feature stands where raster's does.
+    WriteFailedImages(define, off, on);
   }
-  Check(off <= 20 && farOff == 0,
-    "tile entries, " + what + ": " + std::to_string(off) + " pixels differ from the root walk's, " +
+  Check(differ <= 20 && farOff == 0,
+    what + ": " + std::to_string(differ) + " pixels differ from the image without " + define + ", " +
       std::to_string(farOff) + " by more than 16 levels");
+}
+
+/// Camera rays walking from the tree's root, then from their tile's entries.
+void CompareEntriesWithRoot(vtkRenderWindow* win, vtkRenderer* ren, vtkRayTracePass* pass, const std::string& what)
+{
+  CompareWithFeatureOff(win, ren, pass, "VTKRT_TILE_ENTRIES", "VTKRT_TILE_ENTRIES", "tile entries, " + what);
 }
 
 void TestTileEntries()
@@ -552,6 +560,37 @@ void TestTileEntries()
   NoVTKOutput("tile entries");
 }
 
+void TestLeafTrees()
+{
+  auto win = MakeWindow(200, 160);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  // A floor and a tilted card over it, two triangles each (one-leaf trees),
+  // the card's shadow on the floor, and a full-view textured quad.
+  ren->AddActor(FloorActor(2.0));
+  vtkNew<vtkPlaneSource> card;
+  card->SetOrigin(-0.6, 0.5, -0.3);
+  card->SetPoint1(0.7, 0.8, -0.2);
+  card->SetPoint2(-0.4, 0.9, 0.6);
+  card->Update();
+  ren->AddActor(MeshActor(card->GetOutput()));
+  ren->GetActiveCamera()->SetPosition(1.5, 3.0, 4.0);
+  ren->ResetCamera();
+  vtkNew<vtkRayTracePass> pass;
+  pass->SetShadows(true);
+  ren->SetPass(pass);
+  CompareWithFeatureOff(win, ren, pass, "VTKRT_LEAF_TREES", "VTKRT_LEAF_TREES", "one-leaf trees, a card over a floor");
+  ren->GetActiveCamera()->Zoom(4.0);
+  pass->SetSamplesPerPixel(4);
+  CompareWithFeatureOff(win, ren, pass, "VTKRT_LEAF_TREES", "VTKRT_LEAF_TREES", "one-leaf trees, zoomed, four samples");
+  // A deeper tree in the scene: its walk is needed, so no one-leaf shader.
+  ren->AddActor(SphereActor(0.0, 1.5, 0.0, 0.3, 24));
+  win->Render();
+  Check(std::string(pass->GetLastFragmentShaderSource()).find("#define VTKRT_LEAF_TREES") == std::string::npos,
+    "one-leaf trees: a sphere's tree is walked");
+  NoVTKOutput("one-leaf trees");
+}
+
 int main(int argc, char* argv[])
 {
   Output = vtkrtTestOutputWindow::Install();
@@ -562,6 +601,7 @@ int main(int argc, char* argv[])
     { "Footprint", TestFootprint },
     { "FootprintTiles", TestFootprintTiles },
     { "TileEntries", TestTileEntries },
+    { "LeafTrees", TestLeafTrees },
   };
   return RunCase(argc, argv, cases);
 }

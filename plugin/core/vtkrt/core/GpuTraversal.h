@@ -111,6 +111,7 @@ struct ShaderInputs
   int maximumTraversalSteps = 0; ///< VTKRT_MAXIMUM_TRAVERSAL_STEPS (0: no cap)
   bool screenSpheres = false;    ///< VTKRT_SCREEN_SPHERES
   bool hasEllipsoids = false;    ///< VTKRT_HAS_ELLIPSOIDS
+  bool leafTrees = false;        ///< VTKRT_LEAF_TREES: every triangle tree is one leaf
   /// Not the shader's: the deepest stack entry the walks have touched so far
   /// (what VTKRT_STACK_SIZE must hold; see stackSizeForDepth).
   mutable int deepestStackEntry = -1;
@@ -312,14 +313,15 @@ inline void whileWhileWalk(const ShaderInputs& u, int root, const vec3& org, con
 /// node is `root`: tmax becomes the hit's t, tri its leaf-order index into
 /// uTriangles, uv its barycentrics. tileList >= 0: the walk starts from that
 /// list's entries (bvhStartFromEntries), which must hold every node the ray
-/// can reach.
+/// can reach. u.leafTrees: the root is a leaf, whose triangles alone are
+/// tested.
 inline bool traverseTriangles(const ShaderInputs& u, int root, const vec3& org, const vec3& dir, float tmin,
   float& tmax, int& tri, vec2& uv, bool stopAtFirstHit, int tileList = -1)
 {
   tri = -1;
   uv = vec2(0.0f);
   const RayTrianglePrecomputed pre = precomputeRayTriangle(org, dir);
-  detail::whileWhileWalk<false>(u, root, org, dir, tmin, tmax, 0.0f, [&](int first, int count) {
+  const auto leaf = [&](int first, int count) {
     const int end = first + count;
     for (int i = first; i < end; ++i)
     {
@@ -333,7 +335,15 @@ inline bool traverseTriangles(const ShaderInputs& u, int root, const vec3& org, 
       }
     }
     return stopAtFirstHit && tri >= 0;
-  }, tileList);
+  };
+  if (u.leafTrees)
+  {
+    const Node rootNode = fetchNode(u.uNodes, root);
+    assert(rootNode.count > 0 && "VTKRT_LEAF_TREES: the root is a leaf");
+    leaf(static_cast<int>(rootNode.index), static_cast<int>(rootNode.count));
+    return tri >= 0;
+  }
+  detail::whileWhileWalk<false>(u, root, org, dir, tmin, tmax, 0.0f, leaf, tileList);
   return tri >= 0;
 }
 

@@ -1,11 +1,14 @@
-// The walk from tile entry lists (the shader's VTKRT_TILE_ENTRIES) against
-// the walk from the root, on the C++ twins (core/GpuTraversal.h): camera
-// rays through every pixel of a tile, starting from the tile's list (the
-// tree's nodes at a cut level whose projected boxes touch the tile, the
-// nearest last, or in another order), find the root walk's hit exactly
-// (the same t; the same triangle but at ties), list 0 (the root alone)
-// finds it too, the walk stays within the stack entriesFitStack allows,
-// and a list missing its nearest or farthest node is caught.
+// Where the shader's triangle walks start, on the C++ twins
+// (core/GpuTraversal.h), against the walk from the root:
+// - tile entry lists (VTKRT_TILE_ENTRIES): camera rays through every pixel
+//   of a tile, starting from the tile's list (the tree's nodes at a cut
+//   level whose projected boxes touch the tile, the nearest last), find the
+//   root walk's hit exactly (the same t; the same triangle but at ties),
+//   list 0 (the root alone) finds it too, the walk stays within the stack
+//   entriesFitStack allows, and a list missing its nearest or farthest node
+//   is caught;
+// - one-leaf trees (VTKRT_LEAF_TREES): the root's triangles alone give the
+//   walk's hit, t, triangle and barycentrics, for closest and any hits.
 #include "CoreTestUtils.h"
 
 #include "vtkrt/core/GpuTraversal.h"
@@ -223,6 +226,47 @@ void checkTileWalks(const MeshData& mesh, const Vec3<double>& eyeWorld, double h
   std::printf("  %d rays hit, %d caught with the nearest or farthest entries dropped; the deepest walk %d entries from the bound\n",
     hits, caught, -deepest);
 }
+/// Meshes of a few triangles whose tree is one leaf: the leafTrees twin
+/// finds what the walk finds.
+void checkLeafTrees()
+{
+  Rng rng(17);
+  int hits = 0, leafTrees = 0;
+  for (int round = 0; round < 80; ++round)
+  {
+    const MeshData mesh = makeTriangleSoup(rng, 1 + round % 4, 0.6);
+    const BVH bvh = buildTriangleBVH(mesh.view());
+    if (bvh.nodes.size() != 1)
+    {
+      continue;
+    }
+    ++leafTrees;
+    const Vec3<double> origin = bvh.bounds().center();
+    const std::vector<float> nodes = packNodesForGpu(bvh, origin);
+    const std::vector<Vec3<float>> fverts = relativeFloatPoints(mesh.vertices.data(), mesh.vertices.size(), origin);
+    const std::vector<float> triangles = packTriangles(bvh, fverts, mesh.indices);
+    gpu::ShaderInputs walk, leaf;
+    walk.uNodes = leaf.uNodes = gpu::TexelBuffer(nodes);
+    walk.uTriangles = leaf.uTriangles = gpu::TexelBuffer(triangles);
+    leaf.leafTrees = true;
+    for (int i = 0; i < 500; ++i)
+    {
+      const vec3 org = vec3(rng.unitVector() * 2.0);
+      const vec3 dir = vec3(rng.inBox(Vec3<double>(-0.5), Vec3<double>(0.5))) - org;
+      for (bool any : { false, true })
+      {
+        float tWalk = 1e30f, tLeaf = 1e30f;
+        int triWalk, triLeaf;
+        vec2 uvWalk, uvLeaf;
+        const bool found = gpu::traverseTriangles(walk, 0, org, dir, 0.0f, tWalk, triWalk, uvWalk, any);
+        VTKRT_CHECK(gpu::traverseTriangles(leaf, 0, org, dir, 0.0f, tLeaf, triLeaf, uvLeaf, any) == found);
+        VTKRT_CHECK(tLeaf == tWalk && triLeaf == triWalk && uvLeaf == uvWalk);
+        hits += found ? 1 : 0;
+      }
+    }
+  }
+  VTKRT_CHECK_MSG(leafTrees >= 20 && hits > 1000, "%d one-leaf trees, %d hits", leafTrees, hits);
+}
 } // namespace
 
 int main()
@@ -234,5 +278,6 @@ int main()
     Rng rng(5);
     checkTileWalks(makeTriangleSoup(rng, 4000, 0.05), Vec3<double>(0.3, 2.0, 0.8), 0.5, 3000);
   }
-  return testResult("TestCoreGpuTileEntries");
+  checkLeafTrees();
+  return testResult("TestCoreGpuWalkStarts");
 }
