@@ -578,18 +578,24 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
   this->SetUniforms(p.Tracer->Program, p.F, p.Camera, frame, p.Lights, p.OcclusionRadius);
   if (p.F.TileEntries)
   {
-    const vtkrt::pass::TileEntryLists lists = vtkrt::pass::MakeTileEntryLists(
-      p.Camera, frame, ren, kFootprintTile, kMaxTileEntries, static_cast<std::uint32_t>(p.F.StackSize));
-    if (lists.Words != this->LastTileEntries || !this->Buffers.TileEntries.GetTexels())
-    {
-      this->Counters.FrameBytesUploaded +=
-        this->Buffers.TileEntries.Upload(win, lists.Words.data(), lists.Words.size() / 4);
-      this->LastTileEntries = lists.Words;
-    }
-    p.Tracer->Program->SetUniform4f("uTileGrid", lists.Grid);
+    this->SetTileEntries(ren, win, p);
   }
   p.Active = this->Buffers.Bind(p.Tracer->Program);
   return true;
+}
+
+void vtkRayTracePass::Internals::SetTileEntries(vtkOpenGLRenderer* ren, vtkOpenGLRenderWindow* win, Prepared& p)
+{
+  const vtkrt::pass::TileEntryLists lists = vtkrt::pass::MakeTileEntryLists(
+    p.Camera, p.Frame, ren, kFootprintTile, kMaxTileEntries, static_cast<std::uint32_t>(p.F.StackSize));
+  // A still camera keeps its lists on the GPU.
+  if (lists.Words != this->LastTileEntries || !this->Buffers.TileEntries.GetTexels())
+  {
+    this->Counters.FrameBytesUploaded +=
+      this->Buffers.TileEntries.Upload(win, lists.Words.data(), lists.Words.size() / 4);
+    this->LastTileEntries = lists.Words;
+  }
+  p.Tracer->Program->SetUniform4f("uTileGrid", lists.Grid);
 }
 
 void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren,

@@ -192,6 +192,9 @@ struct vtkRayTracePass::Internals
   void SetUniforms(vtkShaderProgram* program, const vtkrt::pass::Features& f,
     const vtkrt::pass::CameraFrame& camera, const vtkrt::pass::FrameRecords& frame,
     const std::vector<vtkrt::core::gpu::Light>& lights, double occlusionRadius) const;
+  /// Where the camera rays' walks start (the shader's VTKRT_TILE_ENTRIES):
+  /// the frame's tile lists, uploaded when they changed, and their grid.
+  void SetTileEntries(vtkOpenGLRenderer* ren, vtkOpenGLRenderWindow* win, Prepared& p);
   /// Draws what the pass did not trace through the delegate.
   void RenderOthers(vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren);
 };

@@ -14,11 +14,20 @@ float rayTransmittance(vec3 org, vec3 dir, float tmax); // vtkrtRayTraceTransluc
 // 0 or 1, or with translucent surfaces the product of what each lets through.
 float rayVisibility(vec3 org, vec3 dir, float tmax)
 {
-#ifdef VTKRT_TRANSLUCENT
-  return rayTransmittance(org, dir, tmax);
-#else
-  return anyHit(org, dir, tmax) ? 0.0 : 1.0;
+#ifdef VTKRT_TILE_ENTRIES
+  // Not a camera ray: its walks start at the root (list 0).
+  int cameraList = gTileList;
+  gTileList = 0;
 #endif
+#ifdef VTKRT_TRANSLUCENT
+  float visibility = rayTransmittance(org, dir, tmax);
+#else
+  float visibility = anyHit(org, dir, tmax) ? 0.0 : 1.0;
+#endif
+#ifdef VTKRT_TILE_ENTRIES
+  gTileList = cameraList;
+#endif
+  return visibility;
 }
 
 // Wächter & Binder, "A Fast and Robust Method for Avoiding

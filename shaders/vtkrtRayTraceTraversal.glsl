@@ -204,15 +204,7 @@ bool anyHit(vec3 org, vec3 dir, float tmax)
 #ifdef VTKRT_HAS_TOP_LEVEL
   traceTopLevel(org, dir, invDir, 0.0, t, hitInstance, hitPrimitive, hitUV, true);
 #elif defined(VTKRT_SINGLE_INSTANCE)
-#ifdef VTKRT_TILE_ENTRIES
-  // Not a camera ray: the walk starts at the root (list 0).
-  int cameraList = gTileList;
-  gTileList = 0;
-#endif
   traceInstance(0, org, dir, invDir, 0.0, t, hitInstance, hitPrimitive, hitUV, true);
-#ifdef VTKRT_TILE_ENTRIES
-  gTileList = cameraList;
-#endif
 #else
   // Do-whiles (a scene traced has an instance): see bvhDescend.
   int instance = 0;

@@ -113,7 +113,7 @@ uniform usamplerBuffer uTileEntries;
 // Tiles per unit of [0, 1] viewport coordinates (xy), tiles in x and y (zw).
 uniform vec4 uTileGrid;
 // The list of the walks under way: the camera ray's tile (shadeRay), list 0
-// while anyHit walks.
+// while shadow and occlusion rays walk (rayVisibility).
 int gTileList = 0;
 
 // The tile list of the camera ray through ndc.

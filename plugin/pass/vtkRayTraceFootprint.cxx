@@ -404,7 +404,7 @@ struct CutNode
   int First[2];
   int Last[2];
   double Nearest;
-  bool Reaches; ///< false: behind the near plane or outside the viewport
+  bool Reaches; ///< false: behind the near plane, or no pixel of the viewport
 };
 
 /// The tile lists' builder: each tile's list starts as the root and
@@ -573,11 +573,15 @@ TileEntryLists RootLists(std::uint32_t root)
 TileEntryLists MakeTileEntryLists(const CameraFrame& camera, const FrameRecords& frame, vtkRenderer* ren,
   int tileSize, std::uint32_t maxEntries, std::uint32_t stackSize)
 {
-  if (frame.Records.size() != 1 || frame.Outlines.size() != 1)
+  if (frame.Records.empty())
   {
     return RootLists(0u);
   }
   const std::uint32_t root = frame.Records[0].root;
+  if (frame.Records.size() != 1 || frame.Outlines.size() != 1)
+  {
+    return RootLists(root);
+  }
   const InstanceOutline& outline = frame.Outlines[0];
   int width = 0, height = 0, x0 = 0, y0 = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);

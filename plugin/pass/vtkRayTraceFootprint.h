@@ -76,13 +76,14 @@ struct TileEntryLists
   std::size_t Entries = 0; ///< node ids over all tiles
 };
 
-/// The lists: for each tile (TileSizeFor(..., tileSize)), the deepest level
-/// of the instance's tree whose nodes (leaves above it standing for
-/// themselves) whose boxes' projections, a pixel wider, touch the tile are
-/// at most maxEntries and fit the shader's stack of stackSize entries with
-/// the walks below them (core::gpu::entriesFitStack), the nearest last; a
-/// tile no box touches gets the root's list. With no tree (or no bound) every
-/// tile gets the root's list.
+/// The lists: for each tile (TileSizeFor(..., tileSize)), nodes of the
+/// instance's tree that hold every primitive whose box's projection, a pixel
+/// wider, touches the tile: starting from the root, the node with the
+/// tallest subtree is replaced by its children that touch the tile, while
+/// the list keeps at most maxEntries nodes and fits the shader's stack of
+/// stackSize entries (core::gpu::entriesFitStack); the nearest last. A tile
+/// no box touches, and every tile of a frame with no tree, gets the root's
+/// list.
 TileEntryLists MakeTileEntryLists(const CameraFrame& camera, const FrameRecords& frame, vtkRenderer* ren,
   int tileSize, std::uint32_t maxEntries, std::uint32_t stackSize);
 } // namespace pass
