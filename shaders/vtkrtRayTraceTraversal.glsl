@@ -30,13 +30,17 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, float tMin, in
     return;
   }
 #endif
+#if !defined(VTKRT_TILE_ENTRIES) && !(defined(VTKRT_LEAF_TREES) && !defined(VTKRT_HAS_SPHERES))
   // The branch-free test: it accepts a superset of the boxes the ray
-  // meets, which never changes a hit (t0 >= 0 as it needs).
+  // meets, which never changes a hit (t0 >= 0 as it needs). Where the
+  // walk starts at tested entry boxes, or at the one leaf of every tree,
+  // it would only repeat their work.
   float tnear;
   if (!intersectRayBoxConservative(org, invDir, parallelAxisBias(invDir), boxMin, boxMax, t0, t1, tnear))
   {
     return;
   }
+#endif
 #ifdef VTKRT_SKIPS_FACES
   float tEnd = t1;
 #endif
