@@ -16,7 +16,7 @@ case "$mode" in
     sanitize="address,undefined"
     targets=(TestBVHCellLocator TestCoreKernels TestCoreBVHQueries TestCoreWatertight TestCoreExtremes
       TestCoreBuild TestCoreTwoLevel TestCoreConservativeFloat TestCoreWideBVH TestCoreGpuTwins
-      TestCoreSurfaceTriangulation TestCoreGpuTranslucency TestCoreTubeTwins)
+      TestCoreSurfaceTriangulation TestCoreGpuTranslucency TestCoreTubeTwins TestCoreGpuWalkStarts)
     default_tests=(-L 'core|locator')
     # Leak checking stays on; the suppressions may list third-party
     # libraries only.
