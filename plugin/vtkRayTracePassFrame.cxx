@@ -70,27 +70,15 @@ std::size_t ScissorTo(vtkOpenGLState* ostate, const int rect[4])
   return ScissorTo(ostate, rect, DrawingBound(ostate));
 }
 
-/// False with VTKRT_FOOTPRINT_TILES=0: camera rays over the traced
-/// footprint's rectangle, not its tiles (tests compare the two).
-bool FootprintTilesAllowed()
+/// False when the environment variable is 0: tests compare the pass with
+/// and without a way of saving work, which must not change the image.
+/// VTKRT_FOOTPRINT_TILES=0: camera rays over the traced footprint's
+/// rectangle, not its tiles; VTKRT_TILE_ENTRIES=0: camera rays walk from
+/// the tree's root, not from their tile's entries; VTKRT_LEAF_TREES=0:
+/// one-leaf trees are walked as any tree.
+bool Allowed(const char* variable)
 {
-  const char* value = std::getenv("VTKRT_FOOTPRINT_TILES");
-  return !value || std::strcmp(value, "0") != 0;
-}
-
-/// False with VTKRT_TILE_ENTRIES=0: camera rays walk from the tree's root,
-/// not from their tile's entries (tests compare the two).
-bool TileEntriesAllowed()
-{
-  const char* value = std::getenv("VTKRT_TILE_ENTRIES");
-  return !value || std::strcmp(value, "0") != 0;
-}
-
-/// False with VTKRT_LEAF_TREES=0: one-leaf trees are walked as any tree
-/// (tests compare the two).
-bool LeafTreesAllowed()
-{
-  const char* value = std::getenv("VTKRT_LEAF_TREES");
+  const char* value = std::getenv(variable);
   return !value || std::strcmp(value, "0") != 0;
 }
 
@@ -384,11 +372,11 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   // Camera rays start from their tile's nodes where one deep triangle tree
   // is walked by affine camera-relative rays with unsized boxes (wires grow
   // them), and no step cap (it counts from the root).
-  f.TileEntries = TileEntriesAllowed() && f.SingleInstance && f.Triangles && !f.Spheres && !f.Wireframe &&
+  f.TileEntries = Allowed("VTKRT_TILE_ENTRIES") && f.SingleInstance && f.Triangles && !f.Spheres && !f.Wireframe &&
     !f.WorldCoordinates && !f.ProjectiveRays && f.MaximumTraversalSteps == 0 &&
     depth >= kTileEntriesMinimumDepth;
   // Meshes of a few triangles (planes, quads) are one leaf each: nothing to walk.
-  f.LeafTrees = f.Triangles && triangleDepth == 0 && LeafTreesAllowed();
+  f.LeafTrees = f.Triangles && triangleDepth == 0 && Allowed("VTKRT_LEAF_TREES");
   GLint major = 0;
   glGetIntegerv(GL_MAJOR_VERSION, &major);
   f.Fp64 = major >= 4;
@@ -637,7 +625,7 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRen
     // Finer still: only the tiles the instances' upper tree boxes reach.
     // Tiles need camera-relative rays (WORLD mode's float rays far from the
     // origin stray more than their margin) and VTK's affine camera rays.
-    const bool tiled = FootprintTilesAllowed() && !p.F.WorldCoordinates && p.Camera.AffineRays;
+    const bool tiled = Allowed("VTKRT_FOOTPRINT_TILES") && !p.F.WorldCoordinates && p.Camera.AffineRays;
     std::vector<std::array<int, 4>> rects = tiled
       ? vtkrt::pass::TracedTiles(
           p.Camera, p.Frame, ren, narrowed ? footprint : nullptr, kFootprintTile, kMaxFootprintDraws)

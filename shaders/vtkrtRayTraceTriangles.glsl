@@ -116,7 +116,7 @@ uniform vec4 uTileGrid;
 // while shadow and occlusion rays walk (rayVisibility).
 int gTileList = 0;
 
-// The tile list of the camera ray through ndc.
+// The tile list of the camera ray through ndc (core::gpu::tileListOf).
 int tileListOf(vec2 ndc)
 {
   ivec2 t = clamp(ivec2(floor((ndc * 0.5 + 0.5) * uTileGrid.xy)), ivec2(0), ivec2(uTileGrid.zw) - 1);

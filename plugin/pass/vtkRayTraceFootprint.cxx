@@ -37,6 +37,47 @@ PixelRange pixelRange(const double lo[2], const double hi[2], const int size[2])
   return r;
 }
 
+/// Square tiles of side Tile over a viewport of Size pixels, Count of them
+/// in each direction.
+struct TileLayout
+{
+  int Size[2];
+  int Tile;
+  int Count[2];
+
+  TileLayout(const int size[2], int tile)
+    : Size{ size[0], size[1] }
+    , Tile(tile)
+    , Count{ (size[0] + tile - 1) / tile, (size[1] + tile - 1) / tile }
+  {
+  }
+
+  /// The tiles (inclusive ranges First..Last) that the pixel range r
+  /// touches; none when r is empty.
+  bool Span(const PixelRange& r, int first[2], int last[2]) const
+  {
+    for (int k = 0; k < 2; ++k)
+    {
+      first[k] = r.First[k] / this->Tile;
+      last[k] = (r.Last[k] - 1) / this->Tile;
+    }
+    return r.Last[0] > r.First[0] && r.Last[1] > r.First[1];
+  }
+};
+
+/// The side of the square tiles of a viewport: about a sixteenth of its
+/// smaller side (a power of two), 8 pixels or more, at most maxTile unless
+/// that is under 8.
+int tileSizeFor(int width, int height, int maxTile)
+{
+  int tile = 8;
+  while (2 * tile <= maxTile && 2 * tile * 16 <= std::min(width, height))
+  {
+    tile *= 2;
+  }
+  return tile;
+}
+
 /// Where a box lies against the near plane: wholly in front (its
 /// projection is bounded), wholly behind it (no camera ray, which starts on
 /// the near plane, reaches it) or across the eye plane with no near plane
@@ -136,32 +177,26 @@ void worldCorner(const CameraFrame& camera, const core::AABB<double>& box, int c
 }
 
 /// A grid of tiles over the viewport, marked where a box's pixels are.
-struct TileGrid
+struct TileGrid : TileLayout
 {
-  int Size[2];
-  int Tile;
-  int Count[2];
   std::vector<char> Covered;
 
   TileGrid(const int size[2], int tile)
-    : Size{ size[0], size[1] }
-    , Tile(tile)
-    , Count{ (size[0] + tile - 1) / tile, (size[1] + tile - 1) / tile }
+    : TileLayout(size, tile)
     , Covered(static_cast<std::size_t>(Count[0]) * Count[1], 0)
   {
   }
 
   void mark(const double lo[2], const double hi[2])
   {
-    const PixelRange r = pixelRange(lo, hi, this->Size);
-    if (r.Last[0] <= r.First[0] || r.Last[1] <= r.First[1])
+    int first[2], last[2];
+    if (!this->Span(pixelRange(lo, hi, this->Size), first, last))
     {
       return;
     }
-    for (int ty = r.First[1] / this->Tile; ty <= (r.Last[1] - 1) / this->Tile; ++ty)
+    for (int ty = first[1]; ty <= last[1]; ++ty)
     {
-      std::fill_n(this->Covered.begin() + ty * this->Count[0] + r.First[0] / this->Tile,
-        (r.Last[0] - 1) / this->Tile - r.First[0] / this->Tile + 1, 1);
+      std::fill_n(this->Covered.begin() + ty * this->Count[0] + first[0], last[0] - first[0] + 1, 1);
     }
   }
 
@@ -209,16 +244,6 @@ struct TileGrid
   }
 };
 } // namespace
-
-int TileSizeFor(int width, int height, int maxTile)
-{
-  int tile = 8;
-  while (2 * tile <= maxTile && 2 * tile * 16 <= std::min(width, height))
-  {
-    tile *= 2;
-  }
-  return tile;
-}
 
 int OutlineDepth(std::size_t instances)
 {
@@ -365,7 +390,7 @@ std::vector<std::array<int, 4>> TracedTiles(const CameraFrame& camera, const Fra
   {
     return {};
   }
-  TileGrid grid(size, TileSizeFor(width, height, tileSize));
+  TileGrid grid(size, tileSizeFor(width, height, tileSize));
   for (std::size_t i = 0; i < frame.Outlines.size(); ++i)
   {
     if (!markInstance(camera, frame, i, grid))
@@ -418,9 +443,7 @@ public:
     : CameraToClip(camera.CameraToClip.Get())
     , NearW(camera.NearPlaneW())
     , Outline(outline)
-    , Size{ size[0], size[1] }
-    , Tile(tile)
-    , Count{ (size[0] + tile - 1) / tile, (size[1] + tile - 1) / tile }
+    , Tiles(size, tile)
   {
   }
 
@@ -428,7 +451,8 @@ public:
   /// the nearest last.
   TileEntryLists Lists(std::uint32_t root, std::uint32_t maxEntries, std::uint32_t stackSize)
   {
-    const std::size_t tiles = static_cast<std::size_t>(this->Count[0]) * this->Count[1];
+    const int* count = this->Tiles.Count;
+    const std::size_t tiles = static_cast<std::size_t>(count[0]) * count[1];
     TileEntryLists out;
     const std::size_t headerWords = 4 * (tiles + 1);
     out.Words.assign(headerWords, 0u);
@@ -436,12 +460,12 @@ public:
     out.Words[0] = static_cast<std::uint32_t>(headerWords);
     out.Words[1] = 1u;
     std::vector<const CutNode*> list;
-    for (int ty = 0; ty < this->Count[1]; ++ty)
+    for (int ty = 0; ty < count[1]; ++ty)
     {
-      for (int tx = 0; tx < this->Count[0]; ++tx)
+      for (int tx = 0; tx < count[0]; ++tx)
       {
         this->ListOf(tx, ty, maxEntries, stackSize, list);
-        std::uint32_t* header = out.Words.data() + 4 * (1 + static_cast<std::size_t>(ty) * this->Count[0] + tx);
+        std::uint32_t* header = out.Words.data() + 4 * (1 + static_cast<std::size_t>(ty) * count[0] + tx);
         header[0] = list.empty() ? out.Words[0] : static_cast<std::uint32_t>(out.Words.size());
         header[1] = list.empty() ? 1u : static_cast<std::uint32_t>(list.size());
         std::sort(list.begin(), list.end(), [](const CutNode* a, const CutNode* b) { return a->Nearest > b->Nearest; });
@@ -453,10 +477,11 @@ public:
       }
     }
     out.Words.resize((out.Words.size() + 3) / 4 * 4, 0u);
-    out.Grid[0] = static_cast<float>(this->Size[0]) / static_cast<float>(this->Tile);
-    out.Grid[1] = static_cast<float>(this->Size[1]) / static_cast<float>(this->Tile);
-    out.Grid[2] = static_cast<float>(this->Count[0]);
-    out.Grid[3] = static_cast<float>(this->Count[1]);
+    for (int k = 0; k < 2; ++k)
+    {
+      out.Grid[k] = static_cast<float>(this->Tiles.Size[k]) / static_cast<float>(this->Tiles.Tile);
+      out.Grid[2 + k] = static_cast<float>(count[k]);
+    }
     return out;
   }
 
@@ -464,10 +489,9 @@ private:
   vtkMatrix4x4* CameraToClip;
   double NearW;
   const InstanceOutline& Outline;
-  int Size[2];
-  int Tile;
-  int Count[2];
+  TileLayout Tiles;
   std::unordered_map<std::uint32_t, CutNode> Reached; ///< the projections made
+  std::vector<const CutNode*> Next;                   ///< ListOf's list after a split
 
   /// Node `node` (local), `height` levels at most below it, projected.
   const CutNode& Reach(std::uint32_t node, std::uint32_t height)
@@ -484,15 +508,10 @@ private:
     double lo[2], hi[2];
     const Side side =
       projectNode(this->CameraToClip, this->NearW, this->Outline.LocalToShader.data(), n, lo, hi, &out.Nearest);
-    PixelRange r = side == Side::Across ? PixelRange{ { 0, 0 }, { this->Size[0], this->Size[1] } }
-                                        : pixelRange(lo, hi, this->Size);
-    out.Nearest = side == Side::Across ? -1.0 : out.Nearest;
-    out.Reaches = side != Side::Behind && r.Last[0] > r.First[0] && r.Last[1] > r.First[1];
-    for (int k = 0; k < 2; ++k)
-    {
-      out.First[k] = r.First[k] / this->Tile;
-      out.Last[k] = (r.Last[k] - 1) / this->Tile;
-    }
+    const int* size = this->Tiles.Size;
+    const PixelRange r =
+      side == Side::Across ? PixelRange{ { 0, 0 }, { size[0], size[1] } } : pixelRange(lo, hi, size);
+    out.Reaches = this->Tiles.Span(r, out.First, out.Last) && side != Side::Behind;
     return out;
   }
 
@@ -506,57 +525,43 @@ private:
   {
     list.clear();
     const CutNode& root = this->Reach(0u, this->Outline.Tree->MaxDepth);
-    if (!Touches(root, tx, ty))
+    if (Touches(root, tx, ty))
     {
-      return;
+      list.push_back(&root);
     }
-    list.push_back(&root);
+    std::vector<const CutNode*>& next = this->Next;
     for (;;)
     {
       // The shallowest interior node (the tallest subtree) splits next.
-      std::size_t split = list.size();
-      std::uint32_t height = 0;
-      for (std::size_t k = 0; k < list.size(); ++k)
-      {
-        if (list[k]->Height > height)
-        {
-          split = k;
-          height = list[k]->Height;
-        }
-      }
-      if (split == list.size())
+      const auto split = std::max_element(
+        list.begin(), list.end(), [](const CutNode* a, const CutNode* b) { return a->Height < b->Height; });
+      if (split == list.end() || (*split)->Height == 0)
       {
         return;
       }
-      const core::gpu::Node& n = this->Outline.Tree->Nodes[list[split]->Node];
-      const CutNode* children[2] = { &this->Reach(n.index, height - 1), &this->Reach(n.index + 1, height - 1) };
-      std::size_t size = list.size() - 1;
+      const std::uint32_t height = (*split)->Height;
+      const core::gpu::Node& n = this->Outline.Tree->Nodes[(*split)->Node];
+      next.assign(list.begin(), split);
+      next.insert(next.end(), split + 1, list.end());
       std::uint32_t tallest = 0;
-      for (std::size_t k = 0; k < list.size(); ++k)
+      for (std::uint32_t child : { n.index, n.index + 1 })
       {
-        tallest = k == split ? tallest : std::max(tallest, list[k]->Height);
-      }
-      for (const CutNode* c : children)
-      {
-        size += Touches(*c, tx, ty) ? 1 : 0;
-        tallest = Touches(*c, tx, ty) ? std::max(tallest, c->Height) : tallest;
-      }
-      if (size > maxEntries || !core::gpu::entriesFitStack(static_cast<std::uint32_t>(size), tallest, stackSize))
-      {
-        return;
-      }
-      list.erase(list.begin() + static_cast<std::ptrdiff_t>(split));
-      for (const CutNode* c : children)
-      {
-        if (Touches(*c, tx, ty))
+        const CutNode& c = this->Reach(child, height - 1);
+        if (Touches(c, tx, ty))
         {
-          list.push_back(c);
+          next.push_back(&c);
         }
       }
-      if (list.empty())
+      for (const CutNode* c : next)
+      {
+        tallest = std::max(tallest, c->Height);
+      }
+      if (next.size() > maxEntries ||
+        !core::gpu::entriesFitStack(static_cast<std::uint32_t>(next.size()), tallest, stackSize))
       {
         return;
       }
+      list.swap(next);
     }
   }
 };
@@ -590,7 +595,7 @@ TileEntryLists MakeTileEntryLists(const CameraFrame& camera, const FrameRecords&
     return RootLists(root);
   }
   const int size[2] = { width, height };
-  TileCuts cuts(camera, outline, size, TileSizeFor(width, height, tileSize));
+  TileCuts cuts(camera, outline, size, tileSizeFor(width, height, tileSize));
   return cuts.Lists(root, maxEntries, stackSize);
 }
 

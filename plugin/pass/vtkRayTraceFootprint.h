@@ -35,11 +35,6 @@ struct InstanceOutline
 /// with nodes down to `depth`.
 InstanceOutline OutlineOf(const Instance& inst, const double localToShader[16], int depth);
 
-/// The side of the square tiles of a viewport: about a sixteenth of its
-/// smaller side (a power of two), 8 pixels or more, at most maxTile unless
-/// that is under 8.
-int TileSizeFor(int width, int height, int maxTile);
-
 /// The depth of the outlines of a frame of `instances` instances: about
 /// 4096 boxes in all, at most 8 levels (256 boxes) per instance.
 int OutlineDepth(std::size_t instances);
@@ -76,14 +71,14 @@ struct TileEntryLists
   std::size_t Entries = 0; ///< node ids over all tiles
 };
 
-/// The lists: for each tile (TileSizeFor(..., tileSize)), nodes of the
-/// instance's tree that hold every primitive whose box's projection, a pixel
-/// wider, touches the tile: starting from the root, the node with the
-/// tallest subtree is replaced by its children that touch the tile, while
-/// the list keeps at most maxEntries nodes and fits the shader's stack of
-/// stackSize entries (core::gpu::entriesFitStack); the nearest last. A tile
-/// no box touches, and every tile of a frame with no tree, gets the root's
-/// list.
+/// The lists: for each tile (as TracedTiles makes them, of at most
+/// tileSize pixels), nodes of the instance's tree that hold every primitive
+/// whose box's projection, a pixel wider, touches the tile: starting from
+/// the root, the node with the tallest subtree is replaced by its children
+/// that touch the tile, while the list keeps at most maxEntries nodes and
+/// fits the shader's stack of stackSize entries
+/// (core::gpu::entriesFitStack); the nearest last. A tile no box touches,
+/// and every tile of a frame with no tree, gets the root's list.
 TileEntryLists MakeTileEntryLists(const CameraFrame& camera, const FrameRecords& frame, vtkRenderer* ren,
   int tileSize, std::uint32_t maxEntries, std::uint32_t stackSize);
 } // namespace pass

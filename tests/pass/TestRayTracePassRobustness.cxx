@@ -18,7 +18,6 @@
 #include "vtkrtTestOutputWindow.h"
 
 #include "vtkActor.h"
-#include "vtkAppendPolyData.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
@@ -522,20 +521,7 @@ void TestTileEntries()
   // One mesh deep enough for tile entries (a fine sphere) and a floor,
   // turned by its matrix: the floor's shadows come from rays that are not
   // camera rays, which walk from the root.
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetCenter(0.0, 0.8, 0.0);
-  sphere->SetThetaResolution(400);
-  sphere->SetPhiResolution(400);
-  vtkNew<vtkPlaneSource> floor;
-  floor->SetOrigin(-2.0, 0.0, -2.0);
-  floor->SetPoint1(2.0, 0.0, -2.0);
-  floor->SetPoint2(-2.0, 0.0, 2.0);
-  floor->SetResolution(8, 8);
-  vtkNew<vtkAppendPolyData> both;
-  both->AddInputConnection(sphere->GetOutputPort());
-  both->AddInputConnection(floor->GetOutputPort());
-  both->Update();
-  auto actor = MeshActor(both->GetOutput());
+  auto actor = MeshActor(SphereOverFloor(400, 8));
   actor->RotateY(25.0);
   actor->RotateX(10.0);
   ren->AddActor(actor);

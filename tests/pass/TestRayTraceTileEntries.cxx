@@ -17,13 +17,10 @@
 
 #include "vtkrt/core/GpuTraversal.h"
 
-#include "vtkAppendPolyData.h"
 #include "vtkCamera.h"
 #include "vtkOpenGLCamera.h"
 #include "vtkOpenGLRenderer.h"
-#include "vtkPlaneSource.h"
 #include "vtkPolyData.h"
-#include "vtkSphereSource.h"
 #include "vtkTransform.h"
 
 #include <algorithm>
@@ -37,19 +34,6 @@ namespace
 {
 using vtkrt::core::gpu::vec2;
 using vtkrt::core::gpu::vec3;
-
-/// The shader's tile list of the camera ray through ndc (tileListOf).
-int TileListOf(const vtkrt::pass::TileEntryLists& lists, double x, double y)
-{
-  const float ndc[2] = { static_cast<float>(x), static_cast<float>(y) };
-  int t[2];
-  for (int k = 0; k < 2; ++k)
-  {
-    t[k] = static_cast<int>(std::floor((ndc[k] * 0.5f + 0.5f) * lists.Grid[k]));
-    t[k] = std::min(std::max(t[k], 0), static_cast<int>(lists.Grid[2 + k]) - 1);
-  }
-  return 1 + t[1] * static_cast<int>(lists.Grid[2]) + t[0];
-}
 
 /// Every pixel's rays walked from the root and from its tile's list.
 void CheckView(vtkRenderer* ren, const vtkrt::pass::Geometry& geometry, const vtkrt::pass::Instance& instance,
@@ -79,6 +63,7 @@ void CheckView(vtkRenderer* ren, const vtkrt::pass::Geometry& geometry, const vt
   u.uNodes = core::gpu::TexelBuffer(nodes);
   u.uTriangles = core::gpu::TexelBuffer(triangles);
   u.uTileEntries = core::gpu::TexelBuffer(lists.Words);
+  u.uTileGrid = core::gpu::vec4(lists.Grid[0], lists.Grid[1], lists.Grid[2], lists.Grid[3]);
   const core::gpu::InstanceRecord& rec = frame.Records[0];
   int size[2] = { 0, 0 }, origin[2] = { 0, 0 };
   ren->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
@@ -102,7 +87,8 @@ void CheckView(vtkRenderer* ren, const vtkrt::pass::Geometry& geometry, const vt
         vec2 uv;
         core::gpu::traverseTriangles(u, 0, localOrg, localDir, 0.0f, tRoot, triRoot, uv, false);
         u.deepestStackEntry = -1;
-        core::gpu::traverseTriangles(u, 0, localOrg, localDir, 0.0f, tList, triList, uv, false, TileListOf(lists, x, y));
+        const int list = core::gpu::tileListOf(u, vec2(static_cast<float>(x), static_cast<float>(y)));
+        core::gpu::traverseTriangles(u, 0, localOrg, localDir, 0.0f, tList, triList, uv, false, list);
         ++rays;
         hits += triRoot >= 0 ? 1 : 0;
         missed += tList != tRoot ? 1 : 0;
@@ -121,34 +107,15 @@ void CheckView(vtkRenderer* ren, const vtkrt::pass::Geometry& geometry, const vt
 void TestRootHits()
 {
   using namespace vtkrt;
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetCenter(0.0, 0.8, 0.0);
-  sphere->SetThetaResolution(96);
-  sphere->SetPhiResolution(96);
-  vtkNew<vtkPlaneSource> floor;
-  floor->SetOrigin(-2.0, 0.0, -2.0);
-  floor->SetPoint1(2.0, 0.0, -2.0);
-  floor->SetPoint2(-2.0, 0.0, 2.0);
-  floor->SetResolution(12, 12);
-  vtkNew<vtkAppendPolyData> both;
-  both->AddInputConnection(sphere->GetOutputPort());
-  both->AddInputConnection(floor->GetOutputPort());
-  both->Update();
   const std::unique_ptr<pass::Geometry> geometry =
-    pass::BuildTriangles(both->GetOutput(), pass::TriangleBuildOptions(1, 4));
+    pass::BuildTriangles(SphereOverFloor(96, 12), pass::TriangleBuildOptions(1, 4));
   pass::Instance instance;
   instance.Geom = geometry.get();
   vtkNew<vtkTransform> turn;
   turn->RotateY(25.0);
   turn->RotateX(10.0);
   turn->Translate(0.3, -0.2, 0.1);
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      instance.Matrix[4 * r + c] = turn->GetMatrix()->GetElement(r, c);
-    }
-  }
+  std::copy_n(turn->GetMatrix()->GetData(), 16, instance.Matrix.begin()); // both row-major
   auto win = MakeWindow(200, 150);
   vtkNew<vtkRenderer> ren;
   ren->SetViewport(0.1, 0.05, 0.9, 1.0);

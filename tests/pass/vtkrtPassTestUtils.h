@@ -10,6 +10,7 @@
 #include "vtkrt/core/Ray.h"
 
 #include "vtkActor.h"
+#include "vtkAppendPolyData.h"
 #include "vtkCamera.h"
 #include "vtkDoubleArray.h"
 #include "vtkGlyph3DMapper.h"
@@ -335,6 +336,26 @@ inline vtkSmartPointer<vtkActor> FloorActor(double half)
   actor->GetProperty()->SetAmbient(0.1);
   return actor;
 }
+/// One mesh of a sphere (res x res, radius 0.5 at (0, 0.8, 0)) and the floor
+/// [-2, 2]^2 in y = 0 (floorRes x floorRes quads).
+inline vtkSmartPointer<vtkPolyData> SphereOverFloor(int res, int floorRes)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0.0, 0.8, 0.0);
+  sphere->SetThetaResolution(res);
+  sphere->SetPhiResolution(res);
+  vtkNew<vtkPlaneSource> floor;
+  floor->SetOrigin(-2.0, 0.0, -2.0);
+  floor->SetPoint1(2.0, 0.0, -2.0);
+  floor->SetPoint2(-2.0, 0.0, 2.0);
+  floor->SetResolution(floorRes, floorRes);
+  vtkNew<vtkAppendPolyData> both;
+  both->AddInputConnection(sphere->GetOutputPort());
+  both->AddInputConnection(floor->GetOutputPort());
+  both->Update();
+  return both->GetOutput();
+}
+
 /// A copy of `poly` with double points shifted by `offset` (computed in
 /// double, so nothing is lost at 1e8).
 inline vtkSmartPointer<vtkPolyData> Shifted(vtkPolyData* poly, const double offset[3])

@@ -108,6 +108,7 @@ struct ShaderInputs
   TexelBuffer uTopNodes;  ///< the Nodes of the top-level BVH over the instance records
   TexelBuffer uTileEntries; ///< TileLists (list 0: the root's), then their node ids, four a texel
   vec3 uCameraToAnchor = vec3(0.0f);
+  vec4 uTileGrid = vec4(1.0f); ///< tiles per unit of [0, 1] viewport coordinates (xy), tiles in x, y (zw)
   int maximumTraversalSteps = 0; ///< VTKRT_MAXIMUM_TRAVERSAL_STEPS (0: no cap)
   bool screenSpheres = false;    ///< VTKRT_SCREEN_SPHERES
   bool hasEllipsoids = false;    ///< VTKRT_HAS_ELLIPSOIDS
@@ -212,6 +213,15 @@ inline bool bvhStartFromEntries(BvhStack& stack, const ShaderInputs& u, const ve
     sp += hit ? 1 : 0;
   } while (++e < end);
   return bvhPopAfterLeaf(stack, tmax, sp, index, count, culled);
+}
+
+/// The tile list of the camera ray through the normalized device
+/// coordinates ndc (the shader's tileListOf).
+inline int tileListOf(const ShaderInputs& u, const vec2& ndc)
+{
+  const glm::ivec2 t = glm::clamp(glm::ivec2(glm::floor((ndc * 0.5f + 0.5f) * vec2(u.uTileGrid.x, u.uTileGrid.y))),
+    glm::ivec2(0), glm::ivec2(u.uTileGrid.z, u.uTileGrid.w) - 1);
+  return 1 + t.y * static_cast<int>(u.uTileGrid.z) + t.x;
 }
 
 /// Whether a walk from a tile list of `entries` nodes, none with more than
