@@ -392,6 +392,8 @@ void SetCameraRayUniforms(vtkShaderProgram* program, const Features& f, const vt
   if (f.ProjectiveRays)
   {
     float m[16];
+    toGLSL(camera.CameraToClip, m);
+    program->SetUniformMatrix4x4("uCameraToClip", m);
     toGLSL(camera.ClipToCamera, m);
     program->SetUniformMatrix4x4("uClipToCamera", m);
     return;
@@ -407,6 +409,9 @@ void SetCameraRayUniforms(vtkShaderProgram* program, const Features& f, const vt
   }
   program->SetUniform3fv("uRayOrigin", 3, origin);
   program->SetUniform3fv("uRayDirection", 3, direction);
+  const float depth[4] = { static_cast<float>(camera.RayDepth[0]), static_cast<float>(camera.RayDepth[1]),
+    static_cast<float>(camera.RayDepth[2]), static_cast<float>(camera.RayDepth[3]) };
+  program->SetUniform4f("uRayDepth", depth);
 }
 
 /// The instances the shader walks: their count for the loop over them, or
@@ -431,9 +436,6 @@ void vtkRayTracePass::Internals::SetUniforms(vtkShaderProgram* program, const Fe
   const vtkrt::pass::CameraFrame& camera, const vtkrt::pass::FrameRecords& frame,
   const std::vector<vtkrt::core::gpu::Light>& lights, double occlusionRadius) const
 {
-  float m[16];
-  toGLSL(camera.CameraToClip, m);
-  program->SetUniformMatrix4x4("uCameraToClip", m);
   SetCameraRayUniforms(program, f, camera);
   const double* dop = camera.DirectionOfProjection;
   const float viewBack[3] = { static_cast<float>(-dop[0]), static_cast<float>(-dop[1]),
@@ -468,6 +470,7 @@ void vtkRayTracePass::Internals::SetUniforms(vtkShaderProgram* program, const Fe
   }
   if (f.SurfaceEdgeCode() || f.WireframeCode())
   {
+    float m[16];
     toGLSL(camera.CameraToPixels, m);
     program->SetUniformMatrix4x4("uCameraToPixels", m);
   }

@@ -6,8 +6,8 @@
 in vec2 texCoord;
 layout(location = 0) out vec4 fragOutput0;
 
-uniform mat4 uCameraToClip; // VTK's world-to-clip matrix, translated by the eye
 #ifdef VTKRT_PROJECTIVE_RAYS
+uniform mat4 uCameraToClip; // VTK's world-to-clip matrix, translated by the eye
 uniform mat4 uClipToCamera; // inverse of uCameraToClip
 #else
 // The camera ray through (x, y) (normalized device coordinates) from
@@ -16,6 +16,9 @@ uniform mat4 uClipToCamera; // inverse of uCameraToClip
 // x, y, unprojected once per frame in double (CameraFrame::AffineRays).
 uniform vec3 uRayOrigin[3];
 uniform vec3 uRayDirection[3];
+// A camera ray's depth at t (affineRayDepth; CameraFrame::RayDepth): a
+// division instead of a matrix product per pixel.
+uniform vec4 uRayDepth;
 #endif
 uniform vec3 uViewBack;     // unit +z axis of VTK's view coordinates
 uniform int uNumberOfInstances;

@@ -99,6 +99,14 @@ bool intersectRayBoxConservative(vec3 org, vec3 invDir, vec3 parallelBias, vec3 
   return tnear <= tfar;
 }
 
+// core::gpu::affineRayDepth: the normalized device depth of a camera ray's
+// point at t, clip z over clip w, both affine along the ray (rayDepth:
+// their values at t = 0 and their slopes, the same for every camera ray).
+float affineRayDepth(vec4 rayDepth, float t)
+{
+  return (rayDepth.x + t * rayDepth.y) / (rayDepth.z + t * rayDepth.w);
+}
+
 // core::clipRayByPlane (Plane.h): clips the ray's [tmin, tmax] to the
 // half-space n.p + d >= 0 of the plane (n, d) (what VTK keeps); a parallel
 // ray is kept or clipped whole by its origin's side. Returns false when

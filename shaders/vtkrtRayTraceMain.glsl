@@ -26,11 +26,16 @@
 // buffer, more than the float error of the hit's depth.
 const float kCoincidentDepthBias = 16.0 / 16777216.0;
 
-// The window depth of the camera-relative point p.
-float windowDepth(vec3 p)
+// The window depth of the camera ray's point at t.
+float windowDepth(vec3 org, vec3 dir, float t)
 {
-  vec4 clip = uCameraToClip * vec4(p, 1.0);
-  return clamp(0.5 * (clip.z / clip.w) + 0.5 + kCoincidentDepthBias, 0.0, 1.0);
+#ifdef VTKRT_PROJECTIVE_RAYS
+  vec4 clip = uCameraToClip * vec4(org + t * dir, 1.0);
+  float ndcDepth = clip.z / clip.w;
+#else
+  float ndcDepth = affineRayDepth(uRayDepth, t);
+#endif
+  return clamp(0.5 * ndcDepth + 0.5 + kCoincidentDepthBias, 0.0, 1.0);
 }
 
 #ifdef VTKRT_TRANSLUCENT
@@ -70,7 +75,7 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
   {
     return false;
   }
-  outDepth = windowDepth(org + tBest * dir);
+  outDepth = windowDepth(org, dir, tBest);
   outColor = shadeHit(org, dir, tBest, hitInstance, hitPrimitive, hitUV);
   return true;
 #endif

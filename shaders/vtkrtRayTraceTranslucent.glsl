@@ -53,7 +53,7 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, 
     compositeLayer(accumulated, layer.rgb, layer.a);
     if (accumulated.a >= kOpaqueAlpha)
     {
-      outDepth = windowDepth(org + t * dir);
+      outDepth = windowDepth(org, dir, t);
       break;
     }
     tMin = nextLayerTMin(t);

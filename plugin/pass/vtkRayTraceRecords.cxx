@@ -146,6 +146,15 @@ void CameraFrame::SetAffineRays()
     }
   }
   this->AffineRays = affine;
+  // Clip z and w at both ends of the ray at (0, 0).
+  double nearPoint[4] = { org[0], org[1], org[2], 1.0 };
+  double farPoint[4] = { org[0] + dir[0], org[1] + dir[1], org[2] + dir[2], 1.0 };
+  this->CameraToClip->MultiplyPoint(nearPoint, nearPoint);
+  this->CameraToClip->MultiplyPoint(farPoint, farPoint);
+  this->RayDepth[0] = nearPoint[2];
+  this->RayDepth[1] = farPoint[2] - nearPoint[2];
+  this->RayDepth[2] = nearPoint[3];
+  this->RayDepth[3] = farPoint[3] - nearPoint[3];
 }
 
 ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* ren,

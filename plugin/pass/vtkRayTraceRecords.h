@@ -57,6 +57,11 @@ struct CameraFrame
   bool AffineRays = true;
   double RayOrigin[3][3] = {};
   double RayDirection[3][3] = {};
+  /// With affine rays, the normalized device depth of every camera ray's
+  /// point at t is (RayDepth[0] + t RayDepth[1]) / (RayDepth[2] + t
+  /// RayDepth[3]): clip z and w are affine along a ray, and the same at
+  /// both ends of every ray (the near and far planes).
+  double RayDepth[4] = { -1.0, 2.0, 1.0, 0.0 };
 
   void Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCoordinates, double scale);
   /// RayOrigin, RayDirection and AffineRays from ClipToCamera.

@@ -10,6 +10,7 @@
 #include "vtkrtTestOutputWindow.h"
 
 #include "vtkRayTraceRecords.h"
+#include "vtkrt/core/GpuKernels.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -575,7 +576,9 @@ void TestCoincidentLines()
 // feature key: the shader takes them from three uniforms each): a
 // perspective camera, an off-axis one (window center) and a parallel one,
 // whose affine rays equal the unprojected ones at random points (camera-
-// relative and world coordinates). An explicit projective matrix (a
+// relative and world coordinates), and whose depth along a ray (the
+// shader's affineRayDepth, in float) is the point's projection, also for a
+// clipping range of 1e6. An explicit projective matrix (a
 // keystone: clip w grows with x) is not affine ("p1": the shader unprojects
 // each pixel). Each image against raster's, blurred (silhouettes).
 void TestCameraRays()
@@ -596,7 +599,11 @@ void TestCameraRays()
     frame.Set(vtkOpenGLRenderer::SafeDownCast(ren), vtkOpenGLCamera::SafeDownCast(cam), world, 1.0);
     std::mt19937 random(7);
     std::uniform_real_distribution<double> ndc(-1.0, 1.0);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const glm::vec4 rayDepth(static_cast<float>(frame.RayDepth[0]), static_cast<float>(frame.RayDepth[1]),
+      static_cast<float>(frame.RayDepth[2]), static_cast<float>(frame.RayDepth[3]));
     double worst = 0.0;
+    double worstDepth = 0.0;
     for (int i = 0; i < 100; ++i)
     {
       const double x = ndc(random), y = ndc(random);
@@ -608,11 +615,27 @@ void TestCameraRays()
         worst = std::max({ worst, std::abs(o[k] - org[k]) / (std::abs(org[k]) + std::abs(dir[k])),
           std::abs(d[k] - dir[k]) / std::abs(vtkMath::Norm(dir)) });
       }
+      const float t = static_cast<float>(unit(random));
+      double clip[4] = { org[0] + t * dir[0], org[1] + t * dir[1], org[2] + t * dir[2], 1.0 };
+      frame.CameraToClip->MultiplyPoint(clip, clip);
+      worstDepth =
+        std::max(worstDepth, std::abs(vtkrt::core::gpu::affineRayDepth(rayDepth, t) - clip[2] / clip[3]));
     }
     std::ostringstream s;
     s << label << (world ? ", world" : ", camera-relative") << ": affine rays equal the unprojected ones "
-      << "(worst relative difference " << worst << ")";
-    Check(frame.AffineRays && worst <= 1e-12, s.str());
+      << "(worst relative difference " << worst << "), their float depth the projected one (worst "
+      << worstDepth << " in normalized device z)";
+    // Two steps of a 24-bit depth buffer (window depth is half of it).
+    Check(frame.AffineRays && worst <= 1e-12 && worstDepth <= 4.0 / 16777216.0, s.str());
+  };
+  const auto raysMatchAnyRange = [&](const std::string& label) {
+    raysMatch(label, false);
+    raysMatch(label, true);
+    double range[2];
+    cam->GetClippingRange(range);
+    cam->SetClippingRange(range[0] * 1e-3, range[0] * 1e3);
+    raysMatch(label + ", clipping range 1e6", false);
+    cam->SetClippingRange(range);
   };
   const auto compare = [&](const std::string& label, const char* rays) {
     RasterAndTraced frames = CompareBlurred(win, ren, label, 2, 8.0, "CameraRays_" + label);
@@ -621,8 +644,7 @@ void TestCameraRays()
     ren->SetPass(nullptr);
     if (std::string(rays) == "p0")
     {
-      raysMatch(label, false);
-      raysMatch(label, true);
+      raysMatchAnyRange(label);
     }
   };
   compare("perspective", "p0");

@@ -86,6 +86,14 @@ inline vec3 rowsDir(const vec4& r0, const vec4& r1, const vec4& r2, const vec3& 
   return vec3(glm::dot(vec3(r0), d), glm::dot(vec3(r1), d), glm::dot(vec3(r2), d));
 }
 
+/// The normalized device depth of a camera ray's point at t, from the
+/// frame's rayDepth: (x + t y) / (z + t w), clip z over clip w along the ray
+/// (affine rays only; the pass's CameraFrame::RayDepth).
+inline float affineRayDepth(const vec4& rayDepth, float t)
+{
+  return (rayDepth.x + t * rayDepth.y) / (rayDepth.z + t * rayDepth.w);
+}
+
 inline bool clipRayByPlane(const vec3& org, const vec3& dir, const vec4& plane, float& tmin, float& tmax)
 {
   return core::clipRayByPlane(org, dir, plane, tmin, tmax);
