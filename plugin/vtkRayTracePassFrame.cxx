@@ -75,7 +75,8 @@ std::size_t ScissorTo(vtkOpenGLState* ostate, const int rect[4])
 /// VTKRT_FOOTPRINT_TILES=0: camera rays over the traced footprint's
 /// rectangle, not its tiles; VTKRT_TILE_ENTRIES=0: camera rays walk from
 /// the tree's root, not from their tile's entries; VTKRT_LEAF_TREES=0:
-/// one-leaf trees are walked as any tree.
+/// one-leaf trees are walked as any tree; VTKRT_PACKED_STACK_ENTRIES=0:
+/// walk stack entries of three words, as for the largest buffers.
 bool Allowed(const char* variable)
 {
   const char* value = std::getenv(variable);
@@ -369,6 +370,11 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   }
   f.StackSize = static_cast<int>(
     topLevel ? vtkrt::core::kMaxStackSize : vtkrt::core::gpu::stackSizeForDepth(depth));
+  // A stack entry packs a node's index and count into one word while every
+  // index a walk pushes (nodes, triangles, sphere texels) fits.
+  const vtkrt::pass::GeometrySizes& placed = this->Places.Geometry;
+  f.PackedStackEntries = Allowed("VTKRT_PACKED_STACK_ENTRIES") &&
+    std::max({ placed.Nodes, placed.Triangles, placed.SphereTexels }) <= vtkrt::core::gpu::kMaxPackedStackIndex;
   // Camera rays start from their tile's nodes where one deep triangle tree
   // is walked by affine camera-relative rays with unsized boxes (wires grow
   // them), and no step cap (it counts from the root).

@@ -160,10 +160,32 @@ uint fetchPacked(usamplerBuffer buffer, int i)
 // next step treats it as a dead end (no nested pop loop, which llvmpipe
 // would run every step). One walk at a time uses this stack (shading and
 // occlusion rays walk one after another, never one inside another). An
-// entry is (index, count, the bits of its entry distance) in one array, so a
-// push or a pop is one indexed access (llvmpipe gathers and scatters each
-// lane's element of an indexed array one by one).
-uvec3 bvhStack[VTKRT_STACK_SIZE];
+// entry is the node's index and count and the bits of its entry distance in
+// one array, so a push or a pop is one indexed access, and index and count
+// share a word (core::gpu::kStackCountBits, VTKRT_PACKED_STACK_ENTRIES) unless
+// the buffers are too large for it: llvmpipe gathers and scatters each lane's
+// word of an indexed array one by one. The C++ twins (core::gpu::stackEntry
+// ...) pack alike.
+#ifdef VTKRT_PACKED_STACK_ENTRIES
+#define StackEntry uvec2
+StackEntry stackEntry(uint index, uint count, float t)
+{
+  return uvec2((index << kStackCountBits) | count, floatBitsToUint(t));
+}
+uint entryIndex(StackEntry e) { return e.x >> kStackCountBits; }
+uint entryCount(StackEntry e) { return e.x & ((1u << kStackCountBits) - 1u); }
+float entryDistance(StackEntry e) { return uintBitsToFloat(e.y); }
+#else
+#define StackEntry uvec3
+StackEntry stackEntry(uint index, uint count, float t)
+{
+  return uvec3(index, count, floatBitsToUint(t));
+}
+uint entryIndex(StackEntry e) { return e.x; }
+uint entryCount(StackEntry e) { return e.y; }
+float entryDistance(StackEntry e) { return uintBitsToFloat(e.z); }
+#endif
+StackEntry bvhStack[VTKRT_STACK_SIZE];
 
 // One interior step: the children of the node at hand are n0 and n1, h0/h1
 // say whether the ray meets their boxes (false for both when the node is
@@ -179,8 +201,7 @@ bool bvhInteriorStep(Node n0, bool h0, float t0, Node n1, bool h1, float t1, flo
   inout int sp, inout uint index, inout uint count, inout bool culled)
 {
   bool nearIs1 = h1 && (!h0 || t1 < t0);
-  bvhStack[sp] = nearIs1 ? uvec3(n0.index, n0.count, floatBitsToUint(t0))
-                         : uvec3(n1.index, n1.count, floatBitsToUint(t1));
+  bvhStack[sp] = nearIs1 ? stackEntry(n0.index, n0.count, t0) : stackEntry(n1.index, n1.count, t1);
   bool anyHit = h0 || h1;
   if (!anyHit && sp == 0)
   {
@@ -188,11 +209,11 @@ bool bvhInteriorStep(Node n0, bool h0, float t0, Node n1, bool h1, float t1, flo
   }
   sp += h0 && h1 ? 1 : 0;
   int top = anyHit ? sp : max(sp - 1, 0);
-  uvec3 popped = bvhStack[top];
-  culled = !anyHit && uintBitsToFloat(popped.z) > tmax;
+  StackEntry popped = bvhStack[top];
+  culled = !anyHit && entryDistance(popped) > tmax;
   sp = top;
-  index = anyHit ? (nearIs1 ? n1.index : n0.index) : (culled ? 0u : popped.x);
-  count = anyHit ? (nearIs1 ? n1.count : n0.count) : (culled ? 0u : popped.y);
+  index = anyHit ? (nearIs1 ? n1.index : n0.index) : (culled ? 0u : entryIndex(popped));
+  count = anyHit ? (nearIs1 ? n1.count : n0.count) : (culled ? 0u : entryCount(popped));
   return true;
 }
 
@@ -206,10 +227,10 @@ bool bvhPopAfterLeaf(float tmax, inout int sp, inout uint index, inout uint coun
     return false;
   }
   --sp;
-  uvec3 popped = bvhStack[sp];
-  culled = uintBitsToFloat(popped.z) > tmax;
-  index = culled ? 0u : popped.x;
-  count = culled ? 0u : popped.y;
+  StackEntry popped = bvhStack[sp];
+  culled = entryDistance(popped) > tmax;
+  index = culled ? 0u : entryIndex(popped);
+  count = culled ? 0u : entryCount(popped);
   return true;
 }
 

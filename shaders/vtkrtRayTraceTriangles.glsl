@@ -136,7 +136,7 @@ bool bvhStartFromEntries(vec3 org, vec3 invDir, vec3 parallelBias, float tmin, f
     Node n = fetchNode(uNodes, int(fetchPacked(uTileEntries, e)));
     float tnear;
     bool hit = intersectRayBoxConservative(org, invDir, parallelBias, n.lo, n.hi, tmin, tmax, tnear);
-    bvhStack[sp] = uvec3(n.index, n.count, floatBitsToUint(tnear));
+    bvhStack[sp] = stackEntry(n.index, n.count, tnear);
     sp += hit ? 1 : 0;
   } while (++e < end);
   return bvhPopAfterLeaf(tmax, sp, index, count, culled);

@@ -672,7 +672,8 @@ core::BuildOptions TriangleBuildOptions(int buildQuality, std::uint32_t leafSize
   options.quality = buildQuality == 0
     ? core::BuildQuality::Fast
     : (buildQuality == 2 ? core::BuildQuality::High : core::BuildQuality::Medium);
-  options.maxLeafSize = leafSize;
+  // The shader's walk stack packs a leaf's count into a few bits.
+  options.maxLeafSize = std::min(leafSize, core::gpu::kMaxPackedStackCount);
   // The builder's parallel work goes to VTK's SMP pool, as the locator's:
   // threads of its own would compete with the pool's spinning workers.
   options.parallelFor = [](std::size_t n, const std::function<void(std::size_t, std::size_t)>& body) {

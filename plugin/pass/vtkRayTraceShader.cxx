@@ -44,7 +44,7 @@ std::string Features::Key() const
     << this->TextureCutOuts << "S" << this->StackSize << "R" << this->Translucent << "G"
     << this->SurfaceEdges << "V" << this->Wireframe << "J"
     << this->Tubes << "i" << this->SingleInstance << "p"
-    << this->ProjectiveRays << "e" << this->TileEntries << "l" << this->LeafTrees;
+    << this->ProjectiveRays << "e" << this->TileEntries << "l" << this->LeafTrees << "w" << this->PackedStackEntries;
   return s.str();
 }
 
@@ -82,6 +82,7 @@ std::string AssembleShader(const Features& f)
   define(f.ProjectiveRays, "VTKRT_PROJECTIVE_RAYS");
   define(f.TileEntries, "VTKRT_TILE_ENTRIES");
   define(f.Triangles && f.LeafTrees, "VTKRT_LEAF_TREES");
+  define(f.PackedStackEntries, "VTKRT_PACKED_STACK_ENTRIES");
   define(f.Translucent, "VTKRT_TRANSLUCENT");
   if (f.SamplesPerPixel > 0)
   {

@@ -374,6 +374,16 @@ void checkTriangleWalk(const MeshData& mesh, int rayCount, std::uint64_t seed)
     vec2 uv;
     const bool found = gpu::traverseTriangles(u, 0, org, dir, 0.0f, tmax, tri, uv, false);
     const std::uint32_t prim = found ? bvh.primIndex[tri] : kInvalidIndex;
+    {
+      // Stack entries of three words walk alike.
+      gpu::ShaderInputs wide = u;
+      wide.packedStackEntries = false;
+      float wideTmax = tmax0;
+      int wideTri;
+      vec2 wideUv;
+      VTKRT_CHECK(gpu::traverseTriangles(wide, 0, org, dir, 0.0f, wideTmax, wideTri, wideUv, false) == found &&
+        wideTmax == tmax && wideTri == tri && wideUv == uv);
+    }
     TriangleIntersector<float> fisect(fmesh);
     Hit<float> fh;
     const bool ffound = closestHit(GpuNodeSource(nodes), bvh.primIndex.data(), Ray<float>(org, dir, 0.0f, tmax0), fisect, fh);
@@ -414,6 +424,28 @@ void checkTriangleWalk(const MeshData& mesh, int rayCount, std::uint64_t seed)
   VTKRT_CHECK_MSG(u.deepestStackEntry >= 0 &&
       u.deepestStackEntry < static_cast<int>(gpu::stackSizeForDepth(bvh.stats.maxDepth)),
     "deepest entry %d, depth %u", u.deepestStackEntry, bvh.stats.maxDepth);
+}
+
+/// A stack entry gives back the index, count and distance it was made of,
+/// packed (up to kMaxPackedStackIndex and kMaxPackedStackCount) or not.
+void testStackEntries()
+{
+  for (const bool packed : { true, false })
+  {
+    gpu::BvhStack stack;
+    stack.packed = packed;
+    for (const std::uint32_t index : { 0u, 1u, 12345u, gpu::kMaxPackedStackIndex })
+    {
+      for (std::uint32_t count = 0; count <= gpu::kMaxPackedStackCount; ++count)
+      {
+        const float t = 0.25f * static_cast<float>(count) + 1e-30f;
+        const gpu::uvec3 e = gpu::stackEntry(stack, index, count, t);
+        VTKRT_CHECK_MSG(gpu::entryIndex(stack, e) == index && gpu::entryCount(stack, e) == count &&
+            gpu::entryDistance(stack, e) == t,
+          "packed %d, index %u, count %u", int(packed), index, count);
+      }
+    }
+  }
 }
 
 /// The step cap counts interior steps and leaves: a root over two leaves
@@ -818,6 +850,7 @@ int main()
   testBoxTest();
   testPlaneClip();
   testPrimitiveKernels();
+  testStackEntries();
   checkTriangleWalk(makeIcosphere(4, 1.0, Vec3<double>(1e3, -2e3, 5e2)), 4000, 1);
   checkTriangleWalk(makeTorus(64, 32), 4000, 2);
   {

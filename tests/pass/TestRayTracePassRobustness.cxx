@@ -602,6 +602,32 @@ void TestLeafTrees()
   NoVTKOutput("one-leaf trees");
 }
 
+/// Walk stack entries of three words (the largest buffers' shader) against
+/// the packed two: every walk the same, so the same image: a deep mesh
+/// over a floor with shadows (tile entries), then with points as spheres,
+/// a tube, wires, a translucent ball and more than eight instances.
+void TestPackedStackEntries()
+{
+  auto win = MakeWindow(220, 180);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  auto actor = MeshActor(SphereOverFloor(400, 8));
+  actor->RotateY(25.0);
+  ren->AddActor(actor);
+  ren->GetActiveCamera()->SetPosition(1.0, 3.0, 5.0);
+  ren->GetActiveCamera()->SetFocalPoint(0.0, 0.5, 0.0);
+  ren->ResetCamera();
+  vtkNew<vtkRayTracePass> pass;
+  pass->SetShadows(true);
+  ren->SetPass(pass);
+  const char* variable = "VTKRT_PACKED_STACK_ENTRIES";
+  CompareWithFeatureOff(win, ren, pass, variable, variable, "packed stack entries, sphere over a floor");
+  AddViewSizedAndTranslucentProps(ren);
+  ren->ResetCamera();
+  CompareWithFeatureOff(win, ren, pass, variable, variable, "packed stack entries, spheres, tubes, wires");
+  NoVTKOutput("packed stack entries");
+}
+
 int main(int argc, char* argv[])
 {
   Output = vtkrtTestOutputWindow::Install();
@@ -613,6 +639,7 @@ int main(int argc, char* argv[])
     { "FootprintTiles", TestFootprintTiles },
     { "TileEntries", TestTileEntries },
     { "LeafTrees", TestLeafTrees },
+    { "PackedStackEntries", TestPackedStackEntries },
   };
   return RunCase(argc, argv, cases);
 }

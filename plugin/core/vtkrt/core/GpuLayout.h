@@ -478,6 +478,16 @@ VTKRT_GPU_RECORDS(VTKRT_GPU_CHECK_TEXELS, VTKRT_GPU_FIELD_IN_TEXELS, VTKRT_GPU_N
 static_assert(texelsOf<Ellipsoid>() == kEllipsoidTexels, "Ellipsoid: 3 texels");
 static_assert(texelsOf<Segment>() == kSegmentTexels, "Segment: 2 texels");
 
+/// A walk's stack entry (the shader's StackEntry) packs the node's index
+/// and primitive count into one word, the count in the low kStackCountBits
+/// bits: leaves hold at most kMaxPackedStackCount primitives (the pass's
+/// leaf sizes stop at 64) and indices (nodes, triangles, sphere texels) stay
+/// at most kMaxPackedStackIndex (VTKRT_PACKED_STACK_ENTRIES); larger buffers
+/// get entries of three words.
+constexpr std::uint32_t kStackCountBits = 7;
+constexpr std::uint32_t kMaxPackedStackCount = (1u << kStackCountBits) - 1;
+constexpr std::uint32_t kMaxPackedStackIndex = (1u << (32 - kStackCountBits)) - 1;
+
 /// The GLSL for the layouts: the instance flags kInstance<Name>, the
 /// triangle edge bits kEdge01, kEdge12, kEdge20, per record
 /// its struct, texel count VTKRT_<NAME>_TEXELS and reader fetch<Type>(b, i),
@@ -493,6 +503,7 @@ inline std::string glslLayout()
 #undef VTKRT_GPU_FLAG_GLSL
   s << "const uint kEdge01 = " << kEdge01 << "u;\nconst uint kEdge12 = " << kEdge12
     << "u;\nconst uint kEdge20 = " << kEdge20 << "u;\n";
+  s << "const uint kStackCountBits = " << kStackCountBits << "u;\n";
 #define VTKRT_GPU_GLSL_FIELD(record, member)                                                       \
   detail::glslField<decltype(record::member)>(#member, offsetof(record, member)),
 #define VTKRT_GPU_GLSL_RECORD(type, NAME, indexing, fields)                                        \

@@ -113,6 +113,7 @@ struct ShaderInputs
   bool screenSpheres = false;    ///< VTKRT_SCREEN_SPHERES
   bool hasEllipsoids = false;    ///< VTKRT_HAS_ELLIPSOIDS
   bool leafTrees = false;        ///< VTKRT_LEAF_TREES: every triangle tree is one leaf
+  bool packedStackEntries = true; ///< VTKRT_PACKED_STACK_ENTRIES: walk stack entries of two words
   /// Not the shader's: the deepest stack entry the walks have touched so far
   /// (what VTKRT_STACK_SIZE must hold; see stackSizeForDepth).
   mutable int deepestStackEntry = -1;
@@ -135,13 +136,41 @@ inline std::uint32_t stackSizeForDepth(std::uint32_t maxDepth)
   return std::min(size, kMaxStackSize);
 }
 
-/// The shader's bvhStack: entries (index, count, the bits of the entry
-/// distance).
+/// The shader's bvhStack: each entry a node's index and count and the bits
+/// of its entry distance, `packed` (index << kStackCountBits | count,
+/// distance; the third word unused) or not (index, count, distance).
 struct BvhStack
 {
   uvec3 entry[kMaxStackSize] = {};
-  int deepest = -1; ///< not the shader's: the deepest entry touched
+  bool packed = true; ///< VTKRT_PACKED_STACK_ENTRIES
+  int deepest = -1;   ///< not the shader's: the deepest entry touched
 };
+
+/// The shader's stackEntry, entryIndex, entryCount and entryDistance.
+inline uvec3 stackEntry(const BvhStack& stack, std::uint32_t index, std::uint32_t count, float t)
+{
+  if (!stack.packed)
+  {
+    return uvec3(index, count, glm::floatBitsToUint(t));
+  }
+  assert(index <= kMaxPackedStackIndex && count <= kMaxPackedStackCount);
+  return uvec3((index << kStackCountBits) | count, glm::floatBitsToUint(t), 0u);
+}
+
+inline std::uint32_t entryIndex(const BvhStack& stack, const uvec3& e)
+{
+  return stack.packed ? e.x >> kStackCountBits : e.x;
+}
+
+inline std::uint32_t entryCount(const BvhStack& stack, const uvec3& e)
+{
+  return stack.packed ? e.x & ((1u << kStackCountBits) - 1u) : e.y;
+}
+
+inline float entryDistance(const BvhStack& stack, const uvec3& e)
+{
+  return glm::uintBitsToFloat(stack.packed ? e.y : e.z);
+}
 
 /// One interior step (see the shader): the farther child is written above
 /// the stack top and kept only when both children are hit; the top entry
@@ -152,8 +181,7 @@ inline bool bvhInteriorStep(BvhStack& stack, const Node& n0, bool h0, float t0, 
 {
   assert(sp >= 0 && sp + 1 < static_cast<int>(kMaxStackSize));
   const bool nearIs1 = h1 && (!h0 || t1 < t0);
-  stack.entry[sp] = nearIs1 ? uvec3(n0.index, n0.count, glm::floatBitsToUint(t0))
-                            : uvec3(n1.index, n1.count, glm::floatBitsToUint(t1));
+  stack.entry[sp] = nearIs1 ? stackEntry(stack, n0.index, n0.count, t0) : stackEntry(stack, n1.index, n1.count, t1);
   stack.deepest = std::max(stack.deepest, sp);
   const bool anyHit = h0 || h1;
   if (!anyHit && sp == 0)
@@ -164,10 +192,10 @@ inline bool bvhInteriorStep(BvhStack& stack, const Node& n0, bool h0, float t0, 
   const int top = anyHit ? sp : std::max(sp - 1, 0);
   stack.deepest = std::max(stack.deepest, top);
   const uvec3 popped = stack.entry[top];
-  culled = !anyHit && glm::uintBitsToFloat(popped.z) > tmax;
+  culled = !anyHit && entryDistance(stack, popped) > tmax;
   sp = top;
-  index = anyHit ? (nearIs1 ? n1.index : n0.index) : (culled ? 0u : popped.x);
-  count = anyHit ? (nearIs1 ? n1.count : n0.count) : (culled ? 0u : popped.y);
+  index = anyHit ? (nearIs1 ? n1.index : n0.index) : (culled ? 0u : entryIndex(stack, popped));
+  count = anyHit ? (nearIs1 ? n1.count : n0.count) : (culled ? 0u : entryCount(stack, popped));
   return true;
 }
 
@@ -182,9 +210,9 @@ inline bool bvhPopAfterLeaf(
   }
   --sp;
   const uvec3 popped = stack.entry[sp];
-  culled = glm::uintBitsToFloat(popped.z) > tmax;
-  index = culled ? 0u : popped.x;
-  count = culled ? 0u : popped.y;
+  culled = entryDistance(stack, popped) > tmax;
+  index = culled ? 0u : entryIndex(stack, popped);
+  count = culled ? 0u : entryCount(stack, popped);
   return true;
 }
 
@@ -208,7 +236,7 @@ inline bool bvhStartFromEntries(BvhStack& stack, const ShaderInputs& u, const ve
     float tnear;
     const bool hit = intersectRayBoxConservative(org, invDir, parallelBias, n.lo, n.hi, tmin, tmax, tnear);
     assert(sp < static_cast<int>(kMaxStackSize));
-    stack.entry[sp] = uvec3(n.index, n.count, glm::floatBitsToUint(tnear));
+    stack.entry[sp] = stackEntry(stack, n.index, n.count, tnear);
     stack.deepest = std::max(stack.deepest, sp);
     sp += hit ? 1 : 0;
   } while (++e < end);
@@ -280,6 +308,7 @@ inline void whileWhileWalk(const ShaderInputs& u, int root, const vec3& org, con
   // tested the instance's box, which bounds it.
   const Node rootNode = fetchNode(u.uNodes, root);
   BvhStack stack;
+  stack.packed = u.packedStackEntries;
   struct RecordDeepest
   {
     const ShaderInputs& u;
