@@ -153,55 +153,52 @@ uint fetchPacked(usamplerBuffer buffer, int i)
 }
 
 // The BVH walk of traverseTriangles and traverseSpheres ("while-while", Aila
-// & Laine 2009): nearer child first, the farther pushed, the best hit
-// pruning what is popped. The node at hand is its (index, count) pair
-// alone: a pushed node keeps its pair on the stack, so popping fetches
-// nothing. A popped node that the best hit already prunes is "culled": the
-// next step treats it as a dead end (no nested pop loop, which llvmpipe
-// would run every step). One walk at a time uses this stack (shading and
-// occlusion rays walk one after another, never one inside another). An
-// entry is the node's index and count and the bits of its entry distance in
-// one array, so a push or a pop is one indexed access, and index and count
-// share a word (core::gpu::kStackCountBits, VTKRT_PACKED_STACK_ENTRIES) unless
-// the buffers are too large for it: llvmpipe gathers and scatters each lane's
+// & Laine 2009): nearer child first, the farther pushed. The node at hand is
+// its (index, count) pair alone: a pushed node keeps its pair on the stack,
+// so popping fetches nothing. A popped node is not checked against the best
+// hit: the next step's box tests against it do that (an interior node's
+// children lie in its box), and keeping no distance on the stack costs
+// llvmpipe less than the leaves it would spare. One walk at a time uses this
+// stack (shading and occlusion rays walk one after another, never one
+// inside another). An entry is one word, the index and count packed
+// (core::gpu::kStackCountBits, VTKRT_PACKED_STACK_ENTRIES), or two where the
+// buffers are too large for it: llvmpipe gathers and scatters each lane's
 // word of an indexed array one by one. The C++ twins (core::gpu::stackEntry
 // ...) pack alike.
 #ifdef VTKRT_PACKED_STACK_ENTRIES
-#define StackEntry uvec2
-StackEntry stackEntry(uint index, uint count, float t)
+#define StackEntry uint
+StackEntry stackEntry(uint index, uint count)
 {
-  return uvec2((index << kStackCountBits) | count, floatBitsToUint(t));
+  return (index << kStackCountBits) | count;
 }
-uint entryIndex(StackEntry e) { return e.x >> kStackCountBits; }
-uint entryCount(StackEntry e) { return e.x & ((1u << kStackCountBits) - 1u); }
-float entryDistance(StackEntry e) { return uintBitsToFloat(e.y); }
+uint entryIndex(StackEntry e) { return e >> kStackCountBits; }
+uint entryCount(StackEntry e) { return e & ((1u << kStackCountBits) - 1u); }
 #else
-#define StackEntry uvec3
-StackEntry stackEntry(uint index, uint count, float t)
+#define StackEntry uvec2
+StackEntry stackEntry(uint index, uint count)
 {
-  return uvec3(index, count, floatBitsToUint(t));
+  return uvec2(index, count);
 }
 uint entryIndex(StackEntry e) { return e.x; }
 uint entryCount(StackEntry e) { return e.y; }
-float entryDistance(StackEntry e) { return uintBitsToFloat(e.z); }
 #endif
 StackEntry bvhStack[VTKRT_STACK_SIZE];
 
 // One interior step: the children of the node at hand are n0 and n1, h0/h1
-// say whether the ray meets their boxes (false for both when the node is
-// culled), t0/t1 where. index/count become the next node.
-// Returns false when the walk is over (a dead end, nothing on the stack).
+// say whether the ray meets their boxes, t0/t1 where. index/count become the
+// next node. Returns false when the walk is over (a dead end, nothing on the
+// stack).
 // Branch free (llvmpipe would run every branch, masked): the farther child
 // is written above the stack top every step and kept only when both
 // children are hit; the top entry is read every step and used only at a
 // dead end. sp never exceeds the depth of the node at hand, and the entry
 // read is at most one above: VTKRT_STACK_SIZE holds entries 0 to the depth
 // of the scene's deepest tree (core::gpu::stackSizeForDepth): no bound check.
-bool bvhInteriorStep(Node n0, bool h0, float t0, Node n1, bool h1, float t1, float tmax,
-  inout int sp, inout uint index, inout uint count, inout bool culled)
+bool bvhInteriorStep(Node n0, bool h0, float t0, Node n1, bool h1, float t1, inout int sp,
+  inout uint index, inout uint count)
 {
   bool nearIs1 = h1 && (!h0 || t1 < t0);
-  bvhStack[sp] = nearIs1 ? stackEntry(n0.index, n0.count, t0) : stackEntry(n1.index, n1.count, t1);
+  bvhStack[sp] = nearIs1 ? stackEntry(n0.index, n0.count) : stackEntry(n1.index, n1.count);
   bool anyHit = h0 || h1;
   if (!anyHit && sp == 0)
   {
@@ -210,17 +207,15 @@ bool bvhInteriorStep(Node n0, bool h0, float t0, Node n1, bool h1, float t1, flo
   sp += h0 && h1 ? 1 : 0;
   int top = anyHit ? sp : max(sp - 1, 0);
   StackEntry popped = bvhStack[top];
-  culled = !anyHit && entryDistance(popped) > tmax;
   sp = top;
-  index = anyHit ? (nearIs1 ? n1.index : n0.index) : (culled ? 0u : entryIndex(popped));
-  count = anyHit ? (nearIs1 ? n1.count : n0.count) : (culled ? 0u : entryCount(popped));
+  index = anyHit ? (nearIs1 ? n1.index : n0.index) : entryIndex(popped);
+  count = anyHit ? (nearIs1 ? n1.count : n0.count) : entryCount(popped);
   return true;
 }
 
-// After a leaf: the next node from the stack (culled when the best hit,
-// tmax, prunes it). Returns false when the stack is empty.
-bool bvhPopAfterLeaf(float tmax, inout int sp, inout uint index, inout uint count,
-  inout bool culled)
+// After a leaf: the next node from the stack. Returns false when the stack
+// is empty.
+bool bvhPopAfterLeaf(inout int sp, inout uint index, inout uint count)
 {
   if (sp == 0)
   {
@@ -228,9 +223,8 @@ bool bvhPopAfterLeaf(float tmax, inout int sp, inout uint index, inout uint coun
   }
   --sp;
   StackEntry popped = bvhStack[sp];
-  culled = entryDistance(popped) > tmax;
-  index = culled ? 0u : entryIndex(popped);
-  count = culled ? 0u : entryCount(popped);
+  index = entryIndex(popped);
+  count = entryCount(popped);
   return true;
 }
 
@@ -243,7 +237,7 @@ bool bvhPopAfterLeaf(float tmax, inout int sp, inout uint index, inout uint coun
 // body once more, fully masked, after every lane has left at its top, so a
 // while loop would pay one extra node step per call.
 bool bvhDescend(vec3 org, vec3 invDir, vec3 parallelBias, vec3 growBy, float tmin, float tmax,
-  inout int sp, inout int steps, inout uint index, inout uint count, inout bool culled)
+  inout int sp, inout int steps, inout uint index, inout uint count)
 {
   bool walking = true;
   do
@@ -259,10 +253,10 @@ bool bvhDescend(vec3 org, vec3 invDir, vec3 parallelBias, vec3 growBy, float tmi
       Node n1 = fetchNode(uNodes, int(index) + 1);
       float t0, t1;
       bool h0 = intersectRayBoxConservative(org, invDir, parallelBias, n0.lo - growBy, n0.hi + growBy,
-                  tmin, tmax, t0) && !culled;
+                  tmin, tmax, t0);
       bool h1 = intersectRayBoxConservative(org, invDir, parallelBias, n1.lo - growBy, n1.hi + growBy,
-                  tmin, tmax, t1) && !culled;
-      walking = walking && bvhInteriorStep(n0, h0, t0, n1, h1, t1, tmax, sp, index, count, culled);
+                  tmin, tmax, t1);
+      walking = walking && bvhInteriorStep(n0, h0, t0, n1, h1, t1, sp, index, count);
     }
   } while (walking && count == 0u);
   return walking;

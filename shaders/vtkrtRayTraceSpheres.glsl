@@ -92,10 +92,9 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
   int steps = 0;
   uint index = rootNode.index;
   uint count = rootNode.count;
-  bool culled = false;
   for (;;)
   {
-    if (!bvhDescend(org, invDir, parallelBias, growBy, tmin, tmax, sp, steps, index, count, culled))
+    if (!bvhDescend(org, invDir, parallelBias, growBy, tmin, tmax, sp, steps, index, count))
     {
       break;
     }
@@ -153,7 +152,7 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
     {
       return true;
     }
-    if (!bvhPopAfterLeaf(tmax, sp, index, count, culled))
+    if (!bvhPopAfterLeaf(sp, index, count))
     {
       break;
     }

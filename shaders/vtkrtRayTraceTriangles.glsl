@@ -126,7 +126,7 @@ int tileListOf(vec2 ndc)
 // core::gpu::bvhStartFromEntries: each entry whose box the ray meets is
 // pushed, the nearest last, then the first pop. False when none is met.
 bool bvhStartFromEntries(vec3 org, vec3 invDir, vec3 parallelBias, float tmin, float tmax, int list,
-  inout int sp, inout uint index, inout uint count, inout bool culled)
+  inout int sp, inout uint index, inout uint count)
 {
   TileList tile = fetchTileList(uTileEntries, list);
   int e = int(tile.first);
@@ -136,10 +136,10 @@ bool bvhStartFromEntries(vec3 org, vec3 invDir, vec3 parallelBias, float tmin, f
     Node n = fetchNode(uNodes, int(fetchPacked(uTileEntries, e)));
     float tnear;
     bool hit = intersectRayBoxConservative(org, invDir, parallelBias, n.lo, n.hi, tmin, tmax, tnear);
-    bvhStack[sp] = stackEntry(n.index, n.count, tnear);
+    bvhStack[sp] = stackEntry(n.index, n.count);
     sp += hit ? 1 : 0;
   } while (++e < end);
-  return bvhPopAfterLeaf(tmax, sp, index, count, culled);
+  return bvhPopAfterLeaf(sp, index, count);
 }
 #endif
 
@@ -165,11 +165,10 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
   RayTrianglePrecomputed pre = precomputeRayTriangle(org, dir);
   int sp = 0;
   int steps = 0;
-  bool culled = false;
 #ifdef VTKRT_TILE_ENTRIES
   uint index = 0u;
   uint count = 0u;
-  if (!bvhStartFromEntries(org, invDir, parallelBias, tmin, tmax, gTileList, sp, index, count, culled))
+  if (!bvhStartFromEntries(org, invDir, parallelBias, tmin, tmax, gTileList, sp, index, count))
   {
     return false;
   }
@@ -194,7 +193,7 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
 #endif
 #ifndef VTKRT_LEAF_TREES
     if (!bvhDescend(
-      org, invDir, parallelBias, growBy, tmin, reach, sp, steps, index, count, culled))
+      org, invDir, parallelBias, growBy, tmin, reach, sp, steps, index, count))
     {
       break;
     }
@@ -243,7 +242,7 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
 #ifdef VTKRT_HAS_WIREFRAME
     reach = wireReach(tmax);
 #endif
-    if (!bvhPopAfterLeaf(reach, sp, index, count, culled))
+    if (!bvhPopAfterLeaf(sp, index, count))
     {
       break;
     }

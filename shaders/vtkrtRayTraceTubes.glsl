@@ -116,10 +116,9 @@ bool traverseTubes(int root, vec3 org, vec3 dir, float tmin, inout float tmax, o
   int steps = 0;
   uint index = rootNode.index;
   uint count = rootNode.count;
-  bool culled = false;
   for (;;)
   {
-    if (!bvhDescend(org, invDir, parallelBias, growBy, tmin, tmax, sp, steps, index, count, culled))
+    if (!bvhDescend(org, invDir, parallelBias, growBy, tmin, tmax, sp, steps, index, count))
     {
       break;
     }
@@ -147,7 +146,7 @@ bool traverseTubes(int root, vec3 org, vec3 dir, float tmin, inout float tmax, o
     {
       return true;
     }
-    if (!bvhPopAfterLeaf(tmax, sp, index, count, culled))
+    if (!bvhPopAfterLeaf(sp, index, count))
     {
       break;
     }

@@ -426,8 +426,8 @@ void checkTriangleWalk(const MeshData& mesh, int rayCount, std::uint64_t seed)
     "deepest entry %d, depth %u", u.deepestStackEntry, bvh.stats.maxDepth);
 }
 
-/// A stack entry gives back the index, count and distance it was made of,
-/// packed (up to kMaxPackedStackIndex and kMaxPackedStackCount) or not.
+/// A stack entry gives back the index and count it was made of, packed (up
+/// to kMaxPackedStackIndex and kMaxPackedStackCount) or not.
 void testStackEntries()
 {
   for (const bool packed : { true, false })
@@ -438,10 +438,8 @@ void testStackEntries()
     {
       for (std::uint32_t count = 0; count <= gpu::kMaxPackedStackCount; ++count)
       {
-        const float t = 0.25f * static_cast<float>(count) + 1e-30f;
-        const gpu::uvec3 e = gpu::stackEntry(stack, index, count, t);
-        VTKRT_CHECK_MSG(gpu::entryIndex(stack, e) == index && gpu::entryCount(stack, e) == count &&
-            gpu::entryDistance(stack, e) == t,
+        const auto e = gpu::stackEntry(stack, index, count);
+        VTKRT_CHECK_MSG(gpu::entryIndex(stack, e) == index && gpu::entryCount(stack, e) == count,
           "packed %d, index %u, count %u", int(packed), index, count);
       }
     }

@@ -136,40 +136,36 @@ inline std::uint32_t stackSizeForDepth(std::uint32_t maxDepth)
   return std::min(size, kMaxStackSize);
 }
 
-/// The shader's bvhStack: each entry a node's index and count and the bits
-/// of its entry distance, `packed` (index << kStackCountBits | count,
-/// distance; the third word unused) or not (index, count, distance).
+/// The shader's bvhStack: each entry a node's index and count, `packed`
+/// into one word (index << kStackCountBits | count; the second unused) or
+/// not (index, count). No entry distance: a popped node meets the best hit
+/// in the next step's box tests.
 struct BvhStack
 {
-  uvec3 entry[kMaxStackSize] = {};
+  uvec2 entry[kMaxStackSize] = {};
   bool packed = true; ///< VTKRT_PACKED_STACK_ENTRIES
   int deepest = -1;   ///< not the shader's: the deepest entry touched
 };
 
-/// The shader's stackEntry, entryIndex, entryCount and entryDistance.
-inline uvec3 stackEntry(const BvhStack& stack, std::uint32_t index, std::uint32_t count, float t)
+/// The shader's stackEntry, entryIndex and entryCount.
+inline uvec2 stackEntry(const BvhStack& stack, std::uint32_t index, std::uint32_t count)
 {
   if (!stack.packed)
   {
-    return uvec3(index, count, glm::floatBitsToUint(t));
+    return uvec2(index, count);
   }
   assert(index <= kMaxPackedStackIndex && count <= kMaxPackedStackCount);
-  return uvec3((index << kStackCountBits) | count, glm::floatBitsToUint(t), 0u);
+  return uvec2((index << kStackCountBits) | count, 0u);
 }
 
-inline std::uint32_t entryIndex(const BvhStack& stack, const uvec3& e)
+inline std::uint32_t entryIndex(const BvhStack& stack, const uvec2& e)
 {
   return stack.packed ? e.x >> kStackCountBits : e.x;
 }
 
-inline std::uint32_t entryCount(const BvhStack& stack, const uvec3& e)
+inline std::uint32_t entryCount(const BvhStack& stack, const uvec2& e)
 {
   return stack.packed ? e.x & ((1u << kStackCountBits) - 1u) : e.y;
-}
-
-inline float entryDistance(const BvhStack& stack, const uvec3& e)
-{
-  return glm::uintBitsToFloat(stack.packed ? e.y : e.z);
 }
 
 /// One interior step (see the shader): the farther child is written above
@@ -177,11 +173,11 @@ inline float entryDistance(const BvhStack& stack, const uvec3& e)
 /// is read every step and used only at a dead end. False when the walk is
 /// over.
 inline bool bvhInteriorStep(BvhStack& stack, const Node& n0, bool h0, float t0, const Node& n1, bool h1,
-  float t1, float tmax, int& sp, std::uint32_t& index, std::uint32_t& count, bool& culled)
+  float t1, int& sp, std::uint32_t& index, std::uint32_t& count)
 {
   assert(sp >= 0 && sp + 1 < static_cast<int>(kMaxStackSize));
   const bool nearIs1 = h1 && (!h0 || t1 < t0);
-  stack.entry[sp] = nearIs1 ? stackEntry(stack, n0.index, n0.count, t0) : stackEntry(stack, n1.index, n1.count, t1);
+  stack.entry[sp] = nearIs1 ? stackEntry(stack, n0.index, n0.count) : stackEntry(stack, n1.index, n1.count);
   stack.deepest = std::max(stack.deepest, sp);
   const bool anyHit = h0 || h1;
   if (!anyHit && sp == 0)
@@ -191,41 +187,38 @@ inline bool bvhInteriorStep(BvhStack& stack, const Node& n0, bool h0, float t0, 
   sp += h0 && h1 ? 1 : 0;
   const int top = anyHit ? sp : std::max(sp - 1, 0);
   stack.deepest = std::max(stack.deepest, top);
-  const uvec3 popped = stack.entry[top];
-  culled = !anyHit && entryDistance(stack, popped) > tmax;
+  const uvec2 popped = stack.entry[top];
   sp = top;
-  index = anyHit ? (nearIs1 ? n1.index : n0.index) : (culled ? 0u : entryIndex(stack, popped));
-  count = anyHit ? (nearIs1 ? n1.count : n0.count) : (culled ? 0u : entryCount(stack, popped));
+  index = anyHit ? (nearIs1 ? n1.index : n0.index) : entryIndex(stack, popped);
+  count = anyHit ? (nearIs1 ? n1.count : n0.count) : entryCount(stack, popped);
   return true;
 }
 
-/// After a leaf: the next node from the stack (culled when tmax prunes it).
-/// False when the stack is empty.
-inline bool bvhPopAfterLeaf(
-  BvhStack& stack, float tmax, int& sp, std::uint32_t& index, std::uint32_t& count, bool& culled)
+/// After a leaf: the next node from the stack. False when the stack is
+/// empty.
+inline bool bvhPopAfterLeaf(BvhStack& stack, int& sp, std::uint32_t& index, std::uint32_t& count)
 {
   if (sp == 0)
   {
     return false;
   }
   --sp;
-  const uvec3 popped = stack.entry[sp];
-  culled = entryDistance(stack, popped) > tmax;
-  index = culled ? 0u : entryIndex(stack, popped);
-  count = culled ? 0u : entryCount(stack, popped);
+  const uvec2 popped = stack.entry[sp];
+  index = entryIndex(stack, popped);
+  count = entryCount(stack, popped);
   return true;
 }
 
 /// The start of a walk from the entries of tile list `list` (the shader's
-/// VTKRT_TILE_ENTRIES): each entry node whose box the ray meets is pushed
-/// with its entry distance, in the list's order, then the first is popped
+/// VTKRT_TILE_ENTRIES): each entry node whose box the ray meets is pushed,
+/// in the list's order, then the first is popped
 /// as by bvhPopAfterLeaf. Every list has an entry (a do-while: see the
 /// shader's bvhDescend). False when the ray meets no entry's box. A list of
 /// l entries whose subtrees are at most h levels deep fits a stack of
 /// l + h entries (entriesFitStack).
 inline bool bvhStartFromEntries(BvhStack& stack, const ShaderInputs& u, const vec3& org, const vec3& invDir,
   const vec3& parallelBias, float tmin, float tmax, int list, int& sp, std::uint32_t& index,
-  std::uint32_t& count, bool& culled)
+  std::uint32_t& count)
 {
   const TileList tile = fetchTileList(u.uTileEntries, list);
   int e = static_cast<int>(tile.first);
@@ -236,11 +229,11 @@ inline bool bvhStartFromEntries(BvhStack& stack, const ShaderInputs& u, const ve
     float tnear;
     const bool hit = intersectRayBoxConservative(org, invDir, parallelBias, n.lo, n.hi, tmin, tmax, tnear);
     assert(sp < static_cast<int>(kMaxStackSize));
-    stack.entry[sp] = stackEntry(stack, n.index, n.count, tnear);
+    stack.entry[sp] = stackEntry(stack, n.index, n.count);
     stack.deepest = std::max(stack.deepest, sp);
     sp += hit ? 1 : 0;
   } while (++e < end);
-  return bvhPopAfterLeaf(stack, tmax, sp, index, count, culled);
+  return bvhPopAfterLeaf(stack, sp, index, count);
 }
 
 /// The tile list of the camera ray through the normalized device
@@ -266,7 +259,7 @@ inline bool entriesFitStack(std::uint32_t entries, std::uint32_t height, std::ui
 /// hand to a leaf, boxes grown by growBy; false when the walk is over.
 inline bool bvhDescend(BvhStack& stack, const ShaderInputs& u, const vec3& org, const vec3& invDir,
   const vec3& parallelBias, const vec3& growBy, float tmin, float tmax, int& sp, int& steps,
-  std::uint32_t& index, std::uint32_t& count, bool& culled)
+  std::uint32_t& index, std::uint32_t& count)
 {
   while (count == 0u)
   {
@@ -278,12 +271,10 @@ inline bool bvhDescend(BvhStack& stack, const ShaderInputs& u, const vec3& org, 
     const Node n1 = fetchNode(u.uNodes, static_cast<int>(index) + 1);
     float t0, t1;
     const bool h0 =
-      intersectRayBoxConservative(org, invDir, parallelBias, n0.lo - growBy, n0.hi + growBy, tmin, tmax, t0) &&
-      !culled;
+      intersectRayBoxConservative(org, invDir, parallelBias, n0.lo - growBy, n0.hi + growBy, tmin, tmax, t0);
     const bool h1 =
-      intersectRayBoxConservative(org, invDir, parallelBias, n1.lo - growBy, n1.hi + growBy, tmin, tmax, t1) &&
-      !culled;
-    if (!bvhInteriorStep(stack, n0, h0, t0, n1, h1, t1, tmax, sp, index, count, culled))
+      intersectRayBoxConservative(org, invDir, parallelBias, n1.lo - growBy, n1.hi + growBy, tmin, tmax, t1);
+    if (!bvhInteriorStep(stack, n0, h0, t0, n1, h1, t1, sp, index, count))
     {
       return false;
     }
@@ -319,16 +310,15 @@ inline void whileWhileWalk(const ShaderInputs& u, int root, const vec3& org, con
   int steps = 0;
   std::uint32_t index = rootNode.index;
   std::uint32_t count = rootNode.count;
-  bool culled = false;
   if (tileList >= 0 &&
-    !bvhStartFromEntries(stack, u, org, invDir, parallelBias, tmin, tmax, tileList, sp, index, count, culled))
+    !bvhStartFromEntries(stack, u, org, invDir, parallelBias, tmin, tmax, tileList, sp, index, count))
   {
     return;
   }
   for (;;)
   {
     if (!bvhDescend(stack, u, org, invDir, parallelBias, Grow ? growBy : vec3(0.0f), tmin, tmax, sp,
-      steps, index, count, culled))
+      steps, index, count))
     {
       break;
     }
@@ -340,7 +330,7 @@ inline void whileWhileWalk(const ShaderInputs& u, int root, const vec3& org, con
     {
       return;
     }
-    if (!bvhPopAfterLeaf(stack, tmax, sp, index, count, culled))
+    if (!bvhPopAfterLeaf(stack, sp, index, count))
     {
       break;
     }
