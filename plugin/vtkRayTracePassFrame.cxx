@@ -346,6 +346,7 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   // Secondary rays only where they change the image: shaded, lit frames.
   const bool shaded = !pass.IdMode && f.LightComplexity > 0;
   f.Shadows = shaded && pass.Shadows;
+  f.Specular = shaded && this->Scene.HasSpecular();
   f.AmbientOcclusionSamples = shaded ? pass.AmbientOcclusionSamples : 0;
   f.MaximumTraversalSteps = pass.MaximumTraversalSteps;
   f.WorldCoordinates = pass.PrecisionMode == WORLD;

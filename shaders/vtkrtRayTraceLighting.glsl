@@ -107,6 +107,8 @@ float ambientVisibility(vec3 p, vec3 ng)
 // With shadows, a light blocked from p contributes nothing; with ambient
 // occlusion, the ambient and diffuse terms are scaled by the unoccluded
 // fraction of the hemisphere (ng: unit geometric normal facing the viewer).
+// Without VTKRT_SPECULAR no lit surface has a specular color, whose term
+// (a finite power times black) would add exactly nothing.
 vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ng, vec3 ambientColor, vec3 diffuseColor,
   vec3 specularColor, float specularPower, bool lit)
 {
@@ -130,9 +132,12 @@ vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ng, vec3 ambientColor, vec3 diffuseColor,
     df *= lightVisibility(p, ng, uViewBack, 1.0e30);
   }
 #endif
+  vec3 color = ao * (ambientColor + df * diffuseColor * uLightColor[0]);
+#ifdef VTKRT_SPECULAR
   float sf = df > 0.0 ? pow(df, specularPower) : 0.0;
-  return ao * (ambientColor + df * diffuseColor * uLightColor[0]) +
-    sf * specularColor * uLightColor[0];
+  color += sf * specularColor * uLightColor[0];
+#endif
+  return color;
 #else
   vec3 diffuse = vec3(0.0);
   vec3 specular = vec3(0.0);
@@ -178,9 +183,11 @@ vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ng, vec3 ambientColor, vec3 diffuseColor,
 #endif
     float df = max(0.0, attenuation * dot(n, -lightDirection));
     diffuse += df * uLightColor[i];
+#ifdef VTKRT_SPECULAR
     float sf = sign(df) * attenuation *
       pow(max(0.0, dot(reflect(lightDirection, n), viewDirection)), specularPower);
     specular += sf * uLightColor[i];
+#endif
   }
   return ao * (ambientColor + diffuse * diffuseColor) + specular * specularColor;
 #endif

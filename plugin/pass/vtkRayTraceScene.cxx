@@ -638,6 +638,14 @@ bool Scene::HasBackfaceProperties() const
     [](const Instance& i) { return !i.Geom->Spheres && i.BackfaceProperty; });
 }
 
+bool Scene::HasSpecular() const
+{
+  const auto lit = [](const std::array<float, 3>& c) { return c[0] > 0.0f || c[1] > 0.0f || c[2] > 0.0f; };
+  return std::any_of(this->Instances.begin(), this->Instances.end(), [&lit](const Instance& i) {
+    return i.Lit && (lit(i.Specular) || (i.BackfaceProperty && lit(i.BackSpecular)));
+  });
+}
+
 bool Scene::HasTranslucency() const
 {
   return std::any_of(this->Instances.begin(), this->Instances.end(),

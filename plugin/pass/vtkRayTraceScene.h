@@ -89,6 +89,8 @@ public:
   bool HasTextures() const;
   bool HasFaceCulling() const;
   bool HasBackfaceProperties() const;
+  /// Some lit instance has a specular color (front or back face).
+  bool HasSpecular() const;
   bool HasTextureCutOuts() const;
   bool HasTranslucency() const;
   bool HasSurfaceEdges() const;

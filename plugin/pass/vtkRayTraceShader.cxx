@@ -44,7 +44,7 @@ std::string Features::Key() const
     << this->TextureCutOuts << "S" << this->StackSize << "R" << this->Translucent << "G"
     << this->SurfaceEdges << "V" << this->Wireframe << "J"
     << this->Tubes << "i" << this->SingleInstance << "p"
-    << this->ProjectiveRays << "e" << this->TileEntries << "l" << this->LeafTrees << "w" << this->PackedStackEntries;
+    << this->ProjectiveRays << "e" << this->TileEntries << "l" << this->LeafTrees << "w" << this->PackedStackEntries << "h" << this->Specular;
   return s.str();
 }
 
@@ -89,6 +89,7 @@ std::string AssembleShader(const Features& f)
     s << "#define VTKRT_SAMPLES_PER_PIXEL " << f.SamplesPerPixel << "\n";
   }
   define(f.Shadows, "VTKRT_SHADOWS");
+  define(f.Specular, "VTKRT_SPECULAR");
   define(f.WorldCoordinates, "VTKRT_WORLD_COORDINATES");
   define(f.ScreenSpheres, "VTKRT_SCREEN_SPHERES");
   define(f.Ellipsoids, "VTKRT_HAS_ELLIPSOIDS");

@@ -211,6 +211,7 @@ struct Features
   bool Textures = false;         ///< some triangles carry an actor texture
   bool FaceCulling = false;      ///< some triangles are culled on one side
   bool BackfaceProperties = false; ///< some triangles have a back-face material
+  bool Specular = false;         ///< some lit surface has a specular color (else no specular term)
   bool TextureCutOuts = false;   ///< some textures have fully transparent texels
   bool Translucent = false;      ///< some instances are translucent (layers composited)
   bool SurfaceEdges = false;     ///< some triangles show their cell edges (EdgeVisibility)
