@@ -76,7 +76,7 @@ std::size_t ScissorTo(vtkOpenGLState* ostate, const int rect[4])
 /// rectangle, not its tiles; VTKRT_TILE_ENTRIES=0: camera rays walk from
 /// the tree's root, not from their tile's entries; VTKRT_LEAF_TREES=0:
 /// one-leaf trees are walked as any tree; VTKRT_PACKED_STACK_ENTRIES=0:
-/// walk stack entries of three words, as for the largest buffers.
+/// walk stack entries of two words, as for the largest buffers.
 bool Allowed(const char* variable)
 {
   const char* value = std::getenv(variable);
@@ -548,6 +548,7 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
     p.F.Translucent = false;
     p.F.SamplesPerPixel = 0;
     p.F.Shadows = false;
+    p.F.Specular = false;
     p.F.AmbientOcclusionSamples = 0;
     p.F.Lights = 0;
     p.F.LightComplexity = 0;

@@ -107,8 +107,9 @@ float ambientVisibility(vec3 p, vec3 ng)
 // With shadows, a light blocked from p contributes nothing; with ambient
 // occlusion, the ambient and diffuse terms are scaled by the unoccluded
 // fraction of the hemisphere (ng: unit geometric normal facing the viewer).
-// Without VTKRT_SPECULAR no lit surface has a specular color, whose term
-// (a finite power times black) would add exactly nothing.
+// Without VTKRT_SPECULAR no lit surface has a specular color: its term, a
+// power times black, would add nothing (but NaN where pow is undefined, a
+// base of 0 to a power of 0 or less).
 vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ng, vec3 ambientColor, vec3 diffuseColor,
   vec3 specularColor, float specularPower, bool lit)
 {

@@ -217,7 +217,7 @@ struct Features
   bool SurfaceEdges = false;     ///< some triangles show their cell edges (EdgeVisibility)
   bool Wireframe = false;        ///< some triangles are drawn as their cell edges alone
   int StackSize = static_cast<int>(core::kMaxStackSize); ///< entries of the shader's BVH stacks (VTKRT_STACK_SIZE)
-  /// Walk stack entries of two words: no buffer holds more records than a
+  /// Walk stack entries of one word: no buffer holds more records than a
   /// packed entry indexes (core::gpu::kMaxPackedStackIndex).
   bool PackedStackEntries = true;
 

@@ -375,7 +375,7 @@ void checkTriangleWalk(const MeshData& mesh, int rayCount, std::uint64_t seed)
     const bool found = gpu::traverseTriangles(u, 0, org, dir, 0.0f, tmax, tri, uv, false);
     const std::uint32_t prim = found ? bvh.primIndex[tri] : kInvalidIndex;
     {
-      // Stack entries of three words walk alike.
+      // Stack entries of two words (index, count) walk alike.
       gpu::ShaderInputs wide = u;
       wide.packedStackEntries = false;
       float wideTmax = tmax0;

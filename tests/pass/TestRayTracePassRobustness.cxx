@@ -602,8 +602,8 @@ void TestLeafTrees()
   NoVTKOutput("one-leaf trees");
 }
 
-/// Walk stack entries of three words (the largest buffers' shader) against
-/// the packed two: every walk the same, so the same image: a deep mesh
+/// Walk stack entries of two words (the largest buffers' shader) against
+/// the packed one: every walk the same, so the same image: a deep mesh
 /// over a floor with shadows (tile entries), then with points as spheres,
 /// a tube, wires, a translucent ball and more than eight instances.
 void TestPackedStackEntries()

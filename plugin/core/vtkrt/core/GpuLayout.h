@@ -482,9 +482,10 @@ static_assert(texelsOf<Segment>() == kSegmentTexels, "Segment: 2 texels");
 /// A walk's stack entry (the shader's StackEntry) packs the node's index
 /// and primitive count into one word, the count in the low kStackCountBits
 /// bits: leaves hold at most kMaxPackedStackCount primitives (the pass's
-/// leaf sizes stop at 64) and indices (nodes, triangles, sphere texels) stay
-/// at most kMaxPackedStackIndex (VTKRT_PACKED_STACK_ENTRIES); larger buffers
-/// get entries of three words.
+/// triangle leaf sizes are clamped to it, its sphere leaves hold 16) and
+/// indices (nodes, triangles, sphere texels) stay at most
+/// kMaxPackedStackIndex (VTKRT_PACKED_STACK_ENTRIES); larger buffers get
+/// entries of two words.
 constexpr std::uint32_t kStackCountBits = 7;
 constexpr std::uint32_t kMaxPackedStackCount = (1u << kStackCountBits) - 1;
 constexpr std::uint32_t kMaxPackedStackIndex = (1u << (32 - kStackCountBits)) - 1;

@@ -113,7 +113,7 @@ struct ShaderInputs
   bool screenSpheres = false;    ///< VTKRT_SCREEN_SPHERES
   bool hasEllipsoids = false;    ///< VTKRT_HAS_ELLIPSOIDS
   bool leafTrees = false;        ///< VTKRT_LEAF_TREES: every triangle tree is one leaf
-  bool packedStackEntries = true; ///< VTKRT_PACKED_STACK_ENTRIES: walk stack entries of two words
+  bool packedStackEntries = true; ///< VTKRT_PACKED_STACK_ENTRIES: walk stack entries of one word
   /// Not the shader's: the deepest stack entry the walks have touched so far
   /// (what VTKRT_STACK_SIZE must hold; see stackSizeForDepth).
   mutable int deepestStackEntry = -1;
