@@ -172,7 +172,7 @@ StackEntry stackEntry(uint index, uint count)
   return (index << kStackCountBits) | count;
 }
 uint entryIndex(StackEntry e) { return e >> kStackCountBits; }
-uint entryCount(StackEntry e) { return e & ((1u << kStackCountBits) - 1u); }
+uint entryCount(StackEntry e) { return e & kMaxPackedStackCount; }
 #else
 #define StackEntry uvec2
 StackEntry stackEntry(uint index, uint count)

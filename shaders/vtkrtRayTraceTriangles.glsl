@@ -239,9 +239,6 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
     // Every triangle tree is one leaf, the root: no walk.
     break;
 #endif
-#ifdef VTKRT_HAS_WIREFRAME
-    reach = wireReach(tmax);
-#endif
     if (!bvhPopAfterLeaf(sp, index, count))
     {
       break;

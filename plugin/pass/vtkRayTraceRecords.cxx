@@ -93,13 +93,8 @@ void CameraFrame::AffineRay(double x, double y, double org[3], double dir[3]) co
 
 double CameraFrame::NearPlaneW() const
 {
-  if (!this->AffineRays)
-  {
-    return 0.0;
-  }
-  double p[4] = { this->RayOrigin[0][0], this->RayOrigin[0][1], this->RayOrigin[0][2], 1.0 };
-  this->CameraToClip->MultiplyPoint(p, p);
-  return p[3] > 0.0 && std::isfinite(p[3]) ? p[3] : 0.0;
+  const double w = this->RayDepth[2]; // clip w where the rays start
+  return this->AffineRays && w > 0.0 && std::isfinite(w) ? w : 0.0;
 }
 
 void CameraFrame::SetAffineRays()

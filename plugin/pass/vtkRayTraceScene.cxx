@@ -641,9 +641,9 @@ bool Scene::HasBackfaceProperties() const
 bool Scene::HasSpecular() const
 {
   // Not black: raster darkens with a negative specular color too.
-  const auto lit = [](const std::array<float, 3>& c) { return c[0] != 0.0f || c[1] != 0.0f || c[2] != 0.0f; };
-  return std::any_of(this->Instances.begin(), this->Instances.end(), [&lit](const Instance& i) {
-    return i.Lit && (lit(i.Specular) || (i.BackfaceProperty && lit(i.BackSpecular)));
+  const auto notBlack = [](const std::array<float, 3>& c) { return c[0] != 0.0f || c[1] != 0.0f || c[2] != 0.0f; };
+  return std::any_of(this->Instances.begin(), this->Instances.end(), [&notBlack](const Instance& i) {
+    return i.Lit && (notBlack(i.Specular) || (i.BackfaceProperty && notBlack(i.BackSpecular)));
   });
 }
 

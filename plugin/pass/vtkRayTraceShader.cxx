@@ -44,7 +44,8 @@ std::string Features::Key() const
     << this->TextureCutOuts << "S" << this->StackSize << "R" << this->Translucent << "G"
     << this->SurfaceEdges << "V" << this->Wireframe << "J"
     << this->Tubes << "i" << this->SingleInstance << "p"
-    << this->ProjectiveRays << "e" << this->TileEntries << "l" << this->LeafTrees << "w" << this->PackedStackEntries << "h" << this->Specular;
+    << this->ProjectiveRays << "e" << this->TileEntries << "l" << this->LeafTrees << "w"
+    << this->PackedStackEntries << "h" << this->Specular;
   return s.str();
 }
 

@@ -512,22 +512,30 @@ void CompareEntriesWithRoot(
   CompareWithFeatureOff(win, ren, pass, "VTKRT_TILE_ENTRIES", "VTKRT_TILE_ENTRIES", "tile entries, " + what, ties);
 }
 
+/// One mesh deep enough for tile entries (a fine sphere) and a floor,
+/// turned by its matrix (25 degrees about y, then `tiltX` about x), in view
+/// from above; returned for its property.
+vtkActor* AddSphereOverFloor(vtkRenderer* ren, double tiltX)
+{
+  auto actor = MeshActor(SphereOverFloor(400, 8));
+  actor->RotateY(25.0);
+  actor->RotateX(tiltX);
+  ren->AddActor(actor);
+  ren->GetActiveCamera()->SetPosition(1.0, 3.0, 5.0);
+  ren->GetActiveCamera()->SetFocalPoint(0.0, 0.5, 0.0);
+  ren->ResetCamera();
+  return actor;
+}
+
 void TestTileEntries()
 {
   auto win = MakeWindow(240, 200);
   vtkNew<vtkRenderer> ren;
   ren->SetViewport(0.05, 0.1, 0.95, 1.0);
   win->AddRenderer(ren);
-  // One mesh deep enough for tile entries (a fine sphere) and a floor,
-  // turned by its matrix: the floor's shadows come from rays that are not
-  // camera rays, which walk from the root.
-  auto actor = MeshActor(SphereOverFloor(400, 8));
-  actor->RotateY(25.0);
-  actor->RotateX(10.0);
-  ren->AddActor(actor);
-  ren->GetActiveCamera()->SetPosition(1.0, 3.0, 5.0);
-  ren->GetActiveCamera()->SetFocalPoint(0.0, 0.5, 0.0);
-  ren->ResetCamera();
+  // The floor's shadows come from rays that are not camera rays, which walk
+  // from the root.
+  vtkActor* actor = AddSphereOverFloor(ren, 10.0);
   vtkNew<vtkRayTracePass> pass;
   pass->SetShadows(true);
   ren->SetPass(pass);
@@ -611,12 +619,7 @@ void TestPackedStackEntries()
   auto win = MakeWindow(220, 180);
   vtkNew<vtkRenderer> ren;
   win->AddRenderer(ren);
-  auto actor = MeshActor(SphereOverFloor(400, 8));
-  actor->RotateY(25.0);
-  ren->AddActor(actor);
-  ren->GetActiveCamera()->SetPosition(1.0, 3.0, 5.0);
-  ren->GetActiveCamera()->SetFocalPoint(0.0, 0.5, 0.0);
-  ren->ResetCamera();
+  AddSphereOverFloor(ren, 0.0);
   vtkNew<vtkRayTracePass> pass;
   pass->SetShadows(true);
   ren->SetPass(pass);

@@ -505,7 +505,8 @@ inline std::string glslLayout()
 #undef VTKRT_GPU_FLAG_GLSL
   s << "const uint kEdge01 = " << kEdge01 << "u;\nconst uint kEdge12 = " << kEdge12
     << "u;\nconst uint kEdge20 = " << kEdge20 << "u;\n";
-  s << "const uint kStackCountBits = " << kStackCountBits << "u;\n";
+  s << "const uint kStackCountBits = " << kStackCountBits << "u;\nconst uint kMaxPackedStackCount = "
+    << kMaxPackedStackCount << "u;\n";
 #define VTKRT_GPU_GLSL_FIELD(record, member)                                                       \
   detail::glslField<decltype(record::member)>(#member, offsetof(record, member)),
 #define VTKRT_GPU_GLSL_RECORD(type, NAME, indexing, fields)                                        \

@@ -165,7 +165,7 @@ inline std::uint32_t entryIndex(const BvhStack& stack, const uvec2& e)
 
 inline std::uint32_t entryCount(const BvhStack& stack, const uvec2& e)
 {
-  return stack.packed ? e.x & ((1u << kStackCountBits) - 1u) : e.y;
+  return stack.packed ? e.x & kMaxPackedStackCount : e.y;
 }
 
 /// One interior step (see the shader): the farther child is written above
