@@ -431,6 +431,9 @@ void SetInstanceUniforms(vtkShaderProgram* program, const Features& f, const vtk
     glUniform4uiv(program->FindUniform("uInstance"),
       static_cast<GLsizei>(vtkrt::core::gpu::texelsOf<vtkrt::core::gpu::InstanceRecord>()),
       reinterpret_cast<const GLuint*>(frame.Records.data()));
+    glUniform4uiv(program->FindUniform("uRootNode"),
+      static_cast<GLsizei>(vtkrt::core::gpu::texelsOf<vtkrt::core::gpu::Node>()),
+      reinterpret_cast<const GLuint*>(frame.RootNodes.data()));
   }
   else if (!f.TopLevel)
   {

@@ -87,7 +87,7 @@ bool traverseSpheres(int root, vec3 org, vec3 dir, float tmin, inout float tmax,
   vec3 growBy = vec3(grow);
   // No test of the root's box: traceInstance has tested the instance's
   // box, which bounds it.
-  Node rootNode = fetchNode(uNodes, root);
+  Node rootNode = rootNodeOf(root);
   int sp = 0;
   int steps = 0;
   uint index = rootNode.index;

@@ -175,7 +175,7 @@ bool traverseTriangles(int root, vec3 org, vec3 dir, float tmin, inout float tma
 #else
   // No test of the root's box: traceInstance has tested the instance's
   // box, which bounds it.
-  Node rootNode = fetchNode(uNodes, root);
+  Node rootNode = rootNodeOf(root);
   uint index = rootNode.index;
   uint count = rootNode.count;
 #endif

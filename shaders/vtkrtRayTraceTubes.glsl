@@ -111,7 +111,7 @@ bool traverseTubes(int root, vec3 org, vec3 dir, float tmin, inout float tmax, o
   vec3 invDir = safeInverse(dir);
   vec3 parallelBias = parallelAxisBias(invDir);
   vec3 growBy = vec3(grow);
-  Node rootNode = fetchNode(uNodes, root);
+  Node rootNode = rootNodeOf(root);
   int sp = 0;
   int steps = 0;
   uint index = rootNode.index;

@@ -138,9 +138,7 @@ void writePlaced(const Geometry& g, const GeometryPlacement& place, const Geomet
   vtkSMPTools::For(0, static_cast<vtkIdType>(g.Nodes.size()), kCopyGrain, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType i = b; i < e; ++i)
     {
-      core::gpu::Node node = g.Nodes[static_cast<std::size_t>(i)];
-      node.index += node.count == 0 ? place.Root : place.PrimitiveBase;
-      nodes[i] = node;
+      nodes[i] = PlacedNode(g, place, static_cast<std::size_t>(i));
     }
   });
 }
@@ -156,6 +154,13 @@ std::size_t withRoom(std::size_t used, std::size_t texelsPerRecord, std::size_t 
   return std::max(used, std::min(room, limit / texelsPerRecord));
 }
 } // namespace
+
+core::gpu::Node PlacedNode(const Geometry& g, const GeometryPlacement& place, std::size_t i)
+{
+  core::gpu::Node node = g.Nodes[i];
+  node.index += node.count == 0 ? place.Root : place.PrimitiveBase;
+  return node;
+}
 
 GeometrySizes WithRoom(const GeometrySizes& used, std::size_t limit, const GeometrySizes& lastAppend)
 {

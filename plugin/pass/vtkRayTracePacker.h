@@ -119,6 +119,10 @@ struct ScenePlacements
   std::map<const TextureEntry*, std::uint32_t> TextureBases; ///< first words in uTextures
 };
 
+/// Node `i` of `g` as the uploaded buffer holds it at `place`: its child or
+/// primitive index made global.
+core::gpu::Node PlacedNode(const Geometry& g, const GeometryPlacement& place, std::size_t i);
+
 GeometryLayout LayOutGeometry(const Scene& scene);
 /// Writes every record of the layout, padding included.
 void WriteGeometry(const Scene& scene, const GeometryLayout& layout, const GeometryTargets& out);

@@ -395,6 +395,7 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
   out.TooSmallProps.clear();
   out.WorldBoxes.resize(instances.size());
   out.Outlines.resize(instances.size());
+  out.RootNodes.assign(instances.size(), core::gpu::Node{});
   const int outlineDepth = OutlineDepth(instances.size());
   double eyeInShader[3];
   camera.ToShader(camera.Eye, eyeInShader);
@@ -446,6 +447,10 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     }
     shaderBox(inst, toShader, screen.MaxWorld * camera.Scale, rec);
     rec.root = place->second.Root;
+    if (!inst.Geom->Empty())
+    {
+      out.RootNodes[i] = PlacedNode(*inst.Geom, place->second, 0);
+    }
     rec.flags = instanceFlags(inst, toShader->Determinant() < 0.0);
     for (int k = 0; k < 3; ++k)
     {
@@ -498,12 +503,14 @@ void KeepTracedProps(const std::vector<bool>& traced, FrameRecords& frame)
       frame.Records[kept] = frame.Records[i];
       frame.WorldBoxes[kept] = frame.WorldBoxes[i];
       frame.Outlines[kept] = frame.Outlines[i];
+      frame.RootNodes[kept] = frame.RootNodes[i];
       ++kept;
     }
   }
   frame.Records.resize(kept);
   frame.WorldBoxes.resize(kept);
   frame.Outlines.resize(kept);
+  frame.RootNodes.resize(kept);
 }
 
 } // namespace pass

@@ -384,6 +384,19 @@ void checkTriangleWalk(const MeshData& mesh, int rayCount, std::uint64_t seed)
       VTKRT_CHECK(gpu::traverseTriangles(wide, 0, org, dir, 0.0f, wideTmax, wideTri, wideUv, false) == found &&
         wideTmax == tmax && wideTri == tri && wideUv == uv);
     }
+    {
+      // A shader of one instance starts from the root node it is given,
+      // whatever node index it is passed.
+      gpu::ShaderInputs single = u;
+      single.singleInstance = true;
+      single.uRootNode = gpu::fetchNode(u.uNodes, 0);
+      float singleTmax = tmax0;
+      int singleTri;
+      vec2 singleUv;
+      VTKRT_CHECK(gpu::traverseTriangles(single, -1, org, dir, 0.0f, singleTmax, singleTri, singleUv, false) ==
+          found &&
+        singleTmax == tmax && singleTri == tri && singleUv == uv);
+    }
     TriangleIntersector<float> fisect(fmesh);
     Hit<float> fh;
     const bool ffound = closestHit(GpuNodeSource(nodes), bvh.primIndex.data(), Ray<float>(org, dir, 0.0f, tmax0), fisect, fh);

@@ -399,6 +399,23 @@ inline void writeGlslRecord(std::ostream& s, const char* type, const char* name,
     }
   }
   s << "};\n";
+  const auto texel = [](std::size_t k) { return "t" + std::to_string(k); };
+  const auto writeFields = [&]() {
+    s << "  " << type << " r;\n";
+    for (const GlslField& f : fields)
+    {
+      if (f.count == 0)
+      {
+        s << "  r." << f.name << " = " << glslElement(f, f.offset, texel) << ";\n";
+      }
+      for (std::size_t e = 0; e < f.count; ++e)
+      {
+        s << "  r." << f.name << "[" << e << "] = " << glslElement(f, f.offset + e * f.elementBytes, texel)
+          << ";\n";
+      }
+    }
+    s << "  return r;\n}\n";
+  };
   s << type << " fetch" << type << "(usamplerBuffer b, int i)\n{\n";
   s << "  int first = " << (indexing == Indexing::ByRecord ? "i * VTKRT_" + std::string(name) + "_TEXELS" : "i")
     << ";\n";
@@ -409,21 +426,17 @@ inline void writeGlslRecord(std::ostream& s, const char* type, const char* name,
       s << "  uvec4 t" << k << " = texelFetch(b, first + " << k << ");\n";
     }
   }
-  s << "  " << type << " r;\n";
-  const auto texel = [](std::size_t k) { return "t" + std::to_string(k); };
-  for (const GlslField& f : fields)
+  writeFields();
+  // The same record from texels held elsewhere (a uniform array).
+  s << type << " unpack" << type << "(uvec4 t[VTKRT_" << name << "_TEXELS])\n{\n";
+  for (std::uint32_t k = 0; k < texels; ++k)
   {
-    if (f.count == 0)
+    if (used[k])
     {
-      s << "  r." << f.name << " = " << glslElement(f, f.offset, texel) << ";\n";
-    }
-    for (std::size_t e = 0; e < f.count; ++e)
-    {
-      s << "  r." << f.name << "[" << e << "] = " << glslElement(f, f.offset + e * f.elementBytes, texel)
-        << ";\n";
+      s << "  uvec4 t" << k << " = t[" << k << "];\n";
     }
   }
-  s << "  return r;\n}\n";
+  writeFields();
 }
 
 /// One accessor per field of the records of a uniform buffer, for a shader
@@ -492,7 +505,8 @@ constexpr std::uint32_t kMaxPackedStackIndex = (1u << (32 - kStackCountBits)) - 
 
 /// The GLSL for the layouts: the instance flags kInstance<Name>, the
 /// triangle edge bits kEdge01, kEdge12, kEdge20, per record
-/// its struct, texel count VTKRT_<NAME>_TEXELS and reader fetch<Type>(b, i),
+/// its struct, texel count VTKRT_<NAME>_TEXELS and readers fetch<Type>(b, i)
+/// (from a buffer) and unpack<Type>(texels) (from a uniform array),
 /// and one accessor per instance record field (instanceBoxMin(i),
 /// instanceFlags(i) ...) reading the usamplerBuffer uInstances, or, in a
 /// shader of one instance (VTKRT_SINGLE_INSTANCE), the uniform uInstance.

@@ -114,10 +114,19 @@ struct ShaderInputs
   bool hasEllipsoids = false;    ///< VTKRT_HAS_ELLIPSOIDS
   bool leafTrees = false;        ///< VTKRT_LEAF_TREES: every triangle tree is one leaf
   bool packedStackEntries = true; ///< VTKRT_PACKED_STACK_ENTRIES: walk stack entries of one word
+  bool singleInstance = false;   ///< VTKRT_SINGLE_INSTANCE: every walk starts at uRootNode
+  Node uRootNode{};              ///< the one instance's root node, as uploaded (global indices)
   /// Not the shader's: the deepest stack entry the walks have touched so far
   /// (what VTKRT_STACK_SIZE must hold; see stackSizeForDepth).
   mutable int deepestStackEntry = -1;
 };
+
+/// The root node of the tree at `root`, where a walk starts: in a shader of
+/// one instance the uniform uRootNode, not fetched per pixel.
+inline Node rootNodeOf(const ShaderInputs& u, int root)
+{
+  return u.singleInstance ? u.uRootNode : fetchNode(u.uNodes, root);
+}
 
 /// The entries of the shader's walk stack (VTKRT_STACK_SIZE) for bottom-level
 /// trees no deeper than maxDepth (root depth 0): an interior step at depth d
@@ -297,7 +306,7 @@ inline void whileWhileWalk(const ShaderInputs& u, int root, const vec3& org, con
   const vec3 growBy = vec3(grow);
   // No test of the root's box: the caller (the shader's traceInstance) has
   // tested the instance's box, which bounds it.
-  const Node rootNode = fetchNode(u.uNodes, root);
+  const Node rootNode = rootNodeOf(u, root);
   BvhStack stack;
   stack.packed = u.packedStackEntries;
   struct RecordDeepest
@@ -367,7 +376,7 @@ inline bool traverseTriangles(const ShaderInputs& u, int root, const vec3& org, 
   };
   if (u.leafTrees)
   {
-    const Node rootNode = fetchNode(u.uNodes, root);
+    const Node rootNode = rootNodeOf(u, root);
     assert(rootNode.count > 0 && "VTKRT_LEAF_TREES: the root is a leaf");
     leaf(static_cast<int>(rootNode.index), static_cast<int>(rootNode.count));
     return tri >= 0;
