@@ -6,27 +6,26 @@
 in vec2 texCoord;
 layout(location = 0) out vec4 fragOutput0;
 
-#ifdef VTKRT_PROJECTIVE_RAYS
-uniform mat4 uCameraToClip; // VTK's world-to-clip matrix, translated by the eye
-uniform mat4 uClipToCamera; // inverse of uCameraToClip
-#else
-// The camera ray through (x, y) (normalized device coordinates) from
-// uRayOrigin[0] + x uRayOrigin[1] + y uRayOrigin[2] along uRayDirection[0] +
-// x uRayDirection[1] + y uRayDirection[2]: VTK's cameras' rays are affine in
-// x, y, unprojected once per frame in double (CameraFrame::AffineRays).
-uniform vec3 uRayOrigin[3];
-uniform vec3 uRayDirection[3];
-// A camera ray's depth at t (affineRayDepth; CameraFrame::RayDepth): a
-// division instead of a matrix product per pixel.
-uniform vec4 uRayDepth;
-#endif
-uniform vec3 uViewBack;     // unit +z axis of VTK's view coordinates
-uniform int uNumberOfInstances;
-#ifdef VTKRT_WORLD_COORDINATES
-// WORLD precision mode: coordinates are plain float world coordinates and
-// the eye is here (the comments' "camera-relative" then reads "world").
-uniform vec3 uEye;
-#else
+// The frame constants (uniforms, or flat inputs under the same names) are
+// declared first, by the pass (vtkRayTraceFrameConstants.cxx):
+// - VTKRT_PROJECTIVE_RAYS: uCameraToClip, VTK's world-to-clip matrix
+//   translated by the eye, and uClipToCamera, its inverse;
+// - otherwise the camera ray through (x, y) (normalized device coordinates)
+//   from uRayOrigin[0] + x uRayOrigin[1] + y uRayOrigin[2] along
+//   uRayDirection[0] + x uRayDirection[1] + y uRayDirection[2] (VTK's
+//   cameras' rays are affine in x, y, unprojected once per frame in double:
+//   CameraFrame::AffineRays), and uRayDepth, a camera ray's depth at t
+//   (affineRayDepth; CameraFrame::RayDepth: a division instead of a matrix
+//   product per pixel);
+// - uViewBack, the unit +z axis of VTK's view coordinates; uNumberOfInstances;
+// - VTKRT_WORLD_COORDINATES: uEye, the eye (WORLD precision mode: coordinates
+//   are plain float world coordinates; the comments' "camera-relative" then
+//   reads "world");
+// - uClipPlanes[VTKRT_NUMBER_OF_CLIP_PLANES], (n, d) with n.p + d >= 0 kept;
+// - per light: uLightColor (diffuse color * intensity), uLightDirection
+//   (unit, from the light), uLightPosition (camera-relative),
+//   uLightAttenuation, uLightCone (cone angle, exponent, positional).
+#ifndef VTKRT_WORLD_COORDINATES
 const vec3 uEye = vec3(0.0);
 #endif
 
@@ -52,16 +51,6 @@ uvec3 triangleVertexIds(int tri)
 #endif
 #ifdef VTKRT_HAS_SPHERES
 uniform usamplerBuffer uSphereIds; // VTK point id per sphere, four per texel
-#endif
-#if VTKRT_NUMBER_OF_CLIP_PLANES > 0
-uniform vec4 uClipPlanes[VTKRT_NUMBER_OF_CLIP_PLANES]; // n.p + d >= 0 is kept
-#endif
-#if VTKRT_NUMBER_OF_LIGHTS > 0
-uniform vec3 uLightColor[VTKRT_NUMBER_OF_LIGHTS];     // diffuse color * intensity
-uniform vec3 uLightDirection[VTKRT_NUMBER_OF_LIGHTS]; // unit, from the light
-uniform vec3 uLightPosition[VTKRT_NUMBER_OF_LIGHTS];  // camera-relative
-uniform vec3 uLightAttenuation[VTKRT_NUMBER_OF_LIGHTS];
-uniform vec3 uLightCone[VTKRT_NUMBER_OF_LIGHTS]; // (cone angle, exponent, positional)
 #endif
 
 #ifdef VTKRT_HAS_COLORS

@@ -145,10 +145,9 @@ bool clipRayByPlane(vec3 org, vec3 dir, vec4 plane, inout float tmin, inout floa
 uniform usamplerBuffer uNodes;
 
 // The root node of the tree at `root`, where a walk starts. A shader of one
-// instance walks one tree: its root is a uniform, the same for every pixel,
-// so not fetched per pixel.
+// instance walks one tree: its root is the frame constant uRootNode, the
+// same for every pixel, so not fetched per pixel.
 #ifdef VTKRT_SINGLE_INSTANCE
-uniform uvec4 uRootNode[VTKRT_NODE_TEXELS];
 Node rootNodeOf(int root)
 {
   return unpackNode(uRootNode);

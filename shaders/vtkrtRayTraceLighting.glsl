@@ -62,7 +62,7 @@ float lightVisibility(vec3 p, vec3 ng, vec3 toLight, float tmax)
 #endif
 
 #if VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
-uniform float uAmbientOcclusionRadius; // world units
+// uAmbientOcclusionRadius (a frame constant): in world units.
 int gSampleIndex = 0; // the pixel's sample (sub-pixel sampling), seeds the rays
 
 uint hashUint(uint x)

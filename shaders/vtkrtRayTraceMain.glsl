@@ -87,9 +87,8 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 // pixel center), k counting on from uFirstSample so successive accumulated
 // frames continue one sequence. The output is the sum of the hits' colors in
 // RGB (premultiplied) and the number of hits in A (their alphas' sum) (added into the pass's float accumulation
-// buffer); the depth is the nearest hit's.
-uniform int uFirstSample;
-uniform vec2 uPixelSize; // one pixel in normalized device coordinates
+// buffer); the depth is the nearest hit's. uPixelSize (a frame constant):
+// one pixel in normalized device coordinates.
 
 vec2 samplePoint(int k)
 {

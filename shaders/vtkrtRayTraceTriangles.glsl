@@ -110,8 +110,8 @@ bool intersectRayTriangle(RayTrianglePrecomputed r, vec3 v0, vec3 v1, vec3 v2, f
 // that the tile's rays can reach (core::gpu::TileList and its node ids, four
 // a texel); list 0 holds the root alone, for every other ray.
 uniform usamplerBuffer uTileEntries;
-// Tiles per unit of [0, 1] viewport coordinates (xy), tiles in x and y (zw).
-uniform vec4 uTileGrid;
+// uTileGrid (a frame constant): tiles per unit of [0, 1] viewport
+// coordinates (xy), tiles in x and y (zw).
 // The list of the walks under way: the camera ray's tile (shadeRay), list 0
 // while shadow and occlusion rays walk (rayVisibility).
 int gTileList = 0;

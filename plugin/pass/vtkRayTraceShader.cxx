@@ -1,5 +1,7 @@
 #include "vtkRayTraceShader.h"
 
+#include "vtkRayTraceFrameConstants.h"
+
 #include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
@@ -23,6 +25,8 @@
 #include "vtkrt/core/BVH.h"
 #include "vtkrt/core/GpuLayout.h"
 
+#include <cstdlib>
+#include <cstring>
 #include <sstream>
 
 namespace vtkrt
@@ -49,7 +53,7 @@ std::string Features::Key() const
   return s.str();
 }
 
-std::string AssembleShader(const Features& f)
+ShaderSources AssembleShaders(const Features& f, int flatSlots)
 {
   std::ostringstream s;
   s << (f.Fp64 ? "#version 400 core\n#define VTKRT_HAS_FP64\n" : "#version 330 core\n");
@@ -101,6 +105,8 @@ std::string AssembleShader(const Features& f)
   s << "#define VTKRT_NUMBER_OF_LIGHTS " << f.Lights << "\n";
   s << "#define VTKRT_LIGHT_COMPLEXITY " << f.LightComplexity << "\n";
   s << "#define VTKRT_STACK_SIZE " << f.StackSize << "\n";
+  const FrameConstantShaders constants = DeclareFrameConstants(FrameConstantsOf(f), flatSlots);
+  s << constants.FragmentDeclarations;
   s << core::gpu::glslLayout();
   s << vtkrtRayTraceKernels << "\n";
   if (f.Triangles)
@@ -129,7 +135,7 @@ std::string AssembleShader(const Features& f)
   {
     s << "\n" << vtkrtRayTraceTranslucent;
   }
-  return s.str();
+  return { constants.Vertex, s.str() };
 }
 
 std::string ResolveShaderSource()
@@ -143,11 +149,12 @@ std::string SelectShaderSource()
 }
 
 bool ReadyQuadProgram(vtkOpenGLRenderWindow* win, std::unique_ptr<vtkOpenGLQuadHelper>& helper,
-  const std::string& source, FrameCounters& counters)
+  const std::string& source, FrameCounters& counters, const std::string& vertexSource)
 {
   if (!helper)
   {
-    helper.reset(new vtkOpenGLQuadHelper(win, nullptr, source.c_str(), ""));
+    helper.reset(new vtkOpenGLQuadHelper(
+      win, vertexSource.empty() ? nullptr : vertexSource.c_str(), source.c_str(), ""));
     ++counters.ShaderCompiles;
   }
   else
@@ -163,14 +170,25 @@ ProgramCache::~ProgramCache() = default;
 vtkOpenGLQuadHelper* ProgramCache::Ready(
   vtkOpenGLRenderWindow* win, const Features& f, FrameCounters& counters)
 {
-  const std::string key = f.Key();
+  if (this->ContextSlots < 0)
+  {
+    this->ContextSlots = FlatConstantSlots(win);
+  }
+  // VTKRT_FLAT_FRAME_CONSTANTS=0: every frame constant a uniform (tests
+  // compare the two, which must draw the same image).
+  const char* allowed = std::getenv("VTKRT_FLAT_FRAME_CONSTANTS");
+  const int slots = allowed && std::strcmp(allowed, "0") == 0 ? 0 : this->ContextSlots;
+  const std::string key = f.Key() + "f" + std::to_string(slots);
   if (key != this->LastKey)
   {
-    this->LastSource = AssembleShader(f);
+    ShaderSources sources = AssembleShaders(f, slots);
+    this->LastSource = std::move(sources.Fragment);
+    this->LastVertexSource = std::move(sources.Vertex);
     this->LastKey = key;
   }
   auto& helper = this->Programs[key];
-  return ReadyQuadProgram(win, helper, this->LastSource, counters) ? helper.get() : nullptr;
+  return ReadyQuadProgram(win, helper, this->LastSource, counters, this->LastVertexSource) ? helper.get()
+                                                                                         : nullptr;
 }
 
 void ProgramCache::Release(vtkWindow* w)
@@ -180,6 +198,7 @@ void ProgramCache::Release(vtkWindow* w)
     p.second->ReleaseGraphicsResources(w);
   }
   this->Programs.clear();
+  this->ContextSlots = -1; // the next window's context may hold other limits
 }
 
 } // namespace pass

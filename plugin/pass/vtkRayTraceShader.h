@@ -20,8 +20,16 @@ namespace vtkrt
 namespace pass
 {
 
-/// The fragment shader source for a feature set.
-std::string AssembleShader(const Features& f);
+/// The tracing program's sources for a feature set: the quad's vertex
+/// shader, which passes the frame constants that fit in `flatSlots` varying
+/// slots on as flat varyings (vtkRayTraceFrameConstants.h), and the
+/// fragment shader.
+struct ShaderSources
+{
+  std::string Vertex;
+  std::string Fragment;
+};
+ShaderSources AssembleShaders(const Features& f, int flatSlots);
 
 /// The resolve shader of the accumulation buffer.
 std::string ResolveShaderSource();
@@ -48,13 +56,16 @@ public:
 private:
   std::map<std::string, std::unique_ptr<vtkOpenGLQuadHelper>> Programs;
   std::string LastKey;
-  std::string LastSource; ///< LastKey's shader source (outlives the cached programs)
+  std::string LastSource; ///< LastKey's fragment shader source (outlives the cached programs)
+  std::string LastVertexSource;
+  int ContextSlots = -1; ///< FlatConstantSlots of the context, once known
 };
 
 /// Makes a cached quad helper's program current, or compiles it into
-/// `helper` from `source` (counted); false when it does not compile.
+/// `helper` from the fragment shader `source` (counted) and `vertexSource`
+/// (empty: VTK's quad vertex shader); false when it does not compile.
 bool ReadyQuadProgram(vtkOpenGLRenderWindow* win, std::unique_ptr<vtkOpenGLQuadHelper>& helper,
-  const std::string& source, FrameCounters& counters);
+  const std::string& source, FrameCounters& counters, const std::string& vertexSource = std::string());
 
 } // namespace pass
 } // namespace vtkrt

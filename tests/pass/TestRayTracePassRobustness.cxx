@@ -17,6 +17,8 @@
 #include "vtkrtPassTestUtils.h"
 #include "vtkrtTestOutputWindow.h"
 
+#include "vtkRayTraceFrameConstants.h"
+
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
@@ -26,6 +28,7 @@
 #include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPlane.h"
 #include "vtkPlaneSource.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -631,6 +634,62 @@ void TestPackedStackEntries()
   NoVTKOutput("packed stack entries");
 }
 
+/// Frame constants as flat inputs (as many as the varying slots hold) or
+/// all uniforms: the same values, so the same image, in a shader of one
+/// instance (tile entries, shadows, four samples, a spot light, a clip
+/// plane, world coordinates) and in the general one.
+void TestFlatFrameConstants()
+{
+  // The slots go to the constants in order; one that does not fit stays a
+  // uniform, and a later, smaller one may still fit; unread ones stay uniforms.
+  using vtkrt::pass::FrameConstant;
+  const std::vector<FrameConstant> constants = { { "vec3", "uA", 3, 1, true }, { "mat4", "uB", 0, 4, true },
+    { "vec4", "uC", 0, 1, true }, { "vec3", "uD", 2, 1, false } };
+  const vtkrt::pass::FrameConstantShaders four = vtkrt::pass::DeclareFrameConstants(constants, 4);
+  const auto declares = [&four](const std::string& line) {
+    return four.FragmentDeclarations.find(line + "\n") != std::string::npos;
+  };
+  Check(four.FlatConstants == 2 && declares("flat in vec3 vtkrtFrame_uA[3];") &&
+      declares("#define uA vtkrtFrame_uA") && declares("uniform mat4 uB;") && declares("flat in vec4 vtkrtFrame_uC;") &&
+      declares("uniform vec3 uD[2];") && four.Vertex.find("vtkrtFrame_uC = uC;") != std::string::npos &&
+      four.Vertex.find("uB") == std::string::npos,
+    "frame constants in four slots: uA and uC flat, uB and uD uniforms");
+  const vtkrt::pass::FrameConstantShaders none = vtkrt::pass::DeclareFrameConstants(constants, 0);
+  Check(none.FlatConstants == 0 && none.FragmentDeclarations.find("\nflat in ") == std::string::npos &&
+      none.FragmentDeclarations.find("\nuniform mat4 uB;\n") != std::string::npos,
+    "frame constants in no slots: all uniforms");
+
+  auto win = MakeWindow(220, 180);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  vtkActor* actor = AddSphereOverFloor(ren, 0.0);
+  vtkNew<vtkRayTracePass> pass;
+  pass->SetShadows(true);
+  ren->SetPass(pass);
+  const char* variable = "VTKRT_FLAT_FRAME_CONSTANTS";
+  const std::string define = "uInstance vtkrtFrame_uInstance";
+  CompareWithFeatureOff(win, ren, pass, variable, define, "flat frame constants, sphere over a floor");
+  pass->SetSamplesPerPixel(4);
+  pass->SetPrecisionModeToWorld();
+  vtkNew<vtkLight> spot;
+  spot->SetPosition(-3.0, 4.0, 2.0);
+  spot->SetFocalPoint(0.0, 0.5, 0.0);
+  spot->SetPositional(true);
+  spot->SetConeAngle(25.0);
+  ren->AddLight(spot);
+  vtkNew<vtkPlane> plane;
+  plane->SetOrigin(0.0, 0.0, 0.2);
+  plane->SetNormal(0.0, 0.0, -1.0);
+  actor->GetMapper()->AddClippingPlane(plane);
+  CompareWithFeatureOff(win, ren, pass, variable, define,
+    "flat frame constants, four samples, a spot light, a clip plane, world coordinates");
+  AddViewSizedAndTranslucentProps(ren);
+  ren->ResetCamera();
+  CompareWithFeatureOff(win, ren, pass, variable, "uRayDepth vtkrtFrame_uRayDepth",
+    "flat frame constants, the general shader: spheres, tubes, wires, translucency");
+  NoVTKOutput("flat frame constants");
+}
+
 int main(int argc, char* argv[])
 {
   Output = vtkrtTestOutputWindow::Install();
@@ -643,6 +702,7 @@ int main(int argc, char* argv[])
     { "TileEntries", TestTileEntries },
     { "LeafTrees", TestLeafTrees },
     { "PackedStackEntries", TestPackedStackEntries },
+    { "FlatFrameConstants", TestFlatFrameConstants },
   };
   return RunCase(argc, argv, cases);
 }

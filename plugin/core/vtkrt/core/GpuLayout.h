@@ -205,6 +205,15 @@ struct InstanceRecord
                                 FIELD(InstanceRecord, edgeColor)                               \
                                   FIELD(InstanceRecord, lineWidth)
 
+/// The texels of an InstanceRecord that a traced pixel reads in any scene
+/// (matrix, box, root, flags, colors, normal base, ids, intensities,
+/// opacity): a shader of one instance holds them apart from the rest
+/// (uInstance and uInstanceTail), so that they alone can be flat inputs.
+constexpr std::size_t kInstanceHeadTexels = 10;
+static_assert(offsetof(InstanceRecord, opacity) + sizeof(float) <= kInstanceHeadTexels * kTexelBytes &&
+    offsetof(InstanceRecord, screenRadiusPlane) == kInstanceHeadTexels * kTexelBytes,
+  "InstanceRecord: the fields every pixel reads fill the head texels, the rest starts after them");
+
 /// How the shader indexes a record's buffer: record i is texels
 /// i * texels + k (ByRecord), or starts at texel i (ByTexel: ellipsoids
 /// and segments, whose buffer also holds one-texel spheres).
@@ -442,25 +451,30 @@ inline void writeGlslRecord(std::ostream& s, const char* type, const char* name,
 /// One accessor per field of the records of a uniform buffer, for a shader
 /// that reads a record's fields at different places: <prefix><Member>(i)
 /// (an array field: <prefix><Member>(i, e), its elements whole texels).
-/// Where `single` is #defined, the shader's one record is the uniform array
-/// `uniformArray` instead (i is then 0): its reads are the same for every
-/// pixel, so they are not fetched per pixel.
+/// Where `single` is #defined, the shader's one record is in uvec4 arrays
+/// (declared by the shader: the pass's frame constants) instead, its first
+/// `headTexels` texels in `uniformArray`, the rest in `tailArray` (i is then
+/// 0): its reads are the same for every pixel, so not fetched per pixel.
 inline void writeGlslAccessors(std::ostream& s, const char* prefix, const char* buffer, const char* name,
-  const char* single, const char* uniformArray, std::initializer_list<GlslField> fields)
+  const char* single, const char* uniformArray, const char* tailArray, std::size_t headTexels,
+  std::initializer_list<GlslField> fields)
 {
-  s << "#ifdef " << single << "\nuniform uvec4 " << uniformArray << "[VTKRT_" << name << "_TEXELS];\n#endif\n";
   for (const GlslField& f : fields)
   {
     const std::string member = std::string(1, static_cast<char>(std::toupper(f.name[0]))) + (f.name + 1);
     const bool array = f.count > 0;
     assert((!array || f.elementBytes == kTexelBytes) && "an accessor's array elements are whole texels");
+    assert((!array || f.offset / kTexelBytes >= headTexels || f.offset / kTexelBytes + f.count <= headTexels) &&
+      "an accessor's array lies in the head texels or after them");
     s << f.type << " " << prefix << member << (array ? "(int i, int e)" : "(int i)") << "\n{\n";
     const auto texel = [&](std::size_t k) {
       return std::string("texelFetch(") + buffer + ", i * VTKRT_" + name + "_TEXELS + " + std::to_string(k) +
         (array ? " + e)" : ")");
     };
     const auto uniformTexel = [&](std::size_t k) {
-      return std::string(uniformArray) + "[" + std::to_string(k) + (array ? " + e]" : "]");
+      const bool head = k < headTexels;
+      return std::string(head ? uniformArray : tailArray) + "[" + std::to_string(head ? k : k - headTexels) +
+        (array ? " + e]" : "]");
     };
     s << "#ifdef " << single << "\n  return " << glslElement(f, f.offset, uniformTexel) << ";\n#else\n";
     s << "  return " << glslElement(f, f.offset, texel) << ";\n#endif\n}\n";
@@ -528,7 +542,7 @@ inline std::string glslLayout()
   VTKRT_GPU_RECORDS(VTKRT_GPU_GLSL_RECORD, VTKRT_GPU_GLSL_FIELD, VTKRT_GPU_NO_FIELD)
   s << "uniform usamplerBuffer uInstances;\n";
   detail::writeGlslAccessors(s, "instance", "uInstances", "INSTANCE", "VTKRT_SINGLE_INSTANCE", "uInstance",
-    { VTKRT_GPU_INSTANCE_FIELDS(VTKRT_GPU_GLSL_FIELD, VTKRT_GPU_NO_FIELD) });
+    "uInstanceTail", kInstanceHeadTexels, { VTKRT_GPU_INSTANCE_FIELDS(VTKRT_GPU_GLSL_FIELD, VTKRT_GPU_NO_FIELD) });
 #undef VTKRT_GPU_GLSL_RECORD
 #undef VTKRT_GPU_GLSL_FIELD
   return s.str();
