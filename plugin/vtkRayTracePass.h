@@ -200,7 +200,8 @@ public:
   ///@}
 
   /**
-   * The feature key of the last frame's shader (what the scene needed).
+   * The feature key of the last frame's shader (what the scene needed,
+   * then "f" and the varying slots its frame constants were given).
    */
   const char* GetLastFeatureKey() const;
 

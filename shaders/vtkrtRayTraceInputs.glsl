@@ -17,7 +17,10 @@ layout(location = 0) out vec4 fragOutput0;
 //   CameraFrame::AffineRays), and uRayDepth, a camera ray's depth at t
 //   (affineRayDepth; CameraFrame::RayDepth: a division instead of a matrix
 //   product per pixel);
-// - uViewBack, the unit +z axis of VTK's view coordinates; uNumberOfInstances;
+// - uViewBack, the unit +z axis of VTK's view coordinates;
+// - VTKRT_SINGLE_INSTANCE: uRootNode, the instance's root node, and its
+//   record, uInstance and uInstanceTail (read through the accessors below);
+//   the general shader without a top level: uNumberOfInstances;
 // - VTKRT_WORLD_COORDINATES: uEye, the eye (WORLD precision mode: coordinates
 //   are plain float world coordinates; the comments' "camera-relative" then
 //   reads "world");

@@ -1,7 +1,5 @@
 #include "vtkRayTraceFrameConstants.h"
 
-#include "vtkOpenGLRenderWindow.h"
-
 #include "vtkrt/core/GpuLayout.h"
 
 #include "vtk_glew.h"
@@ -31,7 +29,8 @@ std::vector<FrameConstant> FrameConstantsOf(const Features& f)
     out.push_back({ "vec3", "uRayDirection", 3, 1 });
     out.push_back({ "vec4", "uRayDepth", 0, 1 });
   }
-  out.push_back({ "vec3", "uViewBack", 0, 1 });
+  // The headlight's direction, and the view wires face.
+  out.push_back({ "vec3", "uViewBack", 0, 1, f.LightComplexity == 1 || f.WireframeCode() });
   if (f.SingleInstance)
   {
     out.push_back({ "uvec4", "uRootNode", static_cast<int>(core::gpu::texelsOf<core::gpu::Node>()), 1 });
@@ -52,7 +51,8 @@ std::vector<FrameConstant> FrameConstantsOf(const Features& f)
   }
   if (f.WorldCoordinates)
   {
-    out.push_back({ "vec3", "uEye", 0, 1 });
+    // Read where lights are not the headlight (the view direction).
+    out.push_back({ "vec3", "uEye", 0, 1, f.Lights > 0 && f.LightComplexity >= 2 });
   }
   // Read by lit pixels, per light.
   if (f.Lights > 0)
@@ -108,7 +108,7 @@ FrameConstantShaders DeclareFrameConstants(const std::vector<FrameConstant>& con
   for (const FrameConstant& c : constants)
   {
     const int need = SlotsOf(c);
-    if (!c.Read || need > left)
+    if (!c.ReadByShader || need > left)
     {
       fragment << "uniform " << Declarator(c, c.Name) << ";\n";
       continue;
@@ -126,15 +126,16 @@ FrameConstantShaders DeclareFrameConstants(const std::vector<FrameConstant>& con
   return out;
 }
 
-int FlatConstantSlots(vtkOpenGLRenderWindow* win)
+int FlatConstantSlots()
 {
-  (void)win; // the limits of the current context, which is win's
   GLint fragmentInputs = 0;
   GLint vertexOutputs = 0;
+  GLint varyings = 0;
   glGetIntegerv(GL_MAX_FRAGMENT_INPUT_COMPONENTS, &fragmentInputs);
   glGetIntegerv(GL_MAX_VERTEX_OUTPUT_COMPONENTS, &vertexOutputs);
+  glGetIntegerv(GL_MAX_VARYING_COMPONENTS, &varyings);
   // One slot for the texture coordinate.
-  return std::max(0, std::min(fragmentInputs, vertexOutputs) / 4 - 1);
+  return std::max(0, std::min({ fragmentInputs, vertexOutputs, varyings }) / 4 - 1);
 }
 
 } // namespace pass

@@ -14,8 +14,6 @@
 #include <string>
 #include <vector>
 
-class vtkOpenGLRenderWindow;
-
 namespace vtkrt
 {
 namespace pass
@@ -28,12 +26,12 @@ struct FrameConstant
   std::string Name;
   int Count = 0;
   int SlotsPerElement = 1; ///< varying slots (vec4s) an element takes
-  bool Read = true; ///< false: declared, but this shader never reads it (kept a uniform)
+  bool ReadByShader = true; ///< false: declared, but this shader never reads it (kept a uniform)
 };
 
 /// The frame constants of a shader of features `f`, the most read per pixel
-/// first. Those the tracing shader's chunks declare themselves (edges' and
-/// the top level's matrices) are not among them.
+/// first. Those the tracing shader's chunks declare themselves (the edges'
+/// uCameraToPixels, the top level's uCameraToAnchor) are not among them.
 std::vector<FrameConstant> FrameConstantsOf(const Features& f);
 
 /// The two shaders' declarations of `constants`: the first ones that fit in
@@ -48,8 +46,8 @@ struct FrameConstantShaders
 FrameConstantShaders DeclareFrameConstants(const std::vector<FrameConstant>& constants, int slots);
 
 /// The varying slots a vertex shader can pass to the fragment shader in
-/// `win`'s context besides the quad's texture coordinate.
-int FlatConstantSlots(vtkOpenGLRenderWindow* win);
+/// the current context besides the quad's texture coordinate.
+int FlatConstantSlots();
 
 } // namespace pass
 } // namespace vtkrt

@@ -447,6 +447,8 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     }
     shaderBox(inst, toShader, screen.MaxWorld * camera.Scale, rec);
     rec.root = place->second.Root;
+    // (The scene makes no instance of an empty geometry; a root left
+    // empty would walk from node 0.)
     if (!inst.Geom->Empty())
     {
       out.RootNodes[i] = PlacedNode(*inst.Geom, place->second, 0);

@@ -129,8 +129,9 @@ constexpr double kSmallestShadedSize = 0x1p-60;
 struct FrameRecords
 {
   std::vector<core::gpu::InstanceRecord> Records;
-  /// The root node of each record's tree as uploaded (the shader of one
-  /// instance reads it as a uniform, not per pixel).
+  /// The root node of each record's tree as uploaded, in the records'
+  /// order before a top level reorders them (a shader of one instance, which
+  /// has no top level, reads its root as a frame constant, not per pixel).
   std::vector<core::gpu::Node> RootNodes;
   std::vector<float> ClipPlanes; ///< (n, d) per plane in the shader's coordinates
   /// World boxes of the instances (camera independent; grown by the largest

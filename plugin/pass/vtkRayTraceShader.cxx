@@ -172,12 +172,26 @@ vtkOpenGLQuadHelper* ProgramCache::Ready(
 {
   if (this->ContextSlots < 0)
   {
-    this->ContextSlots = FlatConstantSlots(win);
+    this->ContextSlots = FlatConstantSlots();
   }
   // VTKRT_FLAT_FRAME_CONSTANTS=0: every frame constant a uniform (tests
   // compare the two, which must draw the same image).
-  const char* allowed = std::getenv("VTKRT_FLAT_FRAME_CONSTANTS");
-  const int slots = allowed && std::strcmp(allowed, "0") == 0 ? 0 : this->ContextSlots;
+  const char* setting = std::getenv("VTKRT_FLAT_FRAME_CONSTANTS");
+  const int slots = setting && std::strcmp(setting, "0") == 0 ? 0 : this->ContextSlots;
+  vtkOpenGLQuadHelper* program = this->ReadyWithSlots(win, f, slots, counters);
+  if (!program && slots > 0)
+  {
+    // A driver that links fewer varyings than its limits say: uniforms
+    // from now on.
+    this->ContextSlots = 0;
+    program = this->ReadyWithSlots(win, f, 0, counters);
+  }
+  return program;
+}
+
+vtkOpenGLQuadHelper* ProgramCache::ReadyWithSlots(
+  vtkOpenGLRenderWindow* win, const Features& f, int slots, FrameCounters& counters)
+{
   const std::string key = f.Key() + "f" + std::to_string(slots);
   if (key != this->LastKey)
   {

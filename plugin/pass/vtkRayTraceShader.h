@@ -46,6 +46,9 @@ public:
 
   /// The program for `f`, compiled on first use (counted) and made current;
   /// null (with the source kept for inspection) when it does not compile.
+  /// Its key is f's and the flat varying slots given to frame constants
+  /// ("f<slots>"); a program that does not compile with flat constants is
+  /// tried again with none.
   vtkOpenGLQuadHelper* Ready(vtkOpenGLRenderWindow* win, const Features& f, FrameCounters& counters);
 
   const std::string& GetLastKey() const { return this->LastKey; }
@@ -54,6 +57,10 @@ public:
   void Release(vtkWindow* w);
 
 private:
+  /// Ready's program with frame constants in `slots` flat varying slots.
+  vtkOpenGLQuadHelper* ReadyWithSlots(
+    vtkOpenGLRenderWindow* win, const Features& f, int slots, FrameCounters& counters);
+
   std::map<std::string, std::unique_ptr<vtkOpenGLQuadHelper>> Programs;
   std::string LastKey;
   std::string LastSource; ///< LastKey's fragment shader source (outlives the cached programs)

@@ -520,10 +520,11 @@ constexpr std::uint32_t kMaxPackedStackIndex = (1u << (32 - kStackCountBits)) - 
 /// The GLSL for the layouts: the instance flags kInstance<Name>, the
 /// triangle edge bits kEdge01, kEdge12, kEdge20, per record
 /// its struct, texel count VTKRT_<NAME>_TEXELS and readers fetch<Type>(b, i)
-/// (from a buffer) and unpack<Type>(texels) (from a uniform array),
-/// and one accessor per instance record field (instanceBoxMin(i),
+/// (from a buffer) and unpack<Type>(texels) (from an array the shader
+/// holds), and one accessor per instance record field (instanceBoxMin(i),
 /// instanceFlags(i) ...) reading the usamplerBuffer uInstances, or, in a
-/// shader of one instance (VTKRT_SINGLE_INSTANCE), the uniform uInstance.
+/// shader of one instance (VTKRT_SINGLE_INSTANCE), the arrays uInstance and
+/// uInstanceTail (the pass's frame constants).
 inline std::string glslLayout()
 {
   std::ostringstream s;

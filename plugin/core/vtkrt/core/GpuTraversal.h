@@ -122,7 +122,7 @@ struct ShaderInputs
 };
 
 /// The root node of the tree at `root`, where a walk starts: in a shader of
-/// one instance the uniform uRootNode, not fetched per pixel.
+/// one instance the frame constant uRootNode, not fetched per pixel.
 inline Node rootNodeOf(const ShaderInputs& u, int root)
 {
   return u.singleInstance ? u.uRootNode : fetchNode(u.uNodes, root);
