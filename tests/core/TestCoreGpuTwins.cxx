@@ -1,15 +1,11 @@
-// The shader's C++ twins (core/GpuKernels.h, core/GpuTraversal.h) against
-// each other and against the double core: the branch-free box test never
-// rejects a box the double slab test hits and equals the float slab test off
-// the parallel axes (and a box test without the far scale is caught); the
-// plane clip agrees with the double clip and crossing; the while-while walks
-// over packed real BVHs (triangles, spheres, screen-sized spheres,
+// The shader's C++ walk twins (core/GpuTraversal.h) against each other and
+// against the double core (the kernels: TestCoreGpuKernelTwins): the stack
+// entries' packing; the while-while walks over packed real BVHs (triangles, spheres, screen-sized spheres,
 // ellipsoids) find the closest hit of core's float walk exactly and of the
 // double walk wherever that hit is clear; the top-level walk finds what the
-// shader's flat loop over the instances finds; the edge kernels measure
-// pixels as double does (GpuEdgeTwinChecks.h).
+// shader's flat loop over the instances finds.
 #include "CoreTestUtils.h"
-#include "GpuEdgeTwinChecks.h"
+#include "GpuTwinTestUtils.h"
 
 #include "vtkrt/core/GpuTraversal.h"
 
@@ -21,255 +17,6 @@ namespace
 using gpu::vec2;
 using gpu::vec3;
 using gpu::vec4;
-
-vec3 toFloat(const Vec3<double>& v)
-{
-  return vec3(v);
-}
-
-/// A direction with some components zeroed (axis-parallel rays) now and then.
-vec3 randomDirection(Rng& rng, const Vec3<double>& toward)
-{
-  vec3 d = toFloat(toward);
-  const double pick = rng.uniform();
-  if (pick < 0.15)
-  {
-    d[rng.index(3)] = 0.0f;
-  }
-  else if (pick < 0.25)
-  {
-    const int keep = int(rng.index(3));
-    d = vec3(0.0f);
-    d[keep] = toward[keep] < 0 ? -1.0f : 1.0f;
-  }
-  return d;
-}
-
-bool parallelToAnAxis(const vec3& d)
-{
-  return d.x == 0.0f || d.y == 0.0f || d.z == 0.0f;
-}
-
-void testConstants()
-{
-  VTKRT_CHECK(gpu::kFarScale == 1.0f + 2.0f * (3.0f * 5.9604645e-8f) / (1.0f - 3.0f * 5.9604645e-8f));
-  VTKRT_CHECK(gpu::kFarScale > 1.0f);
-  VTKRT_CHECK(gpu::safeInverse(2.0f) == 0.5f);
-  VTKRT_CHECK(gpu::safeInverse(0.0f) == 0.0f && gpu::safeInverse(-0.0f) == 0.0f);
-  VTKRT_CHECK(gpu::safeInverse(1e-40f) == 0.0f); // subnormal: inverse overflows
-  const vec3 bias = gpu::parallelAxisBias(gpu::safeInverse(vec3(0.0f, 2.0f, -0.0f)));
-  VTKRT_CHECK(bias == vec3(3.0e38f, 0.0f, 3.0e38f));
-  // Entries 0..depth, a power of two, never above kMaxStackSize.
-  VTKRT_CHECK(gpu::stackSizeForDepth(0) == 8 && gpu::stackSizeForDepth(7) == 8);
-  VTKRT_CHECK(gpu::stackSizeForDepth(8) == 16 && gpu::stackSizeForDepth(31) == 32);
-  VTKRT_CHECK(gpu::stackSizeForDepth(kMaxDepth) == kMaxStackSize);
-  VTKRT_CHECK(gpu::stackSizeForDepth(kMaxDepth) > kMaxDepth);
-}
-
-/// The shader's box test without the far scale: what the conservative
-/// check must catch.
-bool boxTestWithoutFarScale(const vec3& org, const vec3& invDir, const vec3& bias, const vec3& bmin,
-  const vec3& bmax, float tmin, float tmax, float& tnear)
-{
-  const vec3 t0 = (bmin - org) * invDir;
-  const vec3 t1 = (bmax - org) * invDir;
-  const vec3 tn = glm::min(t0, t1);
-  const vec3 tf = glm::max(t0, t1) + bias;
-  tnear = glm::max(glm::max(tn.x, tn.y), glm::max(tn.z, tmin));
-  return tnear <= glm::min(glm::min(tf.x, tf.y), glm::min(tf.z, tmax));
-}
-
-void testBoxTest()
-{
-  Rng rng(11);
-  int doubleHits = 0, missedByTwin = 0, missedByMutant = 0, grazing = 0, parallel = 0;
-  for (int i = 0; i < 200000; ++i)
-  {
-    const vec3 a = toFloat(rng.inBox(Vec3<double>(-2), Vec3<double>(2)));
-    const vec3 b = toFloat(rng.inBox(Vec3<double>(-2), Vec3<double>(2)));
-    const vec3 lo = glm::min(a, b);
-    vec3 hi = glm::max(a, b);
-    if (i % 7 == 0)
-    {
-      const int flat = int(rng.index(3));
-      hi[flat] = lo[flat];
-    }
-    // Aim at a corner, an edge or a face (grazing: 3, 2 or 1 coordinates on
-    // the box's planes), or anywhere near.
-    Vec3<double> target = rng.inBox(Vec3<double>(lo), Vec3<double>(hi));
-    const int onPlanes = 3 - i % 4;
-    const int skip = int(rng.index(3));
-    for (int k = 0; k < onPlanes; ++k)
-    {
-      const int axis = (skip + k) % 3;
-      target[axis] = rng.uniform() < 0.5 ? lo[axis] : hi[axis];
-    }
-    if (onPlanes == 0)
-    {
-      target += rng.unitVector() * 0.5;
-    }
-    grazing += onPlanes > 0;
-    const Vec3<double> from = target + 3.0 * rng.unitVector();
-    const vec3 org = toFloat(from);
-    const vec3 dir = randomDirection(rng, target - from);
-    if (dir == vec3(0.0f))
-    {
-      continue;
-    }
-    const float tmax = i % 5 == 0 ? 1.0f : 1e30f;
-    const vec3 invDir = gpu::safeInverse(dir);
-    const vec3 bias = gpu::parallelAxisBias(invDir);
-    float tTwin, tMutant, tCore;
-    const bool twin = gpu::intersectRayBoxConservative(org, invDir, bias, lo, hi, 0.0f, tmax, tTwin);
-    const bool mutant = boxTestWithoutFarScale(org, invDir, bias, lo, hi, 0.0f, tmax, tMutant);
-    const bool core = gpu::intersectRayAABB(org, invDir, lo, hi, 0.0f, tmax, tCore);
-    double tDouble;
-    const bool exact = intersectRayAABB(Ray<double>(Vec3<double>(org), Vec3<double>(dir), 0.0, double(tmax)),
-      AABB<double>(Vec3<double>(lo), Vec3<double>(hi)), tDouble);
-    doubleHits += exact;
-    missedByTwin += exact && !twin;
-    missedByMutant += exact && !mutant;
-    if (parallelToAnAxis(dir))
-    {
-      ++parallel;
-      VTKRT_CHECK(!core || twin); // accepts more boxes, never fewer
-    }
-    else
-    {
-      VTKRT_CHECK(twin == core);
-      VTKRT_CHECK(!twin || tTwin == tCore);
-    }
-  }
-  VTKRT_CHECK_MSG(missedByTwin == 0, "%d of %d boxes hit in double rejected", missedByTwin, doubleHits);
-  VTKRT_CHECK_MSG(missedByMutant > 0, "grazing rays never needed the far scale");
-  VTKRT_CHECK(doubleHits > 50000 && grazing > 100000 && parallel > 20000);
-}
-
-void testPlaneClip()
-{
-  Rng rng(13);
-  int crossings = 0, parallels = 0;
-  for (int i = 0; i < 50000; ++i)
-  {
-    vec3 n = toFloat(rng.unitVector() * rng.uniform(0.5, 2.0));
-    const Vec3<double> point = rng.inBox(Vec3<double>(-3), Vec3<double>(3));
-    const vec3 org = toFloat(rng.inBox(Vec3<double>(-4), Vec3<double>(4)));
-    vec3 dir = toFloat(rng.unitVector() * rng.uniform(0.1, 10.0));
-    if (i % 10 == 0)
-    {
-      dir = glm::cross(n, dir); // nearly parallel to the plane
-    }
-    else if (i % 10 == 1)
-    {
-      const int axis = maxAbsDimension(n); // an axis-aligned plane, dir exactly parallel
-      dir[axis] = 0.0f;
-      n = vec3(0.0f);
-      n[axis] = 1.5f;
-    }
-    const Vec3<double> nd(n);
-    const vec4 plane(n, float(-glm::dot(nd, point)));
-    const float t0 = i % 3 == 0 ? 0.0f : float(rng.uniform(-1, 1));
-    const float t1 = i % 4 == 0 ? 1e30f : t0 + float(rng.uniform(0, 5));
-    float tmin = t0, tmax = t1;
-    const bool kept = gpu::clipRayByPlane(org, dir, plane, tmin, tmax);
-    // The same clip in double on the same (exact) input.
-    double dmin = t0, dmax = t1;
-    const bool dkept =
-      clipRayByPlane(Vec3<double>(org), Vec3<double>(dir), PlaneEquation<double>(plane), dmin, dmax);
-    const double denom = glm::dot(Vec3<double>(n), Vec3<double>(dir));
-    if (glm::dot(n, dir) == 0.0f)
-    {
-      ++parallels;
-      const double side = glm::dot(Vec3<double>(n), Vec3<double>(org)) + double(plane.w);
-      if (std::abs(side) > 1e-5)
-      {
-        VTKRT_CHECK(kept == (side >= 0));
-        VTKRT_CHECK(tmin == t0 && tmax == t1);
-      }
-      continue;
-    }
-    // The crossing of the point-normal plane (the crossing query).
-    double tc = 0.0;
-    const Ray<double> ray(Vec3<double>(org), Vec3<double>(dir), -1e300, 1e300);
-    if (intersectRayPlane(ray, Plane<double>{ point, nd }, tc) != PlaneHit::Hit || std::abs(denom) < 1e-3)
-    {
-      continue;
-    }
-    ++crossings;
-    const double tol = 1e-4 * (1.0 + std::abs(tc)) + 1e-5 / std::abs(denom);
-    const double moved = denom > 0 ? double(tmin) : double(tmax);
-    if (moved != double(denom > 0 ? t0 : t1))
-    {
-      VTKRT_CHECK_NEAR(moved, tc, tol);
-    }
-    VTKRT_CHECK_NEAR(denom > 0 ? dmin : dmax, denom > 0 ? tmin : tmax, tol);
-    if (std::abs(tc - t0) > tol && std::abs(tc - t1) > tol)
-    {
-      VTKRT_CHECK(kept == dkept);
-      VTKRT_CHECK(kept == (denom > 0 ? tc <= t1 : tc >= t0));
-    }
-  }
-  VTKRT_CHECK(crossings > 30000 && parallels > 1000);
-}
-
-void testPrimitiveKernels()
-{
-  // An affine map's rows: rowsPoint is M p + b, rowsDir is M d (no b), each
-  // within float rounding of the double product.
-  {
-    Rng rows(29);
-    for (int i = 0; i < 1000; ++i)
-    {
-      vec4 r[3];
-      for (vec4& row : r)
-      {
-        row = vec4(toFloat(rows.inBox(Vec3<double>(-2), Vec3<double>(2))), float(rows.uniform(-5.0, 5.0)));
-      }
-      const vec3 p = toFloat(rows.inBox(Vec3<double>(-3), Vec3<double>(3)));
-      const vec3 mp = gpu::rowsPoint(r[0], r[1], r[2], p);
-      const vec3 md = gpu::rowsDir(r[0], r[1], r[2], p);
-      for (int k = 0; k < 3; ++k)
-      {
-        const double dot = double(r[k].x) * p.x + double(r[k].y) * p.y + double(r[k].z) * p.z;
-        VTKRT_CHECK_NEAR(md[k], dot, 1e-5 * (1.0 + std::abs(dot)) + 1e-5);
-        VTKRT_CHECK_NEAR(mp[k], dot + r[k].w, 1e-5 * (1.0 + std::abs(dot + r[k].w)) + 1e-5);
-      }
-    }
-  }
-
-  // Sphere roots in float against double; the tangent ray; a ray along an
-  // axis through the center plane (b' = -0).
-  Rng rng(17);
-  for (int i = 0; i < 20000; ++i)
-  {
-    const vec3 center = toFloat(rng.inBox(Vec3<double>(-1), Vec3<double>(1)));
-    const float radius = float(rng.uniform(0.05, 1.0));
-    const vec3 org = toFloat(rng.inBox(Vec3<double>(-4), Vec3<double>(4)));
-    const vec3 dir = toFloat(Vec3<double>(center) + 0.9 * radius * rng.unitVector() - Vec3<double>(org));
-    vec2 roots;
-    SphereRoots<double> d{ 0.0, 0.0 };
-    VTKRT_CHECK(gpu::raySphereRoots(org, dir, center, radius, roots));
-    VTKRT_CHECK(raySphereRoots(Vec3<double>(org), Vec3<double>(dir), Vec3<double>(center), double(radius), d));
-    VTKRT_CHECK(roots.x <= roots.y);
-    VTKRT_CHECK_NEAR(roots.x, d.t0, 1e-4 * (1 + std::abs(d.t0)));
-    VTKRT_CHECK_NEAR(roots.y, d.t1, 1e-4 * (1 + std::abs(d.t1)));
-  }
-  vec2 roots;
-  VTKRT_CHECK(gpu::raySphereRoots(vec3(-1.0f, 0.0f, -3.0f), vec3(0, 0, 1), vec3(0.0f), 1.0f, roots));
-  VTKRT_CHECK(roots.x == roots.y && std::abs(roots.x - 3.0f) < 1e-3f);
-  VTKRT_CHECK(gpu::raySphereRoots(vec3(-0.5f, -0.5f, 0.0f), vec3(0, 0, -1), vec3(0.0f), 1.0f, roots));
-  VTKRT_CHECK(std::abs(roots.x + std::sqrt(0.5f)) < 1e-6f && std::abs(roots.y - std::sqrt(0.5f)) < 1e-6f);
-  float t;
-  VTKRT_CHECK(gpu::intersectRaySphere(vec3(0.0f), vec3(1, 0, 0), vec3(0.0f), 2.0f, 0.0f, 10.0f, t) && t == 2.0f);
-  VTKRT_CHECK(!gpu::intersectRaySphere(vec3(0.0f), vec3(1, 0, 0), vec3(5, 0, 0), 1.0f, 0.0f, 3.0f, t) && t == 0.0f);
-  // The triangle test: hit (t, u, v), a miss zeroes it.
-  const gpu::RayTrianglePrecomputed pre = gpu::precomputeRayTriangle(vec3(0.25f, 0.5f, 2.0f), vec3(0, 0, -1));
-  vec3 hit;
-  VTKRT_CHECK(gpu::intersectRayTriangle(pre, vec3(0.0f), vec3(1, 0, 0), vec3(0, 1, 0), 0.0f, 10.0f, hit));
-  VTKRT_CHECK(hit == vec3(2.0f, 0.25f, 0.5f));
-  VTKRT_CHECK(!gpu::intersectRayTriangle(pre, vec3(0.0f), vec3(1, 0, 0), vec3(0, 1, 0), 0.0f, 1.0f, hit));
-  VTKRT_CHECK(hit == vec3(0.0f));
-}
 
 /// The shader's triangle texels, in leaf order: (v0, id), (v1, 0), (v2, 0).
 std::vector<float> packTriangles(const BVH& bvh, const std::vector<Vec3<float>>& verts, const std::vector<std::uint32_t>& indices)
@@ -857,10 +604,6 @@ void testTopLevel()
 
 int main()
 {
-  testConstants();
-  testBoxTest();
-  testPlaneClip();
-  testPrimitiveKernels();
   testStackEntries();
   checkTriangleWalk(makeIcosphere(4, 1.0, Vec3<double>(1e3, -2e3, 5e2)), 4000, 1);
   checkTriangleWalk(makeTorus(64, 32), 4000, 2);
@@ -873,6 +616,5 @@ int main()
   checkSphereWalk(2000, 3000, true, 8);
   checkEllipsoidWalk(600, 3000, 9);
   testTopLevel();
-  testEdgeKernels();
   return testResult("TestCoreGpuTwins");
 }
