@@ -683,6 +683,22 @@ void TestFlatFrameConstants()
   actor->GetMapper()->AddClippingPlane(plane);
   CompareWithFeatureOff(win, ren, pass, variable, define,
     "flat frame constants, four samples, a spot light, a clip plane, world coordinates");
+  // More lights than the slots hold (five vec3 a positional light): the
+  // lights stay uniforms beside flat rays and record.
+  for (int i = 0; i < 8; ++i)
+  {
+    vtkNew<vtkLight> light;
+    light->SetPosition(-4.0 + i, 3.0, 2.0 - 0.5 * i);
+    light->SetFocalPoint(0.0, 0.5, 0.0);
+    light->SetPositional(true);
+    light->SetConeAngle(40.0 + 5.0 * i);
+    light->SetIntensity(0.2);
+    ren->AddLight(light);
+  }
+  CompareWithFeatureOff(win, ren, pass, variable, define, "flat frame constants, ten lights as uniforms");
+  Check(std::string(pass->GetLastFragmentShaderSource()).find("\nuniform vec3 uLightPosition[10];\n") !=
+      std::string::npos,
+    "flat frame constants: ten positional lights are uniforms");
   AddViewSizedAndTranslucentProps(ren);
   ren->ResetCamera();
   CompareWithFeatureOff(win, ren, pass, variable, "uRayDepth vtkrtFrame_uRayDepth",
