@@ -432,8 +432,7 @@ void SetInstanceUniforms(vtkShaderProgram* program, const Features& f, const vtk
     const GLuint* record = reinterpret_cast<const GLuint*>(frame.Records.data());
     glUniform4uiv(program->FindUniform("uInstance"), static_cast<GLsizei>(kInstanceHeadTexels), record);
     glUniform4uiv(program->FindUniform("uInstanceTail"),
-      static_cast<GLsizei>(vtkrt::core::gpu::texelsOf<vtkrt::core::gpu::InstanceRecord>() - kInstanceHeadTexels),
-      record + 4 * kInstanceHeadTexels);
+      static_cast<GLsizei>(vtkrt::core::gpu::kInstanceTailTexels), record + 4 * kInstanceHeadTexels);
     glUniform4uiv(program->FindUniform("uRootNode"),
       static_cast<GLsizei>(vtkrt::core::gpu::texelsOf<vtkrt::core::gpu::Node>()),
       reinterpret_cast<const GLuint*>(frame.RootNodes.data()));

@@ -14,8 +14,6 @@ namespace pass
 
 std::vector<FrameConstant> FrameConstantsOf(const Features& f)
 {
-  const int instanceTexels = static_cast<int>(core::gpu::texelsOf<core::gpu::InstanceRecord>());
-  const int headTexels = static_cast<int>(core::gpu::kInstanceHeadTexels);
   std::vector<FrameConstant> out;
   // Read by every pixel: its camera ray and depth, the view, the instance.
   if (f.ProjectiveRays)
@@ -34,7 +32,7 @@ std::vector<FrameConstant> FrameConstantsOf(const Features& f)
   if (f.SingleInstance)
   {
     out.push_back({ "uvec4", "uRootNode", static_cast<int>(core::gpu::texelsOf<core::gpu::Node>()), 1 });
-    out.push_back({ "uvec4", "uInstance", headTexels, 1 });
+    out.push_back({ "uvec4", "uInstance", static_cast<int>(core::gpu::kInstanceHeadTexels), 1 });
   }
   else if (!f.TopLevel)
   {
@@ -79,7 +77,7 @@ std::vector<FrameConstant> FrameConstantsOf(const Features& f)
   // faces' colors, edges).
   if (f.SingleInstance)
   {
-    out.push_back({ "uvec4", "uInstanceTail", instanceTexels - headTexels, 1 });
+    out.push_back({ "uvec4", "uInstanceTail", static_cast<int>(core::gpu::kInstanceTailTexels), 1 });
   }
   return out;
 }

@@ -1,5 +1,6 @@
 // Helpers of the tests of the shader's C++ twins (TestCoreGpuTwins,
-// TestCoreGpuKernelTwins): float rays as the shader receives them.
+// TestCoreGpuKernelTwins, TestCoreGpuWalkStarts, TestCoreGpuTranslucency):
+// the shader's vector types, float rays as the shader receives them.
 #ifndef vtkrtGpuTwinTestUtils_h
 #define vtkrtGpuTwinTestUtils_h
 
@@ -9,7 +10,9 @@
 
 namespace vtkrt::test
 {
+using core::gpu::vec2;
 using core::gpu::vec3;
+using core::gpu::vec4;
 
 inline vec3 toFloat(const Vec3<double>& v)
 {

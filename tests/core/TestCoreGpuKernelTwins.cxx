@@ -16,10 +16,6 @@ using namespace vtkrt::test;
 
 namespace
 {
-using gpu::vec2;
-using gpu::vec3;
-using gpu::vec4;
-
 bool parallelToAnAxis(const vec3& d)
 {
   return d.x == 0.0f || d.y == 0.0f || d.z == 0.0f;

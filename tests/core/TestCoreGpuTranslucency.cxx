@@ -5,6 +5,7 @@
 // closed mesh (hit by several triangles at t a few ulps apart) and the
 // diagonals of stacked quads; transmittance is the product over the layers.
 #include "CoreTestUtils.h"
+#include "GpuTwinTestUtils.h"
 
 #include "vtkrt/core/GpuTranslucency.h"
 #include "vtkrt/core/LocalFrame.h"
@@ -16,10 +17,6 @@ using namespace vtkrt::test;
 
 namespace
 {
-using gpu::vec2;
-using gpu::vec3;
-using gpu::vec4;
-
 /// A packed mesh the twins walk: its BVH, nodes and triangle texels.
 struct PackedMesh
 {

@@ -14,10 +14,6 @@ using namespace vtkrt::test;
 
 namespace
 {
-using gpu::vec2;
-using gpu::vec3;
-using gpu::vec4;
-
 /// The shader's triangle texels, in leaf order: (v0, id), (v1, 0), (v2, 0).
 std::vector<float> packTriangles(const BVH& bvh, const std::vector<Vec3<float>>& verts, const std::vector<std::uint32_t>& indices)
 {

@@ -10,6 +10,7 @@
 // - one-leaf trees (VTKRT_LEAF_TREES): the root's triangles alone give the
 //   walk's hit, t, triangle and barycentrics, for closest and any hits.
 #include "CoreTestUtils.h"
+#include "GpuTwinTestUtils.h"
 
 #include "vtkrt/core/GpuTraversal.h"
 
@@ -20,9 +21,6 @@ using namespace vtkrt::test;
 
 namespace
 {
-using gpu::vec2;
-using gpu::vec3;
-
 /// The shader's triangle texels, in leaf order: (v0, id), (v1, 0), (v2, 0).
 std::vector<float> packTriangles(const BVH& bvh, const std::vector<Vec3<float>>& verts, const std::vector<std::uint32_t>& indices)
 {

@@ -287,6 +287,9 @@ constexpr std::uint32_t texelsOf()
   return static_cast<std::uint32_t>(sizeof(T) / kTexelBytes);
 }
 
+/// The InstanceRecord's texels after its head (uInstanceTail).
+constexpr std::size_t kInstanceTailTexels = texelsOf<InstanceRecord>() - kInstanceHeadTexels;
+
 /// The first texel of record i of a buffer of Records.
 template <class Record>
 constexpr int firstTexel(Indexing indexing, int i)
