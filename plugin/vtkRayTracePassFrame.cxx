@@ -76,7 +76,8 @@ std::size_t ScissorTo(vtkOpenGLState* ostate, const int rect[4])
 /// rectangle, not its tiles; VTKRT_TILE_ENTRIES=0: camera rays walk from
 /// the tree's root, not from their tile's entries; VTKRT_LEAF_TREES=0:
 /// one-leaf trees are walked as any tree; VTKRT_PACKED_STACK_ENTRIES=0:
-/// walk stack entries of two words, as for the largest buffers.
+/// walk stack entries of two words, as for the largest buffers;
+/// VTKRT_FLAT_FRAME_CONSTANTS=0: every frame constant a uniform.
 bool Allowed(const char* variable)
 {
   const char* value = std::getenv(variable);
@@ -565,7 +566,7 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
 
   const int compilesBefore = this->Counters.ShaderCompiles;
   const auto compileStart = std::chrono::steady_clock::now();
-  p.Tracer = this->Programs.Ready(win, p.F, this->Counters);
+  p.Tracer = this->Programs.Ready(win, p.F, Allowed("VTKRT_FLAT_FRAME_CONSTANTS"), this->Counters);
   if (this->Counters.ShaderCompiles > compilesBefore)
   {
     this->Counters.ShaderCompileSeconds += vtkrt::pass::SecondsSince(compileStart);

@@ -25,8 +25,6 @@
 #include "vtkrt/core/BVH.h"
 #include "vtkrt/core/GpuLayout.h"
 
-#include <cstdlib>
-#include <cstring>
 #include <sstream>
 
 namespace vtkrt
@@ -168,16 +166,13 @@ ProgramCache::ProgramCache() = default;
 ProgramCache::~ProgramCache() = default;
 
 vtkOpenGLQuadHelper* ProgramCache::Ready(
-  vtkOpenGLRenderWindow* win, const Features& f, FrameCounters& counters)
+  vtkOpenGLRenderWindow* win, const Features& f, bool flatConstants, FrameCounters& counters)
 {
   if (this->ContextSlots < 0)
   {
     this->ContextSlots = FlatConstantSlots();
   }
-  // VTKRT_FLAT_FRAME_CONSTANTS=0: every frame constant a uniform (tests
-  // compare the two, which must draw the same image).
-  const char* setting = std::getenv("VTKRT_FLAT_FRAME_CONSTANTS");
-  const int slots = setting && std::strcmp(setting, "0") == 0 ? 0 : this->ContextSlots;
+  const int slots = flatConstants ? this->ContextSlots : 0;
   vtkOpenGLQuadHelper* program = this->ReadyWithSlots(win, f, slots, counters);
   if (!program && slots > 0)
   {

@@ -47,9 +47,10 @@ public:
   /// The program for `f`, compiled on first use (counted) and made current;
   /// null (with the source kept for inspection) when it does not compile.
   /// Its key is f's and the flat varying slots given to frame constants
-  /// ("f<slots>"); a program that does not compile with flat constants is
-  /// tried again with none.
-  vtkOpenGLQuadHelper* Ready(vtkOpenGLRenderWindow* win, const Features& f, FrameCounters& counters);
+  /// ("f<slots>": none without `flatConstants`); a program that does not
+  /// compile with flat constants is tried again with none.
+  vtkOpenGLQuadHelper* Ready(
+    vtkOpenGLRenderWindow* win, const Features& f, bool flatConstants, FrameCounters& counters);
 
   const std::string& GetLastKey() const { return this->LastKey; }
   const std::string& GetLastSource() const { return this->LastSource; }

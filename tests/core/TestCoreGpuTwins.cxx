@@ -14,23 +14,6 @@ using namespace vtkrt::test;
 
 namespace
 {
-/// The shader's triangle texels, in leaf order: (v0, id), (v1, 0), (v2, 0).
-std::vector<float> packTriangles(const BVH& bvh, const std::vector<Vec3<float>>& verts, const std::vector<std::uint32_t>& indices)
-{
-  std::vector<float> out(12 * bvh.primIndex.size(), 0.0f);
-  for (std::size_t k = 0; k < bvh.primIndex.size(); ++k)
-  {
-    const std::uint32_t tri = bvh.primIndex[k];
-    for (int v = 0; v < 3; ++v)
-    {
-      const Vec3<float>& p = verts[indices[3 * tri + v]];
-      std::copy_n(&p.x, 3, out.begin() + 12 * k + 4 * v);
-    }
-    out[12 * k + 3] = uintBitsToFloat(tri);
-  }
-  return out;
-}
-
 /// Rays at a primitive set in box `bounds`: at sampled surface points
 /// (`surface`), some at its edges, some axis-parallel, some from inside.
 template <class Surface>

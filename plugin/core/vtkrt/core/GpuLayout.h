@@ -428,27 +428,24 @@ inline void writeGlslRecord(std::ostream& s, const char* type, const char* name,
     }
     s << "  return r;\n}\n";
   };
+  // The texels the fields use, t<k> = source(k), then the fields from them.
+  const auto writeBody = [&](const auto& source) {
+    for (std::uint32_t k = 0; k < texels; ++k)
+    {
+      if (used[k])
+      {
+        s << "  uvec4 t" << k << " = " << source(k) << ";\n";
+      }
+    }
+    writeFields();
+  };
   s << type << " fetch" << type << "(usamplerBuffer b, int i)\n{\n";
   s << "  int first = " << (indexing == Indexing::ByRecord ? "i * VTKRT_" + std::string(name) + "_TEXELS" : "i")
     << ";\n";
-  for (std::uint32_t k = 0; k < texels; ++k)
-  {
-    if (used[k])
-    {
-      s << "  uvec4 t" << k << " = texelFetch(b, first + " << k << ");\n";
-    }
-  }
-  writeFields();
+  writeBody([](std::uint32_t k) { return "texelFetch(b, first + " + std::to_string(k) + ")"; });
   // The same record from texels held elsewhere (a uniform array).
   s << type << " unpack" << type << "(uvec4 t[VTKRT_" << name << "_TEXELS])\n{\n";
-  for (std::uint32_t k = 0; k < texels; ++k)
-  {
-    if (used[k])
-    {
-      s << "  uvec4 t" << k << " = t[" << k << "];\n";
-    }
-  }
-  writeFields();
+  writeBody([](std::uint32_t k) { return "t[" + std::to_string(k) + "]"; });
 }
 
 /// One accessor per field of the records of a uniform buffer, for a shader
