@@ -10,6 +10,7 @@ PKGS=(
   libembree-dev
   xvfb xauth
   libcli11-dev
+  glslang-tools
 )
 missing=()
 for p in "${PKGS[@]}"; do

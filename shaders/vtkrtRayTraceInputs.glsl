@@ -59,7 +59,7 @@ uniform usamplerBuffer uSphereIds; // VTK point id per sphere, four per texel
 #ifdef VTKRT_HAS_COLORS
 vec4 fetchColor(int i)
 {
-  return unpackUnorm4x8(fetchPacked(uColors, i));
+  return unpackRGBA8(fetchPacked(uColors, i));
 }
 #endif
 

@@ -5,6 +5,13 @@
 // which is the core function where one exists (Ray.h, Plane.h) and which
 // TestCoreGpuTwins checks against the double core: change both together.
 
+// core::gpu::unpackRGBA8: the 8-bit color channels of a word, lowest byte
+// red, as GLSL 4.00's unpackUnorm4x8 (not a 3.30 built-in: NVIDIA refuses it).
+vec4 unpackRGBA8(uint v)
+{
+  return vec4(uvec4(v, v >> 8u, v >> 16u, v >> 24u) & 0xFFu) / 255.0;
+}
+
 // Ize 2013: the far distance is scaled by 1 + 2*gamma(3) so rounding never
 // culls a box the ray touches. gamma(3) = 3u/(1-3u), u = 2^-24.
 const float kFarScale = 1.0 + 2.0 * (3.0 * 5.9604645e-8) / (1.0 - 3.0 * 5.9604645e-8);

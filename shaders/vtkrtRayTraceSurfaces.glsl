@@ -61,7 +61,7 @@ int wrapTexelIndex(int i, int size, uint wrap)
 
 vec4 fetchTexel(int base, int width, int x, int y, vec4 border)
 {
-  return x < 0 || y < 0 ? border : unpackUnorm4x8(fetchPacked(uTextures, base + 4 + y * width + x));
+  return x < 0 || y < 0 ? border : unpackRGBA8(fetchPacked(uTextures, base + 4 + y * width + x));
 }
 
 // The texture at `base` at (s, t) as OpenGL's level 0 gives it: the nearest
@@ -72,7 +72,7 @@ vec4 sampleTexture(int base, vec2 st)
   int w = int(header.x);
   int h = int(header.y);
   uint wrap = header.z & 3u;
-  vec4 border = unpackUnorm4x8(header.w);
+  vec4 border = unpackRGBA8(header.w);
   vec2 size = vec2(header.xy);
   if ((header.z & 4u) == 0u)
   {

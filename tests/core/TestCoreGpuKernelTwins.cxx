@@ -241,6 +241,24 @@ void testPrimitiveKernels()
   VTKRT_CHECK(!gpu::intersectRayTriangle(pre, vec3(0.0f), vec3(1, 0, 0), vec3(0, 1, 0), 0.0f, 1.0f, hit));
   VTKRT_CHECK(hit == vec3(0.0f));
 }
+
+// unpackRGBA8: red in the lowest byte, each byte b as b / 255 (GLSL's
+// unpackUnorm4x8), so 0 and 255 are exactly 0 and 1 and every byte comes back.
+void testColorUnpack()
+{
+  for (std::uint32_t b = 0; b < 256; ++b)
+  {
+    const std::uint32_t word = b | ((255u - b) << 8) | (((b * 7u) & 0xFFu) << 16) | (((b * 13u + 5u) & 0xFFu) << 24);
+    const vec4 c = gpu::unpackRGBA8(word);
+    const std::uint32_t bytes[4] = { b, 255u - b, (b * 7u) & 0xFFu, (b * 13u + 5u) & 0xFFu };
+    for (int k = 0; k < 4; ++k)
+    {
+      VTKRT_CHECK(c[k] == static_cast<float>(bytes[k]) / 255.0f);
+      VTKRT_CHECK(static_cast<std::uint32_t>(std::lround(c[k] * 255.0f)) == bytes[k]);
+    }
+  }
+  VTKRT_CHECK(gpu::unpackRGBA8(0xFF0000FFu) == vec4(1.0f, 0.0f, 0.0f, 1.0f));
+}
 } // namespace
 
 int main()
@@ -250,5 +268,6 @@ int main()
   testPlaneClip();
   testPrimitiveKernels();
   testEdgeKernels();
+  testColorUnpack();
   return testResult("TestCoreGpuKernelTwins");
 }

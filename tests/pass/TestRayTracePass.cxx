@@ -46,6 +46,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <functional>
+#include <iomanip>
 #include <iostream>
 #include <map>
 #include <random>
@@ -475,6 +476,8 @@ struct DepthComparison
   long Pixels = 0;
   long InFront = 0;
   double Largest = 0.0;
+  double LargestInFront = 0.0; ///< the most a traced depth is in front of raster's
+  std::string InFrontAt;       ///< where it is: pixel, raster and traced depth
 };
 
 DepthComparison CompareDepth(const std::vector<float>& raster, const std::vector<float>& traced,
@@ -500,6 +503,14 @@ DepthComparison CompareDepth(const std::vector<float>& raster, const std::vector
         ++out.Pixels;
         out.InFront += traced[n] < raster[n];
         out.Largest = std::max(out.Largest, std::abs(double(traced[n]) - double(raster[n])));
+        if (double(raster[n]) - double(traced[n]) > out.LargestInFront)
+        {
+          out.LargestInFront = double(raster[n]) - double(traced[n]);
+          std::ostringstream at;
+          at << "pixel (" << i << ", " << j << "): raster " << std::setprecision(9) << raster[n]
+             << ", traced " << traced[n];
+          out.InFrontAt = at.str();
+        }
       }
     }
   }
@@ -544,6 +555,10 @@ void TestCoincidentLines()
     std::ostringstream what;
     what << "azimuth " << azimuth << ": traced depth behind or at raster's on " << depth.Pixels
          << " pixels (" << depth.InFront << " in front, largest difference " << depth.Largest << ")";
+    if (depth.InFront > 0)
+    {
+      what << "; most in front by " << depth.LargestInFront << " at " << depth.InFrontAt;
+    }
     Check(pass->GetNumberOfTracedProps() == 2 && depth.Pixels > 1000 && depth.InFront == 0 &&
         depth.Largest < 1e-5, what.str());
 

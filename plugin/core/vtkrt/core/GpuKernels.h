@@ -21,6 +21,15 @@
 namespace vtkrt::core::gpu
 {
 
+/// The 8-bit color channels of a word, lowest byte red (the buffers' RGBA8
+/// colors and texels), each byte / 255 as GLSL's unpackUnorm4x8.
+inline vec4 unpackRGBA8(std::uint32_t v)
+{
+  return vec4(static_cast<float>(v & 0xFFu), static_cast<float>((v >> 8) & 0xFFu),
+           static_cast<float>((v >> 16) & 0xFFu), static_cast<float>((v >> 24) & 0xFFu)) /
+    255.0f;
+}
+
 /// The far-distance scale of the conservative slab test (Ize 2013).
 constexpr float kFarScale = 1.0f + 2.0f * gammaBound<float>(3);
 

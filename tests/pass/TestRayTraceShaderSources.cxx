@@ -1,0 +1,239 @@
+// The pass's shader sources against the GLSL specification, not only the
+// driver at hand:
+//   ReferenceCompiler  every tracing program the pass assembles (each
+//                      feature alone over triangles, spheres and both, all
+//                      of them together, with and without double precision
+//                      and flat frame constants), the resolve and the
+//                      selection shaders compile with glslang, the Khronos
+//                      reference compiler, at their own #version; a built-in
+//                      of a later version is refused (Mesa accepts
+//                      unpackUnorm4x8 in GLSL 3.30, NVIDIA does not)
+// TestRayTraceShaderSources ReferenceCompiler <glslangValidator>.
+#include "vtkrtPassTestUtils.h"
+
+#include "vtkRayTraceShader.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+using namespace vtkrtPassTest;
+using vtkrt::pass::Features;
+
+namespace
+{
+std::string Validator;
+
+/// A feature set the pass can ask for, by the feature it adds.
+struct Variant
+{
+  std::string Name;
+  std::function<void(Features&)> Set;
+};
+
+/// Each feature the shader has code for, as the pass sets it.
+std::vector<Variant> FeatureVariants()
+{
+  return {
+    { "plain", [](Features&) {} },
+    { "vertex normals", [](Features& f) { f.VertexNormals = true; } },
+    { "cell normals", [](Features& f) { f.CellNormals = true; } },
+    { "colors", [](Features& f) { f.Colors = true; } },
+    { "color texture", [](Features& f) { f.Colors = f.ColorTexture = true; } },
+    { "clip planes", [](Features& f) { f.ClipPlanes = 3; } },
+    { "positional lights", [](Features& f) { f.Lights = 3; f.LightComplexity = 3; } },
+    { "no lights", [](Features& f) { f.Lights = 0; f.LightComplexity = 0; } },
+    { "ids", [](Features& f) { f.IdMode = true; } },
+    { "selection ids", [](Features& f) { f.SelectIds = true; } },
+    { "top level", [](Features& f) { f.TopLevel = true; } },
+    { "single instance", [](Features& f) { f.SingleInstance = true; } },
+    { "projective rays", [](Features& f) { f.ProjectiveRays = true; } },
+    { "tile entries", [](Features& f) { f.TileEntries = f.SingleInstance = true; } },
+    { "leaf trees", [](Features& f) { f.LeafTrees = true; } },
+    { "samples", [](Features& f) { f.SamplesPerPixel = 4; } },
+    { "shadows", [](Features& f) { f.Shadows = true; } },
+    { "ambient occlusion", [](Features& f) { f.AmbientOcclusionSamples = 4; } },
+    { "traversal steps", [](Features& f) { f.MaximumTraversalSteps = 64; } },
+    { "world coordinates", [](Features& f) { f.WorldCoordinates = true; } },
+    { "screen spheres", [](Features& f) { f.Spheres = f.ScreenSpheres = true; } },
+    { "ellipsoids", [](Features& f) { f.Spheres = f.Ellipsoids = true; } },
+    { "tubes", [](Features& f) { f.Spheres = f.Tubes = true; } },
+    { "textures", [](Features& f) { f.Textures = true; } },
+    { "texture cut-outs", [](Features& f) { f.Textures = f.TextureCutOuts = true; } },
+    { "face culling", [](Features& f) { f.FaceCulling = true; } },
+    { "backface properties", [](Features& f) { f.BackfaceProperties = true; } },
+    { "specular", [](Features& f) { f.Specular = true; } },
+    { "translucent", [](Features& f) { f.Translucent = true; } },
+    { "surface edges", [](Features& f) { f.SurfaceEdges = true; } },
+    { "wireframe", [](Features& f) { f.Wireframe = true; } },
+    { "wide stack entries", [](Features& f) { f.PackedStackEntries = false; } },
+    { "small stack", [](Features& f) { f.StackSize = 8; } },
+  };
+}
+
+/// Everything a scene can hold at once (of a pick, a selection or colors).
+void EveryFeature(Features& f)
+{
+  f.Triangles = f.Spheres = f.VertexNormals = f.CellNormals = f.Colors = f.ColorTexture = true;
+  f.ClipPlanes = 2;
+  f.Lights = 2;
+  f.LightComplexity = 3;
+  f.TopLevel = f.Shadows = f.Ellipsoids = f.Tubes = f.Textures = f.TextureCutOuts = true;
+  f.FaceCulling = f.BackfaceProperties = f.Specular = f.Translucent = true;
+  f.SurfaceEdges = f.Wireframe = true;
+  f.SamplesPerPixel = 4;
+  f.AmbientOcclusionSamples = 4;
+  f.MaximumTraversalSteps = 256;
+}
+
+/// Writes `source` to `path`; false when it cannot.
+bool WriteSource(const std::string& path, const std::string& source)
+{
+  std::ofstream out(path, std::ios::binary);
+  out << source;
+  return static_cast<bool>(out);
+}
+
+/// Runs the validator on `files` (each compiled on its own), its output in
+/// `log`; true when every file compiled.
+bool Validate(const std::vector<std::string>& files, const std::string& log)
+{
+  std::string command = "\"" + Validator + "\"";
+  for (const std::string& file : files)
+  {
+    command += " \"" + file + "\"";
+  }
+  command += " > \"" + log + "\" 2>&1";
+  return std::system(command.c_str()) == 0;
+}
+
+/// The lines of `log` that name an error, at most `limit` of them.
+std::string Errors(const std::string& log, int limit)
+{
+  std::ifstream in(log);
+  std::string line, out;
+  std::string file;
+  int shown = 0;
+  while (std::getline(in, line) && shown < limit)
+  {
+    if (line.find('/') == 0 || line.find(".frag") != std::string::npos ||
+      line.find(".vert") != std::string::npos)
+    {
+      file = line;
+    }
+    if (line.find("ERROR") != std::string::npos)
+    {
+      out += "     " + file + ": " + line + "\n";
+      ++shown;
+    }
+  }
+  return out;
+}
+
+void TestReferenceCompiler()
+{
+  const std::string dir = std::string(VTKRT_TEMP_DIR) + "/ShaderSources";
+  std::error_code error;
+  std::filesystem::remove_all(dir, error);
+  std::filesystem::create_directories(dir, error);
+
+  // The validator must refuse what a strict driver refuses, or this test
+  // proves nothing: unpackUnorm4x8 is GLSL 4.00 (or an extension).
+  const std::string later = dir + "/later-builtin.frag";
+  WriteSource(later, "#version 330 core\nout vec4 color;\nvoid main() { color = unpackUnorm4x8(7u); }\n");
+  Check(!Validate({ later }, dir + "/later-builtin.log"),
+    "the reference compiler refuses a GLSL 4.00 built-in in a 3.30 shader");
+
+  Features triangles;
+  triangles.Triangles = true;
+  triangles.Lights = 1;
+  triangles.LightComplexity = 1;
+  Features spheres = triangles;
+  spheres.Triangles = false;
+  spheres.Spheres = true;
+  Features both = triangles;
+  both.Spheres = both.TopLevel = true;
+  const std::vector<std::pair<std::string, Features>> bases = { { "triangles", triangles },
+    { "spheres", spheres }, { "triangles and spheres", both } };
+
+  std::vector<Features> programs;
+  for (const auto& base : bases)
+  {
+    for (const Variant& v : FeatureVariants())
+    {
+      Features f = base.second;
+      v.Set(f);
+      programs.push_back(f);
+    }
+  }
+  for (int select = 0; select < 3; ++select)
+  {
+    Features f;
+    EveryFeature(f);
+    f.IdMode = select == 1;
+    f.SelectIds = select == 2;
+    programs.push_back(f);
+    f.WorldCoordinates = true;
+    programs.push_back(f);
+  }
+
+  // Each with and without double precision; flat frame constants in none,
+  // few and many varying slots.
+  std::set<std::string> written;
+  std::vector<std::string> files;
+  const int slots[] = { 0, 6, 31 };
+  for (std::size_t i = 0; i < programs.size(); ++i)
+  {
+    for (int fp64 = 0; fp64 < 2; ++fp64)
+    {
+      Features f = programs[i];
+      f.Fp64 = fp64 == 1;
+      const int flatSlots = slots[(i + fp64) % 3];
+      const std::string key = f.Key() + "f" + std::to_string(flatSlots);
+      if (!written.insert(key).second)
+      {
+        continue;
+      }
+      const vtkrt::pass::ShaderSources sources = vtkrt::pass::AssembleShaders(f, flatSlots);
+      const std::string stem = dir + "/" + std::to_string(written.size());
+      WriteSource(stem + ".frag", "// " + key + "\n" + sources.Fragment);
+      WriteSource(stem + ".vert", sources.Vertex);
+      files.push_back(stem + ".frag");
+      files.push_back(stem + ".vert");
+    }
+  }
+  WriteSource(dir + "/resolve.frag", vtkrt::pass::ResolveShaderSource());
+  WriteSource(dir + "/select.frag", vtkrt::pass::SelectShaderSource());
+  files.push_back(dir + "/resolve.frag");
+  files.push_back(dir + "/select.frag");
+
+  const std::string log = dir + "/validator.log";
+  const bool valid = Validate(files, log);
+  Check(valid, std::to_string(written.size()) + " tracing programs (fragment and vertex), the resolve and " +
+      "the selection shaders compile with the reference compiler (log: " + log + ")");
+  if (!valid)
+  {
+    std::cout << Errors(log, 20);
+  }
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Output = vtkrtTestOutputWindow::Install();
+  Validator = argc > 2 ? argv[2] : "";
+  if (argc > 1 && Validator.empty())
+  {
+    std::cerr << "usage: " << argv[0] << " ReferenceCompiler <glslangValidator>\n";
+    return EXIT_FAILURE;
+  }
+  const std::map<std::string, std::function<void()>> cases = {
+    { "ReferenceCompiler", TestReferenceCompiler },
+  };
+  return RunCase(argc, argv, cases, " <glslangValidator>");
+}
