@@ -50,17 +50,6 @@ vec3 offsetRayOrigin(vec3 p, vec3 n)
 }
 #endif
 
-#ifdef VTKRT_SHADOWS
-// 1 when nothing lies between the surface point p (unit geometric normal ng)
-// and the light along toLight within tmax, else 0 (hard shadows; translucent
-// surfaces in between let their share through).
-float lightVisibility(vec3 p, vec3 ng, vec3 toLight, float tmax)
-{
-  vec3 side = dot(ng, toLight) >= 0.0 ? ng : -ng;
-  return rayVisibility(offsetRayOrigin(p, side), toLight, tmax);
-}
-#endif
-
 #if VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
 // uAmbientOcclusionRadius (a frame constant): in world units.
 int gSampleIndex = 0; // the pixel's sample (sub-pixel sampling), seeds the rays
@@ -73,30 +62,75 @@ uint hashUint(uint x)
   return (word >> 22u) ^ word;
 }
 
-// Unoccluded fraction of the hemisphere above p (unit geometric normal ng
-// facing the viewer): cosine-weighted rays of length uAmbientOcclusionRadius,
-// deterministic per pixel and sample.
-float ambientVisibility(vec3 p, vec3 ng)
+// The hemisphere above a hit point (unit geometric normal facing the
+// viewer) that its ambient occlusion rays sample: their origin, a frame,
+// and the seed of the next ray, deterministic per pixel and sample.
+struct OcclusionRays
 {
-  vec3 org = offsetRayOrigin(p, ng);
+  vec3 origin;
+  vec3 tangent;
+  vec3 bitangent;
+  vec3 normal;
+  uint seed;
+};
+
+OcclusionRays beginOcclusionRays(vec3 p, vec3 ng)
+{
+  OcclusionRays o;
+  o.origin = offsetRayOrigin(p, ng);
   vec3 helper = abs(ng.x) > 0.5 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-  vec3 tangent = normalize(cross(helper, ng));
-  vec3 bitangent = cross(ng, tangent);
-  uint seed = hashUint(uint(gl_FragCoord.x) + hashUint(uint(gl_FragCoord.y) +
+  o.tangent = normalize(cross(helper, ng));
+  o.bitangent = cross(ng, o.tangent);
+  o.normal = ng;
+  o.seed = hashUint(uint(gl_FragCoord.x) + hashUint(uint(gl_FragCoord.y) +
     hashUint(uint(gSampleIndex))));
-  float unoccluded = 0.0;
-  for (int k = 0; k < VTKRT_AMBIENT_OCCLUSION_SAMPLES; ++k)
+  return o;
+}
+
+// The next cosine-weighted occlusion ray, of length uAmbientOcclusionRadius.
+vec3 nextOcclusionRay(inout OcclusionRays o)
+{
+  o.seed = hashUint(o.seed);
+  float u1 = float(o.seed >> 8) / 16777216.0;
+  o.seed = hashUint(o.seed);
+  float u2 = float(o.seed >> 8) / 16777216.0;
+  float r = sqrt(u1);
+  float phi = 6.283185307179586 * u2;
+  vec3 d = r * cos(phi) * o.tangent + r * sin(phi) * o.bitangent + sqrt(max(0.0, 1.0 - u1)) * o.normal;
+  return d * uAmbientOcclusionRadius;
+}
+#endif
+
+#if VTKRT_LIGHT_COMPLEXITY >= 2
+// Light i's direction (from the light) at p and its attenuation there, as
+// VTK's raster lights it (positional lights: distance and cone).
+float lightAttenuation(int i, vec3 p, out vec3 lightDirection)
+{
+  lightDirection = uLightDirection[i];
+  float attenuation = 1.0;
+#if VTKRT_LIGHT_COMPLEXITY == 3
+  if (uLightCone[i].z != 0.0)
   {
-    seed = hashUint(seed);
-    float u1 = float(seed >> 8) / 16777216.0;
-    seed = hashUint(seed);
-    float u2 = float(seed >> 8) / 16777216.0;
-    float r = sqrt(u1);
-    float phi = 6.283185307179586 * u2;
-    vec3 d = r * cos(phi) * tangent + r * sin(phi) * bitangent + sqrt(max(0.0, 1.0 - u1)) * ng;
-    unoccluded += rayVisibility(org, d * uAmbientOcclusionRadius, 1.0);
+    lightDirection = p - uLightPosition[i];
+    float distance = length(lightDirection);
+    lightDirection = normalize(lightDirection);
+    vec3 att = uLightAttenuation[i];
+    attenuation = 1.0 / (att.x + att.y * distance + att.z * distance * distance);
+    if (uLightCone[i].x < 90.0)
+    {
+      float coneDot = dot(lightDirection, uLightDirection[i]);
+      if (coneDot >= cos(radians(uLightCone[i].x)))
+      {
+        attenuation = attenuation * pow(coneDot, uLightCone[i].y);
+      }
+      else
+      {
+        attenuation = 0.0;
+      }
+    }
   }
-  return unoccluded / float(VTKRT_AMBIENT_OCCLUSION_SAMPLES);
+#endif
+  return attenuation;
 }
 #endif
 
@@ -104,9 +138,13 @@ float ambientVisibility(vec3 p, vec3 ng)
 // complexity (0: none, 1: headlight, 2: directional lights, 3: positional),
 // evaluated in camera-relative world space (a rotation of VTK's view space,
 // so every dot product is the same).
-// With shadows, a light blocked from p contributes nothing; with ambient
+// With shadows, a light blocked from p contributes nothing (hard shadows;
+// translucent surfaces in between let their share through); with ambient
 // occlusion, the ambient and diffuse terms are scaled by the unoccluded
 // fraction of the hemisphere (ng: unit geometric normal facing the viewer).
+// Every visibility ray of the hit, occlusion rays first and then each
+// light's shadow ray, is cast at the loop's one call of rayVisibility: a GPU
+// compiler inlines each call of a walk, so one call keeps one copy of it.
 // Without VTKRT_SPECULAR no lit surface has a specular color: its term, a
 // power times black, would add nothing (but NaN where pow is undefined, a
 // base of 0 to a power of 0 or less).
@@ -120,68 +158,85 @@ vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ng, vec3 ambientColor, vec3 diffuseColor,
   {
     return ambientColor + diffuseColor;
   }
-#if VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
-  float ao = ambientVisibility(p, ng);
-#else
-  float ao = 1.0;
-#endif
 #if VTKRT_LIGHT_COMPLEXITY == 1
-  float df = max(0.0, dot(n, uViewBack));
-#ifdef VTKRT_SHADOWS
-  if (df > 0.0)
-  {
-    df *= lightVisibility(p, ng, uViewBack, 1.0e30);
-  }
-#endif
-  vec3 color = ao * (ambientColor + df * diffuseColor * uLightColor[0]);
-#ifdef VTKRT_SPECULAR
-  float sf = df > 0.0 ? pow(df, specularPower) : 0.0;
-  color += sf * specularColor * uLightColor[0];
-#endif
-  return color;
+  const int kLights = 1;
+  float headlight = max(0.0, dot(n, uViewBack));
 #else
+  const int kLights = VTKRT_NUMBER_OF_LIGHTS;
   vec3 diffuse = vec3(0.0);
   vec3 specular = vec3(0.0);
   vec3 viewDirection = normalize(uEye - p);
-  for (int i = 0; i < VTKRT_NUMBER_OF_LIGHTS; ++i)
+#endif
+#if VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+  OcclusionRays occlusion = beginOcclusionRays(p, ng);
+  float unoccluded = 0.0;
+#endif
+  for (int r = 0; r < VTKRT_AMBIENT_OCCLUSION_SAMPLES + kLights; ++r)
   {
-    vec3 lightDirection = uLightDirection[i];
-    float attenuation = 1.0;
-#if VTKRT_LIGHT_COMPLEXITY == 3
-    if (uLightCone[i].z != 0.0)
+    int i = r - VTKRT_AMBIENT_OCCLUSION_SAMPLES; // the light, or < 0: an occlusion ray
+    bool castRay = false;
+    vec3 rayOrigin = p;
+    vec3 rayDirection = vec3(0.0);
+    float rayEnd = 1.0e30;
+#if VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+    if (i < 0)
     {
-      lightDirection = p - uLightPosition[i];
-      float distance = length(lightDirection);
-      lightDirection = normalize(lightDirection);
-      vec3 att = uLightAttenuation[i];
-      attenuation = 1.0 / (att.x + att.y * distance + att.z * distance * distance);
-      if (uLightCone[i].x < 90.0)
-      {
-        float coneDot = dot(lightDirection, uLightDirection[i]);
-        if (coneDot >= cos(radians(uLightCone[i].x)))
-        {
-          attenuation = attenuation * pow(coneDot, uLightCone[i].y);
-        }
-        else
-        {
-          attenuation = 0.0;
-        }
-      }
+      castRay = true;
+      rayOrigin = occlusion.origin;
+      rayDirection = nextOcclusionRay(occlusion);
+      rayEnd = 1.0;
     }
 #endif
+#if VTKRT_LIGHT_COMPLEXITY >= 2
+    vec3 lightDirection = vec3(0.0);
+    float attenuation = 0.0;
+    if (i >= 0)
+    {
+      attenuation = lightAttenuation(i, p, lightDirection);
 #ifdef VTKRT_SHADOWS
-    if (attenuation > 0.0 && dot(n, -lightDirection) > 0.0)
-    {
+      castRay = attenuation > 0.0 && dot(n, -lightDirection) > 0.0;
+      rayDirection = -lightDirection;
 #if VTKRT_LIGHT_COMPLEXITY == 3
-      // Positional lights: the segment to the light (t in (0, 1]).
-      attenuation *= uLightCone[i].z != 0.0
-        ? lightVisibility(p, ng, uLightPosition[i] - p, 1.0)
-        : lightVisibility(p, ng, -lightDirection, 1.0e30);
-#else
-      attenuation *= lightVisibility(p, ng, -lightDirection, 1.0e30);
+      if (uLightCone[i].z != 0.0)
+      {
+        // Positional lights: the segment to the light (t in (0, 1]).
+        rayDirection = uLightPosition[i] - p;
+        rayEnd = 1.0;
+      }
+#endif
 #endif
     }
+#elif defined(VTKRT_SHADOWS)
+    if (i >= 0)
+    {
+      castRay = headlight > 0.0;
+      rayDirection = uViewBack;
+    }
 #endif
+#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+    float visibility = 1.0;
+    if (castRay)
+    {
+      if (i >= 0)
+      {
+        rayOrigin = offsetRayOrigin(p, dot(ng, rayDirection) >= 0.0 ? ng : -ng);
+      }
+      visibility = rayVisibility(rayOrigin, rayDirection, rayEnd);
+    }
+#if VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+    if (i < 0)
+    {
+      unoccluded += visibility;
+      continue;
+    }
+#endif
+#if VTKRT_LIGHT_COMPLEXITY == 1
+    headlight *= visibility;
+#else
+    attenuation *= visibility;
+#endif
+#endif
+#if VTKRT_LIGHT_COMPLEXITY >= 2
     float df = max(0.0, attenuation * dot(n, -lightDirection));
     diffuse += df * uLightColor[i];
 #ifdef VTKRT_SPECULAR
@@ -189,7 +244,21 @@ vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ng, vec3 ambientColor, vec3 diffuseColor,
       pow(max(0.0, dot(reflect(lightDirection, n), viewDirection)), specularPower);
     specular += sf * uLightColor[i];
 #endif
+#endif
   }
+#if VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+  float ao = unoccluded / float(VTKRT_AMBIENT_OCCLUSION_SAMPLES);
+#else
+  float ao = 1.0;
+#endif
+#if VTKRT_LIGHT_COMPLEXITY == 1
+  vec3 color = ao * (ambientColor + headlight * diffuseColor * uLightColor[0]);
+#ifdef VTKRT_SPECULAR
+  float sf = headlight > 0.0 ? pow(headlight, specularPower) : 0.0;
+  color += sf * specularColor * uLightColor[0];
+#endif
+  return color;
+#else
   return ao * (ambientColor + diffuse * diffuseColor) + specular * specularColor;
 #endif
 #endif
