@@ -7,18 +7,22 @@
 //                      selection shaders compile with glslang, the Khronos
 //                      reference compiler, at their own #version; a built-in
 //                      of a later version is refused (Mesa accepts
-//                      unpackUnorm4x8 in GLSL 3.30, NVIDIA does not)
+//                      unpackUnorm4x8 in GLSL 3.30, NVIDIA does not);
+//                      each program's vertex and fragment shader link
 // TestRayTraceShaderSources ReferenceCompiler <glslangValidator>.
 #include "vtkrtPassTestUtils.h"
 
 #include "vtkRayTraceShader.h"
 
+#include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <set>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -112,6 +116,41 @@ bool Validate(const std::vector<std::string>& files, const std::string& log)
   return std::system(command.c_str()) == 0;
 }
 
+/// Links each program `stem`.vert + `stem`.frag (its output in
+/// `stem`.link.log), a few at a time; the stems that do not link.
+std::vector<std::string> LinkEach(const std::vector<std::string>& stems)
+{
+  std::vector<char> linked(stems.size(), 0);
+  std::atomic<std::size_t> next{ 0 };
+  auto work = [&]() {
+    for (std::size_t i = next++; i < stems.size(); i = next++)
+    {
+      const std::string command = "\"" + Validator + "\" -l \"" + stems[i] + ".vert\" \"" + stems[i] +
+        ".frag\" > \"" + stems[i] + ".link.log\" 2>&1";
+      linked[i] = std::system(command.c_str()) == 0;
+    }
+  };
+  const unsigned workers = std::max(1u, std::min(4u, std::thread::hardware_concurrency()));
+  std::vector<std::thread> threads;
+  for (unsigned w = 0; w < workers; ++w)
+  {
+    threads.emplace_back(work);
+  }
+  for (std::thread& t : threads)
+  {
+    t.join();
+  }
+  std::vector<std::string> unlinked;
+  for (std::size_t i = 0; i < stems.size(); ++i)
+  {
+    if (!linked[i])
+    {
+      unlinked.push_back(stems[i]);
+    }
+  }
+  return unlinked;
+}
+
 /// The lines of `log` that name an error, at most `limit` of them.
 std::string Errors(const std::string& log, int limit)
 {
@@ -148,6 +187,14 @@ void TestReferenceCompiler()
   WriteSource(later, "#version 330 core\nout vec4 color;\nvoid main() { color = unpackUnorm4x8(7u); }\n");
   Check(!Validate({ later }, dir + "/later-builtin.log"),
     "the reference compiler refuses a GLSL 4.00 built-in in a 3.30 shader");
+
+  // And a program that calls a function no stage defines must not link.
+  const std::string undefined = dir + "/undefined-function";
+  WriteSource(undefined + ".vert", "#version 330 core\nin vec4 p;\nvoid main() { gl_Position = p; }\n");
+  WriteSource(undefined + ".frag",
+    "#version 330 core\nout vec4 color;\nfloat f();\nvoid main() { color = vec4(f()); }\n");
+  Check(LinkEach({ undefined }).size() == 1,
+    "the reference compiler does not link a program that calls a function nobody defines");
 
   Features triangles;
   triangles.Triangles = true;
@@ -186,6 +233,7 @@ void TestReferenceCompiler()
   // few and many varying slots.
   std::set<std::string> written;
   std::vector<std::string> files;
+  std::vector<std::string> stems;
   const int slots[] = { 0, 6, 31 };
   for (std::size_t i = 0; i < programs.size(); ++i)
   {
@@ -205,6 +253,7 @@ void TestReferenceCompiler()
       WriteSource(stem + ".vert", sources.Vertex);
       files.push_back(stem + ".frag");
       files.push_back(stem + ".vert");
+      stems.push_back(stem);
     }
   }
   WriteSource(dir + "/resolve.frag", vtkrt::pass::ResolveShaderSource());
@@ -219,6 +268,16 @@ void TestReferenceCompiler()
   if (!valid)
   {
     std::cout << Errors(log, 20);
+  }
+
+  // Each program linked, vertex and fragment shader together: every
+  // function a stage calls is defined, the flat frame constants match.
+  std::vector<std::string> unlinked = LinkEach(stems);
+  Check(unlinked.empty(), std::to_string(stems.size() - unlinked.size()) + " of " +
+      std::to_string(stems.size()) + " tracing programs link with the reference compiler");
+  for (std::size_t i = 0; i < unlinked.size() && i < 3; ++i)
+  {
+    std::cout << Errors(unlinked[i] + ".link.log", 6);
   }
 }
 } // namespace
