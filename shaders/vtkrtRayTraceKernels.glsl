@@ -6,7 +6,7 @@
 // TestCoreGpuTwins checks against the double core: change both together.
 
 // core::gpu::unpackRGBA8: the 8-bit color channels of a word, lowest byte
-// red, as GLSL 4.00's unpackUnorm4x8 (not a 3.30 built-in: NVIDIA refuses it).
+// red, as GLSL 4.00's unpackUnorm4x8 (these shaders are GLSL 3.30).
 vec4 unpackRGBA8(uint v)
 {
   return vec4(uvec4(v, v >> 8u, v >> 16u, v >> 24u) & 0xFFu) / 255.0;

@@ -101,27 +101,27 @@ vec3 nextOcclusionRay(inout OcclusionRays o)
 }
 #endif
 
-#if VTKRT_LIGHT_COMPLEXITY >= 2
-// Light i's direction (from the light) at p and its attenuation there, as
-// VTK's raster lights it (positional lights: distance and cone).
-float lightAttenuation(int i, vec3 p, out vec3 lightDirection)
+#if VTKRT_LIGHT_COMPLEXITY >= 2 && VTKRT_NUMBER_OF_LIGHTS > 0
+// The direction from `light` at p and its attenuation there, as VTK's
+// raster lights it (positional lights: distance and cone).
+float lightAttenuation(int light, vec3 p, out vec3 lightDirection)
 {
-  lightDirection = uLightDirection[i];
+  lightDirection = uLightDirection[light];
   float attenuation = 1.0;
 #if VTKRT_LIGHT_COMPLEXITY == 3
-  if (uLightCone[i].z != 0.0)
+  if (uLightCone[light].z != 0.0)
   {
-    lightDirection = p - uLightPosition[i];
+    lightDirection = p - uLightPosition[light];
     float distance = length(lightDirection);
     lightDirection = normalize(lightDirection);
-    vec3 att = uLightAttenuation[i];
+    vec3 att = uLightAttenuation[light];
     attenuation = 1.0 / (att.x + att.y * distance + att.z * distance * distance);
-    if (uLightCone[i].x < 90.0)
+    if (uLightCone[light].x < 90.0)
     {
-      float coneDot = dot(lightDirection, uLightDirection[i]);
-      if (coneDot >= cos(radians(uLightCone[i].x)))
+      float coneDot = dot(lightDirection, uLightDirection[light]);
+      if (coneDot >= cos(radians(uLightCone[light].x)))
       {
-        attenuation = attenuation * pow(coneDot, uLightCone[i].y);
+        attenuation = attenuation * pow(coneDot, uLightCone[light].y);
       }
       else
       {
@@ -132,22 +132,54 @@ float lightAttenuation(int i, vec3 p, out vec3 lightDirection)
 #endif
   return attenuation;
 }
+
+// Adds `light`'s diffuse and specular terms at p (normal n) to the sums.
+void addLight(int light, vec3 n, vec3 lightDirection, float attenuation, vec3 viewDirection,
+  float specularPower, inout vec3 diffuse, inout vec3 specular)
+{
+  float df = max(0.0, attenuation * dot(n, -lightDirection));
+  diffuse += df * uLightColor[light];
+#ifdef VTKRT_SPECULAR
+  float sf = sign(df) * attenuation *
+    pow(max(0.0, dot(reflect(lightDirection, n), viewDirection)), specularPower);
+  specular += sf * uLightColor[light];
+#endif
+}
+#endif
+
+#if defined(VTKRT_SHADOWS) && VTKRT_LIGHT_COMPLEXITY > 0 && VTKRT_NUMBER_OF_LIGHTS > 0
+// The shadow ray from p toward `light` (lightDirection: from the light):
+// a direction, and the end of its segment in units of it.
+vec3 shadowRayDirection(int light, vec3 p, vec3 lightDirection, out float tEnd)
+{
+  tEnd = 1.0e30;
+#if VTKRT_LIGHT_COMPLEXITY == 1
+  return uViewBack;
+#else
+#if VTKRT_LIGHT_COMPLEXITY == 3
+  if (uLightCone[light].z != 0.0)
+  {
+    // Positional lights: the segment to the light (t in (0, 1]).
+    tEnd = 1.0;
+    return uLightPosition[light] - p;
+  }
+#endif
+  return -lightDirection;
+#endif
+}
 #endif
 
 // VTK's vtkOpenGLPolyDataMapper lighting, for the renderer's lighting
 // complexity (0: none, 1: headlight, 2: directional lights, 3: positional),
 // evaluated in camera-relative world space (a rotation of VTK's view space,
-// so every dot product is the same).
-// With shadows, a light blocked from p contributes nothing (hard shadows;
-// translucent surfaces in between let their share through); with ambient
-// occlusion, the ambient and diffuse terms are scaled by the unoccluded
-// fraction of the hemisphere (ng: unit geometric normal facing the viewer).
-// Every visibility ray of the hit, occlusion rays first and then each
-// light's shadow ray, is cast at the loop's one call of rayVisibility: a GPU
-// compiler inlines each call of a walk, so one call keeps one copy of it.
-// Without VTKRT_SPECULAR no lit surface has a specular color: its term, a
-// power times black, would add nothing (but NaN where pow is undefined, a
-// base of 0 to a power of 0 or less).
+// so every dot product is the same). With shadows a light blocked from p
+// contributes nothing; with ambient occlusion the ambient and diffuse terms
+// are scaled by the unoccluded fraction of the hemisphere (ng: unit
+// geometric normal facing the viewer).
+// Every visibility ray of the hit is cast at the loop's one call of
+// rayVisibility, because a GPU compiler inlines a copy of the walk per call.
+// Without VTKRT_SPECULAR no lit surface has a specular color: its term
+// would add nothing, or NaN where pow is undefined.
 vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ng, vec3 ambientColor, vec3 diffuseColor,
   vec3 specularColor, float specularPower, bool lit)
 {
@@ -171,60 +203,43 @@ vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ng, vec3 ambientColor, vec3 diffuseColor,
   OcclusionRays occlusion = beginOcclusionRays(p, ng);
   float unoccluded = 0.0;
 #endif
-  for (int r = 0; r < VTKRT_AMBIENT_OCCLUSION_SAMPLES + kLights; ++r)
+  // The occlusion rays first, then the lights.
+  for (int ray = 0; ray < VTKRT_AMBIENT_OCCLUSION_SAMPLES + kLights; ++ray)
   {
-    int i = r - VTKRT_AMBIENT_OCCLUSION_SAMPLES; // the light, or < 0: an occlusion ray
+    int light = ray - VTKRT_AMBIENT_OCCLUSION_SAMPLES;
+#if VTKRT_LIGHT_COMPLEXITY >= 2
+    vec3 lightDirection = vec3(0.0);
+    float attenuation = light >= 0 ? lightAttenuation(light, p, lightDirection) : 0.0;
+#endif
+#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
     bool castRay = false;
     vec3 rayOrigin = p;
     vec3 rayDirection = vec3(0.0);
-    float rayEnd = 1.0e30;
+    float rayEnd = 1.0;
 #if VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
-    if (i < 0)
+    if (light < 0)
     {
       castRay = true;
       rayOrigin = occlusion.origin;
       rayDirection = nextOcclusionRay(occlusion);
-      rayEnd = 1.0;
     }
 #endif
-#if VTKRT_LIGHT_COMPLEXITY >= 2
-    vec3 lightDirection = vec3(0.0);
-    float attenuation = 0.0;
-    if (i >= 0)
-    {
-      attenuation = lightAttenuation(i, p, lightDirection);
 #ifdef VTKRT_SHADOWS
-      castRay = attenuation > 0.0 && dot(n, -lightDirection) > 0.0;
-      rayDirection = -lightDirection;
-#if VTKRT_LIGHT_COMPLEXITY == 3
-      if (uLightCone[i].z != 0.0)
-      {
-        // Positional lights: the segment to the light (t in (0, 1]).
-        rayDirection = uLightPosition[i] - p;
-        rayEnd = 1.0;
-      }
-#endif
-#endif
-    }
-#elif defined(VTKRT_SHADOWS)
-    if (i >= 0)
+    if (light >= 0)
     {
+#if VTKRT_LIGHT_COMPLEXITY == 1
       castRay = headlight > 0.0;
-      rayDirection = uViewBack;
+      rayDirection = shadowRayDirection(light, p, vec3(0.0), rayEnd);
+#else
+      castRay = attenuation > 0.0 && dot(n, -lightDirection) > 0.0;
+      rayDirection = shadowRayDirection(light, p, lightDirection, rayEnd);
+#endif
+      rayOrigin = offsetRayOrigin(p, dot(ng, rayDirection) >= 0.0 ? ng : -ng);
     }
 #endif
-#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
-    float visibility = 1.0;
-    if (castRay)
-    {
-      if (i >= 0)
-      {
-        rayOrigin = offsetRayOrigin(p, dot(ng, rayDirection) >= 0.0 ? ng : -ng);
-      }
-      visibility = rayVisibility(rayOrigin, rayDirection, rayEnd);
-    }
+    float visibility = castRay ? rayVisibility(rayOrigin, rayDirection, rayEnd) : 1.0;
 #if VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
-    if (i < 0)
+    if (light < 0)
     {
       unoccluded += visibility;
       continue;
@@ -237,13 +252,7 @@ vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ng, vec3 ambientColor, vec3 diffuseColor,
 #endif
 #endif
 #if VTKRT_LIGHT_COMPLEXITY >= 2
-    float df = max(0.0, attenuation * dot(n, -lightDirection));
-    diffuse += df * uLightColor[i];
-#ifdef VTKRT_SPECULAR
-    float sf = sign(df) * attenuation *
-      pow(max(0.0, dot(reflect(lightDirection, n), viewDirection)), specularPower);
-    specular += sf * uLightColor[i];
-#endif
+    addLight(light, n, lightDirection, attenuation, viewDirection, specularPower, diffuse, specular);
 #endif
   }
 #if VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0

@@ -8,7 +8,8 @@
 //                      reference compiler, at their own #version; a built-in
 //                      of a later version is refused (Mesa accepts
 //                      unpackUnorm4x8 in GLSL 3.30, NVIDIA does not);
-//                      each program's vertex and fragment shader link
+//                      each program links (every function it calls is
+//                      defined, its stages' varyings agree in type)
 // TestRayTraceShaderSources ReferenceCompiler <glslangValidator>.
 #include "vtkrtPassTestUtils.h"
 
@@ -20,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <set>
 #include <string>
 #include <thread>
@@ -103,6 +105,14 @@ bool WriteSource(const std::string& path, const std::string& source)
   return static_cast<bool>(out);
 }
 
+/// Whether the file at `path` holds `text`.
+bool FileHolds(const std::string& path, const std::string& text)
+{
+  std::ifstream in(path);
+  const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return content.find(text) != std::string::npos;
+}
+
 /// Runs the validator on `files` (each compiled on its own), its output in
 /// `log`; true when every file compiled.
 bool Validate(const std::vector<std::string>& files, const std::string& log)
@@ -152,7 +162,7 @@ std::vector<std::string> LinkEach(const std::vector<std::string>& stems)
 }
 
 /// The lines of `log` that name an error, at most `limit` of them.
-std::string Errors(const std::string& log, int limit)
+std::string ErrorLines(const std::string& log, int limit)
 {
   std::ifstream in(log);
   std::string line, out;
@@ -183,17 +193,19 @@ void TestReferenceCompiler()
 
   // The validator must refuse what a strict driver refuses, or this test
   // proves nothing: unpackUnorm4x8 is GLSL 4.00 (or an extension).
-  const std::string later = dir + "/later-builtin.frag";
-  WriteSource(later, "#version 330 core\nout vec4 color;\nvoid main() { color = unpackUnorm4x8(7u); }\n");
-  Check(!Validate({ later }, dir + "/later-builtin.log"),
+  const std::string laterBuiltin = dir + "/later-builtin";
+  bool written = WriteSource(laterBuiltin + ".frag",
+    "#version 330 core\nout vec4 color;\nvoid main() { color = unpackUnorm4x8(7u); }\n");
+  Check(!Validate({ laterBuiltin + ".frag" }, laterBuiltin + ".log") &&
+      FileHolds(laterBuiltin + ".log", "unpackUnorm4x8"),
     "the reference compiler refuses a GLSL 4.00 built-in in a 3.30 shader");
 
   // And a program that calls a function no stage defines must not link.
   const std::string undefined = dir + "/undefined-function";
-  WriteSource(undefined + ".vert", "#version 330 core\nin vec4 p;\nvoid main() { gl_Position = p; }\n");
-  WriteSource(undefined + ".frag",
+  written &= WriteSource(undefined + ".vert", "#version 330 core\nin vec4 p;\nvoid main() { gl_Position = p; }\n");
+  written &= WriteSource(undefined + ".frag",
     "#version 330 core\nout vec4 color;\nfloat f();\nvoid main() { color = vec4(f()); }\n");
-  Check(LinkEach({ undefined }).size() == 1,
+  Check(LinkEach({ undefined }).size() == 1 && FileHolds(undefined + ".link.log", "No function definition"),
     "the reference compiler does not link a program that calls a function nobody defines");
 
   Features triangles;
@@ -218,6 +230,25 @@ void TestReferenceCompiler()
       programs.push_back(f);
     }
   }
+  // The lighting's every path: each complexity with shadows, occlusion and
+  // specular on and off; a tile-entry walk's visibility rays.
+  for (int complexity = 1; complexity <= 3; ++complexity)
+  {
+    for (int variant = 0; variant < 8; ++variant)
+    {
+      Features f = triangles;
+      f.Lights = complexity == 1 ? 1 : 3;
+      f.LightComplexity = complexity;
+      f.Shadows = (variant & 1) != 0;
+      f.AmbientOcclusionSamples = (variant & 2) != 0 ? 4 : 0;
+      f.Specular = (variant & 4) != 0;
+      programs.push_back(f);
+    }
+  }
+  Features tiles = triangles;
+  tiles.SingleInstance = tiles.TileEntries = tiles.Shadows = true;
+  tiles.AmbientOcclusionSamples = 2;
+  programs.push_back(tiles);
   for (int select = 0; select < 3; ++select)
   {
     Features f;
@@ -231,7 +262,7 @@ void TestReferenceCompiler()
 
   // Each with and without double precision; flat frame constants in none,
   // few and many varying slots.
-  std::set<std::string> written;
+  std::set<std::string> assembledKeys;
   std::vector<std::string> files;
   std::vector<std::string> stems;
   const int slots[] = { 0, 6, 31 };
@@ -243,41 +274,42 @@ void TestReferenceCompiler()
       f.Fp64 = fp64 == 1;
       const int flatSlots = slots[(i + fp64) % 3];
       const std::string key = f.Key() + "f" + std::to_string(flatSlots);
-      if (!written.insert(key).second)
+      if (!assembledKeys.insert(key).second)
       {
         continue;
       }
       const vtkrt::pass::ShaderSources sources = vtkrt::pass::AssembleShaders(f, flatSlots);
-      const std::string stem = dir + "/" + std::to_string(written.size());
-      WriteSource(stem + ".frag", "// " + key + "\n" + sources.Fragment);
-      WriteSource(stem + ".vert", sources.Vertex);
+      const std::string stem = dir + "/" + std::to_string(assembledKeys.size());
+      written &= WriteSource(stem + ".frag", sources.Fragment);
+      written &= WriteSource(stem + ".vert", sources.Vertex);
       files.push_back(stem + ".frag");
       files.push_back(stem + ".vert");
       stems.push_back(stem);
     }
   }
-  WriteSource(dir + "/resolve.frag", vtkrt::pass::ResolveShaderSource());
-  WriteSource(dir + "/select.frag", vtkrt::pass::SelectShaderSource());
+  written &= WriteSource(dir + "/resolve.frag", vtkrt::pass::ResolveShaderSource());
+  written &= WriteSource(dir + "/select.frag", vtkrt::pass::SelectShaderSource());
+  Check(written, "every shader written to " + dir);
   files.push_back(dir + "/resolve.frag");
   files.push_back(dir + "/select.frag");
 
   const std::string log = dir + "/validator.log";
   const bool valid = Validate(files, log);
-  Check(valid, std::to_string(written.size()) + " tracing programs (fragment and vertex), the resolve and " +
+  Check(valid, std::to_string(assembledKeys.size()) + " tracing programs (fragment and vertex), the resolve and " +
       "the selection shaders compile with the reference compiler (log: " + log + ")");
   if (!valid)
   {
-    std::cout << Errors(log, 20);
+    std::cout << ErrorLines(log, 20);
   }
 
   // Each program linked, vertex and fragment shader together: every
-  // function a stage calls is defined, the flat frame constants match.
+  // function a stage calls is defined, the varyings agree in type.
   std::vector<std::string> unlinked = LinkEach(stems);
   Check(unlinked.empty(), std::to_string(stems.size() - unlinked.size()) + " of " +
       std::to_string(stems.size()) + " tracing programs link with the reference compiler");
   for (std::size_t i = 0; i < unlinked.size() && i < 3; ++i)
   {
-    std::cout << Errors(unlinked[i] + ".link.log", 6);
+    std::cout << ErrorLines(unlinked[i] + ".link.log", 6);
   }
 }
 } // namespace
