@@ -153,9 +153,6 @@ void addLight(int light, vec3 n, vec3 lightDirection, float attenuation, vec3 vi
 vec3 shadowRayDirection(int light, vec3 p, vec3 lightDirection, out float tEnd)
 {
   tEnd = 1.0e30;
-#if VTKRT_LIGHT_COMPLEXITY == 1
-  return uViewBack;
-#else
 #if VTKRT_LIGHT_COMPLEXITY == 3
   if (uLightCone[light].z != 0.0)
   {
@@ -165,7 +162,6 @@ vec3 shadowRayDirection(int light, vec3 p, vec3 lightDirection, out float tEnd)
   }
 #endif
   return -lightDirection;
-#endif
 }
 #endif
 
@@ -228,13 +224,16 @@ vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ng, vec3 ambientColor, vec3 diffuseColor,
     if (light >= 0)
     {
 #if VTKRT_LIGHT_COMPLEXITY == 1
+      vec3 lightDirection = -uViewBack;
       castRay = headlight > 0.0;
-      rayDirection = shadowRayDirection(light, p, vec3(0.0), rayEnd);
 #else
       castRay = attenuation > 0.0 && dot(n, -lightDirection) > 0.0;
-      rayDirection = shadowRayDirection(light, p, lightDirection, rayEnd);
 #endif
-      rayOrigin = offsetRayOrigin(p, dot(ng, rayDirection) >= 0.0 ? ng : -ng);
+      rayDirection = shadowRayDirection(light, p, lightDirection, rayEnd);
+      if (castRay)
+      {
+        rayOrigin = offsetRayOrigin(p, dot(ng, rayDirection) >= 0.0 ? ng : -ng);
+      }
     }
 #endif
     float visibility = castRay ? rayVisibility(rayOrigin, rayDirection, rayEnd) : 1.0;

@@ -38,7 +38,7 @@ std::vector<FrameConstant> FrameConstantsOf(const Features& f)
   {
     out.push_back({ "int", "uNumberOfInstances", 0, 1 });
   }
-  if (f.Triangles && f.TileEntries)
+  if (f.TileEntries)
   {
     out.push_back({ "vec4", "uTileGrid", 0, 1 });
   }

@@ -83,7 +83,7 @@ ShaderSources AssembleShaders(const Features& f, int flatSlots)
   define(f.TopLevel, "VTKRT_HAS_TOP_LEVEL");
   define(f.SingleInstance, "VTKRT_SINGLE_INSTANCE");
   define(f.ProjectiveRays, "VTKRT_PROJECTIVE_RAYS");
-  define(f.Triangles && f.TileEntries, "VTKRT_TILE_ENTRIES");
+  define(f.TileEntries, "VTKRT_TILE_ENTRIES");
   define(f.Triangles && f.LeafTrees, "VTKRT_LEAF_TREES");
   define(f.PackedStackEntries, "VTKRT_PACKED_STACK_ENTRIES");
   define(f.Translucent, "VTKRT_TRANSLUCENT");

@@ -477,7 +477,8 @@ struct DepthComparison
   long InFront = 0;
   double Largest = 0.0;
   double LargestInFront = 0.0; ///< the most a traced depth is in front of raster's
-  std::string InFrontAt;       ///< where it is: pixel, raster and traced depth
+  int InFrontPixel[2] = { 0, 0 }; ///< where it is
+  float InFrontDepths[2] = { 0.0f, 0.0f }; ///< raster's and the traced depth there
 };
 
 DepthComparison CompareDepth(const std::vector<float>& raster, const std::vector<float>& traced,
@@ -506,10 +507,10 @@ DepthComparison CompareDepth(const std::vector<float>& raster, const std::vector
         if (double(raster[n]) - double(traced[n]) > out.LargestInFront)
         {
           out.LargestInFront = double(raster[n]) - double(traced[n]);
-          std::ostringstream at;
-          at << "pixel (" << i << ", " << j << "): raster " << std::setprecision(9) << raster[n]
-             << ", traced " << traced[n];
-          out.InFrontAt = at.str();
+          out.InFrontPixel[0] = i;
+          out.InFrontPixel[1] = j;
+          out.InFrontDepths[0] = raster[n];
+          out.InFrontDepths[1] = traced[n];
         }
       }
     }
@@ -557,7 +558,9 @@ void TestCoincidentLines()
          << " pixels (" << depth.InFront << " in front, largest difference " << depth.Largest << ")";
     if (depth.InFront > 0)
     {
-      what << "; most in front by " << depth.LargestInFront << " at " << depth.InFrontAt;
+      what << "; most in front by " << depth.LargestInFront << " at pixel (" << depth.InFrontPixel[0] << ", "
+           << depth.InFrontPixel[1] << "): raster " << std::setprecision(9) << depth.InFrontDepths[0]
+           << ", traced " << depth.InFrontDepths[1];
     }
     Check(pass->GetNumberOfTracedProps() == 2 && depth.Pixels > 1000 && depth.InFront == 0 &&
         depth.Largest < 1e-5, what.str());

@@ -59,7 +59,8 @@ std::vector<Variant> FeatureVariants()
     { "top level", [](Features& f) { f.TopLevel = true; } },
     { "single instance", [](Features& f) { f.SingleInstance = true; } },
     { "projective rays", [](Features& f) { f.ProjectiveRays = true; } },
-    { "tile entries", [](Features& f) { f.TileEntries = f.SingleInstance = true; } },
+    // As the frame sets them: one triangle instance's walks.
+    { "tile entries", [](Features& f) { f.TileEntries = f.SingleInstance = f.Triangles = true; } },
     { "leaf trees", [](Features& f) { f.LeafTrees = true; } },
     { "samples", [](Features& f) { f.SamplesPerPixel = 4; } },
     { "shadows", [](Features& f) { f.Shadows = true; } },
@@ -113,18 +114,20 @@ bool FileHolds(const std::string& path, const std::string& text)
   return content.find(text) != std::string::npos;
 }
 
-/// Runs the validator on `files` (each compiled on its own), its output in
-/// `log`; true when every file compiled.
-bool Validate(const std::vector<std::string>& files, const std::string& log)
+/// Runs the validator with `arguments` (files alone: each compiled on its
+/// own; -l and files: linked as one program), its output in `log`; true
+/// when it succeeds.
+bool RunValidator(const std::vector<std::string>& arguments, const std::string& log)
 {
   std::string command = "\"" + Validator + "\"";
-  for (const std::string& file : files)
+  for (const std::string& argument : arguments)
   {
-    command += " \"" + file + "\"";
+    command += " \"" + argument + "\"";
   }
   command += " > \"" + log + "\" 2>&1";
   return std::system(command.c_str()) == 0;
 }
+
 
 /// Links each program `stem`.vert + `stem`.frag (its output in
 /// `stem`.link.log), a few at a time; the stems that do not link.
@@ -135,9 +138,7 @@ std::vector<std::string> LinkEach(const std::vector<std::string>& stems)
   auto work = [&]() {
     for (std::size_t i = next++; i < stems.size(); i = next++)
     {
-      const std::string command = "\"" + Validator + "\" -l \"" + stems[i] + ".vert\" \"" + stems[i] +
-        ".frag\" > \"" + stems[i] + ".link.log\" 2>&1";
-      linked[i] = std::system(command.c_str()) == 0;
+      linked[i] = RunValidator({ "-l", stems[i] + ".vert", stems[i] + ".frag" }, stems[i] + ".link.log");
     }
   };
   const unsigned workers = std::max(1u, std::min(4u, std::thread::hardware_concurrency()));
@@ -196,7 +197,7 @@ void TestReferenceCompiler()
   const std::string laterBuiltin = dir + "/later-builtin";
   bool written = WriteSource(laterBuiltin + ".frag",
     "#version 330 core\nout vec4 color;\nvoid main() { color = unpackUnorm4x8(7u); }\n");
-  Check(!Validate({ laterBuiltin + ".frag" }, laterBuiltin + ".log") &&
+  Check(!RunValidator({ laterBuiltin + ".frag" }, laterBuiltin + ".log") &&
       FileHolds(laterBuiltin + ".log", "unpackUnorm4x8"),
     "the reference compiler refuses a GLSL 4.00 built-in in a 3.30 shader");
 
@@ -263,7 +264,6 @@ void TestReferenceCompiler()
   // Each with and without double precision; flat frame constants in none,
   // few and many varying slots.
   std::set<std::string> assembledKeys;
-  std::vector<std::string> files;
   std::vector<std::string> stems;
   const int slots[] = { 0, 6, 31 };
   for (std::size_t i = 0; i < programs.size(); ++i)
@@ -282,19 +282,21 @@ void TestReferenceCompiler()
       const std::string stem = dir + "/" + std::to_string(assembledKeys.size());
       written &= WriteSource(stem + ".frag", sources.Fragment);
       written &= WriteSource(stem + ".vert", sources.Vertex);
-      files.push_back(stem + ".frag");
-      files.push_back(stem + ".vert");
       stems.push_back(stem);
     }
   }
   written &= WriteSource(dir + "/resolve.frag", vtkrt::pass::ResolveShaderSource());
   written &= WriteSource(dir + "/select.frag", vtkrt::pass::SelectShaderSource());
   Check(written, "every shader written to " + dir);
-  files.push_back(dir + "/resolve.frag");
-  files.push_back(dir + "/select.frag");
+  std::vector<std::string> files = { dir + "/resolve.frag", dir + "/select.frag" };
+  for (const std::string& stem : stems)
+  {
+    files.push_back(stem + ".frag");
+    files.push_back(stem + ".vert");
+  }
 
   const std::string log = dir + "/validator.log";
-  const bool valid = Validate(files, log);
+  const bool valid = RunValidator(files, log);
   Check(valid, std::to_string(assembledKeys.size()) + " tracing programs (fragment and vertex), the resolve and " +
       "the selection shaders compile with the reference compiler (log: " + log + ")");
   if (!valid)
