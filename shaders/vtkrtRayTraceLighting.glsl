@@ -1,34 +1,65 @@
 // vtkrt ray tracing fragment shader: VTK's lighting at a hit, with shadow
-// and ambient occlusion rays (anyHit, from vtkrtRayTraceTraversal, or the
-// translucent layers' transmittance).
+// and ambient occlusion rays (anyHit, from vtkrtRayTraceTraversal, or in
+// translucent scenes the layer loop's transmittance).
 
 #if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+#ifdef VTKRT_TRANSLUCENT
+// In translucent scenes a hit's visibility rays are walked by the camera
+// ray's layer loop (traceTranslucentLayers), at its one call of the walk, as
+// a GPU compiler inlines a copy of the walk per call: each layer is shaded
+// twice, first recording the rays it casts, then with what they let through.
+#if VTKRT_LIGHT_COMPLEXITY == 1
+const int kVisibilityRays = VTKRT_AMBIENT_OCCLUSION_SAMPLES + 1;
+#elif VTKRT_AMBIENT_OCCLUSION_SAMPLES + VTKRT_NUMBER_OF_LIGHTS > 0
+const int kVisibilityRays = VTKRT_AMBIENT_OCCLUSION_SAMPLES + VTKRT_NUMBER_OF_LIGHTS;
+#else
+const int kVisibilityRays = 1; // none is cast (GLSL has no empty arrays)
+#endif
+
+// A visibility ray: the segment org + t dir, t in (0, tmax].
+struct VisibilityRay
+{
+  vec3 org;
+  vec3 dir;
+  float tmax;
+  bool isCast;
+};
+
+bool gRecordingVisibilityRays = false;
+VisibilityRay gVisibilityRays[kVisibilityRays];
+float gVisibility[kVisibilityRays];
+
+// The fraction of light that passes along the hit's visibility ray `ray`:
+// recorded to be walked (1 meanwhile), or what the walk found.
+float rayVisibility(int ray, vec3 org, vec3 dir, float tmax)
+{
+  if (gRecordingVisibilityRays)
+  {
+    gVisibilityRays[ray] = VisibilityRay(org, dir, tmax, true);
+    return 1.0;
+  }
+  return gVisibility[ray];
+}
+#else
 // Any hit of a ray from org along dir within (0, tmax] (the core's anyHit).
 bool anyHit(vec3 org, vec3 dir, float tmax);
 
-#ifdef VTKRT_TRANSLUCENT
-float rayTransmittance(vec3 org, vec3 dir, float tmax); // vtkrtRayTraceTranslucent
-#endif
-
-// The fraction of light that passes from org along dir within (0, tmax]:
-// 0 or 1, or with translucent surfaces the product of what each lets through.
-float rayVisibility(vec3 org, vec3 dir, float tmax)
+// The fraction of light that passes from org along dir within (0, tmax]
+// (the hit's visibility ray `ray`): 0 or 1.
+float rayVisibility(int ray, vec3 org, vec3 dir, float tmax)
 {
 #ifdef VTKRT_TILE_ENTRIES
   // Not a camera ray: its walks start at the root (list 0).
   int cameraList = gTileList;
   gTileList = 0;
 #endif
-#ifdef VTKRT_TRANSLUCENT
-  float visibility = rayTransmittance(org, dir, tmax);
-#else
   float visibility = anyHit(org, dir, tmax) ? 0.0 : 1.0;
-#endif
 #ifdef VTKRT_TILE_ENTRIES
   gTileList = cameraList;
 #endif
   return visibility;
 }
+#endif
 
 // Wächter & Binder, "A Fast and Robust Method for Avoiding
 // Self-Intersection" (Ray Tracing Gems, ch. 6): moves a hit point off its
@@ -236,7 +267,7 @@ vec3 shadeLikeVTK(vec3 p, vec3 n, vec3 ng, vec3 ambientColor, vec3 diffuseColor,
       }
     }
 #endif
-    float visibility = castRay ? rayVisibility(rayOrigin, rayDirection, rayEnd) : 1.0;
+    float visibility = castRay ? rayVisibility(ray, rayOrigin, rayDirection, rayEnd) : 1.0;
 #if VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
     if (light < 0)
     {

@@ -27,36 +27,146 @@ void compositeLayer(inout vec4 accumulated, vec3 color, float alpha)
   accumulated.a += weight;
 }
 
+#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+// Transmittance below which a secondary ray counts as blocked.
+const float kBlockedTransmittance = 1.0 / 1024.0;
+
+float surfaceOpacity(int instance, int primitive, vec2 uv, vec3 dir);
+
+// The first of the hit's visibility rays after `ray` that is cast (the
+// transmittance walk starts over), or kVisibilityRays when none is left.
+int nextVisibilityRay(int ray, out float transmittance, out float tMin)
+{
+  transmittance = 1.0;
+  tMin = 0.0;
+  do
+  {
+    ++ray;
+  } while (ray < kVisibilityRays && !gVisibilityRays[ray].isCast);
+  return ray;
+}
+#endif
+
 // Every hit of the camera ray in depth order, shaded and composited: the
 // premultiplied color and, as VTK's translucent pass leaves the opaque depth
 // in the depth buffer, the depth of the layer that made the pixel opaque (the
 // far plane if the ray leaves the scene). False when the ray hits nothing.
+// With shadows or occlusion, the loop also walks each layer's visibility
+// rays (rayVisibility), each through every layer it crosses, taking the
+// product of (1 - alpha) over them: each iteration walks one ray, at the
+// shader's one call of traceClosest, and shades at one call of shadeHit.
 bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, out float outDepth)
 {
   vec4 accumulated = vec4(0.0);
   outDepth = 1.0;
   bool hitAny = false;
   float tMin = 0.0;
+  // The camera ray's hit being shaded.
+  float tLayer = 1.0;
+  int layerInstance = -1;
+  int layerPrimitive = -1;
+  vec2 layerUV = vec2(0.0);
+#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+  // The ray walked: -1 the camera ray, else the layer's visibility ray
+  // (kVisibilityRays: all walked, the layer is shaded next).
+  int ray = -1;
+  float transmittance = 1.0;
+#ifdef VTKRT_TILE_ENTRIES
+  int cameraList = gTileList;
+#endif
+#else
+  const int ray = -1;
+#endif
   for (;;)
   {
+    vec3 walkOrg = org;
+    vec3 walkDir = dir;
+    vec3 walkInvDir = invDir;
     float t = 1.0;
-    int hitInstance;
-    int hitPrimitive;
-    vec2 hitUV;
-    traceClosest(org, dir, invDir, tMin, t, hitInstance, hitPrimitive, hitUV);
-    if (hitInstance < 0)
+    bool walk = true;
+#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+    walk = ray < kVisibilityRays;
+    if (ray >= 0 && walk)
     {
-      break;
+      VisibilityRay v = gVisibilityRays[ray];
+      walkOrg = v.org;
+      walkDir = v.dir;
+      walkInvDir = safeInverse(v.dir);
+      t = v.tmax;
     }
-    hitAny = true;
-    vec4 layer = shadeHit(org, dir, t, hitInstance, hitPrimitive, hitUV);
+#endif
+    int hitInstance = -1;
+    int hitPrimitive = -1;
+    vec2 hitUV = vec2(0.0);
+    if (walk)
+    {
+      traceClosest(walkOrg, walkDir, walkInvDir, tMin, t, hitInstance, hitPrimitive, hitUV);
+    }
+#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+    if (ray >= 0 && ray < kVisibilityRays)
+    {
+      if (hitInstance >= 0)
+      {
+        transmittance *= 1.0 - surfaceOpacity(hitInstance, hitPrimitive, hitUV, walkDir);
+        if (transmittance >= kBlockedTransmittance)
+        {
+          tMin = nextLayerTMin(t);
+          continue;
+        }
+        transmittance = 0.0;
+      }
+      gVisibility[ray] = transmittance;
+      ray = nextVisibilityRay(ray, transmittance, tMin);
+      if (ray < kVisibilityRays)
+      {
+        continue;
+      }
+#ifdef VTKRT_TILE_ENTRIES
+      gTileList = cameraList;
+#endif
+    }
+#endif
+    if (ray < 0)
+    {
+      if (hitInstance < 0)
+      {
+        break;
+      }
+      hitAny = true;
+      tLayer = t;
+      layerInstance = hitInstance;
+      layerPrimitive = hitPrimitive;
+      layerUV = hitUV;
+#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+      for (int i = 0; i < kVisibilityRays; ++i)
+      {
+        gVisibilityRays[i].isCast = false;
+      }
+      gRecordingVisibilityRays = true;
+#endif
+    }
+    vec4 layer = shadeHit(org, dir, tLayer, layerInstance, layerPrimitive, layerUV);
+#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+    if (gRecordingVisibilityRays)
+    {
+      // The layer's rays are recorded: walk them, then shade it again.
+      gRecordingVisibilityRays = false;
+      ray = nextVisibilityRay(-1, transmittance, tMin);
+#ifdef VTKRT_TILE_ENTRIES
+      // Not camera rays: their walks start at the root (list 0).
+      gTileList = ray < kVisibilityRays ? 0 : cameraList;
+#endif
+      continue;
+    }
+    ray = -1;
+#endif
     compositeLayer(accumulated, layer.rgb, layer.a);
     if (accumulated.a >= kOpaqueAlpha)
     {
-      outDepth = windowDepth(org, dir, t);
+      outDepth = windowDepth(org, dir, tLayer);
       break;
     }
-    tMin = nextLayerTMin(t);
+    tMin = nextLayerTMin(tLayer);
   }
   outColor = vec4(min(accumulated.rgb, vec3(1.0)), accumulated.a);
   return hitAny;
@@ -139,36 +249,3 @@ float surfaceOpacity(int instance, int primitive, vec2 uv, vec3 dir)
 #endif
   return alpha;
 }
-
-#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
-// Transmittance below which a secondary ray counts as blocked.
-const float kBlockedTransmittance = 1.0 / 1024.0;
-
-// The fraction of light passing from org along dir within (0, tmax]: the
-// product of (1 - alpha) over every layer, in depth order (each once).
-float rayTransmittance(vec3 org, vec3 dir, float tmax)
-{
-  vec3 invDir = safeInverse(dir);
-  float transmittance = 1.0;
-  float tMin = 0.0;
-  for (;;)
-  {
-    float t = tmax;
-    int hitInstance;
-    int hitPrimitive;
-    vec2 hitUV;
-    traceClosest(org, dir, invDir, tMin, t, hitInstance, hitPrimitive, hitUV);
-    if (hitInstance < 0)
-    {
-      return transmittance;
-    }
-    transmittance *= 1.0 - surfaceOpacity(hitInstance, hitPrimitive, hitUV, dir);
-    if (transmittance < kBlockedTransmittance)
-    {
-      return 0.0;
-    }
-    tMin = nextLayerTMin(t);
-  }
-  return transmittance;
-}
-#endif

@@ -197,7 +197,7 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, float tMin, inout float tBes
 }
 #endif
 
-#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+#if (defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0) && !defined(VTKRT_TRANSLUCENT)
 bool anyHit(vec3 org, vec3 dir, float tmax)
 {
   vec3 invDir = safeInverse(dir);
