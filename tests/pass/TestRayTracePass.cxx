@@ -14,6 +14,7 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkStaticCellLocator.h"
 #include "vtkGlyph3DMapper.h"
 #include "vtkLookupTable.h"
 #include "vtkMath.h"
@@ -468,20 +469,22 @@ void TestPointsAsSpheres()
     60.0);
 }
 
-/// Compares the traced depth with raster's over the pixels whose 3x3
-/// neighbourhood both cover (silhouettes left out): how many pixels, how
-/// many traced in front of raster, the largest difference.
+/// Compares a traced depth image with a reference (exact or raster's) over
+/// the pixels whose 3x3 neighbourhood both cover (silhouettes left out): how
+/// many pixels, how many traced in front of the reference, the largest
+/// difference and where the traced depth is most in front.
 struct DepthComparison
 {
   long Pixels = 0;
   long InFront = 0;
   double Largest = 0.0;
-  double LargestInFront = 0.0; ///< the most a traced depth is in front of raster's
+  double LargestInFront = 0.0; ///< the most a traced depth is in front of the reference
   int InFrontPixel[2] = { 0, 0 }; ///< where it is
-  float InFrontDepths[2] = { 0.0f, 0.0f }; ///< raster's and the traced depth there
+  double InFrontDepths[2] = { 0.0, 0.0 }; ///< the reference and the traced depth there
 };
 
-DepthComparison CompareDepth(const std::vector<float>& raster, const std::vector<float>& traced,
+template <class Reference>
+DepthComparison CompareDepth(const std::vector<Reference>& reference, const std::vector<float>& traced,
   int w, int h)
 {
   DepthComparison out;
@@ -495,21 +498,22 @@ DepthComparison CompareDepth(const std::vector<float>& raster, const std::vector
         for (int l = -1; l <= 1 && covered; ++l)
         {
           const int n = (j + k) * w + i + l;
-          covered = raster[n] < 1.0f && traced[n] < 1.0f;
+          covered = reference[n] < 1.0 && traced[n] < 1.0f;
         }
       }
       if (covered)
       {
         const int n = j * w + i;
+        const double ahead = double(reference[n]) - double(traced[n]);
         ++out.Pixels;
-        out.InFront += traced[n] < raster[n];
-        out.Largest = std::max(out.Largest, std::abs(double(traced[n]) - double(raster[n])));
-        if (double(raster[n]) - double(traced[n]) > out.LargestInFront)
+        out.InFront += ahead > 0.0;
+        out.Largest = std::max(out.Largest, std::abs(ahead));
+        if (ahead > out.LargestInFront)
         {
-          out.LargestInFront = double(raster[n]) - double(traced[n]);
+          out.LargestInFront = ahead;
           out.InFrontPixel[0] = i;
           out.InFrontPixel[1] = j;
-          out.InFrontDepths[0] = raster[n];
+          out.InFrontDepths[0] = reference[n];
           out.InFrontDepths[1] = traced[n];
         }
       }
@@ -518,13 +522,84 @@ DepthComparison CompareDepth(const std::vector<float>& raster, const std::vector
   return out;
 }
 
+/// What a comparison found, for a check's message.
+std::string DescribeDepth(const DepthComparison& depth)
+{
+  std::ostringstream what;
+  what << depth.Pixels << " pixels, " << depth.InFront << " in front, largest difference " << depth.Largest;
+  if (depth.InFront > 0)
+  {
+    what << "; most in front by " << depth.LargestInFront << " at pixel (" << depth.InFrontPixel[0] << ", "
+         << depth.InFrontPixel[1] << "): reference " << std::setprecision(9) << depth.InFrontDepths[0]
+         << ", traced " << depth.InFrontDepths[1];
+  }
+  return what.str();
+}
+
+/// The exact window depth at the center of each pixel of the renderer's
+/// w x h viewport: the nearest hit of the pixel's ray with the cells of the
+/// actors (no actor transforms), through the camera's composite projection,
+/// in double; 1 where the ray misses.
+std::vector<double> ExactWindowDepths(vtkRenderer* ren, int w, int h, const std::vector<vtkActor*>& actors)
+{
+  vtkMatrix4x4* project =
+    ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(double(w) / h, -1.0, 1.0);
+  vtkNew<vtkMatrix4x4> unproject;
+  vtkMatrix4x4::Invert(project, unproject);
+  std::vector<vtkSmartPointer<vtkStaticCellLocator>> locators;
+  for (vtkActor* actor : actors)
+  {
+    locators.push_back(vtkSmartPointer<vtkStaticCellLocator>::New());
+    locators.back()->SetDataSet(actor->GetMapper()->GetInput());
+    locators.back()->BuildLocator();
+  }
+  std::vector<double> depth(static_cast<std::size_t>(w) * h, 1.0);
+  for (int j = 0; j < h; ++j)
+  {
+    for (int i = 0; i < w; ++i)
+    {
+      double ends[2][3];
+      for (int k = 0; k < 2; ++k)
+      {
+        double c[4] = { 2.0 * (i + 0.5) / w - 1.0, 2.0 * (j + 0.5) / h - 1.0, k == 0 ? -1.0 : 1.0, 1.0 };
+        unproject->MultiplyPoint(c, c);
+        for (int d = 0; d < 3; ++d)
+        {
+          ends[k][d] = c[d] / c[3];
+        }
+      }
+      double nearest = 2.0;
+      double hit[4] = { 0.0, 0.0, 0.0, 1.0 };
+      for (vtkStaticCellLocator* locator : locators)
+      {
+        double t, x[3], pcoords[3];
+        int subId;
+        if (locator->IntersectWithLine(ends[0], ends[1], 0.0, t, x, pcoords, subId) && t < nearest)
+        {
+          nearest = t;
+          std::copy(x, x + 3, hit);
+        }
+      }
+      if (nearest <= 1.0)
+      {
+        project->MultiplyPoint(hit, hit);
+        depth[j * w + i] = 0.5 * hit[2] / hit[3] + 0.5;
+      }
+    }
+  }
+  return depth;
+}
+
 // Raster lines lying on a traced mesh (the outline vtkInteractorStyle draws
 // around a picked prop, a wireframe over a surface) pass the depth test as
 // over raster's own triangles: the traced depth of a mesh is never in front
-// of raster's depth of the same triangles (and stays within 1e-5 of it), and
-// the outline around a traced cube shows at least as much as over raster's.
+// of the exact depth of its triangles and stays within a few 24-bit steps
+// behind it (the pass's bias), and the outline around a traced cube shows at
+// least as much as over raster's. Raster's own depth is printed beside, not
+// checked: drivers differ (NVIDIA's lay tens of steps behind the exact depth).
 void TestCoincidentLines()
 {
+  const double kDepthTolerance = 32.0 / 16777216.0;
   constexpr int w = 300;
   constexpr int h = 200;
   for (const double azimuth : { 0.0, 30.0 })
@@ -539,7 +614,8 @@ void TestCoincidentLines()
     vtkNew<vtkActor> surface;
     surface->SetMapper(mapper);
     ren->AddActor(surface);
-    ren->AddActor(SphereActor(0.0, 0.0, 0.0, 0.5, 64));
+    vtkSmartPointer<vtkActor> ball = SphereActor(0.0, 0.0, 0.0, 0.5, 64);
+    ren->AddActor(ball);
     ren->ResetCamera(-3.0, 3.0, -2.0, 2.0, -0.5, 0.5);
     ren->GetActiveCamera()->Azimuth(azimuth);
     ren->GetActiveCamera()->Elevation(azimuth * 0.5);
@@ -552,18 +628,16 @@ void TestCoincidentLines()
     ren->SetPass(pass);
     win->Render();
     win->GetZbufferData(0, 0, w - 1, h - 1, tracedDepth.data());
-    const DepthComparison depth = CompareDepth(rasterDepth, tracedDepth, w, h);
+    const std::vector<double> exactDepth = ExactWindowDepths(ren, w, h, { surface, ball });
+    const DepthComparison depth = CompareDepth(exactDepth, tracedDepth, w, h);
+    std::cout << "azimuth " << azimuth << ", raster's depth against the exact depth: "
+              << DescribeDepth(CompareDepth(exactDepth, rasterDepth, w, h)) << "\n";
     std::ostringstream what;
-    what << "azimuth " << azimuth << ": traced depth behind or at raster's on " << depth.Pixels
-         << " pixels (" << depth.InFront << " in front, largest difference " << depth.Largest << ")";
-    if (depth.InFront > 0)
-    {
-      what << "; most in front by " << depth.LargestInFront << " at pixel (" << depth.InFrontPixel[0] << ", "
-           << depth.InFrontPixel[1] << "): raster " << std::setprecision(9) << depth.InFrontDepths[0]
-           << ", traced " << depth.InFrontDepths[1];
-    }
+    what << "azimuth " << azimuth << ": traced depth at or behind the exact depth, within "
+         << kDepthTolerance << ": " << DescribeDepth(depth);
     Check(pass->GetNumberOfTracedProps() == 2 && depth.Pixels > 1000 && depth.InFront == 0 &&
-        depth.Largest < 1e-5, what.str());
+        depth.Largest < kDepthTolerance,
+      what.str());
 
     // VTK's pick outline (vtkInteractorStyle::HighlightProp3D) around the cube.
     vtkNew<vtkOutlineSource> box;
