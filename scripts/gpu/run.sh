@@ -5,8 +5,7 @@
 # on the demo and the EGL tests (8 at a time), and leaves the results in
 # $1 (default ./gpu-results) and $1.tgz. See docs/gpu.md.
 # VTKRT_GPU_BENCH replaces the benchmark's arguments ("skip": no benchmark),
-# VTKRT_GPU_TESTS=N runs the first N tests, VTKRT_GPU_TEST_TIMEOUT (150 s)
-# stops a test that runs longer.
+# VTKRT_GPU_TESTS=N runs the first N tests.
 set -uo pipefail
 cd "$(dirname "$0")/../.."
 RES=$(mkdir -p "${1:-gpu-results}" && cd "${1:-gpu-results}" && pwd)
@@ -34,11 +33,9 @@ timeout 120 $B/bin/vtkrt-render --demo --size 1024x768 --frames 16 --output "$RE
 mkdir -p /tmp/vtkrt-gpu-tests
 one() {
   local name=${1%%$'\t'*} cmd=${1#*$'\t'}
-  if timeout "${VTKRT_GPU_TEST_TIMEOUT:-150}" bash -c "$cmd" > "/tmp/vtkrt-gpu-tests/$name.log" 2>&1; then
-    echo "PASS $name"
-  else
-    echo "FAIL $name rc=$?"
-  fi
+  # Each command has ctest's timeout already; with a second one around it every
+  # traced test hung on the GPU machine once, for reasons not found (docs/gpu.md).
+  if bash -c "$cmd" > "/tmp/vtkrt-gpu-tests/$name.log" 2>&1; then echo "PASS $name"; else echo "FAIL $name rc=$?"; fi
 }
 export -f one
 head -n "${VTKRT_GPU_TESTS:-100000}" .gpu/tests.txt | tr '\n' '\0' |
