@@ -1,8 +1,10 @@
 // The C++ twins of the shader's translucency (shaders/vtkrtRayTraceTranslucent.glsl):
 // the layer step past a hit, front-to-back compositing, and the layer walk
-// that traceTranslucentLayers and rayTransmittance run over the closest-hit
-// traversal (here over one bottom-level triangle BVH, traverseTriangles).
-// Names and float operations are the shader's (see GpuKernels.h).
+// that traceTranslucentLayers runs over the closest-hit traversal for the
+// camera ray and for each layer's shadow and occlusion rays (the shader
+// interleaves those walks in one loop; each is this walk), here over one
+// bottom-level triangle BVH (traverseTriangles). Names and float operations
+// are the shader's (see GpuKernels.h).
 #ifndef vtkrt_core_GpuTranslucency_h
 #define vtkrt_core_GpuTranslucency_h
 
@@ -41,7 +43,7 @@ inline void compositeLayer(vec4& accumulated, const vec3& color, float alpha)
   accumulated.a += weight;
 }
 
-/// The layer loop of traceTranslucentLayers and rayTransmittance over the
+/// The layer loop of traceTranslucentLayers (camera and visibility rays) over the
 /// triangle BVH at `root`: each closest hit within [tMin, tmax], from tMin
 /// 0, then past the hit by nextLayerTMin, until none is left or
 /// `layer(t, tri, uv)` returns false (the ray is done).
