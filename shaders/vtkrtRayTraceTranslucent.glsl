@@ -149,14 +149,18 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, 
 #if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
     if (gRecordingVisibilityRays)
     {
-      // The layer's rays are recorded: walk them, then shade it again.
+      // The layer's rays are recorded: walk them, then shade it again;
+      // without any, what was shaded is the layer's color.
       gRecordingVisibilityRays = false;
       ray = nextVisibilityRay(-1, transmittance, tMin);
+      if (ray < kVisibilityRays)
+      {
 #ifdef VTKRT_TILE_ENTRIES
-      // Not camera rays: their walks start at the root (list 0).
-      gTileList = ray < kVisibilityRays ? 0 : cameraList;
+        // Not camera rays: their walks start at the root (list 0).
+        gTileList = 0;
 #endif
-      continue;
+        continue;
+      }
     }
     ray = -1;
 #endif
