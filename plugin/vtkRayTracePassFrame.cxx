@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdlib>
+#include <cstring>
 
 using vtkrt::pass::Features;
 using vtkrt::pass::Instance;
@@ -94,6 +95,22 @@ constexpr std::uint32_t kTileEntriesMinimumDepth = 19;
 /// kMaxFootprintDraws rectangles of them are traced as one rectangle.
 constexpr int kFootprintTile = 32;
 constexpr std::size_t kMaxFootprintDraws = 64;
+
+/// Whether the translucent layers' walks are interleaved
+/// (Features::InterleavedWalks): VTKRT_INTERLEAVED_WALKS=1 or 0 says, so that
+/// tests compare both on one driver; unset, on every driver but Mesa's CPU
+/// rasterizers, whose pixels run in SIMD lanes that interleaving puts out of
+/// step with each other.
+bool InterleaveWalks()
+{
+  const char* value = std::getenv("VTKRT_INTERLEAVED_WALKS");
+  if (value && *value)
+  {
+    return std::strcmp(value, "0") != 0;
+  }
+  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  return !renderer || (!std::strstr(renderer, "llvmpipe") && !std::strstr(renderer, "softpipe"));
+}
 
 /// VTKRT_GENERAL_SHADER set (not empty, not 0): no shader of one instance,
 /// so that tests walk a one-mesh scene the general way too.
@@ -360,6 +377,7 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   f.TextureCutOuts = this->Scene.HasTextureCutOuts();
   // Ids are the nearest layer's, translucent or not (as raster selection).
   f.Translucent = !pass.IdMode && this->Scene.HasTranslucency();
+  f.InterleavedWalks = f.Translucent && (f.Shadows || f.AmbientOcclusionSamples > 0) && InterleaveWalks();
   f.SurfaceEdges = this->Scene.HasSurfaceEdges();
   f.Wireframe = this->Scene.HasWireframe();
   // The stack as deep as the deepest bottom-level tree needs; the top-level
@@ -552,6 +570,7 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLR
     p.F.SelectIds = true;
     p.F.IdMode = false;
     p.F.Translucent = false;
+    p.F.InterleavedWalks = false;
     p.F.SamplesPerPixel = 0;
     p.F.Shadows = false;
     p.F.Specular = false;

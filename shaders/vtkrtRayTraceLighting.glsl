@@ -3,11 +3,12 @@
 // translucent scenes the layer loop's transmittance).
 
 #if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
-#ifdef VTKRT_TRANSLUCENT
-// In translucent scenes a hit's visibility rays are walked by the camera
-// ray's layer loop (traceTranslucentLayers), at its one call of the walk, as
-// a GPU compiler inlines a copy of the walk per call: each layer is shaded
-// twice, first recording the rays it casts, then with what they let through.
+#ifdef VTKRT_INTERLEAVED_WALKS
+// With interleaved walks (translucent scenes, GPUs) a hit's visibility rays
+// are walked by the camera ray's layer loop (traceTranslucentLayers), at its
+// one call of the walk, as a GPU compiler inlines a copy of the walk per
+// call: a layer is shaded first to record the rays it casts, then again with
+// what they let through.
 #if VTKRT_LIGHT_COMPLEXITY == 1
 const int kVisibilityRays = VTKRT_AMBIENT_OCCLUSION_SAMPLES + 1;
 #elif VTKRT_AMBIENT_OCCLUSION_SAMPLES + VTKRT_NUMBER_OF_LIGHTS > 0
@@ -41,11 +42,16 @@ float rayVisibility(int ray, vec3 org, vec3 dir, float tmax)
   return gVisibility[ray];
 }
 #else
+#ifdef VTKRT_TRANSLUCENT
+float rayTransmittance(vec3 org, vec3 dir, float tmax); // vtkrtRayTraceTranslucent
+#else
 // Any hit of a ray from org along dir within (0, tmax] (the core's anyHit).
 bool anyHit(vec3 org, vec3 dir, float tmax);
+#endif
 
 // The fraction of light that passes from org along dir within (0, tmax]
-// (the hit's visibility ray `ray`): 0 or 1.
+// (the hit's visibility ray `ray`): 0 or 1, or with translucent surfaces
+// the product of what each lets through.
 float rayVisibility(int ray, vec3 org, vec3 dir, float tmax)
 {
 #ifdef VTKRT_TILE_ENTRIES
@@ -53,7 +59,11 @@ float rayVisibility(int ray, vec3 org, vec3 dir, float tmax)
   int cameraList = gTileList;
   gTileList = 0;
 #endif
+#ifdef VTKRT_TRANSLUCENT
+  float visibility = rayTransmittance(org, dir, tmax);
+#else
   float visibility = anyHit(org, dir, tmax) ? 0.0 : 1.0;
+#endif
 #ifdef VTKRT_TILE_ENTRIES
   gTileList = cameraList;
 #endif

@@ -32,7 +32,9 @@ void compositeLayer(inout vec4 accumulated, vec3 color, float alpha)
 const float kBlockedTransmittance = 1.0 / 1024.0;
 
 float surfaceOpacity(int instance, int primitive, vec2 uv, vec3 dir);
+#endif
 
+#ifdef VTKRT_INTERLEAVED_WALKS
 // The first of the hit's visibility rays after `ray` that is cast (the
 // transmittance walk starts over), or kVisibilityRays when none is left.
 int nextVisibilityRay(int ray, out float transmittance, out float tMin)
@@ -51,10 +53,10 @@ int nextVisibilityRay(int ray, out float transmittance, out float tMin)
 // premultiplied color and, as VTK's translucent pass leaves the opaque depth
 // in the depth buffer, the depth of the layer that made the pixel opaque (the
 // far plane if the ray leaves the scene). False when the ray hits nothing.
-// With shadows or occlusion, the loop also walks each layer's visibility
-// rays (rayVisibility), each through every layer it crosses, taking the
-// product of (1 - alpha) over them: each iteration walks one ray, at the
-// shader's one call of traceClosest, and shades at one call of shadeHit.
+// With interleaved walks, the loop also walks each layer's visibility rays
+// (rayVisibility), each through every layer it crosses, taking the product
+// of (1 - alpha) over them: each iteration walks one ray, at the shader's
+// one call of traceClosest, and shades at one call of shadeHit.
 bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, out float outDepth)
 {
   vec4 accumulated = vec4(0.0);
@@ -66,7 +68,7 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, 
   int layerInstance = -1;
   int layerPrimitive = -1;
   vec2 layerUV = vec2(0.0);
-#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+#ifdef VTKRT_INTERLEAVED_WALKS
   // The ray walked: -1 the camera ray, else the layer's visibility ray
   // (kVisibilityRays: all walked, the layer is shaded next).
   int ray = -1;
@@ -84,7 +86,7 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, 
     vec3 walkInvDir = invDir;
     float t = 1.0;
     bool walk = true;
-#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+#ifdef VTKRT_INTERLEAVED_WALKS
     walk = ray < kVisibilityRays;
     if (ray >= 0 && walk)
     {
@@ -102,7 +104,7 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, 
     {
       traceClosest(walkOrg, walkDir, walkInvDir, tMin, t, hitInstance, hitPrimitive, hitUV);
     }
-#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+#ifdef VTKRT_INTERLEAVED_WALKS
     if (ray >= 0 && ray < kVisibilityRays)
     {
       if (hitInstance >= 0)
@@ -137,7 +139,7 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, 
       layerInstance = hitInstance;
       layerPrimitive = hitPrimitive;
       layerUV = hitUV;
-#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+#ifdef VTKRT_INTERLEAVED_WALKS
       for (int i = 0; i < kVisibilityRays; ++i)
       {
         gVisibilityRays[i].isCast = false;
@@ -146,7 +148,7 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, 
 #endif
     }
     vec4 layer = shadeHit(org, dir, tLayer, layerInstance, layerPrimitive, layerUV);
-#if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
+#ifdef VTKRT_INTERLEAVED_WALKS
     if (gRecordingVisibilityRays)
     {
       // The layer's rays are recorded: walk them, then shade it again;
@@ -253,3 +255,33 @@ float surfaceOpacity(int instance, int primitive, vec2 uv, vec3 dir)
 #endif
   return alpha;
 }
+
+#if (defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0) && !defined(VTKRT_INTERLEAVED_WALKS)
+// The fraction of light passing from org along dir within (0, tmax]: the
+// product of (1 - alpha) over every layer, in depth order (each once).
+float rayTransmittance(vec3 org, vec3 dir, float tmax)
+{
+  vec3 invDir = safeInverse(dir);
+  float transmittance = 1.0;
+  float tMin = 0.0;
+  for (;;)
+  {
+    float t = tmax;
+    int hitInstance;
+    int hitPrimitive;
+    vec2 hitUV;
+    traceClosest(org, dir, invDir, tMin, t, hitInstance, hitPrimitive, hitUV);
+    if (hitInstance < 0)
+    {
+      return transmittance;
+    }
+    transmittance *= 1.0 - surfaceOpacity(hitInstance, hitPrimitive, hitUV, dir);
+    if (transmittance < kBlockedTransmittance)
+    {
+      return 0.0;
+    }
+    tMin = nextLayerTMin(t);
+  }
+  return transmittance;
+}
+#endif

@@ -47,7 +47,7 @@ std::string Features::Key() const
     << this->SurfaceEdges << "V" << this->Wireframe << "J"
     << this->Tubes << "i" << this->SingleInstance << "p"
     << this->ProjectiveRays << "e" << this->TileEntries << "l" << this->LeafTrees << "w"
-    << this->PackedStackEntries << "h" << this->Specular;
+    << this->PackedStackEntries << "h" << this->Specular << "n" << this->InterleavedWalks;
   return s.str();
 }
 
@@ -87,6 +87,8 @@ ShaderSources AssembleShaders(const Features& f, int flatSlots)
   define(f.Triangles && f.LeafTrees, "VTKRT_LEAF_TREES");
   define(f.PackedStackEntries, "VTKRT_PACKED_STACK_ENTRIES");
   define(f.Translucent, "VTKRT_TRANSLUCENT");
+  define(f.Translucent && f.InterleavedWalks && (f.Shadows || f.AmbientOcclusionSamples > 0),
+    "VTKRT_INTERLEAVED_WALKS");
   if (f.SamplesPerPixel > 0)
   {
     s << "#define VTKRT_SAMPLES_PER_PIXEL " << f.SamplesPerPixel << "\n";

@@ -3,7 +3,8 @@
 // occlusion ratio 0): a translucent shell over an opaque mesh, scalar colors
 // with alpha, a textured quad with translucent texels (translucent sphere
 // glyphs stay with raster, composited with the traced scene); shadows
-// through translucent surfaces; translucency code only in shaders of scenes
+// through translucent surfaces, their rays walked from shading or
+// interleaved with the layers; translucency code only in shaders of scenes
 // that have it; opacity outside [0, 1]; hardware selection of the nearest
 // layer, as raster's.
 #include "vtkrtPassTestUtils.h"
@@ -22,6 +23,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <set>
 #include <sstream>
 #include <utility>
@@ -390,6 +392,64 @@ void TestShadow()
   NoVTKOutput("Shadow");
 }
 
+/// A translucent layer's shadow and occlusion rays walked from its shading
+/// or interleaved with the camera ray's layers in one loop
+/// (Features::InterleavedWalks: on GPUs, not on llvmpipe;
+/// VTKRT_INTERLEAVED_WALKS chooses here) give the same image, byte for
+/// byte: two overlapping translucent spheres over an opaque one and a floor,
+/// under a light from above and the headlight, shadows and 3 occlusion rays.
+void TestInterleavedWalks()
+{
+  Scene scene;
+  scene.Renderer->AddActor(FloorActor(2.0));
+  auto glass = SphereActor(0.0, 0.5, 0.0, 0.4, 48);
+  glass->GetProperty()->SetOpacity(0.4);
+  scene.Renderer->AddActor(glass);
+  auto tinted = SphereActor(0.35, 0.6, 0.2, 0.3, 48);
+  tinted->GetProperty()->SetOpacity(0.6);
+  tinted->GetProperty()->SetColor(0.3, 0.6, 1.0);
+  scene.Renderer->AddActor(tinted);
+  scene.Renderer->AddActor(SphereActor(-0.2, 0.3, 0.3, 0.15, 32));
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPosition(0.3, 10.0, 0.2);
+  light->SetFocalPoint(0.0, 0.0, 0.0);
+  scene.Renderer->AddLight(light);
+  scene.Frame(20, 1.3);
+  vtkNew<vtkRayTracePass> pass;
+  pass->SetShadows(true);
+  pass->SetAmbientOcclusionSamples(3);
+  scene.Renderer->SetPass(pass);
+  std::vector<vtkSmartPointer<vtkImageData>> images;
+  std::vector<bool> interleaved;
+  for (const char* mode : { "0", "1" })
+  {
+    setenv("VTKRT_INTERLEAVED_WALKS", mode, 1);
+    scene.Window->Render();
+    images.push_back(Grab(scene.Window));
+    interleaved.push_back(std::string(pass->GetLastFragmentShaderSource()).find(
+                            "#define VTKRT_INTERLEAVED_WALKS") != std::string::npos);
+  }
+  unsetenv("VTKRT_INTERLEAVED_WALKS");
+  pass->SetShadows(false);
+  pass->SetAmbientOcclusionSamples(0);
+  scene.Window->Render();
+  const double shading = RootMeanSquareError(images[0], Grab(scene.Window));
+  Check(!interleaved[0] && interleaved[1] && pass->GetNumberOfTracedProps() == 4,
+    "InterleavedWalks: VTKRT_INTERLEAVED_WALKS 0 walks from shading, 1 interleaves");
+  const double rmse = RootMeanSquareError(images[0], images[1]);
+  std::ostringstream what;
+  what << "InterleavedWalks: the same image both ways (RGB RMSE " << rmse << "; shadows and occlusion "
+       << "change it by " << shading << ")";
+  Check(rmse == 0.0 && shading > 5.0, what.str());
+  if (rmse != 0.0)
+  {
+    WriteFailedImages("InterleavedWalks", images[0], images[1]);
+  }
+  NoGLError(scene.Window, "InterleavedWalks");
+  NoVTKOutput("InterleavedWalks");
+}
+
 /// An opaque scene compiles no translucency code; a translucent one does;
 /// TraceTranslucency off leaves translucent actors to raster.
 void TestFeature()
@@ -520,6 +580,7 @@ int main(int argc, char* argv[])
   Output = vtkrtTestOutputWindow::Install();
   return RunCase(argc, argv,
     { { "Shell", TestShell }, { "Scalars", TestScalars }, { "Texture", TestTexture },
-      { "Glyphs", TestGlyphs }, { "ManyActors", TestManyActors }, { "Blocks", TestBlocks }, { "Shadow", TestShadow }, { "Feature", TestFeature },
+      { "Glyphs", TestGlyphs }, { "ManyActors", TestManyActors }, { "Blocks", TestBlocks }, { "Shadow", TestShadow }, { "InterleavedWalks", TestInterleavedWalks },
+      { "Feature", TestFeature },
       { "BadOpacity", TestBadOpacity }, { "Selection", TestSelection } });
 }

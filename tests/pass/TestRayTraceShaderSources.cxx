@@ -76,6 +76,16 @@ std::vector<Variant> FeatureVariants()
     { "backface properties", [](Features& f) { f.BackfaceProperties = true; } },
     { "specular", [](Features& f) { f.Specular = true; } },
     { "translucent", [](Features& f) { f.Translucent = true; } },
+    { "translucent, visibility rays walked in shading",
+      [](Features& f) {
+        f.Translucent = f.Shadows = true;
+        f.AmbientOcclusionSamples = 2;
+      } },
+    { "translucent, interleaved walks",
+      [](Features& f) {
+        f.Translucent = f.Shadows = f.InterleavedWalks = true;
+        f.AmbientOcclusionSamples = 2;
+      } },
     { "surface edges", [](Features& f) { f.SurfaceEdges = true; } },
     { "wireframe", [](Features& f) { f.Wireframe = true; } },
     { "wide stack entries", [](Features& f) { f.PackedStackEntries = false; } },
@@ -250,6 +260,10 @@ void TestReferenceCompiler()
   tiles.SingleInstance = tiles.TileEntries = tiles.Shadows = true;
   tiles.AmbientOcclusionSamples = 2;
   programs.push_back(tiles);
+  tiles.Translucent = true;
+  programs.push_back(tiles);
+  tiles.InterleavedWalks = true;
+  programs.push_back(tiles);
   for (int select = 0; select < 3; ++select)
   {
     Features f;
@@ -260,6 +274,10 @@ void TestReferenceCompiler()
     f.WorldCoordinates = true;
     programs.push_back(f);
   }
+  Features interleaved;
+  EveryFeature(interleaved);
+  interleaved.InterleavedWalks = true;
+  programs.push_back(interleaved);
 
   // Each with and without double precision; flat frame constants in none,
   // few and many varying slots.
