@@ -1,6 +1,7 @@
 // vtkrt ray tracing fragment shader: VTK's lighting at a hit, with shadow
-// and ambient occlusion rays (anyHit, from vtkrtRayTraceTraversal, or in
-// translucent scenes the layer loop's transmittance).
+// and ambient occlusion rays (anyHit, from vtkrtRayTraceTraversal; in
+// translucent scenes rayTransmittance, or with interleaved walks the camera
+// ray's layer loop).
 
 #if defined(VTKRT_SHADOWS) || VTKRT_AMBIENT_OCCLUSION_SAMPLES > 0
 #ifdef VTKRT_INTERLEAVED_WALKS

@@ -35,7 +35,7 @@ float surfaceOpacity(int instance, int primitive, vec2 uv, vec3 dir);
 #endif
 
 #ifdef VTKRT_INTERLEAVED_WALKS
-// The first of the hit's visibility rays after `ray` that is cast (the
+// The first of the hit's visibility rays after `ray` that is cast (its
 // transmittance walk starts over), or kVisibilityRays when none is left.
 int nextVisibilityRay(int ray, out float transmittance, out float tMin)
 {
@@ -47,16 +47,38 @@ int nextVisibilityRay(int ray, out float transmittance, out float tMin)
   } while (ray < kVisibilityRays && !gVisibilityRays[ray].isCast);
   return ray;
 }
+
+// Takes the visibility ray `ray`'s closest hit from tMin (none:
+// hitInstance < 0): true while the ray walks on past it; else its
+// visibility is kept and `ray` moves to the next ray cast, if any (true).
+bool stepVisibilityRay(inout int ray, inout float transmittance, inout float tMin, float t,
+  int hitInstance, int hitPrimitive, vec2 hitUV)
+{
+  if (hitInstance >= 0)
+  {
+    transmittance *= 1.0 - surfaceOpacity(hitInstance, hitPrimitive, hitUV, gVisibilityRays[ray].dir);
+    if (transmittance >= kBlockedTransmittance)
+    {
+      tMin = nextLayerTMin(t);
+      return true;
+    }
+    transmittance = 0.0;
+  }
+  gVisibility[ray] = transmittance;
+  ray = nextVisibilityRay(ray, transmittance, tMin);
+  return ray < kVisibilityRays;
+}
 #endif
 
 // Every hit of the camera ray in depth order, shaded and composited: the
 // premultiplied color and, as VTK's translucent pass leaves the opaque depth
 // in the depth buffer, the depth of the layer that made the pixel opaque (the
 // far plane if the ray leaves the scene). False when the ray hits nothing.
-// With interleaved walks, the loop also walks each layer's visibility rays
-// (rayVisibility), each through every layer it crosses, taking the product
-// of (1 - alpha) over them: each iteration walks one ray, at the shader's
-// one call of traceClosest, and shades at one call of shadeHit.
+// With interleaved walks, the loop also walks each layer's visibility rays,
+// each through every layer it crosses (the product of 1 - alpha): an
+// iteration walks one ray at the shader's one call of traceClosest; a layer
+// is shaded at one call of shadeHit, first recording its rays, then, once
+// the last is walked, with what they let through.
 bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, out float outDepth)
 {
   vec4 accumulated = vec4(0.0);
@@ -69,9 +91,7 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, 
   int layerPrimitive = -1;
   vec2 layerUV = vec2(0.0);
 #ifdef VTKRT_INTERLEAVED_WALKS
-  // The ray walked: -1 the camera ray, else the layer's visibility ray
-  // (kVisibilityRays: all walked, the layer is shaded next).
-  int ray = -1;
+  int ray = -1; // the ray walked: -1 the camera ray, else the layer's visibility ray
   float transmittance = 1.0;
 #ifdef VTKRT_TILE_ENTRIES
   int cameraList = gTileList;
@@ -85,41 +105,23 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, 
     vec3 walkDir = dir;
     vec3 walkInvDir = invDir;
     float t = 1.0;
-    bool walk = true;
 #ifdef VTKRT_INTERLEAVED_WALKS
-    walk = ray < kVisibilityRays;
-    if (ray >= 0 && walk)
+    if (ray >= 0)
     {
-      VisibilityRay v = gVisibilityRays[ray];
-      walkOrg = v.org;
-      walkDir = v.dir;
-      walkInvDir = safeInverse(v.dir);
-      t = v.tmax;
+      walkOrg = gVisibilityRays[ray].org;
+      walkDir = gVisibilityRays[ray].dir;
+      walkInvDir = safeInverse(walkDir);
+      t = gVisibilityRays[ray].tmax;
     }
 #endif
-    int hitInstance = -1;
-    int hitPrimitive = -1;
-    vec2 hitUV = vec2(0.0);
-    if (walk)
-    {
-      traceClosest(walkOrg, walkDir, walkInvDir, tMin, t, hitInstance, hitPrimitive, hitUV);
-    }
+    int hitInstance;
+    int hitPrimitive;
+    vec2 hitUV;
+    traceClosest(walkOrg, walkDir, walkInvDir, tMin, t, hitInstance, hitPrimitive, hitUV);
 #ifdef VTKRT_INTERLEAVED_WALKS
-    if (ray >= 0 && ray < kVisibilityRays)
+    if (ray >= 0)
     {
-      if (hitInstance >= 0)
-      {
-        transmittance *= 1.0 - surfaceOpacity(hitInstance, hitPrimitive, hitUV, walkDir);
-        if (transmittance >= kBlockedTransmittance)
-        {
-          tMin = nextLayerTMin(t);
-          continue;
-        }
-        transmittance = 0.0;
-      }
-      gVisibility[ray] = transmittance;
-      ray = nextVisibilityRay(ray, transmittance, tMin);
-      if (ray < kVisibilityRays)
+      if (stepVisibilityRay(ray, transmittance, tMin, t, hitInstance, hitPrimitive, hitUV))
       {
         continue;
       }
@@ -158,8 +160,7 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, 
       if (ray < kVisibilityRays)
       {
 #ifdef VTKRT_TILE_ENTRIES
-        // Not camera rays: their walks start at the root (list 0).
-        gTileList = 0;
+        gTileList = 0; // not camera rays: their walks start at the root
 #endif
         continue;
       }

@@ -113,7 +113,8 @@ uniform usamplerBuffer uTileEntries;
 // uTileGrid (a frame constant): tiles per unit of [0, 1] viewport
 // coordinates (xy), tiles in x and y (zw).
 // The list of the walks under way: the camera ray's tile (shadeRay), list 0
-// while shadow and occlusion rays walk (rayVisibility).
+// while shadow and occlusion rays walk (rayVisibility, or
+// traceTranslucentLayers with interleaved walks).
 int gTileList = 0;
 
 // The tile list of the camera ray through ndc (core::gpu::tileListOf).

@@ -22,11 +22,15 @@
 #include "vtkTexture.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <set>
 #include <sstream>
+#include <string>
 #include <utility>
+#include <vector>
 
 using namespace vtkrtPassTest;
 
@@ -392,62 +396,105 @@ void TestShadow()
   NoVTKOutput("Shadow");
 }
 
-/// A translucent layer's shadow and occlusion rays walked from its shading
-/// or interleaved with the camera ray's layers in one loop
-/// (Features::InterleavedWalks: on GPUs, not on llvmpipe;
-/// VTKRT_INTERLEAVED_WALKS chooses here) give the same image, byte for
-/// byte: two overlapping translucent spheres over an opaque one and a floor,
-/// under a light from above and the headlight, shadows and 3 occlusion rays.
-void TestInterleavedWalks()
+/// The actors of the interleaved-walks scenes: two overlapping translucent
+/// spheres over an opaque one and a floor, or one deep translucent sphere
+/// (its walk starts from tile entries).
+void AddWalkActors(vtkRenderer* ren, bool deepMesh)
 {
-  Scene scene;
-  scene.Renderer->AddActor(FloorActor(2.0));
+  if (deepMesh)
+  {
+    auto sphere = SphereActor(0.0, 0.0, 0.0, 0.5, 640);
+    sphere->GetProperty()->SetOpacity(0.5);
+    ren->AddActor(sphere);
+    return;
+  }
+  ren->AddActor(FloorActor(2.0));
   auto glass = SphereActor(0.0, 0.5, 0.0, 0.4, 48);
   glass->GetProperty()->SetOpacity(0.4);
-  scene.Renderer->AddActor(glass);
+  ren->AddActor(glass);
   auto tinted = SphereActor(0.35, 0.6, 0.2, 0.3, 48);
   tinted->GetProperty()->SetOpacity(0.6);
   tinted->GetProperty()->SetColor(0.3, 0.6, 1.0);
-  scene.Renderer->AddActor(tinted);
-  scene.Renderer->AddActor(SphereActor(-0.2, 0.3, 0.3, 0.15, 32));
-  vtkNew<vtkLight> light;
-  light->SetLightTypeToSceneLight();
-  light->SetPosition(0.3, 10.0, 0.2);
-  light->SetFocalPoint(0.0, 0.0, 0.0);
-  scene.Renderer->AddLight(light);
-  scene.Frame(20, 1.3);
-  vtkNew<vtkRayTracePass> pass;
-  pass->SetShadows(true);
-  pass->SetAmbientOcclusionSamples(3);
-  scene.Renderer->SetPass(pass);
-  std::vector<vtkSmartPointer<vtkImageData>> images;
-  std::vector<bool> interleaved;
-  for (const char* mode : { "0", "1" })
+  ren->AddActor(tinted);
+  ren->AddActor(SphereActor(-0.2, 0.3, 0.3, 0.15, 32));
+}
+
+/// A translucent layer's shadow and occlusion rays walked from its shading
+/// or interleaved with the camera ray's layers in one loop
+/// (Features::InterleavedWalks: on GPUs, not on llvmpipe;
+/// VTKRT_INTERLEAVED_WALKS chooses here) give the same image: byte for byte
+/// on llvmpipe; on a GPU two programs may round apart (RGB RMSE 0.5). With
+/// shadows and 3 occlusion rays, under the headlight, a directional light, a
+/// spot light, with 4 samples a pixel, and over one deep mesh.
+void TestInterleavedWalks()
+{
+  struct Case
   {
-    setenv("VTKRT_INTERLEAVED_WALKS", mode, 1);
+    std::string Name;
+    int Light; ///< 0: the headlight, 1: directional, 2: spot
+    int Samples;
+    bool DeepMesh;
+  };
+  const Case cases[] = { { "headlight", 0, 0, false }, { "directional light", 1, 0, false },
+    { "spot light", 2, 0, false }, { "4 samples a pixel", 1, 4, false },
+    { "one deep mesh, tile entries", 0, 0, true } };
+  for (const Case& c : cases)
+  {
+    const std::string name = "InterleavedWalks, " + c.Name;
+    Scene scene;
+    AddWalkActors(scene.Renderer, c.DeepMesh);
+    if (c.Light > 0)
+    {
+      vtkNew<vtkLight> light;
+      light->SetLightTypeToSceneLight();
+      light->SetPosition(0.3, c.Light == 1 ? 10.0 : 2.5, 0.2);
+      light->SetFocalPoint(0.0, 0.0, 0.0);
+      light->SetPositional(c.Light == 2);
+      light->SetConeAngle(35.0);
+      scene.Renderer->AddLight(light);
+    }
+    scene.Frame(20, 1.3);
+    vtkNew<vtkRayTracePass> pass;
+    pass->SetShadows(true);
+    pass->SetAmbientOcclusionSamples(3);
+    pass->SetSamplesPerPixel(std::max(1, c.Samples));
+    scene.Renderer->SetPass(pass);
+    std::vector<vtkSmartPointer<vtkImageData>> images;
+    std::vector<std::string> shaders;
+    for (const char* mode : { "0", "1" })
+    {
+      setenv("VTKRT_INTERLEAVED_WALKS", mode, 1);
+      scene.Window->Render();
+      images.push_back(Grab(scene.Window));
+      shaders.push_back(pass->GetLastFragmentShaderSource());
+    }
+    unsetenv("VTKRT_INTERLEAVED_WALKS");
+    pass->SetShadows(false);
+    pass->SetAmbientOcclusionSamples(0);
     scene.Window->Render();
-    images.push_back(Grab(scene.Window));
-    interleaved.push_back(std::string(pass->GetLastFragmentShaderSource()).find(
-                            "#define VTKRT_INTERLEAVED_WALKS") != std::string::npos);
+    const double shading = RootMeanSquareError(images[0], Grab(scene.Window));
+    const auto has = [](const std::string& shader, const char* define) {
+      return shader.find(std::string("#define ") + define) != std::string::npos;
+    };
+    Check(!has(shaders[0], "VTKRT_INTERLEAVED_WALKS") && has(shaders[1], "VTKRT_INTERLEAVED_WALKS") &&
+        has(shaders[1], "VTKRT_TILE_ENTRIES") == c.DeepMesh &&
+        has(shaders[1], "VTKRT_SAMPLES_PER_PIXEL") == (c.Samples > 1),
+      name + ": VTKRT_INTERLEAVED_WALKS 0 walks from shading, 1 interleaves" +
+        (c.DeepMesh ? ", from tile entries" : ""));
+    const char* capabilities = scene.Window->ReportCapabilities();
+    const bool cpu = capabilities && (std::strstr(capabilities, "llvmpipe") || std::strstr(capabilities, "softpipe"));
+    const double rmse = RootMeanSquareError(images[0], images[1]);
+    std::ostringstream what;
+    what << name << ": the same image both ways (RGB RMSE " << rmse << (cpu ? ", llvmpipe: 0" : ", <= 0.5")
+         << "; shadows and occlusion change it by " << shading << ")";
+    Check((cpu ? rmse == 0.0 : rmse <= 0.5) && shading > 2.0, what.str());
+    if (!(cpu ? rmse == 0.0 : rmse <= 0.5))
+    {
+      WriteFailedImages("InterleavedWalks", images[0], images[1]);
+    }
+    NoGLError(scene.Window, name);
+    NoVTKOutput(name);
   }
-  unsetenv("VTKRT_INTERLEAVED_WALKS");
-  pass->SetShadows(false);
-  pass->SetAmbientOcclusionSamples(0);
-  scene.Window->Render();
-  const double shading = RootMeanSquareError(images[0], Grab(scene.Window));
-  Check(!interleaved[0] && interleaved[1] && pass->GetNumberOfTracedProps() == 4,
-    "InterleavedWalks: VTKRT_INTERLEAVED_WALKS 0 walks from shading, 1 interleaves");
-  const double rmse = RootMeanSquareError(images[0], images[1]);
-  std::ostringstream what;
-  what << "InterleavedWalks: the same image both ways (RGB RMSE " << rmse << "; shadows and occlusion "
-       << "change it by " << shading << ")";
-  Check(rmse == 0.0 && shading > 5.0, what.str());
-  if (rmse != 0.0)
-  {
-    WriteFailedImages("InterleavedWalks", images[0], images[1]);
-  }
-  NoGLError(scene.Window, "InterleavedWalks");
-  NoVTKOutput("InterleavedWalks");
 }
 
 /// An opaque scene compiles no translucency code; a translucent one does;
@@ -580,7 +627,7 @@ int main(int argc, char* argv[])
   Output = vtkrtTestOutputWindow::Install();
   return RunCase(argc, argv,
     { { "Shell", TestShell }, { "Scalars", TestScalars }, { "Texture", TestTexture },
-      { "Glyphs", TestGlyphs }, { "ManyActors", TestManyActors }, { "Blocks", TestBlocks }, { "Shadow", TestShadow }, { "InterleavedWalks", TestInterleavedWalks },
-      { "Feature", TestFeature },
+      { "Glyphs", TestGlyphs }, { "ManyActors", TestManyActors }, { "Blocks", TestBlocks },
+      { "Shadow", TestShadow }, { "InterleavedWalks", TestInterleavedWalks }, { "Feature", TestFeature },
       { "BadOpacity", TestBadOpacity }, { "Selection", TestSelection } });
 }
