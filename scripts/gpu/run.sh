@@ -33,8 +33,8 @@ timeout 120 $B/bin/vtkrt-render --demo --size 1024x768 --frames 16 --output "$RE
 mkdir -p /tmp/vtkrt-gpu-tests
 one() {
   local name=${1%%$'\t'*} cmd=${1#*$'\t'}
-  # Each command has ctest's timeout already; with a second one around it every
-  # traced test hung on the GPU machine once, for reasons not found (docs/gpu.md).
+  # Each command has ctest's timeout already (a run with a second one around
+  # it did not finish on the GPU machine: docs/gpu.md).
   if bash -c "$cmd" > "/tmp/vtkrt-gpu-tests/$name.log" 2>&1; then echo "PASS $name"; else echo "FAIL $name rc=$?"; fi
 }
 export -f one
