@@ -15,6 +15,9 @@ ldconfig
 nvidia=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
 [ -f "$nvidia" ] && export __EGL_VENDOR_LIBRARY_FILENAMES=${__EGL_VENDOR_LIBRARY_FILENAMES:-$nvidia}
 B=/tmp/vtkrt-gpu
+# A run stopped from outside can leave tests running (ctest's timeout puts
+# each in a process group of its own): they would share the GPU with these.
+pkill -f "$B/bin/" 2>/dev/null && sleep 2
 mkdir -p $B && tar -xJf .gpu/bundle.tar.xz -C $B
 export LD_LIBRARY_PATH=$B/lib
 # The tests read their baselines and data where the build was configured.
@@ -31,13 +34,22 @@ cat "$RES/env.txt"
   2>&1 | tee "$RES/bench.txt"
 timeout 120 $B/bin/vtkrt-render --demo --size 1024x768 --frames 16 --output "$RES/demo.png" 2>&1 | tee "$RES/demo.txt"
 mkdir -p /tmp/vtkrt-gpu-tests
+# Each test's line goes to tests-live.txt as it ends, and its output is line
+# buffered, so that a run stopped midway still says what ended and where
+# the others were.
 one() {
-  local name=${1%%$'\t'*} cmd=${1#*$'\t'}
+  local name=${1%%$'\t'*} cmd=${1#*$'\t'} start=$SECONDS result
   # Each command has ctest's timeout already (a run with a second one around
   # it did not finish on the GPU machine: docs/gpu.md).
-  if bash -c "$cmd" > "/tmp/vtkrt-gpu-tests/$name.log" 2>&1; then echo "PASS $name"; else echo "FAIL $name rc=$?"; fi
+  if stdbuf -oL -eL bash -c "$cmd" > "/tmp/vtkrt-gpu-tests/$name.log" 2>&1; then
+    result="PASS $name"
+  else
+    result="FAIL $name rc=$?"
+  fi
+  echo "$result $((SECONDS - start))s" | tee -a "$RES/tests-live.txt"
 }
 export -f one
+export RES
 head -n "${VTKRT_GPU_TESTS:-100000}" .gpu/tests.txt | tr '\n' '\0' |
   xargs -0 -P 8 -I{} bash -c 'one "$@"' _ {} | sort > "$RES/tests.txt"
 for n in $(awk '$1 == "FAIL" {print $2}' "$RES/tests.txt"); do
