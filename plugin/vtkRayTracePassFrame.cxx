@@ -108,8 +108,7 @@ bool InterleaveWalks()
   {
     return std::strcmp(value, "0") != 0;
   }
-  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  return !renderer || (!std::strstr(renderer, "llvmpipe") && !std::strstr(renderer, "softpipe"));
+  return !vtkrt::pass::RendersOnCPU();
 }
 
 /// VTKRT_GENERAL_SHADER set (not empty, not 0): no shader of one instance,

@@ -32,6 +32,20 @@ void compositeLayer(inout vec4 accumulated, vec3 color, float alpha)
 const float kBlockedTransmittance = 1.0 / 1024.0;
 
 float surfaceOpacity(int instance, int primitive, vec2 uv, vec3 dir);
+
+// A visibility ray along dir crosses the layer hit (instance, primitive,
+// uv): what it lets through multiplies the transmittance; false, and a
+// transmittance of 0, once the ray counts as blocked.
+bool crossLayer(inout float transmittance, int instance, int primitive, vec2 uv, vec3 dir)
+{
+  transmittance *= 1.0 - surfaceOpacity(instance, primitive, uv, dir);
+  if (!(transmittance >= kBlockedTransmittance)) // a NaN blocks too
+  {
+    transmittance = 0.0;
+    return false;
+  }
+  return true;
+}
 #endif
 
 #ifdef VTKRT_INTERLEAVED_WALKS
@@ -54,15 +68,10 @@ int nextVisibilityRay(int ray, out float transmittance, out float tMin)
 bool stepVisibilityRay(inout int ray, inout float transmittance, inout float tMin, float t,
   int hitInstance, int hitPrimitive, vec2 hitUV)
 {
-  if (hitInstance >= 0)
+  if (hitInstance >= 0 && crossLayer(transmittance, hitInstance, hitPrimitive, hitUV, gVisibilityRays[ray].dir))
   {
-    transmittance *= 1.0 - surfaceOpacity(hitInstance, hitPrimitive, hitUV, gVisibilityRays[ray].dir);
-    if (transmittance >= kBlockedTransmittance)
-    {
-      tMin = nextLayerTMin(t);
-      return true;
-    }
-    transmittance = 0.0;
+    tMin = nextLayerTMin(t);
+    return true;
   }
   gVisibility[ray] = transmittance;
   ray = nextVisibilityRay(ray, transmittance, tMin);
@@ -276,8 +285,7 @@ float rayTransmittance(vec3 org, vec3 dir, float tmax)
     {
       return transmittance;
     }
-    transmittance *= 1.0 - surfaceOpacity(hitInstance, hitPrimitive, hitUV, dir);
-    if (transmittance < kBlockedTransmittance)
+    if (!crossLayer(transmittance, hitInstance, hitPrimitive, hitUV, dir))
     {
       return 0.0;
     }

@@ -45,8 +45,7 @@ bool RendererPinsMemory()
   {
     return false;
   }
-  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  if (!renderer || !std::strstr(renderer, "llvmpipe"))
+  if (!RendersOnCPU())
   {
     return false;
   }
@@ -63,6 +62,12 @@ bool RendererPinsMemory()
   return false;
 }
 } // namespace
+
+bool RendersOnCPU()
+{
+  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  return renderer && (std::strstr(renderer, "llvmpipe") || std::strstr(renderer, "softpipe"));
+}
 
 PinnedStorage::~PinnedStorage()
 {

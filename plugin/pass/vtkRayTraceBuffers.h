@@ -31,6 +31,10 @@ struct GeometrySizes;
 struct GeometryTargets;
 struct PackedTextures;
 
+/// Whether the current context renders on the CPU (Mesa's llvmpipe or
+/// softpipe): its buffers live in our memory, its pixels run in SIMD lanes.
+bool RendersOnCPU();
+
 /// Page-aligned memory that a GL buffer may use as its own storage
 /// (GL_AMD_pinned_memory); large blocks on huge pages.
 class PinnedStorage

@@ -87,8 +87,7 @@ ShaderSources AssembleShaders(const Features& f, int flatSlots)
   define(f.Triangles && f.LeafTrees, "VTKRT_LEAF_TREES");
   define(f.PackedStackEntries, "VTKRT_PACKED_STACK_ENTRIES");
   define(f.Translucent, "VTKRT_TRANSLUCENT");
-  define(f.Translucent && f.InterleavedWalks && (f.Shadows || f.AmbientOcclusionSamples > 0),
-    "VTKRT_INTERLEAVED_WALKS");
+  define(f.InterleavedWalks, "VTKRT_INTERLEAVED_WALKS");
   if (f.SamplesPerPixel > 0)
   {
     s << "#define VTKRT_SAMPLES_PER_PIXEL " << f.SamplesPerPixel << "\n";

@@ -214,10 +214,11 @@ struct Features
   bool Specular = false;         ///< some lit surface has a specular color (else no specular term)
   bool TextureCutOuts = false;   ///< some textures have fully transparent texels
   bool Translucent = false;      ///< some instances are translucent (layers composited)
-  /// With translucency and shadow or occlusion rays: the camera ray's layer
-  /// loop also walks the layers' visibility rays, one call of the walk (GPU
-  /// compilers inline a copy per call), instead of a walk nested in shading
-  /// (cheaper where pixels run in CPU SIMD lanes, as on llvmpipe).
+  /// With translucency and shadow or occlusion rays (the frame sets it only
+  /// then): the camera ray's layer loop also walks the layers' visibility
+  /// rays, one call of the walk (GPU compilers inline a copy per call),
+  /// instead of a walk nested in shading (cheaper where pixels run in CPU
+  /// SIMD lanes, as on llvmpipe).
   bool InterleavedWalks = false;
   bool SurfaceEdges = false;     ///< some triangles show their cell edges (EdgeVisibility)
   bool Wireframe = false;        ///< some triangles are drawn as their cell edges alone

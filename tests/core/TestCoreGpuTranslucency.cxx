@@ -196,13 +196,7 @@ void testTransmittance()
     gpu::walkLayers(packed.Inputs, 0, vec3(Vec3<double>(0.1, 0.2, -5.0) - packed.Origin),
       vec3(0.0f, 0.0f, 1.0f), 1e30f, [&](float, int, vec2) {
         ++layers;
-        transmittance *= 1.0f - alpha;
-        if (transmittance < gpu::kBlockedTransmittance)
-        {
-          transmittance = 0.0f;
-          return false;
-        }
-        return true;
+        return gpu::crossLayer(transmittance, alpha);
       });
     VTKRT_CHECK(layers == (alpha == 1.0f ? 1 : 2));
     VTKRT_CHECK(transmittance == (1.0f - alpha) * (alpha == 1.0f ? 1.0f : 1.0f - alpha));

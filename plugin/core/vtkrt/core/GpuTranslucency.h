@@ -43,6 +43,21 @@ inline void compositeLayer(vec4& accumulated, const vec3& color, float alpha)
   accumulated.a += weight;
 }
 
+/// A visibility ray crosses a layer of `opacity` (the shader's crossLayer,
+/// which reads it with surfaceOpacity): what it lets through multiplies
+/// the transmittance; false, and a transmittance of 0, once the ray counts
+/// as blocked (a NaN blocks too).
+inline bool crossLayer(float& transmittance, float opacity)
+{
+  transmittance *= 1.0f - opacity;
+  if (!(transmittance >= kBlockedTransmittance))
+  {
+    transmittance = 0.0f;
+    return false;
+  }
+  return true;
+}
+
 /// The layer loop of traceTranslucentLayers (camera and visibility rays) over the
 /// triangle BVH at `root`: each closest hit within [tMin, tmax], from tMin
 /// 0, then past the hit by nextLayerTMin, until none is left or
