@@ -30,6 +30,7 @@
 // the steady frames; --peers picks the sphere peers, "none" times the pass alone)
 #include "vtkEGLHeadlessRenderWindow.h"
 #include "vtkRayTracePass.h"
+#include "vtkrtBenchScenes.h"
 #include "vtkrtBenchTiming.h"
 
 #include "vtkActor.h"
@@ -66,6 +67,8 @@
 namespace
 {
 using vtkrtBench::Clock;
+using vtkrtBench::MeshOf;
+using vtkrtBench::WarmUp;
 
 double Ms(Clock::time_point a, Clock::time_point b)
 {
@@ -106,17 +109,6 @@ Camera Orbit()
 double CpuMs()
 {
   return 1e3 * vtkrtBench::ProcessSeconds();
-}
-
-/// A UV sphere with about `triangles` triangles.
-vtkSmartPointer<vtkPolyData> MeshOf(long triangles)
-{
-  const int res = static_cast<int>(std::sqrt(triangles / 2.0)) + 2;
-  vtkNew<vtkSphereSource> source;
-  source->SetThetaResolution(res);
-  source->SetPhiResolution(res);
-  source->Update();
-  return source->GetOutput();
 }
 
 /// `count` random sphere centers in a unit cube with radii and scalars, as
@@ -184,33 +176,6 @@ vtkSmartPointer<vtkPolyData> PolylinesOf(long segments)
   poly->SetLines(lines);
   poly->GetPointData()->SetScalars(scalar);
   return poly;
-}
-
-/// Renders one raster point, shaded by neither side's scene shaders: the
-/// process's one-time GL start (its first shader compile and link) and the
-/// window's buffers at its size are then paid before any measured frame,
-/// not by whichever side happens to draw first.
-void WarmUp(vtkRenderWindow* win)
-{
-  vtkNew<vtkPolyData> point;
-  vtkNew<vtkPoints> points;
-  points->InsertNextPoint(0.0, 0.0, 0.0);
-  vtkNew<vtkCellArray> verts;
-  const vtkIdType id = 0;
-  verts->InsertNextCell(1, &id);
-  point->SetPoints(points);
-  point->SetVerts(verts);
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputData(point);
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
-  vtkNew<vtkRenderer> ren;
-  ren->AddActor(actor);
-  win->AddRenderer(ren);
-  win->Render();
-  win->WaitForCompletion();
-  win->RemoveRenderer(ren);
-  ren->ReleaseGraphicsResources(win);
 }
 
 /// Renders `frames` orbit steps after a first frame; fresh renderer each time.
