@@ -14,6 +14,12 @@
  * rules the knobs it sets). EnableRayTracing off gives ParaView's raster
  * rendering back in the same view.
  *
+ * While it traces, the view applies no FXAA (the UseFXAA property then
+ * rules ParaView's raster only): the pass anti-aliases its own images
+ * (samples per pixel, accumulation while the view is still), and ParaView
+ * applies FXAA to composited images only, so a traced image would otherwise
+ * differ with the number of ranks (FXAA under IceT, none in serial).
+ *
  * Selection (SelectCells / SelectPoints, i.e. a click or a rubber band in the
  * GUI, SelectSurfaceCells/Points in Python) does not use the hardware
  * selector: each pixel of the region casts the ray the tracer casts, in
@@ -164,6 +170,12 @@ protected:
   ~vtkPVRayTracedRenderView() override;
 
   void SelectWithLocator(int fieldAssociation, int region[4], const char* array);
+
+  /**
+   * vtkPVRenderView's render, with FXAA off while the pass traces (see the
+   * class documentation).
+   */
+  void Render(bool interactive, bool skip_rendering) override;
 
   /**
    * Sets the pass's knobs from the knob properties, then the preset's.

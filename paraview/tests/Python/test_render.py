@@ -13,7 +13,9 @@ ParaView's raster with depth peeling, also split over the ranks under
 mpiexec; with Trace Translucency off the surface is left to raster),
 BackgroundBuild (the view's Background Build Threshold reaches the pass;
 the Mesh scene above it is built in the background, later renders take
-the tree, and the image is the Mesh baseline).
+the tree, and the image is the Mesh baseline), FXAA (the view's Use FXAA
+changes ParaView's raster image and never a traced one, in serial and
+under mpiexec, where ParaView would apply it to the composited image).
 """
 import os
 import sys
@@ -202,10 +204,33 @@ elif case == "BackgroundBuild":
           "a later render takes the tree built in the background (%d pending, %d taken)" % (pending(), taken()))
     view.BackgroundBuildThreshold = 0
     check(pass_threshold() == 0, "0 reaches the pass (%s)" % pass_threshold())
+elif case == "FXAA":
+    mesh(view)
+    glyphs(view, center=(0.0, 0.0, 0.0), radius=25.0)
+    place_camera(view, azimuth=-25.0, elevation=10.0)
+    view.ProgressiveAccumulation = 0  # every render the same traced frame
+    os.makedirs(TEMP_DIR, exist_ok=True)
+
+    def screenshot(kind, fxaa):
+        view.UseFXAA = fxaa
+        png = os.path.join(TEMP_DIR, "paraview_FXAA_np%d_%s_%d.png" % (ranks, kind, fxaa))
+        SaveScreenshot(png, view, ImageResolution=VIEW_SIZE)
+        return png
+
+    traced = [screenshot("traced", fxaa) for fxaa in (0, 1)]
+    view.EnableRayTracing = 0
+    raster = [screenshot("raster", fxaa) for fxaa in (0, 1)]
+    view.EnableRayTracing = 1
+    traced_error = image_rmse(traced[0], traced[1])
+    raster_error = image_rmse(raster[0], raster[1])
+    check(raster_error > 0.5,
+          "FXAA changes ParaView's raster image on %d rank(s) (RGB RMSE %.2f)" % (ranks, raster_error))
+    check(traced_error == 0.0,
+          "FXAA leaves the traced image as it is on %d rank(s) (RGB RMSE %.2f)" % (ranks, traced_error))
 else:
     raise SystemExit("unknown case " + case)
 
-if case not in ("Glyphs3D", "Presets", "Translucent"):  # compared with ParaView's raster image above
+if case not in ("Glyphs3D", "Presets", "Translucent", "FXAA"):  # compared with ParaView's raster image above
     png = os.path.join(TEMP_DIR, "paraview_%s_np%d.png" % (case, ranks))
     os.makedirs(TEMP_DIR, exist_ok=True)
     SaveScreenshot(png, view, ImageResolution=VIEW_SIZE)
