@@ -2,9 +2,10 @@
 # On a GPU machine, as root, in a copy of this repository that holds the
 # .gpu/ folder scripts/gpu/bundle.sh made: installs Debian's glvnd loaders,
 # unpacks the build, then runs vtkrtBenchPass (issue 21's command), vtkrt-render
-# on the demo and the EGL tests (8 at a time), and leaves the results in
+# on the demo, vtkrtBenchFirstFrame and the EGL tests (8 at a time), and leaves the results in
 # $1 (default ./gpu-results) and $1.tgz. See docs/gpu.md.
 # VTKRT_GPU_BENCH replaces the benchmark's arguments ("skip": no benchmark),
+# VTKRT_GPU_FIRST_FRAMES=skip skips the fresh-process first frames,
 # VTKRT_GPU_TESTS=N runs the first N tests.
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -33,6 +34,9 @@ cat "$RES/env.txt"
 [ "${VTKRT_GPU_BENCH:-}" = skip ] || timeout 300 $B/bin/vtkrtBenchPass ${VTKRT_GPU_BENCH:---large --sizes 1024,512 --frames 20 --meshes quad,100000,1000000,4000000 --spheres 1000000 --peers impostors --dynamic 1000000,4000000} \
   2>&1 | tee "$RES/bench.txt"
 timeout 120 $B/bin/vtkrt-render --demo --size 1024x768 --frames 16 --output "$RES/demo.png" 2>&1 | tee "$RES/demo.txt"
+# First frames in fresh processes, shader disk cache empty then filled.
+[ "${VTKRT_GPU_FIRST_FRAMES:-}" = skip ] || timeout 240 $B/bin/vtkrtBenchFirstFrame --meshes quad,100000,1000000,4000000 --repeats 3 \
+  2>&1 | tee "$RES/first-frames.txt"
 mkdir -p /tmp/vtkrt-gpu-tests
 # Each test's line goes to tests-live.txt as it ends, and its output is line
 # buffered, so that a run stopped midway still says what ended and where
