@@ -8,15 +8,18 @@
 // shader disk cache (MESA_SHADER_CACHE_DIR, __GL_SHADER_DISK_CACHE_PATH)
 // pointed at a new, empty folder: "cold", what a first run after installing
 // pays; then the same again with that folder kept: "warm", what every later
-// run of the same scene pays. Medians of --repeats runs, sides alternating.
+// run of the same scene pays. Medians of --repeats runs, sides interleaved.
 // usage: vtkrtBenchFirstFrame [--sizes 1024,..] [--meshes quad,N,..] [--repeats R]
 #include "vtkEGLHeadlessRenderWindow.h"
 #include "vtkRayTracePass.h"
 #include "vtkrtBenchScenes.h"
 #include "vtkrtBenchTiming.h"
 
+#include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkPlaneSource.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkRenderer.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -26,7 +29,6 @@
 #include <iostream>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 namespace
@@ -107,14 +109,28 @@ int RunChild(const std::string& side, const std::string& scene, int size)
   return EXIT_SUCCESS;
 }
 
+/// `text` as one word for /bin/sh.
+std::string Quoted(const std::string& text)
+{
+  std::string out = "'";
+  for (char c : text)
+  {
+    out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  }
+  return out + "'";
+}
+
 /// Runs this program as a child measuring one first frame with the shader
-/// disk cache in `cacheDir`; false if it printed no measurement.
+/// disk cache in `cacheDir` (turned on, whatever the environment says);
+/// false if it printed no measurement.
 bool RunInChild(const std::string& self, const std::string& side, const std::string& scene,
   int size, const std::string& cacheDir, FirstFrame& out)
 {
-  const std::string command = "MESA_SHADER_CACHE_DIR='" + cacheDir +
-    "' __GL_SHADER_DISK_CACHE_PATH='" + cacheDir + "' '" + self + "' --child " + side + " " +
-    scene + " " + std::to_string(size);
+  const std::string command = "MESA_SHADER_CACHE_DIR=" + Quoted(cacheDir) +
+    " MESA_SHADER_CACHE_DISABLE=false MESA_GLSL_CACHE_DISABLE=false" +
+    " __GL_SHADER_DISK_CACHE=1 __GL_SHADER_DISK_CACHE_PATH=" + Quoted(cacheDir) + " " +
+    Quoted(self) + " --child " + Quoted(side) + " " + Quoted(scene) + " " +
+    std::to_string(size);
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe)
   {
@@ -198,41 +214,72 @@ bool ParseArgs(int argc, char* argv[], Options& opt)
   return true;
 }
 
+/// A new, empty folder for a shader disk cache, removed with its contents.
+struct CacheFolder
+{
+  std::string Path;
+  CacheFolder()
+  {
+    std::string name = (std::filesystem::temp_directory_path() / "vtkrtBenchFirstFrame-XXXXXX").string();
+    if (mkdtemp(name.data()))
+    {
+      this->Path = name;
+    }
+  }
+  ~CacheFolder()
+  {
+    std::error_code ignored;
+    if (!this->Path.empty())
+    {
+      std::filesystem::remove_all(this->Path, ignored);
+    }
+  }
+  bool Empty() const
+  {
+    std::error_code ignored;
+    return std::filesystem::is_empty(this->Path, ignored);
+  }
+};
+
 /// Prints a scene's row: medians of the repeats. Each repeat gives each
-/// side a new cache folder and runs four children, sides interleaved
-/// (first cold, second cold, first warm, second warm; the first side
-/// alternating): every child follows one of the other side, as the memory
-/// a process finds free (how much of it the machine has touched before)
-/// changes a large build's time.
+/// side a new cache folder and runs four children, raster cold, pass cold,
+/// raster warm, pass warm: every child of the run follows one of the other
+/// side, as the memory a process finds free (how much of it the machine
+/// has touched before) changes a large build's time.
 bool MeasureScene(const std::string& self, const std::string& scene, int size, int repeats)
 {
-  std::vector<double> times[2][2], build, compile; // [pass?][warm?]
+  std::vector<double> times[2][2]; // [pass?][warm?]
+  std::vector<double> build;
+  std::vector<double> compile;
   for (int r = 0; r < repeats; ++r)
   {
-    char dirs[2][40] = { "/tmp/vtkrtBenchFirstFrame-XXXXXX", "/tmp/vtkrtBenchFirstFrame-XXXXXX" };
-    bool ok = mkdtemp(dirs[0]) && mkdtemp(dirs[1]);
-    for (int step = 0; ok && step < 4; ++step)
+    const CacheFolder folders[2];
+    if (folders[0].Path.empty() || folders[1].Path.empty())
     {
-      const int side = (step + r) % 2; // 1: the pass
+      std::cerr << "vtkrtBenchFirstFrame: cannot make a cache folder\n";
+      return false;
+    }
+    for (int step = 0; step < 4; ++step)
+    {
+      const int side = step % 2; // 1: the pass
       const int warm = step / 2;
       FirstFrame frame;
-      ok = RunInChild(self, side ? "pass" : "raster", scene, size, dirs[side], frame);
+      if (!RunInChild(self, side ? "pass" : "raster", scene, size, folders[side].Path, frame))
+      {
+        std::cerr << "vtkrtBenchFirstFrame: a child measuring " << scene << " failed\n";
+        return false;
+      }
+      if (!warm && folders[side].Empty())
+      {
+        std::cout << "warning: the driver wrote no shader cache for " << scene
+                  << ": its warm first frames are cold ones\n";
+      }
       times[side][warm].push_back(frame.Total);
       if (side && !warm)
       {
         build.push_back(frame.Phases[1] + frame.Phases[2]);
         compile.push_back(frame.Phases[5]);
       }
-    }
-    for (const char* dir : dirs)
-    {
-      std::error_code ignored;
-      std::filesystem::remove_all(dir, ignored);
-    }
-    if (!ok)
-    {
-      std::cerr << "vtkrtBenchFirstFrame: a child measuring " << scene << " failed\n";
-      return false;
     }
   }
   const double rc = Median(times[0][0]), rw = Median(times[0][1]);

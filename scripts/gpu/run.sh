@@ -2,8 +2,8 @@
 # On a GPU machine, as root, in a copy of this repository that holds the
 # .gpu/ folder scripts/gpu/bundle.sh made: installs Debian's glvnd loaders,
 # unpacks the build, then runs vtkrtBenchPass (issue 21's command), vtkrt-render
-# on the demo, vtkrtBenchFirstFrame and the EGL tests (8 at a time), and leaves the results in
-# $1 (default ./gpu-results) and $1.tgz. See docs/gpu.md.
+# on the demo, vtkrtBenchFirstFrame and the EGL tests (8 at a time), and
+# leaves the results in $1 (default ./gpu-results) and $1.tgz. See docs/gpu.md.
 # VTKRT_GPU_BENCH replaces the benchmark's arguments ("skip": no benchmark),
 # VTKRT_GPU_FIRST_FRAMES=skip skips the fresh-process first frames,
 # VTKRT_GPU_TESTS=N runs the first N tests.

@@ -14,11 +14,12 @@
  * rules the knobs it sets). EnableRayTracing off gives ParaView's raster
  * rendering back in the same view.
  *
- * While it traces, the view applies no FXAA (the UseFXAA property then
- * rules ParaView's raster only): the pass anti-aliases its own images
+ * While it traces, the view applies no FXAA (the UseFXAA property applies
+ * while EnableRayTracing is off): the pass anti-aliases its own images
  * (samples per pixel, accumulation while the view is still), and ParaView
- * applies FXAA to composited images only, so a traced image would otherwise
- * differ with the number of ranks (FXAA under IceT, none in serial).
+ * applies FXAA to a render pass's images only under IceT and in serial
+ * screenshots, so a traced image would otherwise differ with the number
+ * of ranks.
  *
  * Selection (SelectCells / SelectPoints, i.e. a click or a rubber band in the
  * GUI, SelectSurfaceCells/Points in Python) does not use the hardware
