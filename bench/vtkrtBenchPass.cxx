@@ -4,7 +4,9 @@
 //   quad:      a full-screen quad (two triangles), pass vs vtkPolyDataMapper,
 //              plain and with a 256x256 interpolated, repeated texture
 //   triangles: pass vs vtkPolyDataMapper, 100k and 1M (4M with --large);
-//              with --edges also with edge visibility and as a wireframe
+//              with --edges also with edge visibility and as a wireframe;
+//              built with Embree 3, also vs the same camera rays cast by
+//              Embree on every core (packets of 8, a facing-ratio shade)
 //   spheres:   pass (analytic) vs vtkGlyph3DMapper (triangulated 16x16
 //              spheres), RenderPointsAsSpheres and vtkOpenGLSphereMapper
 //              impostors, 10k and 100k (1M with --large)
@@ -30,6 +32,9 @@
 // the steady frames; --peers picks the sphere peers, "none" times the pass alone)
 #include "vtkEGLHeadlessRenderWindow.h"
 #include "vtkRayTracePass.h"
+#ifdef VTKRT_HAVE_EMBREE
+#include "vtkrtBenchEmbreeRays.h"
+#endif
 #include "vtkrtBenchScenes.h"
 #include "vtkrtBenchTiming.h"
 
@@ -454,6 +459,28 @@ void RunQuad(vtkRenderWindow* win, int size, const Options& opt, std::ostream& p
   }
 }
 
+#ifdef VTKRT_HAVE_EMBREE
+/// The same camera rays as the pass's orbit frames, cast by Embree 3 on
+/// every core (vtkrtBenchEmbreeRays): a native CPU tracer's time for the
+/// pixels; its "first frame" is its scene build.
+Timing EmbreeFrames(vtkPolyData* mesh, int size, int frames)
+{
+  vtkNew<vtkRenderer> ren;
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(mesh);
+  AddActor(ren, mapper);
+  const Camera orbit = Orbit();
+  orbit.Frame(ren);
+  const vtkrtBench::EmbreeTiming e =
+    vtkrtBench::EmbreePrimaryRays(mesh, ren, size, size, frames, orbit.Step);
+  Timing t;
+  t.First = e.Build;
+  t.Steady = e.Steady;
+  t.SteadyCpu = e.SteadyCpu;
+  return t;
+}
+#endif
+
 /// Triangles: the pass against vtkPolyDataMapper; with --edges also with
 /// edge visibility (1 pixel) and as a wireframe.
 void RunMeshes(vtkRenderWindow* win, int size, const Options& opt, std::ostream& phases)
@@ -481,6 +508,12 @@ void RunMeshes(vtkRenderWindow* win, int size, const Options& opt, std::ostream&
       const std::string scene = std::to_string(mesh->GetNumberOfCells() / 1000) + looks[look];
       Row(scene, size, "vtkPolyDataMapper", pass, raster);
       PhaseRow(phases, scene, size, pass, raster);
+#ifdef VTKRT_HAVE_EMBREE
+      if (look == 0)
+      {
+        Row(scene, size, "Embree 3 on the CPU", pass, EmbreeFrames(mesh, size, opt.Frames));
+      }
+#endif
     }
   }
 }
