@@ -763,7 +763,9 @@ void vtkRayTracePass::Internals::Select(vtkRayTracePass& pass, const vtkRenderSt
 void vtkRayTracePass::Internals::RenderOthers(
   vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren)
 {
-  if (pass.IdMode || !pass.DelegatePass || this->Others.empty())
+  // With nothing left to raster the delegate still runs when it may apply
+  // the renderer's FXAA over the traced image.
+  if (pass.IdMode || !pass.DelegatePass || (this->Others.empty() && !ren->GetUseFXAA()))
   {
     return;
   }

@@ -5,6 +5,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpaquePass.h"
+#include "vtkOpenGLFXAAFilter.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkOrderIndependentTranslucentPass.h"
 #include "vtkOverlayPass.h"
@@ -71,6 +72,19 @@ bool vtkRayTraceRasterSteps::Translucent(const vtkRenderState* s, vtkOpenGLRende
   return peelVolumes;
 }
 
+void vtkRayTraceRasterSteps::FXAA(vtkOpenGLRenderer* ren)
+{
+  if (!this->FXAAFilter)
+  {
+    this->FXAAFilter = vtkSmartPointer<vtkOpenGLFXAAFilter>::New();
+  }
+  if (ren->GetFXAAOptions())
+  {
+    this->FXAAFilter->UpdateConfiguration(ren->GetFXAAOptions());
+  }
+  this->FXAAFilter->Execute(ren);
+}
+
 void vtkRayTraceRasterSteps::Render(const vtkRenderState* s)
 {
   this->NumberOfRenderedProps = 0;
@@ -88,6 +102,10 @@ void vtkRayTraceRasterSteps::Render(const vtkRenderState* s)
     translucent = s->GetPropArray()[i]->HasTranslucentPolygonalGeometry() != 0;
   }
   const bool volumesPeeled = translucent && this->Translucent(s, ren);
+  if (ren->GetUseFXAA())
+  {
+    this->FXAA(ren);
+  }
   if (!volumesPeeled)
   {
     this->Step(this->Volumes, s);
@@ -105,6 +123,10 @@ void vtkRayTraceRasterSteps::ReleaseGraphicsResources(vtkWindow* w)
     {
       pass->ReleaseGraphicsResources(w);
     }
+  }
+  if (this->FXAAFilter)
+  {
+    this->FXAAFilter->ReleaseGraphicsResources();
   }
 }
 

@@ -9,7 +9,8 @@
  * depth order as the renderer says — order-independent blending, or depth
  * peeling (dual when the context supports it) with the renderer's
  * MaximumNumberOfPeels and OcclusionRatio, volumes peeled with them when
- * UseDepthPeelingForVolumes —, volumes, overlays.
+ * UseDepthPeelingForVolumes —, the renderer's FXAA when UseFXAA is on
+ * (over the traced image and the raster one alike), volumes, overlays.
  */
 #ifndef vtkRayTraceRasterSteps_h
 #define vtkRayTraceRasterSteps_h
@@ -18,6 +19,7 @@
 #include "vtkSmartPointer.h"
 
 class vtkDepthPeelingPass;
+class vtkOpenGLFXAAFilter;
 class vtkOpenGLRenderer;
 class vtkOrderIndependentTranslucentPass;
 
@@ -43,6 +45,9 @@ private:
   void Step(vtkRenderPass* pass, const vtkRenderState* s);
   /// The translucent step; true when it peeled the volumes too.
   bool Translucent(const vtkRenderState* s, vtkOpenGLRenderer* ren);
+  /// The renderer's FXAA over what is drawn so far, as vtkOpenGLRenderer
+  /// applies it between translucent geometry and volumes.
+  void FXAA(vtkOpenGLRenderer* ren);
 
   vtkSmartPointer<vtkRenderPass> Lights;
   vtkSmartPointer<vtkRenderPass> Opaque;
@@ -50,6 +55,7 @@ private:
   vtkSmartPointer<vtkRenderPass> Overlay;
   vtkSmartPointer<vtkOrderIndependentTranslucentPass> Blended;
   vtkSmartPointer<vtkDepthPeelingPass> Peeled; ///< made on first use: dual when supported
+  vtkSmartPointer<vtkOpenGLFXAAFilter> FXAAFilter; ///< made on first use
 };
 
 #endif

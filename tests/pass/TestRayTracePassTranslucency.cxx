@@ -1,10 +1,12 @@
 // Translucent props the pass leaves to raster (TraceTranslucency off) are
 // drawn as the renderer draws them: depth peeling with the renderer's settings, order-independent
-// blending without; also through a user's vtkRenderStepsPass delegate.
+// blending without; also through a user's vtkRenderStepsPass delegate. The
+// renderer's FXAA reaches the traced image as it reaches raster's.
 // Each case compares with VTK's raster of the same scene (RGB RMSE; blending
 // in actor order instead gives 10 with peeling and 6.7 without).
 #include "vtkrtPassTestUtils.h"
 
+#include "vtkActorCollection.h"
 #include "vtkDualDepthPeelingPass.h"
 #include "vtkRenderStepsPass.h"
 #include "vtkTranslucentPass.h"
@@ -125,6 +127,52 @@ void TestRenderStepsDelegate()
   CheckClose("RenderStepsDelegate", raster, Grab(scene.Window), 3.0);
   NoVTKOutput("RenderStepsDelegate");
 }
+/// The renderer's UseFXAA applies to the traced image as to raster's: with
+/// the translucent spheres left to raster and with every visible prop traced
+/// (nothing left for the raster steps, which still run for the FXAA).
+void TestFXAA()
+{
+  for (bool othersLeft : { true, false })
+  {
+    const std::string name = othersLeft ? "FXAA" : "FXAATracedOnly";
+    Scene scene(false, 4);
+    vtkActorCollection* actors = scene.Renderer->GetActors();
+    actors->InitTraversal();
+    while (vtkActor* actor = actors->GetNextActor())
+    {
+      actor->SetVisibility(othersLeft || actor->GetProperty()->GetOpacity() >= 1.0);
+    }
+    vtkSmartPointer<vtkImageData> images[2][2]; // [traced?][fxaa?]
+    for (int traced = 0; traced < 2; ++traced)
+    {
+      vtkNew<vtkRayTracePass> pass;
+      pass->TraceTranslucencyOff();
+      scene.Renderer->SetPass(traced ? pass.Get() : nullptr);
+      for (int fxaa = 0; fxaa < 2; ++fxaa)
+      {
+        scene.Renderer->SetUseFXAA(fxaa == 1);
+        scene.Window->Render();
+        images[traced][fxaa] = Grab(scene.Window);
+      }
+    }
+    const double rasterChange = RootMeanSquareError(images[0][0], images[0][1]);
+    const double tracedChange = RootMeanSquareError(images[1][0], images[1][1]);
+    std::ostringstream what;
+    what << name << ": FXAA changes raster's image by RMSE " << rasterChange
+         << " and the traced one by " << tracedChange << " (both > 0.1)";
+    Check(rasterChange > 0.1 && tracedChange > 0.1, what.str());
+    // Nearer raster's FXAA image with FXAA than without (where raster and
+    // pass agree exactly, the traced FXAA image is raster's).
+    const double with = RootMeanSquareError(images[0][1], images[1][1]);
+    const double without = RootMeanSquareError(images[0][1], images[1][0]);
+    std::ostringstream nearer;
+    nearer << name << ": the traced FXAA image is RMSE " << with << " from raster's, "
+           << "the traced image without FXAA " << without << " (at most half)";
+    Check(with <= 0.5 * without, nearer.str());
+    CheckClose(name, images[0][1], images[1][1], 3.0);
+    NoVTKOutput(name);
+  }
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -132,5 +180,6 @@ int main(int argc, char* argv[])
   Output = vtkrtTestOutputWindow::Install();
   return RunCase(argc, argv,
     { { "DepthPeeling", TestDepthPeeling }, { "Blended", TestBlended },
-      { "PeelCount", TestPeelCount }, { "RenderStepsDelegate", TestRenderStepsDelegate } });
+      { "PeelCount", TestPeelCount }, { "RenderStepsDelegate", TestRenderStepsDelegate },
+      { "FXAA", TestFXAA } });
 }

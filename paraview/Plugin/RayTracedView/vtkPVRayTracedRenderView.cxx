@@ -158,14 +158,6 @@ void vtkPVRayTracedRenderView::SetEnableRayTracing(bool enable)
   this->Modified();
 }
 
-void vtkPVRayTracedRenderView::Render(bool interactive, bool skip_rendering)
-{
-  const bool useFXAA = this->UseFXAA;
-  this->UseFXAA = useFXAA && !this->EnableRayTracing;
-  this->Superclass::Render(interactive, skip_rendering);
-  this->UseFXAA = useFXAA;
-}
-
 void vtkPVRayTracedRenderView::SetQualityPreset(int preset)
 {
   if (preset != this->QualityPreset)

@@ -14,12 +14,9 @@
  * rules the knobs it sets). EnableRayTracing off gives ParaView's raster
  * rendering back in the same view.
  *
- * While it traces, the view applies no FXAA (the UseFXAA property applies
- * while EnableRayTracing is off): the pass anti-aliases its own images
- * (samples per pixel, accumulation while the view is still), and ParaView
- * applies FXAA to a render pass's images only under IceT and in serial
- * screenshots, so a traced image would otherwise differ with the number
- * of ranks.
+ * The view's FXAA (UseFXAA) applies to traced images as to raster ones, in
+ * serial (the pass's raster steps apply the renderer's FXAA) and under IceT
+ * (ParaView applies it to the composited image).
  *
  * Selection (SelectCells / SelectPoints, i.e. a click or a rubber band in the
  * GUI, SelectSurfaceCells/Points in Python) does not use the hardware
@@ -171,12 +168,6 @@ protected:
   ~vtkPVRayTracedRenderView() override;
 
   void SelectWithLocator(int fieldAssociation, int region[4], const char* array);
-
-  /**
-   * vtkPVRenderView's render, with FXAA off while the pass traces (see the
-   * class documentation).
-   */
-  void Render(bool interactive, bool skip_rendering) override;
 
   /**
    * Sets the pass's knobs from the knob properties, then the preset's.
