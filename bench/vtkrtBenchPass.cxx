@@ -709,7 +709,9 @@ int main(int argc, char* argv[])
     RunDynamic(win, size, opt);
     if (!phases.str().empty())
     {
-      std::cout << "\nfirst frame by phase, ms (pass; rest: drawing and what VTK does around it):\n"
+      std::cout << "\nfirst frame by phase, ms (pass; rest: drawing and what VTK does around it; "
+                   "in one window after the scenes before it: an application's first frames "
+                   "are vtkrtBenchFirstFrame's):\n"
                 << std::left << std::setw(26) << "scene" << std::right << std::setw(9) << "extract"
                 << std::setw(9) << "triang" << std::setw(9) << "build" << std::setw(9) << "pack"
                 << std::setw(9) << "upload" << std::setw(9) << "compile" << std::setw(9) << "rest"
