@@ -1,15 +1,11 @@
 #include "vtkrtBenchEmbreeRays.h"
 #include "vtkrtBenchTiming.h"
 
-#include "vtkCamera.h"
-#include "vtkCellArray.h"
-#include "vtkCellArrayIterator.h"
-#include "vtkPoints.h"
-#include "vtkPolyData.h"
-#include "vtkRenderer.h"
-#include "vtkSmartPointer.h"
+#include "vtkrtBenchEmbreeGeometry.h"
 
-#include <embree3/rtcore.h>
+#include "vtkCamera.h"
+#include "vtkMath.h"
+#include "vtkRenderer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,40 +17,14 @@ namespace vtkrtBench
 {
 namespace
 {
-/// The mesh's polygons as one Embree triangle geometry, fan triangulated.
+/// The mesh as an Embree scene (high quality, robust), at its own coordinates.
 RTCScene MakeScene(RTCDevice device, vtkPolyData* mesh)
 {
   RTCScene scene = rtcNewScene(device);
   rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
-  std::vector<unsigned> indices;
-  auto it = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
-  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
-  {
-    vtkIdType n;
-    const vtkIdType* ids;
-    it->GetCurrentCell(n, ids);
-    for (vtkIdType k = 2; k < n; ++k)
-    {
-      indices.insert(indices.end(), { unsigned(ids[0]), unsigned(ids[k - 1]), unsigned(ids[k]) });
-    }
-  }
-  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  const vtkIdType points = mesh->GetNumberOfPoints();
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-    geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), points));
-  for (vtkIdType i = 0; i < points; ++i)
-  {
-    double p[3];
-    mesh->GetPoint(i, p);
-    std::copy(p, p + 3, v + 3 * i);
-  }
-  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-    geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), indices.size() / 3));
-  std::copy(indices.begin(), indices.end(), idx);
-  rtcCommitGeometry(geom);
-  rtcAttachGeometry(scene, geom);
-  rtcReleaseGeometry(geom);
+  const double origin[3] = { 0.0, 0.0, 0.0 };
+  AttachEmbreeTriangles(device, scene, mesh, origin);
   rtcCommitScene(scene);
   return scene;
 }
@@ -69,43 +39,29 @@ struct Pinhole
 Pinhole PinholeOf(vtkCamera* camera, int width, int height)
 {
   Pinhole c{};
-  double f[3], up[3], dir[3], right[3];
+  double dir[3], right[3], up[3];
   camera->GetPosition(c.Eye);
-  camera->GetFocalPoint(f);
-  camera->GetViewUp(up);
-  for (int k = 0; k < 3; ++k)
-  {
-    dir[k] = f[k] - c.Eye[k];
-  }
-  const double len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-  for (double& d : dir)
-  {
-    d /= len;
-  }
-  right[0] = dir[1] * up[2] - dir[2] * up[1];
-  right[1] = dir[2] * up[0] - dir[0] * up[2];
-  right[2] = dir[0] * up[1] - dir[1] * up[0];
-  const double rl = std::sqrt(right[0] * right[0] + right[1] * right[1] + right[2] * right[2]);
-  double trueUp[3] = { right[1] * dir[2] - right[2] * dir[1], right[2] * dir[0] - right[0] * dir[2],
-    right[0] * dir[1] - right[1] * dir[0] };
+  camera->GetDirectionOfProjection(dir);
+  vtkMath::Cross(dir, camera->GetViewUp(), right);
+  vtkMath::Normalize(right);
+  vtkMath::Cross(right, dir, up);
   // The view angle is vertical; a pixel is square.
-  const double halfH = std::tan(0.5 * camera->GetViewAngle() * 3.14159265358979323846 / 180.0);
-  const double pixel = 2.0 * halfH / height;
+  const double pixel =
+    2.0 * std::tan(0.5 * vtkMath::RadiansFromDegrees(camera->GetViewAngle())) / height;
   for (int k = 0; k < 3; ++k)
   {
-    c.Right[k] = right[k] / rl * pixel;
-    c.Up[k] = trueUp[k] / rl * pixel;
+    c.Right[k] = right[k] * pixel;
+    c.Up[k] = up[k] * pixel;
     c.Corner[k] = dir[k] - c.Right[k] * 0.5 * width - c.Up[k] * 0.5 * height;
   }
   return c;
 }
 
 /// One frame: rows of 2-pixel-high bands, 4x2 packets, over `threads`
-/// threads; a hit pixel gets its facing ratio. Returns the hits.
-std::size_t TraceFrame(RTCScene scene, const Pinhole& cam, int width, int height, unsigned threads,
+/// threads; a hit pixel gets its facing ratio.
+void TraceFrame(RTCScene scene, const Pinhole& cam, int width, int height, unsigned threads,
   std::vector<unsigned char>& image)
 {
-  std::vector<std::size_t> hits(threads, 0);
   auto work = [&](unsigned t) {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -146,7 +102,6 @@ std::size_t TraceFrame(RTCScene scene, const Pinhole& cam, int width, int height
           const float dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
           const float facing = std::fabs(nd) / std::sqrt(nn * dd);
           image[std::size_t(y0 + i / 4) * width + x0 + i % 4] = static_cast<unsigned char>(255.0f * facing);
-          ++hits[t];
         }
       }
     }
@@ -161,12 +116,6 @@ std::size_t TraceFrame(RTCScene scene, const Pinhole& cam, int width, int height
   {
     th.join();
   }
-  std::size_t total = 0;
-  for (std::size_t h : hits)
-  {
-    total += h;
-  }
-  return total;
 }
 }
 
@@ -180,18 +129,16 @@ EmbreeTiming EmbreePrimaryRays(vtkPolyData* mesh, vtkRenderer* ren, int width, i
   t.Build = 1e3 * Seconds(t0, Clock::now());
   const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   std::vector<unsigned char> image(std::size_t(width) * height, 0);
-  std::size_t hits = 0;
   t0 = Clock::now();
   const double cpu0 = ProcessSeconds();
   for (int i = 0; i < frames; ++i)
   {
     step(ren, frames);
-    hits = TraceFrame(scene, PinholeOf(ren->GetActiveCamera(), width, height), width, height,
+    TraceFrame(scene, PinholeOf(ren->GetActiveCamera(), width, height), width, height,
       threads, image);
   }
   t.Steady = 1e3 * Seconds(t0, Clock::now()) / std::max(1, frames);
   t.SteadyCpu = 1e3 * (ProcessSeconds() - cpu0) / std::max(1, frames);
-  t.HitFraction = double(hits) / (double(width) * height);
   rtcReleaseScene(scene);
   rtcReleaseDevice(device);
   return t;

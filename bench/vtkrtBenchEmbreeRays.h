@@ -17,7 +17,6 @@ struct EmbreeTiming
   double Build = 0;  ///< building its scene (high quality, robust)
   double Steady = 0; ///< per frame: the view's camera rays, one per pixel, and a facing-ratio shade
   double SteadyCpu = 0; ///< process CPU time per frame, every thread
-  double HitFraction = 0; ///< of the pixels, in the last frame
 };
 
 /// Casts, `frames` times, one ray through each pixel centre of `ren`'s

@@ -45,7 +45,7 @@
 #include "vtkTriangleFilter.h"
 
 #ifdef VTKRT_HAVE_EMBREE
-#include <embree3/rtcore.h>
+#include "vtkrtBenchEmbreeGeometry.h"
 #endif
 
 #include <malloc.h>
@@ -384,36 +384,7 @@ Peer EmbreePeer(int maxRays)
       e->Origin[k] = 0.5 * (b[2 * k] + b[2 * k + 1]);
     }
     e->Scene = rtcNewScene(e->Device);
-    RTCGeometry geom = rtcNewGeometry(e->Device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    const vtkIdType np = pd->GetNumberOfPoints();
-    float* v3 = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), np));
-    for (vtkIdType i = 0; i < np; ++i)
-    {
-      double q[3];
-      pd->GetPoint(i, q);
-      for (int k = 0; k < 3; ++k)
-      {
-        v3[3 * i + k] = static_cast<float>(q[k] - e->Origin[k]);
-      }
-    }
-    vtkCellArray* polys = pd->GetPolys();
-    const vtkIdType nt = polys->GetNumberOfCells();
-    unsigned* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), nt));
-    vtkIdType n;
-    const vtkIdType* ids;
-    vtkIdType c = 0;
-    for (polys->InitTraversal(); polys->GetNextCell(n, ids); ++c)
-    {
-      for (int k = 0; k < 3; ++k)
-      {
-        idx[3 * c + k] = static_cast<unsigned>(ids[k]);
-      }
-    }
-    rtcCommitGeometry(geom);
-    rtcAttachGeometry(e->Scene, geom);
-    rtcReleaseGeometry(geom);
+    vtkrtBench::AttachEmbreeTriangles(e->Device, e->Scene, pd, e->Origin);
     rtcCommitScene(e->Scene);
   };
   p.Query = [](void* v, const Segment& s, double& t) {
