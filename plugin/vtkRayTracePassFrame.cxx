@@ -368,6 +368,7 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   f.MaximumTraversalSteps = pass.MaximumTraversalSteps;
   f.WorldCoordinates = pass.PrecisionMode == WORLD;
   f.ScreenSpheres = this->Scene.HasScreenSpheres();
+  f.SphereCellIds = this->Scene.HasSphereCellIds();
   f.Ellipsoids = this->Scene.HasEllipsoids();
   f.Tubes = this->Scene.HasTubes();
   f.Textures = this->Scene.HasTextures();

@@ -46,6 +46,21 @@ vec4 tubePointColor(int cb, uint flags, int i0, int i1, float s)
 }
 #endif
 
+// The VTK id a sphere reports (ids, selection, cell colors) for the point
+// or glyph id `pointId` of its uSphereIds: a point drawn as a sphere
+// reports the cell that holds it where the instance has such cell ids
+// (core::gpu::InstanceRecord::sphereCellIdBase), its id otherwise.
+uint sphereCellId(int instance, uint flags, int primitive, uint pointId)
+{
+#ifdef VTKRT_SPHERE_CELL_IDS
+  if ((flags & kInstanceSphereCellIds) != 0u)
+  {
+    return fetchPacked(uSpheres, int(instanceSphereCellIdBase(instance) + uint(primitive)));
+  }
+#endif
+  return pointId;
+}
+
 // Spheres, ellipsoids and tubes, hit at localHit (instance coordinates).
 HitSurface sphereHitSurface(int hitInstance, int hitPrimitive, uint flags, vec3 localHit)
 {
@@ -76,11 +91,13 @@ HitSurface sphereHitSurface(int hitInstance, int hitPrimitive, uint flags, vec3 
 #endif
   s.geometricNormal = s.localNormal;
   s.mirror = 1.0;
-  s.vtkId = fetchPacked(uSphereIds, hitPrimitive);
+  uint pointId = fetchPacked(uSphereIds, hitPrimitive);
+  s.vtkId = sphereCellId(hitInstance, flags, hitPrimitive, pointId);
 #ifdef VTKRT_HAS_COLORS
   if ((flags & (kInstancePointColors | kInstanceCellColors)) != 0u)
   {
     int cb = int(instanceColorBase(hitInstance));
+    int colorId = int((flags & kInstanceCellColors) != 0u ? s.vtkId : pointId);
 #ifdef VTKRT_HAS_TUBES
     if ((flags & (kInstanceTubes | kInstancePointColors)) == (kInstanceTubes | kInstancePointColors))
     {
@@ -91,11 +108,11 @@ HitSurface sphereHitSurface(int hitInstance, int hitPrimitive, uint flags, vec3 
 #ifdef VTKRT_HAS_COLOR_TEXTURE
     if ((flags & kInstanceColorTexture) != 0u)
     {
-      s.scalarColor = lookupColorTexture(cb, fetchColorCoordinate(cb, int(s.vtkId)));
+      s.scalarColor = lookupColorTexture(cb, fetchColorCoordinate(cb, colorId));
       return s;
     }
 #endif
-    s.scalarColor = fetchColor(cb + int(s.vtkId));
+    s.scalarColor = fetchColor(cb + colorId);
   }
 #endif
   return s;

@@ -201,7 +201,8 @@ vec4 hitScalarColor(int instance, uint flags, int primitive, vec2 uv)
 #ifdef VTKRT_HAS_SPHERES
   if ((flags & kInstanceSpheres) != 0u)
   {
-    int id = int(fetchPacked(uSphereIds, primitive));
+    uint pointId = fetchPacked(uSphereIds, primitive);
+    int id = int((flags & kInstanceCellColors) != 0u ? sphereCellId(instance, flags, primitive, pointId) : pointId);
 #ifdef VTKRT_HAS_COLOR_TEXTURE
     if ((flags & kInstanceColorTexture) != 0u)
     {

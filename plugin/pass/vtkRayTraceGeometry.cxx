@@ -414,7 +414,9 @@ std::unique_ptr<Geometry> BuildSpheres(const std::vector<Vec3<double>>& modelCen
   g->Spheres = true;
   const std::size_t count = std::min(modelCenters.size(), modelRadii.size());
   const core::ScaledFrame frame = buildFrame(count, [&](std::size_t i) {
-    const Vec3<double> r(modelRadii[i]);
+    // A bare center's smallest radius is no size: around a zero coordinate
+    // it would make a box of 2^-1022 and scale the frame by 2^1000.
+    const Vec3<double> r(modelRadii[i] > std::numeric_limits<double>::min() ? modelRadii[i] : 0.0);
     return core::AABB<double>(modelCenters[i] - r, modelCenters[i] + r);
   });
   std::vector<Vec3<double>> centers(count);
@@ -456,35 +458,42 @@ std::unique_ptr<Geometry> BuildScreenSpheres(
 {
   core::NoFillArray<Vec3<double>> all;
   ReadPoints(poly->GetPoints(), all);
-  std::vector<char> used(all.size(), 0);
+  // The first cell (VTK's numbering: verts, lines, polygons, strips) that
+  // holds each drawn point: what raster's cell selection reports for it.
+  constexpr std::uint32_t kNoCell = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> firstCell(all.size(), kNoCell);
+  std::uint32_t cellId = 0;
   vtkIdType npts;
   const vtkIdType* pts;
-  auto mark = [&](vtkCellArray* cells) {
+  auto mark = [&](vtkCellArray* cells, bool drawn) {
+    if (!drawn)
+    {
+      cellId += static_cast<std::uint32_t>(cells->GetNumberOfCells());
+      return;
+    }
     auto it = vtk::TakeSmartPointer(cells->NewIterator());
-    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cellId)
     {
       it->GetCurrentCell(npts, pts);
       for (vtkIdType k = 0; k < npts; ++k)
       {
-        if (pts[k] >= 0 && static_cast<std::size_t>(pts[k]) < used.size())
+        if (pts[k] >= 0 && static_cast<std::size_t>(pts[k]) < firstCell.size() &&
+          firstCell[static_cast<std::size_t>(pts[k])] == kNoCell)
         {
-          used[static_cast<std::size_t>(pts[k])] = 1;
+          firstCell[static_cast<std::size_t>(pts[k])] = cellId;
         }
       }
     }
   };
-  mark(poly->GetVerts());
-  if (everyCellPoint)
-  {
-    mark(poly->GetPolys());
-    mark(poly->GetStrips());
-    mark(poly->GetLines());
-  }
+  mark(poly->GetVerts(), true);
+  mark(poly->GetLines(), everyCellPoint);
+  mark(poly->GetPolys(), everyCellPoint);
+  mark(poly->GetStrips(), everyCellPoint);
   std::vector<Vec3<double>> centers;
   std::vector<std::uint32_t> ids;
   for (std::size_t i = 0; i < all.size(); ++i)
   {
-    if (used[i])
+    if (firstCell[i] != kNoCell)
     {
       centers.push_back(all[i]);
       ids.push_back(static_cast<std::uint32_t>(i));
@@ -498,6 +507,14 @@ std::unique_ptr<Geometry> BuildScreenSpheres(
   for (core::gpu::Sphere& s : g->SphereRecords)
   {
     s.radius = 0.0f;
+  }
+  const bool cellsAreThePoints = std::all_of(
+    g->SphereIds.begin(), g->SphereIds.end(), [&](std::uint32_t point) { return firstCell[point] == point; });
+  if (!cellsAreThePoints)
+  {
+    g->SphereCellIds.resize(g->SphereIds.size());
+    std::transform(g->SphereIds.begin(), g->SphereIds.end(), g->SphereCellIds.begin(),
+      [&](std::uint32_t point) { return firstCell[point]; });
   }
   return g;
 }

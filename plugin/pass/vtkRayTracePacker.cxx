@@ -45,7 +45,13 @@ std::size_t sphereTexelsOf(const Geometry& g)
 {
   return g.SphereRecords.size() * core::gpu::texelsOf<core::gpu::Sphere>() +
     g.EllipsoidRecords.size() * core::gpu::texelsOf<core::gpu::Ellipsoid>() +
-    g.SegmentRecords.size() * core::gpu::texelsOf<core::gpu::Segment>();
+    g.SegmentRecords.size() * core::gpu::texelsOf<core::gpu::Segment>() + paddedWords(g.SphereCellIds.size()) / 4;
+}
+
+/// The sphere texels of `g`'s records, before its cell ids.
+std::size_t sphereRecordTexelsOf(const Geometry& g)
+{
+  return sphereTexelsOf(g) - paddedWords(g.SphereCellIds.size()) / 4;
 }
 
 /// Places `g` at the ends of `sizes` and moves them past it. A sphere
@@ -73,6 +79,19 @@ GeometryPlacement placeAtEnd(const Geometry& g, GeometrySizes& sizes)
   return place;
 }
 
+} // namespace
+
+std::uint32_t SphereCellIdBase(const Geometry& g, const GeometryPlacement& place)
+{
+  // Word 4 (base + records) is the first cell id: less the base, so that
+  // adding a sphere's texel index (base + k) reads the k-th (uint wraps).
+  return g.SphereCellIds.empty()
+    ? 0u
+    : 4u * (place.PrimitiveBase + static_cast<std::uint32_t>(sphereRecordTexelsOf(g))) - place.PrimitiveBase;
+}
+
+namespace
+{
 /// The records a geometry takes, all buffers together (for the waste test).
 std::size_t recordsOf(const Geometry& g)
 {
@@ -105,12 +124,18 @@ void writePlaced(const Geometry& g, const GeometryPlacement& place, const Geomet
     at += g.EllipsoidRecords.size() * core::gpu::texelsOf<core::gpu::Ellipsoid>();
     copyAt(g.SegmentRecords.data(), g.SegmentRecords.size(), out.Spheres, from.SphereTexels, at);
     at += g.SegmentRecords.size() * core::gpu::texelsOf<core::gpu::Segment>();
+    // Cell ids, four a texel, after the records (SphereCellIdWord).
+    auto* cellIds = reinterpret_cast<std::uint32_t*>(out.Spheres + (at - from.SphereTexels));
+    copyRecords(g.SphereCellIds.data(), g.SphereCellIds.size(), cellIds);
+    padWords(cellIds, g.SphereCellIds.size());
+    at += paddedWords(g.SphereCellIds.size()) / 4;
     std::fill(out.Spheres + (at - from.SphereTexels), out.Spheres + (paddedWords(at) - from.SphereTexels),
       core::gpu::Texel{});
-    // One id word a sphere texel: the ids start at the same index.
+    // One id word a sphere texel: the ids start at the same index (those of
+    // the cell ids' texels are never read).
     std::uint32_t* ids = out.SphereIds + (place.PrimitiveBase - from.SphereTexels);
     copyRecords(g.SphereIds.data(), g.SphereIds.size(), ids);
-    padWords(ids, g.SphereIds.size());
+    std::fill(ids + g.SphereIds.size(), ids + paddedWords(sphereTexelsOf(g)), 0u);
   }
   else
   {

@@ -29,6 +29,11 @@ struct GeometryPlacement
   std::uint32_t PrimitiveBase = 0;  ///< its first triangle, or sphere texel (a multiple of 4)
 };
 
+/// The InstanceRecord::sphereCellIdBase of a placed geometry: its cell ids
+/// (Geometry::SphereCellIds) follow its sphere records in the sphere buffer,
+/// four a texel; 0 where it has none.
+std::uint32_t SphereCellIdBase(const Geometry& g, const GeometryPlacement& place);
+
 /// How much each geometry buffer holds (records; the sphere buffer in
 /// texels), from its start.
 struct GeometrySizes

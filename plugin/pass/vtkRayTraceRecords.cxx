@@ -338,6 +338,7 @@ std::uint32_t instanceFlags(const Instance& inst, bool mirrored)
   std::uint32_t flags = g.Spheres ? kInstanceSpheres : 0u;
   flags |= g.Ellipsoids ? kInstanceEllipsoids : 0u;
   flags |= g.Tubes ? kInstanceTubes : 0u;
+  flags |= g.SphereCellIds.empty() ? 0u : kInstanceSphereCellIds;
   flags |= inst.Lit ? kInstanceLit : 0u;
   flags |= inst.UseVertexNormals ? kInstanceVertexNormals : 0u;
   flags |= inst.UseCellNormals ? kInstanceCellNormals : 0u;
@@ -417,7 +418,9 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     localToShader(inst, camera, toShader);
     vtkNew<vtkMatrix4x4> shaderToLocal;
     vtkMatrix4x4::Invert(toShader, shaderToLocal);
-    const double size = shaderHalfSize(inst, toShader);
+    // Points and lines drawn PointSize or LineWidth pixels wide are shaded
+    // at that size, however close together they lie.
+    const double size = inst.Geom->ScreenSized ? 0.0 : shaderHalfSize(inst, toShader);
     if (size > 0.0 && size < kSmallestShadedSize &&
       std::find(out.TooSmallProps.begin(), out.TooSmallProps.end(), inst.PropIndex) ==
         out.TooSmallProps.end())
@@ -481,6 +484,7 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     rec.backSpecularPower = inst.BackSpecularPower;
     rec.textureBase = inst.Texture ? textureBase->second : 0u;
     rec.textureCoordinateBase = inst.Texture ? coordinateBase->second : 0u;
+    rec.sphereCellIdBase = SphereCellIdBase(*inst.Geom, place->second);
     fillEdges(inst, toShader, rec);
     for (const auto& pl : inst.ClipPlanes)
     {

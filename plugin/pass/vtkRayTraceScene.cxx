@@ -396,8 +396,8 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
       Instance sph = inst;
       sph.Geom = entry.get();
       sph.PointSize = std::max(0.0, static_cast<double>(property->GetPointSize()));
-      Colors* colors = this->GetColors(mapper, poly, time);
-      sph.Color = colors && !colors->CellColors ? colors : nullptr;
+      // Cell colors through each sphere's cell (SphereCellIds), as raster.
+      sph.Color = this->GetColors(mapper, poly, time);
       this->Instances.push_back(sph);
     }
   }
@@ -590,6 +590,11 @@ bool Scene::HasScreenSpheres() const
 {
   return std::any_of(this->Instances.begin(), this->Instances.end(),
     [](const Instance& i) { return i.Geom->ScreenSized && !i.Geom->Tubes; });
+}
+bool Scene::HasSphereCellIds() const
+{
+  return std::any_of(this->Instances.begin(), this->Instances.end(),
+    [](const Instance& i) { return !i.Geom->SphereCellIds.empty(); });
 }
 bool Scene::HasTubes() const
 {

@@ -80,6 +80,7 @@ public:
   bool HasTriangles() const;
   bool HasSpheres() const;
   bool HasScreenSpheres() const;
+  bool HasSphereCellIds() const; ///< some points drawn as spheres report cells apart from their points
   bool HasEllipsoids() const;
   bool HasTubes() const;
   bool HasVertexNormals() const;

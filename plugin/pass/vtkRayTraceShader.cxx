@@ -47,7 +47,7 @@ std::string Features::Key() const
     << this->SurfaceEdges << "V" << this->Wireframe << "J"
     << this->Tubes << "i" << this->SingleInstance << "p"
     << this->ProjectiveRays << "e" << this->TileEntries << "l" << this->LeafTrees << "w"
-    << this->PackedStackEntries << "h" << this->Specular << "n" << this->InterleavedWalks;
+    << this->PackedStackEntries << "h" << this->Specular << "n" << this->InterleavedWalks << "c" << this->SphereCellIds;
   return s.str();
 }
 
@@ -96,6 +96,7 @@ ShaderSources AssembleShaders(const Features& f, int flatSlots)
   define(f.Specular, "VTKRT_SPECULAR");
   define(f.WorldCoordinates, "VTKRT_WORLD_COORDINATES");
   define(f.ScreenSpheres, "VTKRT_SCREEN_SPHERES");
+  define(f.Spheres && f.SphereCellIds, "VTKRT_SPHERE_CELL_IDS");
   define(f.Ellipsoids, "VTKRT_HAS_ELLIPSOIDS");
   define(f.Spheres && f.Tubes, "VTKRT_HAS_TUBES");
   s << "#define VTKRT_AMBIENT_OCCLUSION_SAMPLES " << f.AmbientOcclusionSamples << "\n";

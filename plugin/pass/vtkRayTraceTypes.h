@@ -90,6 +90,10 @@ struct Geometry
   core::HugePageArray<core::gpu::Ellipsoid> EllipsoidRecords; ///< leaf order
   core::HugePageArray<core::gpu::Segment> SegmentRecords;     ///< leaf order (tubes)
   core::HugePageArray<std::uint32_t> SphereIds; ///< VTK point id per sphere texel (leaf order)
+  /// Points drawn as spheres where a sphere's VTK cell (the first cell
+  /// that holds its point, as raster's selection reports) is not its point
+  /// id: the cell id per sphere (leaf order); empty where every one is.
+  core::HugePageArray<std::uint32_t> SphereCellIds;
   core::HugePageArray<core::gpu::Normal> Normals; ///< per point, empty if none
   core::HugePageArray<core::gpu::Normal> CellNormals; ///< per VTK cell id, empty if none
   std::size_t PrimitiveCount = 0;
@@ -206,6 +210,7 @@ struct Features
   int MaximumTraversalSteps = 0; ///< 0: unlimited
   bool WorldCoordinates = false; ///< vtkRayTracePass::WORLD precision mode
   bool ScreenSpheres = false;    ///< points drawn as spheres (per-frame radii)
+  bool SphereCellIds = false;    ///< some points drawn as spheres have cell ids apart from their point ids
   bool Ellipsoids = false;       ///< sphere glyphs scaled per component
   bool Tubes = false;            ///< lines drawn as tubes
   bool Textures = false;         ///< some triangles carry an actor texture

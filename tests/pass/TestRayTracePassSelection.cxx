@@ -8,6 +8,7 @@
 #include "vtkAssemblyPath.h"
 #include "vtkCompositePolyDataMapper2.h"
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkCubeSource.h"
 #include "vtkDataObject.h"
 #include "vtkHardwareSelector.h"
@@ -19,6 +20,7 @@
 #include "vtkSelection.h"
 #include "vtkSelectionNode.h"
 #include "vtkTypeInt32Array.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkWorldPointPicker.h"
 
 #include <algorithm>
@@ -442,6 +444,148 @@ void TestHighCellIds()
   NoVTKOutput("high ids");
 }
 
+/// The cell ids a cell selection of the pixel at `d` returns.
+std::set<vtkIdType> CellsAt(vtkRenderer* ren, const std::array<int, 2>& d)
+{
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(ren);
+  selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_CELLS);
+  selector->SetArea(d[0], d[1], d[0], d[1]);
+  vtkSmartPointer<vtkSelection> result = vtk::TakeSmartPointer(selector->Select());
+  std::set<vtkIdType> ids;
+  for (unsigned int n = 0; result && n < result->GetNumberOfNodes(); ++n)
+  {
+    vtkIdTypeArray* list = vtkIdTypeArray::SafeDownCast(result->GetNode(n)->GetSelectionList());
+    for (vtkIdType k = 0; list && k < list->GetNumberOfTuples(); ++k)
+    {
+      ids.insert(list->GetValue(k));
+    }
+  }
+  return ids;
+}
+
+/// Points drawn as spheres report the cell that holds them, as raster does
+/// (the first in VTK's numbering: verts, lines, polygons): one-point verts
+/// in reverse order, a poly-vertex, points shared with a triangle (points
+/// representation, where a point of the triangle alone reports it too), a
+/// point on a coordinate plane; cell scalars color each sphere by that cell.
+void TestPointCells()
+{
+  vtkNew<vtkPoints> points;
+  for (int i = 0; i < 10; ++i)
+  {
+    // Point 0 at the origin: a zero coordinate once scaled the sphere away.
+    points->InsertNextPoint(0.4 * i, i % 2 == 0 ? 0.0 : 0.3, 0.0);
+  }
+  points->InsertNextPoint(1.4, 0.9, 0.0); // in the triangle alone
+  vtkNew<vtkCellArray> verts;
+  for (vtkIdType k = 0; k < 5; ++k)
+  {
+    const vtkIdType point = 4 - k;
+    verts->InsertNextCell(1, &point);
+  }
+  const vtkIdType many[5] = { 9, 8, 7, 6, 5 };
+  verts->InsertNextCell(5, many);
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType triangle[3] = { 3, 4, 10 };
+  polys->InsertNextCell(3, triangle);
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(points);
+  poly->SetVerts(verts);
+  poly->SetPolys(polys);
+  vtkNew<vtkUnsignedCharArray> cellColors;
+  cellColors->SetNumberOfComponents(3);
+  for (int c = 0; c < 7; ++c)
+  {
+    const unsigned char rgb[3] = { static_cast<unsigned char>(40 * c), static_cast<unsigned char>(255 - 30 * c),
+      static_cast<unsigned char>(c % 2 == 0 ? 200 : 60) };
+    cellColors->InsertNextTypedTuple(rgb);
+  }
+  poly->GetCellData()->SetScalars(cellColors);
+  for (const bool pointsRepresentation : { false, true })
+  {
+    const std::string label = pointsRepresentation ? "points representation" : "verts";
+    auto win = MakeWindow(W, H);
+    vtkNew<vtkRenderer> ren;
+    win->AddRenderer(ren);
+    vtkSmartPointer<vtkActor> actor = MeshActor(poly);
+    actor->GetMapper()->ScalarVisibilityOn();
+    actor->GetMapper()->SetScalarModeToUseCellData();
+    actor->GetProperty()->RenderPointsAsSpheresOn();
+    actor->GetProperty()->SetPointSize(16);
+    if (pointsRepresentation)
+    {
+      actor->GetProperty()->SetRepresentationToPoints();
+    }
+    ren->AddActor(actor);
+    ren->ResetCamera();
+    win->Render();
+    const auto rasterImage = Grab(win);
+    std::vector<std::set<vtkIdType>> rasterCells;
+    for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+    {
+      ren->SetWorldPoint(points->GetPoint(i)[0], points->GetPoint(i)[1], 0.0, 1.0);
+      ren->WorldToDisplay();
+      const double* d = ren->GetDisplayPoint();
+      rasterCells.push_back(CellsAt(ren, { { static_cast<int>(d[0]), static_cast<int>(d[1]) } }));
+    }
+    vtkNew<vtkRayTracePass> pass;
+    ren->SetPass(pass);
+    win->Render();
+    const auto tracedImage = Grab(win);
+    Check(pass->GetNumberOfTracedProps() == 1, label + ": traced");
+    int same = 0;
+    std::ostringstream got;
+    for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+    {
+      ren->SetWorldPoint(points->GetPoint(i)[0], points->GetPoint(i)[1], 0.0, 1.0);
+      ren->WorldToDisplay();
+      const double* d = ren->GetDisplayPoint();
+      const std::set<vtkIdType> cells = CellsAt(ren, { { static_cast<int>(d[0]), static_cast<int>(d[1]) } });
+      // (The triangle's corner pixel, no sphere under verts, may miss it.)
+      const bool drawn = cells.size() == 1 || (!pointsRepresentation && i == 10);
+      same += cells == rasterCells[static_cast<std::size_t>(i)] && drawn ? 1 : 0;
+      got << " " << (cells.empty() ? -1 : *cells.begin()) << "/"
+          << (rasterCells[static_cast<std::size_t>(i)].empty() ? -1 : *rasterCells[static_cast<std::size_t>(i)].begin());
+    }
+    Check(same == points->GetNumberOfPoints(), label + ": each point's sphere selects raster's cell (traced/raster:" + got.str() + ")");
+    const double rmse = RootMeanSquareError(Blurred(rasterImage), Blurred(tracedImage));
+    Check(rmse < 8.0, label + ": the spheres' cell colors as raster's (blurred RMSE " + std::to_string(rmse) + ")");
+    if (rmse >= 8.0)
+    {
+      WriteFailedImages("SelectionPointCells", rasterImage, tracedImage);
+    }
+    NoVTKOutput(label);
+  }
+
+  // One point, on a coordinate plane: a zero coordinate once scaled its
+  // sphere away, with a warning that it was too small to shade.
+  vtkNew<vtkPoints> one;
+  one->InsertNextPoint(0.3, 0.2, 0.0);
+  vtkNew<vtkCellArray> vertex;
+  const vtkIdType zero = 0;
+  vertex->InsertNextCell(1, &zero);
+  vtkNew<vtkPolyData> single;
+  single->SetPoints(one);
+  single->SetVerts(vertex);
+  auto win = MakeWindow(W, H);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  vtkSmartPointer<vtkActor> actor = MeshActor(single);
+  actor->GetProperty()->RenderPointsAsSpheresOn();
+  actor->GetProperty()->SetPointSize(20);
+  ren->AddActor(actor);
+  ren->ResetCamera();
+  const RasterAndTraced frames = RenderRasterThenTraced(win, ren);
+  const double black[3] = { 0, 0, 0 };
+  const long rasterPixels = CountForegroundPixels(frames.Raster, black);
+  const long tracedPixels = CountForegroundPixels(frames.Traced, black);
+  Check(rasterPixels > 200 && std::abs(tracedPixels - rasterPixels) <= rasterPixels / 10,
+    "one point at z = 0: its sphere drawn (" + std::to_string(tracedPixels) + " pixels, raster " +
+      std::to_string(rasterPixels) + ")");
+  NoVTKOutput("one point at z = 0");
+}
+
 /// An area outside the window, an empty scene, a selector with no renderer.
 void TestBadInput()
 {
@@ -486,6 +630,6 @@ int main(int argc, char* argv[])
   return RunCase(argc, argv,
     { { "Cells", TestCells }, { "Points", TestPoints }, { "Composite", TestComposite },
       { "PropPicking", TestPropPicking }, { "Accumulation", TestAccumulation },
-      { "HighCellIds", TestHighCellIds },
+      { "HighCellIds", TestHighCellIds }, { "PointCells", TestPointCells },
       { "BadInput", TestBadInput } });
 }

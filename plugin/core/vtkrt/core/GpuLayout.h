@@ -185,6 +185,10 @@ struct InstanceRecord
   vec4 localToCamera[3];       ///< SurfaceEdges / Wireframe: rows of the inverse of cameraToLocal
   vec3 edgeColor;              ///< SurfaceEdges: vtkProperty::EdgeColor
   float lineWidth;             ///< SurfaceEdges / Wireframe: in pixels
+  /// SphereCellIds: word sphereCellIdBase + p of uSpheres is the VTK cell
+  /// id of the sphere at texel p (the cell ids follow the geometry's records).
+  std::uint32_t sphereCellIdBase;
+  std::uint32_t unused[3];
 };
 #define VTKRT_GPU_INSTANCE_FIELDS(FIELD, PAD)                                                      \
   FIELD(InstanceRecord, cameraToLocal) FIELD(InstanceRecord, boxMin) FIELD(InstanceRecord, root)   \
@@ -203,7 +207,9 @@ struct InstanceRecord
                             FIELD(InstanceRecord, backSpecularPower)                           \
                               FIELD(InstanceRecord, localToCamera)                             \
                                 FIELD(InstanceRecord, edgeColor)                               \
-                                  FIELD(InstanceRecord, lineWidth)
+                                  FIELD(InstanceRecord, lineWidth)                               \
+                                    FIELD(InstanceRecord, sphereCellIdBase)                      \
+                                      PAD(InstanceRecord, unused)
 
 /// The texels of an InstanceRecord that a traced pixel reads in any scene
 /// (matrix, box, root, flags, colors, normal base, ids, intensities,
@@ -261,7 +267,8 @@ enum class Indexing
   X(Translucent, 32768u)                                                                           \
   X(SurfaceEdges, 65536u)                                                                          \
   X(Wireframe, 131072u)                                                                            \
-  X(Tubes, 262144u)
+  X(Tubes, 262144u)                                                                                \
+  X(SphereCellIds, 524288u)
 
 enum InstanceFlags : std::uint32_t
 {
