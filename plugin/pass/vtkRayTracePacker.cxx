@@ -124,7 +124,7 @@ void writePlaced(const Geometry& g, const GeometryPlacement& place, const Geomet
     at += g.EllipsoidRecords.size() * core::gpu::texelsOf<core::gpu::Ellipsoid>();
     copyAt(g.SegmentRecords.data(), g.SegmentRecords.size(), out.Spheres, from.SphereTexels, at);
     at += g.SegmentRecords.size() * core::gpu::texelsOf<core::gpu::Segment>();
-    // Cell ids, four a texel, after the records (SphereCellIdWord).
+    // Cell ids, four a texel, after the records (SphereCellIdBase).
     auto* cellIds = reinterpret_cast<std::uint32_t*>(out.Spheres + (at - from.SphereTexels));
     copyRecords(g.SphereCellIds.data(), g.SphereCellIds.size(), cellIds);
     padWords(cellIds, g.SphereCellIds.size());
