@@ -400,31 +400,6 @@ void TestBadLineWidth()
   NoVTKOutput("bad line width");
 }
 
-/// Cell ids the selector returns for the prop `actor` over the whole window.
-std::set<vtkIdType> SelectedCells(Scene& scene, vtkActor* actor, const unsigned int area[4])
-{
-  vtkNew<vtkHardwareSelector> selector;
-  selector->SetRenderer(scene.Renderer);
-  selector->SetArea(area[0], area[1], area[2], area[3]);
-  selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_CELLS);
-  vtkSmartPointer<vtkSelection> result = vtk::TakeSmartPointer(selector->Select());
-  std::set<vtkIdType> ids;
-  for (unsigned int n = 0; result && n < result->GetNumberOfNodes(); ++n)
-  {
-    vtkSelectionNode* node = result->GetNode(n);
-    if (node->GetProperties()->Get(vtkSelectionNode::PROP()) != actor)
-    {
-      continue;
-    }
-    vtkIdTypeArray* list = vtkIdTypeArray::SafeDownCast(node->GetSelectionList());
-    for (vtkIdType k = 0; list && k < list->GetNumberOfTuples(); ++k)
-    {
-      ids.insert(list->GetValue(k));
-    }
-  }
-  return ids;
-}
-
 void TestWireframeSelection()
 {
   std::set<vtkIdType> wires[2], behind[2];
@@ -446,15 +421,15 @@ void TestWireframeSelection()
     }
     scene.Window->Render();
     const unsigned int all[4] = { 0, 0, kSize - 1, kSize - 1 };
-    wires[traced] = SelectedCells(scene, grid, all);
+    wires[traced] = SelectedCells(scene.Renderer, all, grid);
     // A pixel in the middle of a grid cell: between the wires, the sphere.
     scene.Renderer->SetWorldPoint(0.0, -0.125, 0.6, 1.0);
     scene.Renderer->WorldToDisplay();
     const double* d = scene.Renderer->GetDisplayPoint();
     const unsigned int x = static_cast<unsigned int>(d[0]), y = static_cast<unsigned int>(d[1]);
     const unsigned int face[4] = { x, y, x, y };
-    behind[traced] = SelectedCells(scene, sphere, face);
-    const std::set<vtkIdType> wireAtFace = SelectedCells(scene, grid, face);
+    behind[traced] = SelectedCells(scene.Renderer, face, sphere);
+    const std::set<vtkIdType> wireAtFace = SelectedCells(scene.Renderer, face, grid);
     Check(wireAtFace.empty(),
       std::string(traced ? "traced" : "raster") + ": no wire cell between the wires (pixel " +
         std::to_string(x) + "," + std::to_string(y) + ", " + std::to_string(wireAtFace.size()) +

@@ -447,21 +447,9 @@ void TestHighCellIds()
 /// The cell ids a cell selection of the pixel at `d` returns.
 std::set<vtkIdType> CellsAt(vtkRenderer* ren, const std::array<int, 2>& d)
 {
-  vtkNew<vtkHardwareSelector> selector;
-  selector->SetRenderer(ren);
-  selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_CELLS);
-  selector->SetArea(d[0], d[1], d[0], d[1]);
-  vtkSmartPointer<vtkSelection> result = vtk::TakeSmartPointer(selector->Select());
-  std::set<vtkIdType> ids;
-  for (unsigned int n = 0; result && n < result->GetNumberOfNodes(); ++n)
-  {
-    vtkIdTypeArray* list = vtkIdTypeArray::SafeDownCast(result->GetNode(n)->GetSelectionList());
-    for (vtkIdType k = 0; list && k < list->GetNumberOfTuples(); ++k)
-    {
-      ids.insert(list->GetValue(k));
-    }
-  }
-  return ids;
+  const unsigned int pixel[4] = { static_cast<unsigned int>(d[0]), static_cast<unsigned int>(d[1]),
+    static_cast<unsigned int>(d[0]), static_cast<unsigned int>(d[1]) };
+  return SelectedCells(ren, pixel);
 }
 
 /// Points drawn as spheres report the cell that holds them, as raster does

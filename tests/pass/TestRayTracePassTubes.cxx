@@ -307,21 +307,8 @@ void TestNoTubeCode()
 /// The cell ids vtkHardwareSelector selects over the whole view.
 std::set<vtkIdType> SelectCells(Scene& scene)
 {
-  vtkNew<vtkHardwareSelector> selector;
-  selector->SetRenderer(scene.Renderer);
-  selector->SetArea(0, 0, kSize - 1, kSize - 1);
-  selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_CELLS);
-  vtkSmartPointer<vtkSelection> result = vtk::TakeSmartPointer(selector->Select());
-  std::set<vtkIdType> ids;
-  for (unsigned int n = 0; result && n < result->GetNumberOfNodes(); ++n)
-  {
-    vtkIdTypeArray* list = vtkIdTypeArray::SafeDownCast(result->GetNode(n)->GetSelectionList());
-    for (vtkIdType k = 0; list && k < list->GetNumberOfTuples(); ++k)
-    {
-      ids.insert(list->GetValue(k));
-    }
-  }
-  return ids;
+  const unsigned int all[4] = { 0, 0, kSize - 1, kSize - 1 };
+  return SelectedCells(scene.Renderer, all);
 }
 
 void TestSelection()

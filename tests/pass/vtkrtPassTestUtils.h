@@ -14,9 +14,12 @@
 #include "vtkCamera.h"
 #include "vtkDoubleArray.h"
 #include "vtkGlyph3DMapper.h"
+#include "vtkHardwareSelector.h"
+#include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkImageDifference.h"
 #include "vtkImageGaussianSmooth.h"
+#include "vtkInformation.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
@@ -27,6 +30,8 @@
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
+#include "vtkSelection.h"
+#include "vtkSelectionNode.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 #include "vtkWindowToImageFilter.h"
@@ -38,6 +43,7 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <set>
 #include <iostream>
 #include <limits>
 #include <sstream>
@@ -400,6 +406,32 @@ inline vtkSmartPointer<vtkActor> MeshActor(vtkPolyData* poly)
   actor->GetProperty()->SetSpecular(0.4);
   actor->GetProperty()->SetSpecularPower(20);
   return actor;
+}
+
+/// The cell ids a vtkHardwareSelector cell selection of the pixels
+/// area = (x0, y0, x1, y1) returns, of every prop or of `prop` alone.
+inline std::set<vtkIdType> SelectedCells(vtkRenderer* ren, const unsigned int area[4], vtkProp* prop = nullptr)
+{
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(ren);
+  selector->SetArea(area[0], area[1], area[2], area[3]);
+  selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_CELLS);
+  vtkSmartPointer<vtkSelection> result = vtk::TakeSmartPointer(selector->Select());
+  std::set<vtkIdType> ids;
+  for (unsigned int n = 0; result && n < result->GetNumberOfNodes(); ++n)
+  {
+    vtkSelectionNode* node = result->GetNode(n);
+    if (prop && node->GetProperties()->Get(vtkSelectionNode::PROP()) != prop)
+    {
+      continue;
+    }
+    vtkIdTypeArray* list = vtkIdTypeArray::SafeDownCast(node->GetSelectionList());
+    for (vtkIdType k = 0; list && k < list->GetNumberOfTuples(); ++k)
+    {
+      ids.insert(list->GetValue(k));
+    }
+  }
+  return ids;
 }
 
 /// Sphere glyphs of `points` scaled by their "radius" array (x2) and
