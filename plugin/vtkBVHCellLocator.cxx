@@ -87,6 +87,39 @@ vtkBVHCellLocator::~vtkBVHCellLocator()
   this->FreeSearchStructure();
 }
 
+namespace
+{
+/// Whether a cell of `pd` has fewer points than its kind needs (a vertex 1,
+/// a line 2, a polygon or strip 3): vtkPolyData cannot build its cell map
+/// past one, and its GetCell then dereferences the map it lacks.
+bool HasCellsVTKCannotRepresent(vtkPolyData* pd)
+{
+  vtkCellArray* arrays[4] = { pd->GetVerts(), pd->GetLines(), pd->GetPolys(), pd->GetStrips() };
+  const vtkIdType least[4] = { 1, 2, 3, 3 };
+  auto shortCell = [](const auto* offsets, vtkIdType n, vtkIdType least) {
+    for (vtkIdType c = 0; c < n; ++c)
+    {
+      if (offsets[c + 1] - offsets[c] < least)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  for (int k = 0; k < 4; ++k)
+  {
+    const vtkIdType n = arrays[k] ? arrays[k]->GetNumberOfCells() : 0;
+    if (n > 0 &&
+      (arrays[k]->IsStorage64Bit() ? shortCell(arrays[k]->GetOffsetsArray64()->GetPointer(0), n, least[k])
+                                   : shortCell(arrays[k]->GetOffsetsArray32()->GetPointer(0), n, least[k])))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+} // namespace
+
 //------------------------------------------------------------------------------
 bool vtkBVHCellLocator::NeedsBuild() const
 {
@@ -193,6 +226,13 @@ bool vtkBVHCellLocator::PrepareQuery()
       this->BuildTree();
     }
   }
+  if (this->UseExistingSearchStructure && this->DataSet && this->Internals->Data.PointsReplaced(this->DataSet))
+  {
+    // The kept trees are over the old points, which the dataset no longer holds.
+    vtkErrorMacro(<< "The dataset's points were replaced since the locator was built; rebuild it "
+                     "(ForceBuildLocator) or turn UseExistingSearchStructure off");
+    return false;
+  }
   if (this->UseExistingSearchStructure && this->Internals->Data.PointsCopyStale())
   {
     // Float (non-double) points are read from the build's copy: re-read
@@ -232,6 +272,16 @@ void vtkBVHCellLocator::BuildTree()
   // rest up on a cell it keeps).
   if (auto* pd = vtkPolyData::SafeDownCast(this->DataSet))
   {
+    if (HasCellsVTKCannotRepresent(pd))
+    {
+      // VTK's GetCell would dereference the cell map it could not build.
+      vtkErrorMacro("BuildLocator: the polydata has a cell VTK cannot represent (a polygon or "
+                    "strip of fewer than 3 points, a line of fewer than 2, an empty vertex), so "
+                    "no cell of it can be read: nothing is located until the data is fixed");
+      this->BuildTime.Modified();
+      this->Internals->TreeTime.store(this->BuildTime.GetMTime(), std::memory_order_release);
+      return;
+    }
     if (pd->NeedToBuildCells())
     {
       pd->BuildCells();
@@ -516,9 +566,10 @@ void vtkBVHCellLocator::FindClosestPoint(
 
 //------------------------------------------------------------------------------
 vtkIdType vtkBVHCellLocator::FindCell(
-  double x[3], double tol2, vtkGenericCell* cell, double pcoords[3], double* weights)
+  double x[3], double vtkNotUsed(tol2), vtkGenericCell* cell, double pcoords[3], double* weights)
 {
-  if (!this->PrepareQuery() || !x || !IsFinite3(x) || std::isnan(tol2))
+  // tol2 is not used, as by VTK's locators (see Internals' FindCell).
+  if (!this->PrepareQuery() || !x || !IsFinite3(x))
   {
     return -1;
   }
@@ -528,8 +579,7 @@ vtkIdType vtkBVHCellLocator::FindCell(
   {
     pcoords = localPcoords;
   }
-  const vtkIdType found = this->Internals->Data.FindCell(
-    x, std::max(tol2, 0.0), this->DataSet, qc.Get(), pcoords, weights);
+  const vtkIdType found = this->Internals->Data.FindCell(x, this->DataSet, qc.Get(), pcoords, weights);
   if (found < 0 && BeyondLocalFrame(this->Internals->Data, x))
   {
     vtkErrorMacro("FindCell: " << kBeyondLocalFrame);

@@ -201,8 +201,10 @@ public:
 
   ///@{
   /**
-   * Point location: the cell containing x (EvaluatePosition == 1 and
-   * distance^2 <= tol2), the lowest such cell id, or -1. Meant for 3D cells.
+   * Point location, as VTK 9.1's locators answer it: the lowest id of a
+   * cell whose bounds hold x and whose EvaluatePosition says inside, or -1.
+   * tol2 is not used (nor by vtkStaticCellLocator or vtkCellLocator); a
+   * surface cell holds every point of its bounds that projects into it.
    */
   vtkIdType FindCell(double x[3]) override;
   vtkIdType FindCell(

@@ -10,6 +10,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
+#include "vtkPointSet.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
@@ -258,6 +259,26 @@ void BVHCellLocatorData::CopyPoints(vtkPoints* pts)
   this->CopiedCoordsArray = pts->GetData();
   this->CopiedCoordsPointer = pts->GetData()->GetVoidPointer(0);
   this->CopiedCoordsTime.Value.store(copied, std::memory_order_release);
+}
+
+//------------------------------------------------------------------------------
+bool BVHCellLocatorData::PointsReplaced(vtkDataSet* ds) const
+{
+  auto* pointSet = vtkPointSet::SafeDownCast(ds);
+  if (!pointSet || this->NumberOfPoints == 0)
+  {
+    return false;
+  }
+  vtkPoints* pts = pointSet->GetPoints();
+  if (!pts)
+  {
+    return true;
+  }
+  if (this->DataSetCoordsArray)
+  {
+    return pts->GetData() != this->DataSetCoordsArray;
+  }
+  return pts != this->CopiedPoints || pts->GetData() != this->CopiedCoordsArray;
 }
 
 //------------------------------------------------------------------------------

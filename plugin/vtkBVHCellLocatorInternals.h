@@ -428,9 +428,12 @@ public:
   /// the cell reports them, `cell` (when given) that cell.
   bool FindClosestPoint(
     const double xw[3], double radius, vtkDataSet* ds, vtkGenericCell* cell, PointHit& out) const;
-  /// weights: the caller's, or null (sized per candidate cell here).
-  vtkIdType FindCell(const double xw[3], double tol2, vtkDataSet* ds, vtkGenericCell* cell,
-    double pcoords[3], double* weights) const;
+  /// As VTK 9.1's locators: the lowest-id cell whose bounds hold xw and
+  /// whose EvaluatePosition says inside (a surface cell: xw projects into
+  /// it); no tolerance. weights: the caller's, or null (sized per candidate
+  /// cell here).
+  vtkIdType FindCell(
+    const double xw[3], vtkDataSet* ds, vtkGenericCell* cell, double pcoords[3], double* weights) const;
 
   /// Boxes (local coordinates) of the nodes at depth `level` and of the
   /// leaves above it; all leaves for a negative level.
@@ -478,6 +481,9 @@ public:
         this->DataSetCoordsArray->GetNumberOfTuples() >= this->NumberOfPoints);
   }
 
+  /// Whether `ds` now holds other points than the build read (SetPoints,
+  /// or another array in its vtkPoints): the trees are not over them.
+  bool PointsReplaced(vtkDataSet* ds) const;
   /// Whether the copied (non-double) points were modified, reallocated or
   /// shrunk since the copy.
   bool PointsCopyStale() const;
@@ -527,7 +533,6 @@ private:
   inline bool IntersectTriangle(std::uint32_t prim, const core::RayTrianglePrecomputed<double>& pre,
     const core::Ray<double>& ray, double tol, double& t, double& u, double& v) const;
   inline bool ProjectsInside(std::uint32_t prim, const Vec3d& x) const;
-  inline bool FartherThan(std::uint32_t prim, const Vec3d& x, double far2) const;
 
   // Extraction
   void ComputeOrigin(vtkDataSet* ds);

@@ -260,19 +260,6 @@ inline bool BVHCellLocatorData::ProjectsInside(std::uint32_t prim, const Vec3d& 
 }
 
 //------------------------------------------------------------------------------
-/// Whether triangle prim is certainly farther from x (local) than the
-/// squared local distance far2 (FindCell's tolerance with VTK's world
-/// rounding allowed), so that vtkTriangle::EvaluatePosition could not give
-/// dist2 <= tol2. The margin dwarfs the local computation's rounding (a few
-/// ulps of the squared coordinates).
-inline bool BVHCellLocatorData::FartherThan(std::uint32_t prim, const Vec3d& x, double far2) const
-{
-  const Vec3d v0 = this->Vertex(prim, 0);
-  const Vec3d d = x - core::closestPointOnTriangle(x, v0, this->Vertex(prim, 1), this->Vertex(prim, 2));
-  return glm::dot(d, d) > far2 + 1e-12 * (glm::dot(v0, v0) + this->Extent * this->Extent);
-}
-
-//------------------------------------------------------------------------------
 /// The walk's nearest triangle hit as a LineHit (world coordinates; VTK
 /// triangle pcoords, to be evaluated in the cell for quads and polygons).
 inline void BVHCellLocatorData::SetTriangleHit(
@@ -698,20 +685,19 @@ bool BVHCellLocatorData::FindClosestPoint(
 }
 
 //------------------------------------------------------------------------------
-vtkIdType BVHCellLocatorData::FindCell(const double xw[3], double tol2, vtkDataSet* ds, vtkGenericCell* cell,
-  double pcoords[3], double* weights) const
+vtkIdType BVHCellLocatorData::FindCell(
+  const double xw[3], vtkDataSet* ds, vtkGenericCell* cell, double pcoords[3], double* weights) const
 {
   const Vec3d x = this->ToLocal(xw);
-  const Vec3d tol(this->ToLocalLength(std::sqrt(tol2)));
-  const Box q(x - tol, x + tol);
-  // VTK evaluates the cells in world coordinates: allow its rounding there.
+  // VTK tests the cells' bounds in world coordinates: candidates are
+  // gathered with its rounding there allowed, then tested on those bounds.
   double m = 0.0;
   for (int k = 0; k < 3; ++k)
   {
     m = std::max({ m, std::abs(xw[k]), std::abs(this->Origin[k]) });
   }
-  const double slack = this->ToLocalLength(3e-6 * m);
-  const double far2 = tol.x * tol.x * (1.0 + 1e-9) + slack * slack;
+  const Vec3d slack(this->ToLocalLength(3e-6 * m));
+  const Box q(x - slack, x + slack);
   // Candidates (cell id, primitive) in cell id order: a VTK_TRIANGLE cell
   // is filled from its kept point ids, not looked up in the dataset. The
   // list is the thread's own, kept between queries (no allocation a query).
@@ -742,20 +728,21 @@ vtkIdType BVHCellLocatorData::FindCell(const double xw[3], double tol2, vtkDataS
     }
     if (static_cast<vtkIdType>(prim) < nTri && (this->TriangleFlags(prim) & WholeTriangle))
     {
-      if (this->FartherThan(prim, x, far2))
-      {
-        continue;
-      }
       FillTriangleCell(cell, this->TriIds.data() + 3 * static_cast<std::size_t>(prim), this->WorldCoords());
     }
     else
     {
       ds->GetCell(cellId, cell);
     }
+    const double* b = cell->GetBounds();
+    if (xx[0] < b[0] || xx[0] > b[1] || xx[1] < b[2] || xx[1] > b[3] || xx[2] < b[4] || xx[2] > b[5])
+    {
+      continue;
+    }
     double cp[3], dist2;
     int sub;
     double* w = weights ? weights : ownWeights.For(cell);
-    if (cell->EvaluatePosition(xx, cp, sub, pcoords, dist2, w) == 1 && dist2 <= tol2)
+    if (cell->EvaluatePosition(xx, cp, sub, pcoords, dist2, w) == 1)
     {
       return cellId;
     }

@@ -5,11 +5,13 @@
 
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
+#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPointData.h"
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -115,6 +117,31 @@ void OrientForUp(vtkCamera* camera, const std::string& up)
   camera->SetViewUp(viewUp);
 }
 
+// A view up along the view direction leaves the image's up undefined (VTK
+// draws nothing): the axis least along the direction replaces it, and a
+// note says so. (A --camera-view-up given so is a usage error.)
+void KeepViewUpOffViewDirection(vtkCamera* camera)
+{
+  double dop[3], up[3], cross[3];
+  camera->GetDirectionOfProjection(dop);
+  camera->GetViewUp(up);
+  vtkMath::Cross(dop, up, cross);
+  if (vtkMath::Norm(cross) > 1e-6 * vtkMath::Norm(up))
+  {
+    return;
+  }
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+  {
+    axis = std::abs(dop[k]) < std::abs(dop[axis]) ? k : axis;
+  }
+  double replacement[3] = { 0.0, 0.0, 0.0 };
+  replacement[axis] = 1.0;
+  camera->SetViewUp(replacement);
+  std::cerr << "vtkrt-render: note: the view up is along the view direction; using +" << char('X' + axis)
+            << " as the view up (set --camera-view-up to choose)\n";
+}
+
 // The explicit placement of --camera-*: what is given replaces what the
 // orbit chose.
 void PlaceCamera(vtkCamera* camera, const CameraOptions& c)
@@ -130,6 +157,10 @@ void PlaceCamera(vtkCamera* camera, const CameraOptions& c)
   if (c.ViewUpGiven)
   {
     camera->SetViewUp(c.ViewUp.data());
+  }
+  else
+  {
+    KeepViewUpOffViewDirection(camera);
   }
   camera->OrthogonalizeViewUp();
 }
@@ -152,6 +183,7 @@ void AimCamera(Scene& scene, const Options& opt)
     }
     camera->Azimuth(opt.Azimuth);
     camera->Elevation(opt.Elevation);
+    KeepViewUpOffViewDirection(camera);
     camera->OrthogonalizeViewUp();
   }
   else

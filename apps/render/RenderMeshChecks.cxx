@@ -459,9 +459,25 @@ bool FindBadPointId(vtkCellArray* cells, vtkIdType points, vtkIdType& cell, vtkI
   }
   return false;
 }
+// The first cell of `cells` with fewer than `least` points: its index and
+// size; false when there is none.
+bool FindShortCell(vtkCellArray* cells, vtkIdType least, vtkIdType& cell, vtkIdType& size)
+{
+  const vtkIdType n = cells ? cells->GetNumberOfCells() : 0;
+  for (vtkIdType c = 0; c < n; ++c)
+  {
+    if (cells->GetCellSize(c) < least)
+    {
+      cell = c;
+      size = cells->GetCellSize(c);
+      return true;
+    }
+  }
+  return false;
+}
 } // namespace
 
-void CheckPointIds(vtkDataObject* data, const std::string& path)
+void CheckCells(vtkDataObject* data, const std::string& path)
 {
   std::vector<std::pair<vtkCellArray*, std::string>> cellArrays;
   vtkIdType points = 0;
@@ -470,6 +486,19 @@ void CheckPointIds(vtkDataObject* data, const std::string& path)
     points = poly->GetNumberOfPoints();
     cellArrays = { { poly->GetVerts(), "vertex cell" }, { poly->GetLines(), "line" },
       { poly->GetPolys(), "polygon" }, { poly->GetStrips(), "triangle strip" } };
+    // VTK 9.1's polydata cannot build its cell map past such a cell, and
+    // its filters (vtkPolyDataNormals) then crash.
+    const vtkIdType least[4] = { 1, 2, 3, 3 };
+    for (int k = 0; k < 4; ++k)
+    {
+      vtkIdType cell = 0, size = 0;
+      if (FindShortCell(cellArrays[k].first, least[k], cell, size))
+      {
+        Fail(path, cellArrays[k].second + " " + std::to_string(cell + 1) + " of " +
+            std::to_string(cellArrays[k].first->GetNumberOfCells()) + " has " + std::to_string(size) +
+            " point(s); a " + cellArrays[k].second + " needs at least " + std::to_string(least[k]));
+      }
+    }
   }
   else if (auto* grid = vtkUnstructuredGrid::SafeDownCast(data))
   {

@@ -112,7 +112,8 @@ vtkIdType NearestSphere(const PickRay& ray, vtkPolyData* centres, double& t)
 std::string PickPixel(const Scene& scene, const Pixel& pixel, int height)
 {
   std::ostringstream report;
-  report << std::setprecision(9);
+  // Every digit a double holds: a pick far from the origin (1e8) keeps its place.
+  report << std::setprecision(std::numeric_limits<double>::max_digits10);
   // Image rows run top down, VTK's display coordinates bottom up; the ray
   // goes through the pixel's centre, as the image's own rays do.
   const double x = pixel.X + 0.5, y = height - 1 - pixel.Y + 0.5;

@@ -214,7 +214,7 @@ vtkSmartPointer<vtkDataObject> ReadData(const std::string& path, CapturingOutput
   ThrowIfCaptured(output, path);
   // Readers pass a face's out-of-range index through; normals and links
   // would then index past the points.
-  CheckPointIds(data, path);
+  CheckCells(data, path);
   return data;
 }
 
@@ -268,7 +268,7 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path, CapturingOutputWi
     vtkNew<vtkCellArray> strips;
     ReadPlyStrips(path, strips);
     mesh->SetStrips(strips);
-    CheckPointIds(mesh, path);
+    CheckCells(mesh, path);
   }
   if (!mesh || mesh->GetNumberOfPoints() == 0)
   {

@@ -23,6 +23,7 @@
 #include "vtkUnstructuredGrid.h"
 #include "vtkUnstructuredGridWriter.h"
 #include "vtkXMLPolyDataReader.h"
+#include "vtkXMLPolyDataWriter.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <sys/wait.h>
@@ -276,6 +277,36 @@ void TestPick()
     "/pick-sphere.png'");
   Check(r.Code == 0 && Contains(r.Output, "pick \\(2, 2\\): nothing"), "sphere: corner picks nothing");
 
+  // The same sphere (double points) 1e8 from the origin: the point printed
+  // keeps every digit, so it still lies at the radius from the centre.
+  {
+    vtkNew<vtkSphereSource> far;
+    far->SetRadius(2.0);
+    far->SetCenter(1e8, 1e8, 1e8);
+    far->SetThetaResolution(32);
+    far->SetPhiResolution(32);
+    far->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetInputConnection(far->GetOutputPort());
+    const std::string farPath = Tmp + "/far-sphere.vtp";
+    writer->SetFileName(farPath.c_str());
+    writer->Write();
+    r = RunApp("'" + farPath + "' --size 200x200 --frames 0 --pick 100 100 --output '" + Tmp + "/pick-far.png'");
+    Check(r.Code == 0 && ParsePick(r.Output, cell, p), "far sphere: pick reports a cell and a point");
+    const double dx = p[0] - 1e8, dy = p[1] - 1e8, dz = p[2] - 1e8;
+    const double farRadius = std::sqrt(dx * dx + dy * dy + dz * dz);
+    Check(std::abs(farRadius - 2.0) < 0.02,
+      "far sphere: the printed point lies " + std::to_string(farRadius) + " from the centre (radius 2)");
+  }
+
+  // Looking straight down the default view up: a note, another view up,
+  // and the sphere drawn (VTK would draw nothing).
+  r = RunApp("'" + stl + "' --size 200x200 --frames 0 --camera-position 0,10,0 --camera-focal-point 0,0,0 "
+             "--output '" + Tmp + "/top-down.png'");
+  Check(r.Code == 0 && Contains(r.Output, "note: the view up is along the view direction"),
+    "top-down view: exit 0 and a note on the view up");
+  CheckImage(Tmp + "/top-down.png", 200, 200, 0.3);
+
   // Demo scene: the centre pixel lies on the bunny; the point lies on the
   // reported cell of bunny.vtp.
   r = RunApp("--demo --size 300x200 --frames 0 --pick 150 100 --output '" + Tmp + "/pick-demo.png'");
@@ -390,6 +421,8 @@ void TestBadArguments()
     { "--demo --pick 5", 2, "--pick needs a value" },
     { "--demo --size 100x100 --pick 100 5", 2, "--pick 100 5 is outside the 100x100 image" },
     { "--demo --frobnicate", 2, "unknown option '--frobnicate'" },
+    { "--demo --camera-position 0,10,0 --camera-focal-point 0,0,0 --camera-view-up 0,-2,0", 2,
+      "--camera-view-up is parallel to the view direction" },
     { "--demo '" + noExt + "'", 2, "either --demo or a mesh file, not both" },
     { "'" + Tmp + "/does-not-exist.stl'", 1, "cannot read mesh .*does-not-exist.stl.*no such file" },
     { "'" + garbage + "'", 1, "cannot read mesh .*garbage.ply" },
@@ -494,6 +527,15 @@ void TestBadFiles()
                                  "0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 9\nCELL_TYPES 1\n5\n");
   CheckBadFile(Tmp + "/index.vtk",
     "cell 1 of 1 refers to point id 9 but the mesh has 3 points \\(ids 0 to 2\\)");
+  // A face of two points, an empty one, a legacy polygon of two: VTK's
+  // polydata cannot build its cells past them and its normals crash.
+  WriteText(Tmp + "/two-point-face.ply", plyHeader + triangle + "2 0 1\n");
+  CheckBadFile(Tmp + "/two-point-face.ply", "polygon 1 of 1 has 2 point\\(s\\); a polygon needs at least 3");
+  WriteText(Tmp + "/empty-face.ply", plyHeader + triangle + "0\n");
+  CheckBadFile(Tmp + "/empty-face.ply", "polygon 1 of 1 has 0 point\\(s\\); a polygon needs at least 3");
+  WriteText(Tmp + "/two-point.vtk", "# vtk DataFile Version 3.0\nbad\nASCII\nDATASET POLYDATA\n"
+                                     "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nPOLYGONS 2 7\n3 0 1 2\n2 1 2\n");
+  CheckBadFile(Tmp + "/two-point.vtk", "polygon 2 of 2 has 2 point\\(s\\); a polygon needs at least 3");
   WriteText(Tmp + "/missing-face.ply", plyHeader.substr(0, plyHeader.find("face 1")) + "face 2" +
       plyHeader.substr(plyHeader.find("face 1") + 6) + triangle + "3 0 1 2\n");
   CheckBadFile(Tmp + "/missing-face.ply", "face 2 of 2 is missing: the file ends before it");

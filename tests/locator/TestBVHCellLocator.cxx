@@ -21,6 +21,9 @@ int TestContractFreshLocatorThreads();
 int TestContractZeroLengthSegment();
 int TestContractZeroAreaClosestPoint();
 int TestContractMovedFloatPoints();
+int TestContractReplacedPoints();
+int TestContractFindCellOnSurfaces();
+int TestContractCellsVTKCannotRead();
 int TestRobustLargeMesh();
 int TestPickerTriangles();
 int TestPickerQuads();
@@ -49,6 +52,9 @@ int main(int argc, char* argv[])
     { "ZeroLengthSegment", TestContractZeroLengthSegment },
     { "ZeroAreaClosestPoint", TestContractZeroAreaClosestPoint },
     { "MovedFloatPoints", TestContractMovedFloatPoints },
+    { "ReplacedPoints", TestContractReplacedPoints },
+    { "FindCellOnSurfaces", TestContractFindCellOnSurfaces },
+    { "CellsVTKCannotRead", TestContractCellsVTKCannotRead },
     { "LargeMesh", TestRobustLargeMesh },
     { "PickerTriangles", TestPickerTriangles }, { "PickerQuads", TestPickerQuads },
     { "WarpedQuadsAndPolygons", TestWarpedQuadsAndPolygons },

@@ -1,8 +1,11 @@
 // VTK-contract tests from the adversarial review (issue 24): cells with
 // out-of-range point ids, concurrent first queries of an unbuilt locator,
-// zero-length segments, float points moved under UseExistingSearchStructure.
+// zero-length segments, float points moved or replaced under
+// UseExistingSearchStructure, FindCell on surfaces, cells VTK cannot read.
 #include "LocatorTestUtils.h"
 #include "vtkBVHCellLocator.h"
+#include "vtkCellLocator.h"
+#include "vtkGenericCell.h"
 #include "vtkSphereSource.h"
 #include "vtkStaticCellLocator.h"
 #include "vtkSurfaceTriangulation.h"
@@ -623,5 +626,159 @@ int TestContractMovedFloatPoints()
   loc->ForceBuildLocator();
   LT_CHECK(loc->IntersectWithLine(segs[0].P1, segs[0].P2, 0.0, t, x, pc, sub, cellId) == 1);
   LT_CHECK(catcher->Errors.size() == 3);
+  return 0;
+}
+
+/// A points array replaced (SetPoints) under UseExistingSearchStructure,
+/// turned on before or after the build, float or double points: one error a
+/// query and no hit where the old points were (the kept trees are over
+/// them); a rebuild follows the new points.
+int TestContractReplacedPoints()
+{
+  for (const bool doublePoints : { false, true })
+  {
+    for (const bool onBeforeBuild : { false, true })
+    {
+      vtkNew<vtkSphereSource> source;
+      source->SetOutputPointsPrecision(doublePoints ? vtkAlgorithm::DOUBLE_PRECISION : vtkAlgorithm::SINGLE_PRECISION);
+      source->Update();
+      vtkNew<vtkPolyData> pd;
+      pd->DeepCopy(source->GetOutput());
+      vtkNew<ErrorCatcher> catcher;
+      vtkNew<vtkBVHCellLocator> loc;
+      catcher->Watch(loc);
+      loc->SetDataSet(pd);
+      loc->SetUseExistingSearchStructure(onBeforeBuild);
+      loc->BuildLocator();
+      loc->UseExistingSearchStructureOn();
+      double t, x[3], pc[3];
+      int sub;
+      vtkIdType cellId;
+      double oldP1[3] = { 0, 0, 2 }, oldP2[3] = { 0, 0, -2 }, newP1[3] = { 0, 0, 12 }, newP2[3] = { 0, 0, 8 };
+      LT_CHECK(loc->IntersectWithLine(oldP1, oldP2, 0.0, t, x, pc, sub, cellId) == 1);
+      vtkNew<vtkPoints> moved;
+      moved->SetDataType(pd->GetPoints()->GetDataType());
+      moved->DeepCopy(pd->GetPoints());
+      MoveAlongZ(moved, 10.0);
+      pd->SetPoints(moved);
+      const int oldHit = loc->IntersectWithLine(oldP1, oldP2, 0.0, t, x, pc, sub, cellId);
+      std::cout << (doublePoints ? "double" : "float") << " points, UseExisting "
+                << (onBeforeBuild ? "before" : "after") << " the build: hit at the old place " << oldHit
+                << ", " << catcher->Errors.size() << " error(s)" << std::endl;
+      LT_CHECK(oldHit == 0);
+      LT_CHECK(catcher->Errors.size() == 1 &&
+        catcher->Errors[0].find("replaced") != std::string::npos);
+      loc->ForceBuildLocator();
+      LT_CHECK(loc->IntersectWithLine(newP1, newP2, 0.0, t, x, pc, sub, cellId) == 1 &&
+        std::abs(x[2] - 10.5) < 1e-3);
+      LT_CHECK(catcher->Errors.size() == 1);
+    }
+  }
+  return 0;
+}
+
+/// FindCell answers as VTK 9.1's locators, which do not use tol2: the
+/// lowest-id cell whose bounds hold the point and whose EvaluatePosition
+/// says inside, so on a surface a point near a triangle, within its bounds,
+/// is located; vtkCellLocator returns the same cells (vtkStaticCellLocator
+/// tests its bin's cells without their bounds and locates more).
+int TestContractFindCellOnSurfaces()
+{
+  auto pd = MakeBumpySphere(30);
+  vtkNew<vtkBVHCellLocator> loc;
+  loc->SetDataSet(pd);
+  loc->BuildLocator();
+  vtkNew<vtkCellLocator> vtkLoc;
+  vtkLoc->SetDataSet(pd);
+  vtkLoc->BuildLocator();
+  Random rng(4242);
+  vtkNew<vtkGenericCell> cell, c2;
+  std::vector<double> w(static_cast<size_t>(pd->GetMaxCellSize()));
+  int located = 0, asBruteForce = 0, asVTK = 0;
+  const int n = 400;
+  for (int i = 0; i < n; ++i)
+  {
+    // A point near a random vertex, off the surface by up to 2% of the radius.
+    double x[3];
+    pd->GetPoint(static_cast<vtkIdType>(rng.Next(0, pd->GetNumberOfPoints() - 1)), x);
+    for (int k = 0; k < 3; ++k)
+    {
+      x[k] += rng.Next(-0.02, 0.02);
+    }
+    double pc[3];
+    const vtkIdType ours = loc->FindCell(x, 0.0, cell, pc, w.data());
+    LT_CHECK(loc->FindCell(x, 1.0, cell, pc, w.data()) == ours); // tol2 not used
+    vtkIdType ref = -1;
+    for (vtkIdType c = 0; c < pd->GetNumberOfCells() && ref < 0; ++c)
+    {
+      pd->GetCell(c, c2);
+      const double* b = c2->GetBounds();
+      double cp[3], pc2[3], d2;
+      int sub;
+      if (x[0] >= b[0] && x[0] <= b[1] && x[1] >= b[2] && x[1] <= b[3] && x[2] >= b[4] && x[2] <= b[5] &&
+        c2->EvaluatePosition(x, cp, sub, pc2, d2, w.data()) == 1)
+      {
+        ref = c;
+      }
+    }
+    located += ours >= 0 ? 1 : 0;
+    asBruteForce += ours == ref ? 1 : 0;
+    asVTK += ours == vtkLoc->FindCell(x) ? 1 : 0;
+  }
+  std::cout << "FindCell near a surface: located " << located << "/" << n << ", as brute force " << asBruteForce
+            << ", as vtkCellLocator " << asVTK << std::endl;
+  LT_CHECK(located > n / 10);
+  LT_CHECK(asBruteForce == n);
+  LT_CHECK(asVTK == n);
+  return 0;
+}
+
+/// A polygon, strip or line VTK cannot represent (fewer points than its
+/// kind needs): vtkPolyData cannot build its cell map, so VTK's GetCell
+/// would crash; the build reports one error, no query answers, none crashes.
+int TestContractCellsVTKCannotRead()
+{
+  for (const int kind : { 0, 1, 2 })
+  {
+    vtkNew<vtkPoints> pts;
+    const double corners[4][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 1, 1, 0 } };
+    for (const auto& c : corners)
+    {
+      pts->InsertNextPoint(c);
+    }
+    vtkNew<vtkCellArray> polys, strips;
+    const vtkIdType tri[3] = { 0, 1, 2 }, two[2] = { 1, 3 };
+    polys->InsertNextCell(3, tri);
+    if (kind == 0)
+    {
+      polys->InsertNextCell(2, two);
+    }
+    else if (kind == 1)
+    {
+      polys->InsertNextCell(0, two);
+    }
+    else
+    {
+      strips->InsertNextCell(2, two);
+    }
+    vtkNew<vtkPolyData> pd;
+    pd->SetPoints(pts);
+    pd->SetPolys(polys);
+    pd->SetStrips(strips);
+    vtkNew<ErrorCatcher> catcher;
+    vtkNew<vtkBVHCellLocator> loc;
+    catcher->Watch(loc);
+    loc->SetDataSet(pd);
+    loc->BuildLocator();
+    LT_CHECK(catcher->Errors.size() == 1 && catcher->Errors[0].find("cannot represent") != std::string::npos);
+    double p1[3] = { 0.2, 0.2, 1 }, p2[3] = { 0.2, 0.2, -1 }, t, x[3], pc[3], d2;
+    int sub;
+    vtkIdType cellId = 7;
+    LT_CHECK(loc->IntersectWithLine(p1, p2, 0.0, t, x, pc, sub, cellId) == 0);
+    loc->FindClosestPoint(p1, x, cellId, sub, d2);
+    LT_CHECK(cellId == -1);
+    LT_CHECK(loc->FindCell(p1) == -1);
+    LT_CHECK(catcher->Errors.size() == 1);
+  }
   return 0;
 }
