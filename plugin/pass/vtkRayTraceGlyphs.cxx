@@ -6,6 +6,7 @@
 #include "vtkActor.h"
 #include "vtkAlgorithm.h"
 #include "vtkAlgorithmOutput.h"
+#include "vtkBitArray.h"
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
@@ -340,7 +341,9 @@ GlyphPrimitives CollectGlyphPrimitives(
   const int orientationMode = mapper->GetOrientationMode();
   const double r0 = sphere.Radius;
   const double* sourceCenter = sphere.Center.data();
-  vtkDataArray* mask = mapper->GetMasking() ? glyphArray(mapper, vtkGlyph3DMapper::MASK, input) : nullptr;
+  // As vtkOpenGLGlyph3DMapper: only a bit array masks (another is ignored).
+  vtkBitArray* mask =
+    mapper->GetMasking() ? vtkArrayDownCast<vtkBitArray>(glyphArray(mapper, vtkGlyph3DMapper::MASK, input)) : nullptr;
   const double* range = mapper->GetRange();
   double den = range[1] - range[0];
   if (den == 0.0)
@@ -355,7 +358,7 @@ GlyphPrimitives CollectGlyphPrimitives(
   const double factor = mapper->GetScaling() ? mapper->GetScaleFactor() : 1.0;
   for (vtkIdType i = 0; i < n; ++i)
   {
-    if (mask && mask->GetComponent(i, 0) == 0.0)
+    if (mask && mask->GetValue(i * mask->GetNumberOfComponents()) == 0)
     {
       continue;
     }

@@ -18,6 +18,10 @@
 //                       mismatches), id mode naming the analytic nearest
 //                       ellipsoid, shading close to VTK's raster, shadows
 #include "vtkrtPassTestUtils.h"
+
+#include "vtkUnsignedCharArray.h"
+
+#include "vtkBitArray.h"
 #include "vtkrtTestOutputWindow.h"
 
 #include "vtkrt/core/Ray.h"
@@ -657,6 +661,59 @@ void TestEllipsoids()
   }
   NoVTKOutput("ellipsoids");
 }
+/// Glyph masking as vtkOpenGLGlyph3DMapper does it: a one-component bit
+/// array hides the glyphs of its zero entries; an array of another type is
+/// ignored (raster draws every glyph), so the pass draws every glyph too.
+void TestMasking()
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetResolution(5, 5);
+  plane->Update();
+  vtkNew<vtkPolyData> points;
+  points->SetPoints(plane->GetOutput()->GetPoints());
+  const vtkIdType n = points->GetNumberOfPoints();
+  vtkNew<vtkBitArray> bits;
+  bits->SetName("bits");
+  vtkNew<vtkUnsignedCharArray> bytes;
+  bytes->SetName("bytes");
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    bits->InsertNextValue(i % 3 == 0 ? 1 : 0);
+    bytes->InsertNextValue(i % 3 == 0 ? 1 : 0);
+  }
+  points->GetPointData()->AddArray(bits);
+  points->GetPointData()->AddArray(bytes);
+  vtkNew<vtkSphereSource> source;
+  source->SetRadius(0.06);
+  source->SetThetaResolution(24);
+  source->SetPhiResolution(24);
+  const double black[3] = { 0, 0, 0 };
+  long drawn[2] = { 0, 0 };
+  for (const bool bitMask : { true, false })
+  {
+    const std::string name = bitMask ? "bit-array mask" : "unsigned char mask (ignored, as raster)";
+    auto win = MakeWindow(240, 240);
+    vtkNew<vtkRenderer> ren;
+    win->AddRenderer(ren);
+    vtkNew<vtkGlyph3DMapper> mapper;
+    mapper->SetInputData(points);
+    mapper->SetSourceConnection(source->GetOutputPort());
+    mapper->ScalingOff();
+    mapper->ScalarVisibilityOff();
+    mapper->MaskingOn();
+    mapper->SetMaskArray(bitMask ? "bits" : "bytes");
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    ren->AddActor(actor);
+    ren->ResetCamera();
+    const RasterAndTraced frames = CompareBlurred(win, ren, name, 1, 3.0, bitMask ? "MaskingBits" : "MaskingBytes");
+    drawn[bitMask ? 0 : 1] = CountForegroundPixels(frames.Traced, black);
+    NoVTKOutput(name);
+  }
+  Check(drawn[0] > 0 && drawn[1] > 2 * drawn[0],
+    "the bit mask hides two glyphs in three (" + std::to_string(drawn[0]) + " pixels against " +
+      std::to_string(drawn[1]) + " unmasked)");
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -665,5 +722,6 @@ int main(int argc, char* argv[])
   return RunCase(argc, argv,
     { { "ScreenSizedPoints", TestScreenSizedPoints },
       { "AxisAlignedSilhouettes", TestAxisAlignedSilhouettes },
-      { "OrientedGlyphs", TestOrientedGlyphs }, { "Ellipsoids", TestEllipsoids } });
+      { "OrientedGlyphs", TestOrientedGlyphs }, { "Ellipsoids", TestEllipsoids },
+      { "Masking", TestMasking } });
 }
