@@ -210,6 +210,20 @@ public:
     }
   };
   CopyTime CopiedCoordsTime;
+  /// MultiTriangleCellReach's value, once computed (negative before; a
+  /// copy starts over).
+  struct LazyReach
+  {
+    std::atomic<double> Value{ -1.0 };
+    LazyReach() = default;
+    LazyReach(const LazyReach&) {}
+    LazyReach& operator=(const LazyReach&)
+    {
+      this->Value.store(-1.0);
+      return *this;
+    }
+  };
+  mutable LazyReach CellReach;
   /// Original cell id per triangle (in extraction order, sized but not
   /// written when UniformCellBase gives the ids).
   TriangleArray<vtkIdType> TriCell;
@@ -515,6 +529,11 @@ private:
     const vtkIdType nTri = this->NumberOfTriangles();
     return static_cast<vtkIdType>(prim) < nTri ? this->TriCell[prim] : this->GenCell[prim - nTri];
   }
+
+  /// The largest extent (local units) of a cell made of several triangles
+  /// (a quad, polygon or strip): a point its bounds hold may lie that far
+  /// from all its triangles' boxes. Computed at the first FindCell.
+  double MultiTriangleCellReach() const;
 
   // Builds
   void BuildDeferredTree() const;

@@ -118,17 +118,23 @@ void OrientForUp(vtkCamera* camera, const std::string& up)
 }
 
 // A view up along the view direction leaves the image's up undefined (VTK
-// draws nothing): the axis least along the direction replaces it, and a
-// note says so. (A --camera-view-up given so is a usage error.)
-void KeepViewUpOffViewDirection(vtkCamera* camera)
+// draws nothing). One the user gave is a usage error; another (the
+// default up, or any after an orbit) is replaced by the axis least along
+// the direction, with a note.
+void KeepViewUpOffViewDirection(vtkCamera* camera, bool userGiven)
 {
   double dop[3], up[3], cross[3];
   camera->GetDirectionOfProjection(dop);
   camera->GetViewUp(up);
+  vtkMath::Normalize(up);
   vtkMath::Cross(dop, up, cross);
-  if (vtkMath::Norm(cross) > 1e-6 * vtkMath::Norm(up))
+  if (vtkMath::Norm(cross) > 1e-6)
   {
     return;
+  }
+  if (userGiven)
+  {
+    throw UsageError{ "--camera-view-up is parallel to the view direction: the image's up is undefined" };
   }
   int axis = 0;
   for (int k = 1; k < 3; ++k)
@@ -139,7 +145,7 @@ void KeepViewUpOffViewDirection(vtkCamera* camera)
   replacement[axis] = 1.0;
   camera->SetViewUp(replacement);
   std::cerr << "vtkrt-render: note: the view up is along the view direction; using +" << char('X' + axis)
-            << " as the view up (set --camera-view-up to choose)\n";
+            << " as the view up\n";
 }
 
 // The explicit placement of --camera-*: what is given replaces what the
@@ -158,10 +164,7 @@ void PlaceCamera(vtkCamera* camera, const CameraOptions& c)
   {
     camera->SetViewUp(c.ViewUp.data());
   }
-  else
-  {
-    KeepViewUpOffViewDirection(camera);
-  }
+  KeepViewUpOffViewDirection(camera, c.ViewUpGiven);
   camera->OrthogonalizeViewUp();
 }
 } // namespace
@@ -183,7 +186,7 @@ void AimCamera(Scene& scene, const Options& opt)
     }
     camera->Azimuth(opt.Azimuth);
     camera->Elevation(opt.Elevation);
-    KeepViewUpOffViewDirection(camera);
+    KeepViewUpOffViewDirection(camera, false);
     camera->OrthogonalizeViewUp();
   }
   else

@@ -1,7 +1,5 @@
 #include "RenderOptions.h"
 
-#include "vtkMath.h"
-
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -455,19 +453,6 @@ void CheckCombination(const Options& opt)
   if (c.ViewUpGiven && c.ViewUp == Vector3{ 0.0, 0.0, 0.0 })
   {
     throw UsageError{ "--camera-view-up must not be 0,0,0" };
-  }
-  if (c.ViewUpGiven && c.PositionGiven && c.FocalPointGiven)
-  {
-    const Vector3& p = c.Position;
-    const Vector3& f = c.FocalPoint;
-    const double d[3] = { f[0] - p[0], f[1] - p[1], f[2] - p[2] };
-    double cross[3];
-    vtkMath::Cross(d, c.ViewUp.data(), cross);
-    if (vtkMath::Norm(cross) <= 1e-12 * vtkMath::Norm(d) * vtkMath::Norm(c.ViewUp.data()))
-    {
-      throw UsageError{ "--camera-view-up is parallel to the view direction (from --camera-position "
-                        "to --camera-focal-point): the image's up is undefined" };
-    }
   }
 }
 

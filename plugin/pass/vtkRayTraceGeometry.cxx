@@ -515,6 +515,8 @@ std::unique_ptr<Geometry> BuildScreenSpheres(
     g->SphereCellIds.resize(g->SphereIds.size());
     std::transform(g->SphereIds.begin(), g->SphereIds.end(), g->SphereCellIds.begin(),
       [&](std::uint32_t point) { return firstCell[point]; });
+    // What selection reports: its high-24-bit pass runs only past 2^24.
+    g->MaximumId = *std::max_element(g->SphereCellIds.begin(), g->SphereCellIds.end());
   }
   return g;
 }

@@ -84,7 +84,7 @@ GeometryPlacement placeAtEnd(const Geometry& g, GeometrySizes& sizes)
 std::uint32_t SphereCellIdBase(const Geometry& g, const GeometryPlacement& place)
 {
   // Word 4 (base + records) is the first cell id: less the base, so that
-  // adding a sphere's texel index (base + k) reads the k-th (uint wraps).
+  // adding a sphere's texel index (base + k) reads the k-th.
   return g.SphereCellIds.empty()
     ? 0u
     : 4u * (place.PrimitiveBase + static_cast<std::uint32_t>(sphereRecordTexelsOf(g))) - place.PrimitiveBase;

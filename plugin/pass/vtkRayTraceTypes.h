@@ -97,7 +97,7 @@ struct Geometry
   core::HugePageArray<core::gpu::Normal> Normals; ///< per point, empty if none
   core::HugePageArray<core::gpu::Normal> CellNormals; ///< per VTK cell id, empty if none
   std::size_t PrimitiveCount = 0;
-  std::uint32_t MaximumId = 0; ///< the largest VTK cell (triangles) or point (spheres) id
+  std::uint32_t MaximumId = 0; ///< the largest VTK id reported: cell (triangles, point spheres) or point (glyphs)
   std::size_t VertexCount = 0;
   std::size_t SkippedPrimitives = 0; ///< NaN or degenerate, never traced
   std::uint32_t MaxDepth = core::kMaxDepth; ///< its BVH's deepest node (the root: 0)

@@ -306,6 +306,12 @@ void TestPick()
   Check(r.Code == 0 && Contains(r.Output, "note: the view up is along the view direction"),
     "top-down view: exit 0 and a note on the view up");
   CheckImage(Tmp + "/top-down.png", 200, 200, 0.3);
+  // A view up given along the default view direction (no position given):
+  // a usage error, not a blank image.
+  r = RunApp("'" + stl + "' --size 200x200 --frames 0 --camera-focal-point 0,0,0 --camera-view-up 0,0,1 "
+             "--output '" + Tmp + "/blank.png'");
+  Check(r.Code == 2 && Contains(r.Output, "--camera-view-up is parallel to the view direction"),
+    "a view up along the default view direction: exit 2");
 
   // Demo scene: the centre pixel lies on the bunny; the point lies on the
   // reported cell of bunny.vtp.

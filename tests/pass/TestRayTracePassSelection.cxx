@@ -24,6 +24,7 @@
 #include "vtkWorldPointPicker.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -454,9 +455,11 @@ std::set<vtkIdType> CellsAt(vtkRenderer* ren, const std::array<int, 2>& d)
 
 /// Points drawn as spheres report the cell that holds them, as raster does
 /// (the first in VTK's numbering: verts, lines, polygons): one-point verts
-/// in reverse order, a poly-vertex, points shared with a triangle (points
-/// representation, where a point of the triangle alone reports it too), a
-/// point on a coordinate plane; cell scalars color each sphere by that cell.
+/// in reverse order, a poly-vertex, points shared with two triangles (points
+/// representation, where a point of the triangles alone reports the first
+/// of them), a point on a coordinate plane; cell scalars color each sphere by
+/// that cell. A second actor (a shifted copy) puts its spheres' cell ids
+/// past the first's in the sphere buffer.
 void TestPointCells()
 {
   vtkNew<vtkPoints> points;
@@ -465,7 +468,8 @@ void TestPointCells()
     // Point 0 at the origin: a zero coordinate once scaled the sphere away.
     points->InsertNextPoint(0.4 * i, i % 2 == 0 ? 0.0 : 0.3, 0.0);
   }
-  points->InsertNextPoint(1.4, 0.9, 0.0); // in the triangle alone
+  points->InsertNextPoint(1.4, 0.9, 0.0); // in the two triangles alone
+  points->InsertNextPoint(2.2, 1.0, 0.0); // in the second triangle alone
   vtkNew<vtkCellArray> verts;
   for (vtkIdType k = 0; k < 5; ++k)
   {
@@ -475,68 +479,84 @@ void TestPointCells()
   const vtkIdType many[5] = { 9, 8, 7, 6, 5 };
   verts->InsertNextCell(5, many);
   vtkNew<vtkCellArray> polys;
-  const vtkIdType triangle[3] = { 3, 4, 10 };
-  polys->InsertNextCell(3, triangle);
+  const vtkIdType first[3] = { 3, 4, 10 }, second[3] = { 4, 11, 10 };
+  polys->InsertNextCell(3, first);
+  polys->InsertNextCell(3, second);
   vtkNew<vtkPolyData> poly;
   poly->SetPoints(points);
   poly->SetVerts(verts);
   poly->SetPolys(polys);
   vtkNew<vtkUnsignedCharArray> cellColors;
   cellColors->SetNumberOfComponents(3);
-  for (int c = 0; c < 7; ++c)
+  for (int c = 0; c < 8; ++c)
   {
-    const unsigned char rgb[3] = { static_cast<unsigned char>(40 * c), static_cast<unsigned char>(255 - 30 * c),
+    const unsigned char rgb[3] = { static_cast<unsigned char>(30 * c), static_cast<unsigned char>(255 - 30 * c),
       static_cast<unsigned char>(c % 2 == 0 ? 200 : 60) };
     cellColors->InsertNextTypedTuple(rgb);
   }
   poly->GetCellData()->SetScalars(cellColors);
+  const double shift[3] = { 0.0, 1.6, 0.0 };
+  vtkSmartPointer<vtkPolyData> shifted = Shifted(poly, shift);
   for (const bool pointsRepresentation : { false, true })
   {
     const std::string label = pointsRepresentation ? "points representation" : "verts";
     auto win = MakeWindow(W, H);
     vtkNew<vtkRenderer> ren;
     win->AddRenderer(ren);
-    vtkSmartPointer<vtkActor> actor = MeshActor(poly);
-    actor->GetMapper()->ScalarVisibilityOn();
-    actor->GetMapper()->SetScalarModeToUseCellData();
-    actor->GetProperty()->RenderPointsAsSpheresOn();
-    actor->GetProperty()->SetPointSize(16);
-    if (pointsRepresentation)
+    for (vtkPolyData* data : { poly.Get(), shifted.Get() })
     {
-      actor->GetProperty()->SetRepresentationToPoints();
+      vtkSmartPointer<vtkActor> actor = MeshActor(data);
+      actor->GetMapper()->ScalarVisibilityOn();
+      actor->GetMapper()->SetScalarModeToUseCellData();
+      actor->GetProperty()->RenderPointsAsSpheresOn();
+      actor->GetProperty()->SetPointSize(16);
+      if (pointsRepresentation)
+      {
+        actor->GetProperty()->SetRepresentationToPoints();
+      }
+      ren->AddActor(actor);
     }
-    ren->AddActor(actor);
     ren->ResetCamera();
+    // The spheres' centres: under verts, only the verts' points are
+    // spheres (a triangle's corner pixel may go to either triangle).
+    std::vector<std::array<int, 2>> pixels;
+    auto project = [&]() {
+      pixels.clear();
+      for (vtkPolyData* data : { poly.Get(), shifted.Get() })
+      {
+        for (vtkIdType i = 0; i < (pointsRepresentation ? data->GetNumberOfPoints() : 10); ++i)
+        {
+          ren->SetWorldPoint(data->GetPoint(i)[0], data->GetPoint(i)[1], 0.0, 1.0);
+          ren->WorldToDisplay();
+          const double* d = ren->GetDisplayPoint();
+          pixels.push_back({ { static_cast<int>(d[0]), static_cast<int>(d[1]) } });
+        }
+      }
+    };
     win->Render();
+    project();
     const auto rasterImage = Grab(win);
     std::vector<std::set<vtkIdType>> rasterCells;
-    for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+    for (const auto& pixel : pixels)
     {
-      ren->SetWorldPoint(points->GetPoint(i)[0], points->GetPoint(i)[1], 0.0, 1.0);
-      ren->WorldToDisplay();
-      const double* d = ren->GetDisplayPoint();
-      rasterCells.push_back(CellsAt(ren, { { static_cast<int>(d[0]), static_cast<int>(d[1]) } }));
+      rasterCells.push_back(CellsAt(ren, pixel));
     }
     vtkNew<vtkRayTracePass> pass;
     ren->SetPass(pass);
     win->Render();
     const auto tracedImage = Grab(win);
-    Check(pass->GetNumberOfTracedProps() == 1, label + ": traced");
+    Check(pass->GetNumberOfTracedProps() == 2, label + ": traced");
     int same = 0;
     std::ostringstream got;
-    for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+    for (std::size_t i = 0; i < pixels.size(); ++i)
     {
-      ren->SetWorldPoint(points->GetPoint(i)[0], points->GetPoint(i)[1], 0.0, 1.0);
-      ren->WorldToDisplay();
-      const double* d = ren->GetDisplayPoint();
-      const std::set<vtkIdType> cells = CellsAt(ren, { { static_cast<int>(d[0]), static_cast<int>(d[1]) } });
-      // (The triangle's corner pixel, no sphere under verts, may miss it.)
-      const bool drawn = cells.size() == 1 || (!pointsRepresentation && i == 10);
-      same += cells == rasterCells[static_cast<std::size_t>(i)] && drawn ? 1 : 0;
+      const std::set<vtkIdType> cells = CellsAt(ren, pixels[i]);
+      same += cells == rasterCells[i] && cells.size() == 1 ? 1 : 0;
       got << " " << (cells.empty() ? -1 : *cells.begin()) << "/"
-          << (rasterCells[static_cast<std::size_t>(i)].empty() ? -1 : *rasterCells[static_cast<std::size_t>(i)].begin());
+          << (rasterCells[i].empty() ? -1 : *rasterCells[i].begin());
     }
-    Check(same == points->GetNumberOfPoints(), label + ": each point's sphere selects raster's cell (traced/raster:" + got.str() + ")");
+    Check(same == static_cast<int>(pixels.size()),
+      label + ": each point's sphere selects raster's cell (traced/raster:" + got.str() + ")");
     const double rmse = RootMeanSquareError(Blurred(rasterImage), Blurred(tracedImage));
     Check(rmse < 8.0, label + ": the spheres' cell colors as raster's (blurred RMSE " + std::to_string(rmse) + ")");
     if (rmse >= 8.0)
