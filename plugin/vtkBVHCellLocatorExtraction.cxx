@@ -74,8 +74,38 @@ void BVHCellLocatorData::Extract(vtkDataSet* ds)
   {
     this->SrcVerts = this->TriVerts.data();
   }
+  this->ComputeMultiTriangleCellReach();
   this->WarmUpCellAccess(ds);
   this->ComputeGeneralBoxes(ds);
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::ComputeMultiTriangleCellReach()
+{
+  this->MultiTriangleCellReach = 0.0;
+  const vtkIdType n = this->NumberOfTriangles();
+  if (this->UniformCellBase >= 0 || n == 0)
+  {
+    return; // one triangle a cell
+  }
+  Box cell;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    if (i > 0 && this->TriCell[i] != this->TriCell[i - 1])
+    {
+      cell = Box();
+    }
+    if (this->TriFlags[i] & WholeTriangle)
+    {
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      cell.extend(this->LocalPoint(this->SrcVerts[3 * static_cast<std::size_t>(i) + k]));
+    }
+    const Vec3d e = cell.max - cell.min;
+    this->MultiTriangleCellReach = std::max({ this->MultiTriangleCellReach, e.x, e.y, e.z });
+  }
 }
 
 //------------------------------------------------------------------------------

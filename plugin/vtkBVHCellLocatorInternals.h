@@ -210,20 +210,10 @@ public:
     }
   };
   CopyTime CopiedCoordsTime;
-  /// MultiTriangleCellReach's value, once computed (negative before; a
-  /// copy starts over).
-  struct LazyReach
-  {
-    std::atomic<double> Value{ -1.0 };
-    LazyReach() = default;
-    LazyReach(const LazyReach&) {}
-    LazyReach& operator=(const LazyReach&)
-    {
-      this->Value.store(-1.0);
-      return *this;
-    }
-  };
-  mutable LazyReach CellReach;
+  /// The largest extent (local units) of a cell made of several triangles
+  /// (a quad, polygon or strip): a point its bounds hold may lie that far
+  /// from all its triangles' boxes, so FindCell looks that far.
+  double MultiTriangleCellReach = 0.0;
   /// Original cell id per triangle (in extraction order, sized but not
   /// written when UniformCellBase gives the ids).
   TriangleArray<vtkIdType> TriCell;
@@ -530,10 +520,9 @@ private:
     return static_cast<vtkIdType>(prim) < nTri ? this->TriCell[prim] : this->GenCell[prim - nTri];
   }
 
-  /// The largest extent (local units) of a cell made of several triangles
-  /// (a quad, polygon or strip): a point its bounds hold may lie that far
-  /// from all its triangles' boxes. Computed at the first FindCell.
-  double MultiTriangleCellReach() const;
+  /// Sets MultiTriangleCellReach from the extraction's triangles (a cell's
+  /// are consecutive there).
+  void ComputeMultiTriangleCellReach();
 
   // Builds
   void BuildDeferredTree() const;

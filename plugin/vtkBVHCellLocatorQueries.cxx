@@ -21,7 +21,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace vtkrt
@@ -686,37 +685,6 @@ bool BVHCellLocatorData::FindClosestPoint(
 }
 
 //------------------------------------------------------------------------------
-double BVHCellLocatorData::MultiTriangleCellReach() const
-{
-  const double known = this->CellReach.Value.load(std::memory_order_acquire);
-  if (known >= 0.0)
-  {
-    return known;
-  }
-  // (Threads that race here compute the same value.)
-  std::unordered_map<vtkIdType, Box> cells;
-  const vtkIdType nTri = this->NumberOfTriangles();
-  for (vtkIdType prim = 0; prim < nTri; ++prim)
-  {
-    if (!(this->TriangleFlags(static_cast<std::uint32_t>(prim)) & WholeTriangle))
-    {
-      Box& b = cells[this->PrimitiveCell(static_cast<std::uint32_t>(prim))];
-      const Box t = this->PrimitiveBox(static_cast<std::uint32_t>(prim));
-      b.extend(t.min);
-      b.extend(t.max);
-    }
-  }
-  double reach = 0.0;
-  for (const auto& entry : cells)
-  {
-    const Vec3d e = entry.second.max - entry.second.min;
-    reach = std::max({ reach, e.x, e.y, e.z });
-  }
-  this->CellReach.Value.store(reach, std::memory_order_release);
-  return reach;
-}
-
-//------------------------------------------------------------------------------
 vtkIdType BVHCellLocatorData::FindCell(
   const double xw[3], vtkDataSet* ds, vtkGenericCell* cell, double pcoords[3], double* weights) const
 {
@@ -731,7 +699,7 @@ vtkIdType BVHCellLocatorData::FindCell(
   {
     m = std::max({ m, std::abs(xw[k]), std::abs(this->Origin[k]) });
   }
-  const Vec3d slack(this->ToLocalLength(3e-6 * m) + this->MultiTriangleCellReach());
+  const Vec3d slack(this->ToLocalLength(3e-6 * m) + this->MultiTriangleCellReach);
   const Box q(x - slack, x + slack);
   // Candidates (cell id, primitive) in cell id order: a VTK_TRIANGLE cell
   // is filled from its kept point ids, not looked up in the dataset. The

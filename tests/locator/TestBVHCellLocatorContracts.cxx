@@ -730,6 +730,31 @@ int TestContractFindCellOnSurfaces()
   LT_CHECK(located > n / 10);
   LT_CHECK(asBruteForce == n);
   LT_CHECK(asVTK == n);
+
+  // A tilted quad whose bounds hold a point that neither box of its two
+  // fan triangles holds, and that projects into the quad.
+  vtkNew<vtkPoints> corners;
+  const double quadPoints[4][3] = { { 0, 0, 0 }, { 10, 1, 1 }, { 5, 5, 5 }, { 1, 10, 10 } };
+  for (const auto& c : quadPoints)
+  {
+    corners->InsertNextPoint(c);
+  }
+  vtkNew<vtkCellArray> quads;
+  const vtkIdType quad[4] = { 0, 1, 2, 3 };
+  quads->InsertNextCell(4, quad);
+  vtkNew<vtkPolyData> tilted;
+  tilted->SetPoints(corners);
+  tilted->SetPolys(quads);
+  vtkNew<vtkBVHCellLocator> quadLoc;
+  quadLoc->SetDataSet(tilted);
+  quadLoc->BuildLocator();
+  vtkNew<vtkCellLocator> quadVTK;
+  quadVTK->SetDataSet(tilted);
+  quadVTK->BuildLocator();
+  double x[3] = { 7.0, 0.5, 5.5 };
+  std::cout << "tilted quad: FindCell " << quadLoc->FindCell(x) << ", vtkCellLocator " << quadVTK->FindCell(x)
+            << std::endl;
+  LT_CHECK(quadVTK->FindCell(x) == 0 && quadLoc->FindCell(x) == 0);
   return 0;
 }
 
