@@ -304,11 +304,9 @@ bool BVHCellLocatorData::PointsReplaced(vtkDataSet* ds) const
   {
     return true;
   }
-  if (this->DataSetCoordsArray)
-  {
-    return pts->GetData() != this->DataSetCoordsArray;
-  }
-  return pts != this->CopiedPoints || pts->GetData() != this->CopiedCoordsArray;
+  // The coordinates' array is what counts: a new vtkPoints around the same
+  // array holds the same points.
+  return pts->GetData() != (this->DataSetCoordsArray ? this->DataSetCoordsArray.Get() : this->CopiedCoordsArray.Get());
 }
 
 //------------------------------------------------------------------------------

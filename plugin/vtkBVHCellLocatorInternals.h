@@ -485,8 +485,9 @@ public:
         this->DataSetCoordsArray->GetNumberOfTuples() >= this->NumberOfPoints);
   }
 
-  /// Whether `ds` now holds other points than the build read (SetPoints,
-  /// or another array in its vtkPoints): the trees are not over them.
+  /// Whether `ds` now holds another coordinates array than the build read
+  /// (SetPoints of other points, or another array in its vtkPoints): the
+  /// trees are not over them.
   bool PointsReplaced(vtkDataSet* ds) const;
   /// Whether the copied (non-double) points were modified, reallocated or
   /// shrunk since the copy.

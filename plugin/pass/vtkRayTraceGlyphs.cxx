@@ -252,7 +252,11 @@ bool FindGlyphArrays(vtkGlyph3DMapper* mapper, GlyphSet& set)
   set.Orientation =
     mapper->GetOrient() ? glyphArray(mapper, vtkGlyph3DMapper::ORIENTATION, input) : nullptr;
   const int components = mapper->GetOrientationMode() == vtkGlyph3DMapper::QUATERNION ? 4 : 3;
-  return !set.Orientation || set.Orientation->GetNumberOfComponents() == components;
+  // A bit mask of several components: VTK reports an error and draws none.
+  auto* mask =
+    mapper->GetMasking() ? vtkArrayDownCast<vtkBitArray>(glyphArray(mapper, vtkGlyph3DMapper::MASK, input)) : nullptr;
+  return (!set.Orientation || set.Orientation->GetNumberOfComponents() == components) &&
+    (!mask || mask->GetNumberOfComponents() == 1);
 }
 
 namespace
@@ -358,7 +362,7 @@ GlyphPrimitives CollectGlyphPrimitives(
   const double factor = mapper->GetScaling() ? mapper->GetScaleFactor() : 1.0;
   for (vtkIdType i = 0; i < n; ++i)
   {
-    if (mask && mask->GetValue(i * mask->GetNumberOfComponents()) == 0)
+    if (mask && i < mask->GetNumberOfTuples() && mask->GetValue(i) == 0)
     {
       continue;
     }

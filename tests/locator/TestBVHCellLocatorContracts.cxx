@@ -656,6 +656,11 @@ int TestContractReplacedPoints()
       vtkIdType cellId;
       double oldP1[3] = { 0, 0, 2 }, oldP2[3] = { 0, 0, -2 }, newP1[3] = { 0, 0, 12 }, newP2[3] = { 0, 0, 8 };
       LT_CHECK(loc->IntersectWithLine(oldP1, oldP2, 0.0, t, x, pc, sub, cellId) == 1);
+      // A new vtkPoints around the same coordinates array: the same points.
+      vtkNew<vtkPoints> wrapper;
+      wrapper->SetData(pd->GetPoints()->GetData());
+      pd->SetPoints(wrapper);
+      LT_CHECK(loc->IntersectWithLine(oldP1, oldP2, 0.0, t, x, pc, sub, cellId) == 1 && catcher->Errors.empty());
       vtkNew<vtkPoints> moved;
       moved->SetDataType(pd->GetPoints()->GetDataType());
       moved->DeepCopy(pd->GetPoints());

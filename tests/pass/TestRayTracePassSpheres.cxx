@@ -713,6 +713,34 @@ void TestMasking()
   Check(drawn[0] > 0 && drawn[1] > 2 * drawn[0],
     "the bit mask hides two glyphs in three (" + std::to_string(drawn[0]) + " pixels against " +
       std::to_string(drawn[1]) + " unmasked)");
+
+  // A bit mask of two components: VTK reports an error and draws no glyph;
+  // the pass leaves the actor to it.
+  vtkNew<vtkBitArray> pairs;
+  pairs->SetName("pairs");
+  pairs->SetNumberOfComponents(2);
+  pairs->SetNumberOfTuples(n);
+  points->GetPointData()->AddArray(pairs);
+  auto win = MakeWindow(240, 240);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  vtkNew<vtkGlyph3DMapper> mapper;
+  mapper->SetInputData(points);
+  mapper->SetSourceConnection(source->GetOutputPort());
+  mapper->MaskingOn();
+  mapper->SetMaskArray("pairs");
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  ren->AddActor(actor);
+  ren->ResetCamera();
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+  win->Render();
+  Check(pass->GetNumberOfTracedProps() == 0 && Output->GetNumberOfErrors() >= 1,
+    "a two-component bit mask: left to raster, which reports VTK's error (" +
+      std::to_string(pass->GetNumberOfTracedProps()) + " traced, " + std::to_string(Output->GetNumberOfErrors()) +
+      " error(s))");
+  Output->Clear();
 }
 } // namespace
 
