@@ -41,17 +41,18 @@ void padWords(std::uint32_t* words, std::size_t used)
 
 namespace
 {
-std::size_t sphereTexelsOf(const Geometry& g)
-{
-  return g.SphereRecords.size() * core::gpu::texelsOf<core::gpu::Sphere>() +
-    g.EllipsoidRecords.size() * core::gpu::texelsOf<core::gpu::Ellipsoid>() +
-    g.SegmentRecords.size() * core::gpu::texelsOf<core::gpu::Segment>() + paddedWords(g.SphereCellIds.size()) / 4;
-}
-
 /// The sphere texels of `g`'s records, before its cell ids.
 std::size_t sphereRecordTexelsOf(const Geometry& g)
 {
-  return sphereTexelsOf(g) - paddedWords(g.SphereCellIds.size()) / 4;
+  return g.SphereRecords.size() * core::gpu::texelsOf<core::gpu::Sphere>() +
+    g.EllipsoidRecords.size() * core::gpu::texelsOf<core::gpu::Ellipsoid>() +
+    g.SegmentRecords.size() * core::gpu::texelsOf<core::gpu::Segment>();
+}
+
+/// All of `g`'s sphere texels: its records, then its cell ids four a texel.
+std::size_t sphereTexelsOf(const Geometry& g)
+{
+  return sphereRecordTexelsOf(g) + paddedWords(g.SphereCellIds.size()) / 4;
 }
 
 /// Places `g` at the ends of `sizes` and moves them past it. A sphere

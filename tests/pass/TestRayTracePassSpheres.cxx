@@ -18,16 +18,13 @@
 //                       mismatches), id mode naming the analytic nearest
 //                       ellipsoid, shading close to VTK's raster, shadows
 #include "vtkrtPassTestUtils.h"
-
-#include "vtkUnsignedCharArray.h"
-
-#include "vtkBitArray.h"
 #include "vtkrtTestOutputWindow.h"
 
 #include "vtkrt/core/Ray.h"
 #include "vtkrt/core/Sphere.h"
 
 #include "vtkActor.h"
+#include "vtkBitArray.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
@@ -42,9 +39,11 @@
 #include "vtkProperty.h"
 #include "vtkSphereSource.h"
 #include "vtkTransform.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -687,26 +686,36 @@ void TestMasking()
   source->SetRadius(0.06);
   source->SetThetaResolution(24);
   source->SetPhiResolution(24);
-  const double black[3] = { 0, 0, 0 };
-  long drawn[2] = { 0, 0 };
-  for (const bool bitMask : { true, false })
+  // The points' sphere glyphs masked by the array `mask`, in a window of their own.
+  struct MaskedGlyphs
   {
-    const std::string name = bitMask ? "bit-array mask" : "unsigned char mask (ignored, as raster)";
-    auto win = MakeWindow(240, 240);
-    vtkNew<vtkRenderer> ren;
-    win->AddRenderer(ren);
+    vtkSmartPointer<vtkEGLHeadlessRenderWindow> Window = MakeWindow(240, 240);
+    vtkNew<vtkRenderer> Renderer;
+  };
+  auto maskedGlyphs = [&](const char* mask) {
+    auto scene = std::make_unique<MaskedGlyphs>();
+    scene->Window->AddRenderer(scene->Renderer);
     vtkNew<vtkGlyph3DMapper> mapper;
     mapper->SetInputData(points);
     mapper->SetSourceConnection(source->GetOutputPort());
     mapper->ScalingOff();
     mapper->ScalarVisibilityOff();
     mapper->MaskingOn();
-    mapper->SetMaskArray(bitMask ? "bits" : "bytes");
+    mapper->SetMaskArray(mask);
     vtkNew<vtkActor> actor;
     actor->SetMapper(mapper);
-    ren->AddActor(actor);
-    ren->ResetCamera();
-    const RasterAndTraced frames = CompareBlurred(win, ren, name, 1, 3.0, bitMask ? "MaskingBits" : "MaskingBytes");
+    scene->Renderer->AddActor(actor);
+    scene->Renderer->ResetCamera();
+    return scene;
+  };
+  const double black[3] = { 0, 0, 0 };
+  long drawn[2] = { 0, 0 };
+  for (const bool bitMask : { true, false })
+  {
+    const std::string name = bitMask ? "bit-array mask" : "unsigned char mask (ignored, as raster)";
+    const auto scene = maskedGlyphs(bitMask ? "bits" : "bytes");
+    const RasterAndTraced frames =
+      CompareBlurred(scene->Window, scene->Renderer, name, 1, 3.0, bitMask ? "MaskingBits" : "MaskingBytes");
     drawn[bitMask ? 0 : 1] = CountForegroundPixels(frames.Traced, black);
     NoVTKOutput(name);
   }
@@ -721,21 +730,10 @@ void TestMasking()
   pairs->SetNumberOfComponents(2);
   pairs->SetNumberOfTuples(n);
   points->GetPointData()->AddArray(pairs);
-  auto win = MakeWindow(240, 240);
-  vtkNew<vtkRenderer> ren;
-  win->AddRenderer(ren);
-  vtkNew<vtkGlyph3DMapper> mapper;
-  mapper->SetInputData(points);
-  mapper->SetSourceConnection(source->GetOutputPort());
-  mapper->MaskingOn();
-  mapper->SetMaskArray("pairs");
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
-  ren->AddActor(actor);
-  ren->ResetCamera();
+  const auto scene = maskedGlyphs("pairs");
   vtkNew<vtkRayTracePass> pass;
-  ren->SetPass(pass);
-  win->Render();
+  scene->Renderer->SetPass(pass);
+  scene->Window->Render();
   Check(pass->GetNumberOfTracedProps() == 0 && Output->GetNumberOfErrors() >= 1,
     "a two-component bit mask: left to raster, which reports VTK's error (" +
       std::to_string(pass->GetNumberOfTracedProps()) + " traced, " + std::to_string(Output->GetNumberOfErrors()) +
