@@ -88,18 +88,23 @@ vec3 parallelAxisBias(vec3 invDir)
 
 // The slab test of core::intersectRayAABB without its per-axis branches
 // (llvmpipe runs both sides of every branch, masked): the same arithmetic on
-// every axis the ray is not parallel to, so the same result there; a
-// parallel axis (invDir 0, so t0 = t1 = 0) is made to accept every box by
-// parallelBias (3e38 on such axes, 0 elsewhere) instead of testing the
-// origin against the slab. Accepting more boxes than the core never changes
-// the hit, only how much is tested. Needs tmin >= 0 (a parallel axis
-// contributes tnear 0).
+// every axis the ray is not parallel to, so the same result there. On a
+// parallel axis (invDir 0, so t0 = t1 = 0; parallelBias 3e38 there, 0
+// elsewhere) the origin decides: inside the closed slab the axis bounds
+// nothing, outside it the distance out times parallelBias pushes tnear past
+// every tfar (an origin out by less than tmax / 3e38 is let in, which only
+// costs box tests). A parallel projection along an axis makes every camera
+// ray parallel to two axes: accepting every box there would walk most of
+// the tree. Needs tmin >= 0 (a parallel axis contributes tnear 0).
 bool intersectRayBoxConservative(vec3 org, vec3 invDir, vec3 parallelBias, vec3 bmin, vec3 bmax,
   float tmin, float tmax, out float tnear)
 {
-  vec3 t0 = (bmin - org) * invDir;
-  vec3 t1 = (bmax - org) * invDir;
-  vec3 tn = min(t0, t1);
+  vec3 d0 = bmin - org;
+  vec3 d1 = bmax - org;
+  vec3 t0 = d0 * invDir;
+  vec3 t1 = d1 * invDir;
+  vec3 outside = max(max(d0, -d1), vec3(0.0));
+  vec3 tn = min(t0, t1) + outside * parallelBias;
   vec3 tf = max(t0, t1) * kFarScale + parallelBias;
   tnear = max(max(tn.x, tn.y), max(tn.z, tmin));
   float tfar = min(min(tf.x, tf.y), min(tf.z, tmax));
