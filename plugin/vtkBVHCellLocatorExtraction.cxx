@@ -67,7 +67,11 @@ void BVHCellLocatorData::Extract(vtkDataSet* ds)
     const vtkIdType n = ds->GetNumberOfCells();
     for (vtkIdType c = 0; c < n; ++c)
     {
-      this->GenCell.push_back(c);
+      // Blanked cells of structured data are empty cells: nothing to find.
+      if (ds->GetCellType(c) != VTK_EMPTY_CELL)
+      {
+        this->GenCell.push_back(c);
+      }
     }
   }
   if (!this->SharedTriangulation)

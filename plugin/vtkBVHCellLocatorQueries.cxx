@@ -599,7 +599,7 @@ bool BVHCellLocatorData::ClosestPoint(
     int sub;
     double xx[3] = { xw[0], xw[1], xw[2] };
     const int r = c->EvaluatePosition(xx, cp, sub, pc, d2, weights.For(c));
-    if (r < 0 || !std::isfinite(d2))
+    if (r < 0 || !(d2 >= 0.0) || !std::isfinite(d2))
     {
       return false;
     }

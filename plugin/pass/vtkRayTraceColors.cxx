@@ -248,6 +248,19 @@ Colors* Scene::GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time
       colors->Packed[static_cast<std::size_t>(i)] = packRGBA(ptr + i * comps, comps);
     }
   }
+  else if (mapped && cellFlag == 2)
+  {
+    // Field data: vtkOpenGLPolyDataMapper gives every cell the color of the
+    // tuple FieldDataTupleId (other ids: colors past the array's end).
+    const vtkIdType tuple = mapper->GetFieldDataTupleId();
+    if (tuple >= 0 && tuple < mapped->GetNumberOfTuples())
+    {
+      const int comps = mapped->GetNumberOfComponents();
+      colors->CellColors = true;
+      colors->Packed.assign(static_cast<std::size_t>(data->GetNumberOfCells()),
+        packRGBA(mapped->GetPointer(tuple * comps), comps));
+    }
+  }
   Colors* result = colors->Packed.empty() ? nullptr : colors.get();
   this->ColorCache[key] = std::move(colors);
   this->ColorsDirty = true;

@@ -68,7 +68,7 @@ void RasterCells::CopyCells(vtkPolyData* poly, RasterCellKinds kinds, vtkPolyDat
   }
 }
 
-vtkActor* RasterCells::Get(vtkActor* actor, vtkPolyData* poly, RasterCellKinds kinds)
+vtkActor* RasterCells::Get(vtkActor* actor, vtkMapper* source, vtkPolyData* poly, RasterCellKinds kinds)
 {
   Entry& e = this->Entries[actor];
   e.Used = true;
@@ -91,9 +91,9 @@ vtkActor* RasterCells::Get(vtkActor* actor, vtkPolyData* poly, RasterCellKinds k
   // coincident topology), then its cells: vtkMapper's copy, not the OpenGL
   // mapper's, which copies (deprecated) shader code too.
   auto* mapper = vtkPolyDataMapper::SafeDownCast(e.Actor->GetMapper());
-  if (mapper->GetMTime() < actor->GetMapper()->GetMTime() || mapper->GetInput() != e.Cells)
+  if (mapper->GetMTime() < source->GetMTime() || mapper->GetInput() != e.Cells)
   {
-    mapper->vtkMapper::ShallowCopy(actor->GetMapper());
+    mapper->vtkMapper::ShallowCopy(source);
     mapper->SetInputData(e.Cells);
   }
   if (e.Actor->GetProperty() != actor->GetProperty())

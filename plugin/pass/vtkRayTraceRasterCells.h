@@ -12,6 +12,7 @@
 #include <map>
 
 class vtkActor;
+class vtkMapper;
 class vtkPolyData;
 class vtkPolyDataMapper;
 class vtkProp;
@@ -35,9 +36,11 @@ class RasterCells
 public:
   /// Marks every stand-in unused (the frame's actors mark theirs).
   void BeginFrame();
-  /// The stand-in drawing `kinds` of `poly` as `actor` draws them, brought
-  /// up to date with the actor (property, matrix, mapper) and the data.
-  vtkActor* Get(vtkActor* actor, vtkPolyData* poly, RasterCellKinds kinds);
+  /// The stand-in drawing `kinds` of `poly` as `actor` draws them through
+  /// `mapper` (the actor's, or the polydata mapper of its
+  /// vtkDataSetMapper), brought up to date with the actor (property,
+  /// matrix), the mapper's settings and the data.
+  vtkActor* Get(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, RasterCellKinds kinds);
   /// Forgets the stand-ins no actor used this frame.
   void EndFrame();
   /// The traced actor a stand-in draws for, or null when `prop` is none.

@@ -12,7 +12,10 @@
 #include "vtkDataObject.h"
 #include "vtkDataObjectTree.h"
 #include "vtkDataObjectTreeIterator.h"
+#include "vtkDataSetMapper.h"
 #include "vtkGlyph3DMapper.h"
+#include "vtkOpenGLPolyDataMapper.h"
+#include "vtkOpenGLShaderProperty.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -212,6 +215,48 @@ void FillEdges(vtkProperty* property, Instance& inst)
   inst.LineWidth = property->GetLineWidth();
 }
 
+/// The shader code a vtkOpenGLPolyDataMapper was given through VTK 9.0's
+/// deprecated mapper API (AddShaderReplacement, SetFragmentShaderCode ...):
+/// read through a pointer to the protected member, as its getter would
+/// create one.
+struct LegacyShaderPropertyOf : vtkOpenGLPolyDataMapper
+{
+  static vtkShaderProperty* Get(vtkOpenGLPolyDataMapper* mapper)
+  {
+    return (mapper->*(&LegacyShaderPropertyOf::LegacyShaderProperty)).GetPointer();
+  }
+};
+
+/// Whether raster runs shader code of the application's for the actor,
+/// which the tracer cannot run.
+bool hasCustomShaders(vtkActor* actor, vtkMapper* mapper)
+{
+  auto custom = [](vtkShaderProperty* p) {
+    return p &&
+      (p->HasVertexShaderCode() || p->HasFragmentShaderCode() || p->HasGeometryShaderCode() ||
+        p->GetNumberOfShaderReplacements() > 0);
+  };
+  auto* gl = vtkOpenGLPolyDataMapper::SafeDownCast(mapper);
+  return custom(actor->GetShaderProperty()) || (gl && custom(LegacyShaderPropertyOf::Get(gl)));
+}
+
+/// Mappers that draw something other than their data's cells: VTK's point
+/// splats and its molecule mapper's sphere and stick impostors.
+bool drawsOtherThanCells(vtkMapper* mapper)
+{
+  return mapper->IsA("vtkPointGaussianMapper") || mapper->IsA("vtkOpenGLSphereMapper") ||
+    mapper->IsA("vtkOpenGLStickMapper");
+}
+
+/// VTK blends every fragment, so an actor forced opaque whose colors are
+/// not opaque is blended over what raster drew before it, in its opaque
+/// pass; the tracer would draw it opaque.
+bool forcedOpaqueButTranslucent(vtkActor* actor, vtkMapper* mapper)
+{
+  return actor->GetForceOpaque() &&
+    (actor->GetProperty()->GetOpacity() < 1.0 || mapper->HasTranslucentPolygonalGeometry());
+}
+
 } // namespace
 
 bool Scene::IsTraceable(vtkProp* prop, bool translucency)
@@ -224,7 +269,12 @@ bool Scene::IsTraceable(vtkProp* prop, bool translucency)
   vtkMapper* mapper = actor->GetMapper();
   const bool glyphs = vtkGlyph3DMapper::SafeDownCast(mapper) != nullptr;
   if (!glyphs && !vtkPolyDataMapper::SafeDownCast(mapper) &&
-    !vtkCompositePolyDataMapper::SafeDownCast(mapper))
+    !vtkCompositePolyDataMapper::SafeDownCast(mapper) && !vtkDataSetMapper::SafeDownCast(mapper))
+  {
+    return false;
+  }
+  if (drawsOtherThanCells(mapper) || hasCustomShaders(actor, mapper) ||
+    forcedOpaqueButTranslucent(actor, mapper))
   {
     return false;
   }
@@ -332,9 +382,16 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
   Instance inst;
   inst.PropIndex = propIndex;
   this->FillMaterial(actor, mapper, inst);
+  // A block color replaces the scalar colors too, as
+  // vtkCompositePolyDataMapper2 draws it.
+  Colors* colors = nullptr;
   if (blockColor)
   {
     ApplyBlockColor(inst, property, blockColor, false);
+  }
+  else
+  {
+    colors = this->GetColors(mapper, poly, time);
   }
   if (blockOpacity >= 0.0)
   {
@@ -351,7 +408,7 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     {
       Instance tri = inst;
       tri.Geom = entry.get();
-      tri.Color = this->GetColors(mapper, poly, time);
+      tri.Color = colors;
       // As vtkOpenGLPolyDataMapper: point normals unless flat, else cell
       // normals, else the geometric normal.
       tri.UseVertexNormals = !entry->Normals.empty() && property->GetInterpolation() != VTK_FLAT;
@@ -397,24 +454,25 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
       sph.Geom = entry.get();
       sph.PointSize = std::max(0.0, static_cast<double>(property->GetPointSize()));
       // Cell colors through each sphere's cell (SphereCellIds), as raster.
-      sph.Color = this->GetColors(mapper, poly, time);
+      sph.Color = colors;
       this->Instances.push_back(sph);
     }
   }
   if (DrawsLinesAsTubes(property) && poly->GetNumberOfLines() > 0)
   {
-    this->AddTubes(mapper, poly, time, inst, property->GetLineWidth(), counters);
+    this->AddTubes(poly, colors, inst, property->GetLineWidth(), counters);
   }
   return true;
 }
 
-void Scene::AddTubes(vtkMapper* mapper, vtkPolyData* poly, vtkMTimeType time, const Instance& inst,
-  double lineWidth, FrameCounters& counters)
+void Scene::AddTubes(
+  vtkPolyData* poly, Colors* colors, const Instance& inst, double lineWidth, FrameCounters& counters)
 {
   // LineWidth pixels wide at any distance, as VTK draws them: the BVH is
   // over the bare segments and the radii come with each frame's camera, as
   // for points drawn as spheres.
   auto& entry = this->SphereCache[std::make_pair(static_cast<const void*>(poly), &kTubesKey)];
+  const vtkMTimeType time = poly->GetMTime();
   if (!entry || entry->SourceTime != time || entry->Quality != this->BuildQuality)
   {
     const auto start = std::chrono::steady_clock::now();
@@ -431,15 +489,14 @@ void Scene::AddTubes(vtkMapper* mapper, vtkPolyData* poly, vtkMTimeType time, co
     Instance tube = inst;
     tube.Geom = entry.get();
     tube.PointSize = lineWidth;
-    tube.Color = this->GetColors(mapper, poly, time);
+    tube.Color = colors;
     this->Instances.push_back(tube);
   }
 }
 
-bool Scene::AddPolyDataMapper(
-  vtkActor* actor, int propIndex, FrameCounters& counters, std::vector<vtkProp*>& standIns)
+bool Scene::AddPolyDataMapper(vtkActor* actor, vtkMapper* mapper, int propIndex,
+  FrameCounters& counters, std::vector<vtkProp*>& standIns)
 {
-  vtkMapper* mapper = actor->GetMapper();
   mapper->Update();
   vtkDataObject* input = mapper->GetInputDataObject(0, 0);
   const bool pointsAsSpheres = actor->GetProperty()->GetRenderPointsAsSpheres();
@@ -475,7 +532,7 @@ bool Scene::AddPolyDataMapper(
       !hasUntraceableCells(piece.Poly, actor, pointsAsSpheres, linesAsTubes);
     if (ok && kinds.Any())
     {
-      standIns.push_back(this->RasterStandIns.Get(actor, piece.Poly, kinds));
+      standIns.push_back(this->RasterStandIns.Get(actor, mapper, piece.Poly, kinds));
     }
   }
   if (ok)
@@ -509,6 +566,7 @@ void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkPro
   markUnused(this->GlyphSourceCache);
   this->Textures.BeginFrame();
   this->RasterStandIns.BeginFrame();
+  this->Surfaces.BeginFrame();
 
   for (int i = 0; i < count; ++i)
   {
@@ -536,7 +594,8 @@ void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkPro
     }
     else
     {
-      ok = this->AddPolyDataMapper(actor, propIndex, counters, standIns);
+      ok = this->AddPolyDataMapper(
+        actor, this->Surfaces.MapperFor(mapper), propIndex, counters, standIns);
     }
     // An actor whose every cell is raster's is left to raster whole.
     ok = ok && (standIns.empty() || this->Instances.size() > firstInstance);
@@ -558,6 +617,7 @@ void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkPro
   if (!keep)
   {
     this->RasterStandIns.EndFrame();
+    this->Surfaces.EndFrame();
   }
   const bool trianglesDropped = !keep && dropUnused(this->TriangleCache);
   const bool spheresDropped = !keep && dropUnused(this->SphereCache);

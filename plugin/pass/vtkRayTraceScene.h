@@ -5,6 +5,7 @@
 #ifndef vtkRayTraceScene_h
 #define vtkRayTraceScene_h
 
+#include "vtkRayTraceDataSetSurfaces.h"
 #include "vtkRayTraceGlyphs.h"
 #include "vtkRayTraceRasterCells.h"
 #include "vtkRayTraceRefinement.h"
@@ -163,11 +164,12 @@ private:
   /// (negative: none) replace the property's.
   bool AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
     FrameCounters& counters, const double* blockColor = nullptr, double blockOpacity = -1.0);
-  /// The prop's polydata pieces, each through AddPolyData; false (left to
-  /// raster) when some piece cannot be traced. `standIns` receives the
-  /// raster stand-ins of its plain lines and points.
-  bool AddPolyDataMapper(
-    vtkActor* actor, int propIndex, FrameCounters& counters, std::vector<vtkProp*>& standIns);
+  /// The polydata pieces `mapper` draws for the actor (its own mapper, or
+  /// the polydata mapper of its vtkDataSetMapper), each through
+  /// AddPolyData; false (left to raster) when some piece cannot be traced.
+  /// `standIns` receives the raster stand-ins of its plain lines and points.
+  bool AddPolyDataMapper(vtkActor* actor, vtkMapper* mapper, int propIndex,
+    FrameCounters& counters, std::vector<vtkProp*>& standIns);
   /// A glyph mapper's plain input or every visible, non-empty leaf of its
   /// composite input (as vtkOpenGLGlyph3DMapper), each through AddGlyphSet;
   /// false (left to raster) when the source is not a sphere or some set's
@@ -179,9 +181,10 @@ private:
   void AddGlyphSet(vtkActor* actor, vtkGlyph3DMapper* mapper, const GlyphSphere& sphere,
     const GlyphSet& set, int propIndex, FrameCounters& counters);
   /// The polydata's line cells as tubes `lineWidth` pixels wide (cached per
-  /// polydata), and their instance, which takes `inst`'s material.
-  void AddTubes(vtkMapper* mapper, vtkPolyData* poly, vtkMTimeType time, const Instance& inst,
-    double lineWidth, FrameCounters& counters);
+  /// polydata), and their instance, which takes `inst`'s material and
+  /// `colors`.
+  void AddTubes(
+    vtkPolyData* poly, Colors* colors, const Instance& inst, double lineWidth, FrameCounters& counters);
   Colors* GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time);
   void FillMaterial(vtkActor* actor, vtkMapper* mapper, Instance& inst) const;
   /// The actor's texture on a triangle instance; false (left to raster)
@@ -217,6 +220,7 @@ private:
   TextureCache Textures;
   bool SplitRasterCells = true;
   RasterCells RasterStandIns;
+  DataSetSurfaces Surfaces;
   std::vector<Instance> Instances;
   bool GeometryDirty = true;
   bool ColorsDirty = true;

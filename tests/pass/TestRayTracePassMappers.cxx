@@ -1,0 +1,354 @@
+// Which mappers the pass traces, and as what, against VTK's raster of the
+// same scene: vtkDataSetMapper (its surface traced as its own polydata
+// mapper draws it: colors, cell ids, updates), mappers and actors raster
+// must keep (point splats, custom shader code, an actor forced opaque with
+// translucent colors), and composite and field-data colors.
+#include "vtkrtPassTestUtils.h"
+#include "vtkrtTestOutputWindow.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellData.h"
+#include "vtkCompositeDataDisplayAttributes.h"
+#include "vtkCompositePolyDataMapper2.h"
+#include "vtkDataSetMapper.h"
+#include "vtkDataSetTriangleFilter.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkOpenGLPolyDataMapper.h"
+#include "vtkPointData.h"
+#include "vtkPointGaussianMapper.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkProperty.h"
+#include "vtkShaderProperty.h"
+#include "vtkSphereSource.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <set>
+#include <sstream>
+#include <string>
+
+using namespace vtkrtPassTest;
+
+namespace
+{
+constexpr int kSize = 320;
+
+struct Scene
+{
+  vtkSmartPointer<vtkEGLHeadlessRenderWindow> Window = MakeWindow(kSize, kSize);
+  vtkNew<vtkRenderer> Renderer;
+  Scene()
+  {
+    this->Window->AddRenderer(this->Renderer);
+    this->Renderer->SetBackground(0.1, 0.1, 0.15);
+  }
+  void View()
+  {
+    this->Renderer->ResetCamera();
+    this->Renderer->GetActiveCamera()->Azimuth(30.0);
+    this->Renderer->GetActiveCamera()->Elevation(20.0);
+    this->Renderer->ResetCameraClippingRange();
+  }
+  RasterAndTraced Compare(const std::string& label, int traced, double bound)
+  {
+    static int written = 0;
+    return CompareBlurred(
+      this->Window, this->Renderer, label, traced, bound, "mappers-" + std::to_string(written++));
+  }
+};
+
+/// A block of n^3 voxels with point scalars (distance from a corner).
+vtkSmartPointer<vtkImageData> Block(int n)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(n + 1, n + 1, n + 1);
+  image->SetSpacing(1.0 / n, 1.0 / n, 1.0 / n);
+  vtkNew<vtkFloatArray> distance;
+  distance->SetName("distance");
+  for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    image->GetPoint(i, p);
+    distance->InsertNextValue(static_cast<float>(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2])));
+  }
+  image->GetPointData()->SetScalars(distance);
+  return image;
+}
+
+/// The block split into tetrahedra, each with its own cell scalar.
+vtkSmartPointer<vtkUnstructuredGrid> Tetrahedra(vtkImageData* block)
+{
+  vtkNew<vtkDataSetTriangleFilter> tets;
+  tets->SetInputData(block);
+  tets->Update();
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->DeepCopy(tets->GetOutput());
+  grid->GetPointData()->SetScalars(nullptr);
+  vtkNew<vtkFloatArray> ids;
+  ids->SetName("cell");
+  for (vtkIdType i = 0; i < grid->GetNumberOfCells(); ++i)
+  {
+    ids->InsertNextValue(static_cast<float>(i % 7));
+  }
+  grid->GetCellData()->SetScalars(ids);
+  return grid;
+}
+
+vtkSmartPointer<vtkActor> DataSetActor(vtkDataSet* data, double lo, double hi)
+{
+  vtkNew<vtkDataSetMapper> mapper;
+  mapper->SetInputData(data);
+  mapper->SetScalarRange(lo, hi);
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  return actor;
+}
+
+vtkSmartPointer<vtkPolyData> Sphere(double cx, int res)
+{
+  vtkNew<vtkSphereSource> source;
+  source->SetCenter(cx, 0.0, 0.0);
+  source->SetRadius(0.5);
+  source->SetThetaResolution(res);
+  source->SetPhiResolution(res);
+  source->Update();
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->DeepCopy(source->GetOutput());
+  return poly;
+}
+
+/// The pixels of the screen's left half and right half.
+const unsigned int kLeft[4] = { 0, 0, kSize / 2 - 1, kSize - 1 };
+const unsigned int kRight[4] = { kSize / 2, 0, kSize - 1, kSize - 1 };
+
+// vtkDataSetMapper: an image block with point scalars and a grid of
+// tetrahedra with cell scalars are traced, look like raster, select the
+// cells raster selects, and follow camera moves (nothing uploaded), new
+// points and a new scalar range.
+void TestDataSetMapper()
+{
+  Scene scene;
+  vtkSmartPointer<vtkImageData> block = Block(4);
+  vtkSmartPointer<vtkUnstructuredGrid> grid = Tetrahedra(block);
+  auto blockActor = DataSetActor(block, 0.0, 1.8);
+  auto gridActor = DataSetActor(grid, 0.0, 6.0);
+  gridActor->SetPosition(1.4, 0.0, 0.0);
+  scene.Renderer->AddActor(blockActor);
+  scene.Renderer->AddActor(gridActor);
+  scene.View();
+  RasterAndTraced frames = scene.Compare("image block and tetrahedra", 2, 2.0);
+
+  scene.Renderer->SetPass(nullptr);
+  const auto rasterBlock = SelectedCells(scene.Renderer, kLeft, blockActor);
+  const auto rasterGrid = SelectedCells(scene.Renderer, kRight, gridActor);
+  scene.Renderer->SetPass(frames.Pass);
+  const auto tracedBlock = SelectedCells(scene.Renderer, kLeft, blockActor);
+  const auto tracedGrid = SelectedCells(scene.Renderer, kRight, gridActor);
+  // VTK 9.1's raster reports the ids of the triangles it draws for
+  // vtkDataSetMapper (that mapper does not map them to cells): the block's
+  // quads are two triangles each, its tetrahedra's faces one.
+  std::set<vtkIdType> rasterBlockQuads;
+  for (vtkIdType id : rasterBlock)
+  {
+    rasterBlockQuads.insert(id / 2);
+  }
+  std::size_t gridDifferences = 0;
+  for (vtkIdType id : rasterGrid)
+  {
+    gridDifferences += tracedGrid.count(id) ? 0 : 1;
+  }
+  for (vtkIdType id : tracedGrid)
+  {
+    gridDifferences += rasterGrid.count(id) ? 0 : 1;
+  }
+  std::ostringstream s;
+  s << "selected cells raster / traced: block " << rasterBlock.size() << " triangles of "
+    << rasterBlockQuads.size() << " quads / " << tracedBlock.size() << " quads, tetrahedra' faces "
+    << rasterGrid.size() << " / " << tracedGrid.size() << " (" << gridDifferences
+    << " in one only: pixels on an edge)";
+  Check(!rasterBlock.empty() && rasterBlockQuads == tracedBlock && !rasterGrid.empty() &&
+      gridDifferences <= 1 + rasterGrid.size() / 50,
+    s.str());
+
+  scene.Window->Render();
+  scene.Renderer->GetActiveCamera()->Azimuth(25.0);
+  scene.Window->Render();
+  Check(frames.Pass->GetLastGeometryBytesUploaded() == 0 && frames.Pass->GetLastBVHBuilds() == 0,
+    "a camera move uploads no geometry (" +
+      std::to_string(frames.Pass->GetLastGeometryBytesUploaded()) + " bytes, " +
+      std::to_string(frames.Pass->GetLastBVHBuilds()) + " builds)");
+  scene.Window->Render();
+  Check(frames.Pass->GetLastBVHBuilds() == 0, "a second frame builds nothing");
+
+  // New points: the grid stretched to twice its height.
+  vtkPoints* points = grid->GetPoints();
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    points->SetPoint(i, p[0], 2.0 * p[1], p[2]);
+  }
+  points->Modified();
+  scene.Renderer->SetPass(frames.Pass);
+  scene.Window->Render();
+  Check(frames.Pass->GetLastBVHBuilds() > 0, "new points are built again");
+  scene.Compare("tetrahedra stretched", 2, 2.0);
+  blockActor->GetMapper()->SetScalarRange(0.0, 0.6);
+  scene.Compare("block, a new scalar range", 2, 2.0);
+  NoVTKOutput("vtkDataSetMapper");
+}
+
+// Mappers and actors that only raster can draw as VTK does are left to it
+// beside a traced mesh: point splats (their polygons would be traced as a
+// surface), shader code of the application's (on the actor's shader
+// property or through the mapper's deprecated API), and an actor forced
+// opaque whose opacity is not 1 (VTK blends it in its opaque pass).
+void TestLeftToRaster()
+{
+  auto mesh = [](Scene& scene) {
+    scene.Renderer->AddActor(MeshActor(Sphere(-0.6, 24)));
+  };
+  {
+    Scene scene;
+    mesh(scene);
+    vtkNew<vtkPointGaussianMapper> splats;
+    splats->SetInputData(Sphere(0.6, 16));
+    splats->SetScaleFactor(0.08);
+    splats->EmissiveOff();
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(splats);
+    scene.Renderer->AddActor(actor);
+    scene.View();
+    scene.Compare("vtkPointGaussianMapper of a sphere with polygons", 1, 2.0);
+  }
+  {
+    Scene scene;
+    mesh(scene);
+    auto red = MeshActor(Sphere(0.6, 24));
+    red->GetShaderProperty()->AddFragmentShaderReplacement("//VTK::Light::Impl", false,
+      "//VTK::Light::Impl\n  gl_FragData[0] = vec4(1.0, 0.0, 0.0, 1.0);\n", false);
+    scene.Renderer->AddActor(red);
+    scene.View();
+    scene.Compare("a shader replacement on the actor's shader property", 1, 2.0);
+  }
+  {
+    Scene scene;
+    mesh(scene);
+    auto red = MeshActor(Sphere(0.6, 24));
+    auto* mapper = vtkOpenGLPolyDataMapper::SafeDownCast(red->GetMapper());
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+    mapper->AddShaderReplacement(vtkShader::Fragment, "//VTK::Light::Impl", false,
+      "//VTK::Light::Impl\n  gl_FragData[0] = vec4(1.0, 0.0, 0.0, 1.0);\n", false);
+#pragma GCC diagnostic pop
+    Output->Clear(); // VTK's deprecation warning
+    scene.Renderer->AddActor(red);
+    scene.View();
+    scene.Compare("a shader replacement through the mapper's deprecated API", 1, 2.0);
+  }
+  {
+    Scene scene;
+    mesh(scene);
+    auto glass = MeshActor(Sphere(0.6, 24));
+    glass->GetProperty()->SetOpacity(0.3);
+    glass->ForceOpaqueOn();
+    scene.Renderer->AddActor(glass);
+    scene.View();
+    scene.Compare("an actor forced opaque with opacity 0.3", 1, 2.0);
+  }
+  NoVTKOutput("left to raster");
+}
+
+// Colors that replace scalars: a composite block's color (its own or
+// inherited) replaces point and cell scalar colors, as
+// vtkCompositePolyDataMapper2 draws it; field-data coloring gives every cell
+// the color of the tuple FieldDataTupleId.
+void TestReplacedColors()
+{
+  for (bool cellScalars : { false, true })
+  {
+    Scene scene;
+    vtkNew<vtkMultiBlockDataSet> blocks;
+    blocks->SetNumberOfBlocks(3);
+    for (unsigned int b = 0; b < 3; ++b)
+    {
+      vtkSmartPointer<vtkPolyData> sphere = Sphere(1.2 * b, 24);
+      vtkNew<vtkFloatArray> values;
+      const vtkIdType n = cellScalars ? sphere->GetNumberOfCells() : sphere->GetNumberOfPoints();
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        values->InsertNextValue(static_cast<float>(i % 5));
+      }
+      if (cellScalars)
+      {
+        sphere->GetCellData()->SetScalars(values);
+      }
+      else
+      {
+        sphere->GetPointData()->SetScalars(values);
+      }
+      if (b == 2)
+      {
+        vtkNew<vtkMultiBlockDataSet> inner;
+        inner->SetNumberOfBlocks(1);
+        inner->SetBlock(0, sphere);
+        blocks->SetBlock(b, inner);
+      }
+      else
+      {
+        blocks->SetBlock(b, sphere);
+      }
+    }
+    vtkNew<vtkCompositePolyDataMapper2> mapper;
+    mapper->SetInputDataObject(blocks);
+    mapper->SetScalarRange(0.0, 4.0);
+    vtkNew<vtkCompositeDataDisplayAttributes> attributes;
+    mapper->SetCompositeDataDisplayAttributes(attributes);
+    double yellow[3] = { 1.0, 1.0, 0.0 };
+    double green[3] = { 0.2, 0.9, 0.3 };
+    mapper->SetBlockColor(1, yellow); // the first sphere
+    mapper->SetBlockColor(3, green);  // the inner multiblock: the third sphere inherits it
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    scene.Renderer->AddActor(actor);
+    scene.View();
+    scene.Compare(std::string("block colors over ") + (cellScalars ? "cell" : "point") + " scalars", 1, 2.0);
+  }
+  for (int tuple : { 0, 3 })
+  {
+    Scene scene;
+    vtkSmartPointer<vtkPolyData> sphere = Sphere(0.0, 32);
+    vtkNew<vtkFloatArray> field;
+    field->SetName("field");
+    for (int i = 0; i < 5; ++i)
+    {
+      field->InsertNextValue(static_cast<float>(i));
+    }
+    sphere->GetFieldData()->AddArray(field);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(sphere);
+    mapper->SetScalarModeToUseFieldData();
+    mapper->SelectColorArray("field");
+    mapper->SetFieldDataTupleId(tuple);
+    mapper->SetScalarRange(0.0, 4.0);
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    scene.Renderer->AddActor(actor);
+    scene.View();
+    scene.Compare("field data, tuple " + std::to_string(tuple), 1, 2.0);
+  }
+  NoVTKOutput("replaced colors");
+}
+
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Output = vtkrtTestOutputWindow::Install();
+  return RunCase(argc, argv,
+    { { "DataSetMapper", TestDataSetMapper }, { "LeftToRaster", TestLeftToRaster },
+      { "ReplacedColors", TestReplacedColors } });
+}
