@@ -31,6 +31,7 @@ int TestWarpedQuadsAndPolygons();
 int TestQueriesClosestPointProbes();
 int TestQueriesFirstQueryBuildsNothing();
 int TestQueriesAxisParallelSegments();
+int TestQueriesBlankedCells();
 
 int main(int argc, char* argv[])
 {
@@ -60,7 +61,8 @@ int main(int argc, char* argv[])
     { "WarpedQuadsAndPolygons", TestWarpedQuadsAndPolygons },
     { "QueriesClosestPointProbes", TestQueriesClosestPointProbes },
     { "QueriesFirstQueryBuildsNothing", TestQueriesFirstQueryBuildsNothing },
-    { "QueriesAxisParallelSegments", TestQueriesAxisParallelSegments } };
+    { "QueriesAxisParallelSegments", TestQueriesAxisParallelSegments },
+    { "QueriesBlankedCells", TestQueriesBlankedCells } };
   if (argc < 2)
   {
     std::cerr << "usage: " << argv[0] << " CASE" << std::endl;

@@ -2,10 +2,12 @@
 // brute force over probes as a user's (on the surface, near it, around it,
 // far away, the center of a sphere), through the float walk and the double
 // one; segments parallel to an axis; and that no query after BuildLocator()
-// builds the binary tree.
+// builds the binary tree; closest points among blanked cells.
 #include "LocatorTestUtils.h"
 
 #include "vtkBVHCellLocator.h"
+#include "vtkGenericCell.h"
+#include "vtkStructuredGrid.h"
 
 #include <array>
 #include <sstream>
@@ -298,5 +300,86 @@ int TestQueriesAxisParallelSegments()
     }
     LT_CHECK(!BinaryTreeBuilt(loc) || quality != vtkBVHCellLocator::FAST);
   }
+  return 0;
+}
+
+/// A structured grid with blanked cells (VTK's empty cells): closest points
+/// come from visible cells only, as brute force over them finds, and never
+/// with a negative distance.
+int TestQueriesBlankedCells()
+{
+  vtkNew<vtkStructuredGrid> grid;
+  grid->SetDimensions(10, 10, 4);
+  vtkNew<vtkPoints> points;
+  for (int k = 0; k < 4; ++k)
+  {
+    for (int j = 0; j < 10; ++j)
+    {
+      for (int i = 0; i < 10; ++i)
+      {
+        const double r = 1.0 + 0.2 * i, theta = 0.2 * j;
+        points->InsertNextPoint(r * std::cos(theta), r * std::sin(theta), 0.3 * k);
+      }
+    }
+  }
+  grid->SetPoints(points);
+  vtkNew<vtkStructuredGrid> whole; // the same cells, none blanked
+  whole->DeepCopy(grid);
+  const vtkIdType blanked[] = { 5, 40, 100, 150, 151, 152 };
+  for (vtkIdType c : blanked)
+  {
+    grid->BlankCell(c);
+  }
+  vtkNew<vtkBVHCellLocator> loc;
+  loc->SetDataSet(grid);
+  loc->BuildLocator();
+  vtkNew<vtkGenericCell> cell;
+  Random rng(5);
+  int blankedBest = 0;
+  for (int probe = 0; probe < 400; ++probe)
+  {
+    // Around a blanked cell, in it or beside it.
+    double b[6];
+    whole->GetCellBounds(blanked[probe % 6], b);
+    double x[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const double h = b[2 * a + 1] - b[2 * a];
+      x[a] = rng.Next(b[2 * a] - h, b[2 * a + 1] + h);
+    }
+    double closest[3];
+    vtkIdType cellId = -1;
+    int subId = 0;
+    double dist2 = -1.0;
+    loc->FindClosestPoint(x, closest, cell, cellId, subId, dist2);
+    double best = VTK_DOUBLE_MAX;
+    vtkIdType bestId = -1;
+    double bestAll = VTK_DOUBLE_MAX;
+    for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+    {
+      whole->GetCell(c, cell);
+      double cp[3], pc[3], d2, w[8];
+      int sub;
+      if (cell->EvaluatePosition(x, cp, sub, pc, d2, w) >= 0 && d2 >= 0.0)
+      {
+        if (!grid->IsCellVisible(c))
+        {
+          bestAll = std::min(bestAll, d2);
+          continue;
+        }
+        if (d2 < best)
+        {
+          best = d2;
+          bestId = c;
+        }
+      }
+    }
+    blankedBest += bestAll < best ? 1 : 0;
+    LT_CHECK_MSG(grid->IsCellVisible(cellId) && dist2 >= 0.0 && std::abs(dist2 - best) <= 1e-12 * (1.0 + best),
+      "probe " << probe << ": cell " << cellId << " dist2 " << dist2 << ", brute force over visible cells "
+               << bestId << " " << best);
+  }
+  // Probes whose nearest cell is a blanked one: the case that matters.
+  LT_CHECK_MSG(blankedBest > 20, blankedBest << " probes nearest a blanked cell");
   return 0;
 }
