@@ -19,11 +19,13 @@
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
+#include "vtkRenderer.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
 #include <functional>
 #include <sstream>
+#include <unordered_set>
 
 namespace vtkrt
 {
@@ -554,7 +556,7 @@ bool Scene::AddPolyDataMapper(vtkActor* actor, vtkMapper* mapper, int propIndex,
   return ok;
 }
 
-void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkProp*>& traced,
+void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vtkProp*>& traced,
   std::vector<vtkProp*>& others, FrameCounters& counters)
 {
   traced.clear();
@@ -616,6 +618,16 @@ void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkPro
   const bool keep = !this->SplitRasterCells;
   if (!keep)
   {
+    std::unordered_set<vtkProp*> previous;
+    previous.swap(this->Present);
+    this->Present.insert(traced.begin(), traced.end());
+    if (ren)
+    {
+      this->KeepCulledProps(ren, props, count, previous, counters);
+    }
+  }
+  if (!keep)
+  {
     this->RasterStandIns.EndFrame();
     this->Surfaces.EndFrame();
   }
@@ -634,6 +646,40 @@ void Scene::Extract(vtkRenderer*, vtkProp** props, int count, std::vector<vtkPro
   {
     counters.TracedPrimitives += inst.Geom->PrimitiveCount;
   }
+}
+
+void Scene::KeepCulledProps(vtkRenderer* ren, vtkProp** props, int count,
+  const std::unordered_set<vtkProp*>& previous, FrameCounters& counters)
+{
+  const std::unordered_set<vtkProp*> inFrame(props, props + count);
+  std::vector<vtkProp*> kept;
+  vtkCollectionSimpleIterator it;
+  vtkPropCollection* all = ren->GetViewProps();
+  all->InitTraversal(it);
+  while (vtkProp* prop = all->GetNextProp(it))
+  {
+    // Only what the last frame traced or kept: a prop never in view yet is
+    // built when it first is, as raster makes its buffers.
+    if (inFrame.count(prop) || !previous.count(prop) || !IsTraceable(prop, this->TraceTranslucency))
+    {
+      continue;
+    }
+    kept.push_back(prop);
+    // Its geometry, colors and stand-ins marked used, its instances dropped.
+    vtkActor* actor = vtkActor::SafeDownCast(prop);
+    const std::size_t first = this->Instances.size();
+    std::vector<vtkProp*> standIns;
+    if (auto* glyphs = vtkGlyph3DMapper::SafeDownCast(actor->GetMapper()))
+    {
+      this->AddGlyphs(actor, glyphs, -1, counters);
+    }
+    else
+    {
+      this->AddPolyDataMapper(actor, this->Surfaces.MapperFor(actor->GetMapper()), -1, counters, standIns);
+    }
+    this->Instances.resize(first);
+  }
+  this->Present.insert(kept.begin(), kept.end());
 }
 
 bool Scene::HasTriangles() const

@@ -16,6 +16,7 @@
 
 #include <map>
 #include <memory>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -164,6 +165,13 @@ private:
   /// (negative: none) replace the property's.
   bool AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
     FrameCounters& counters, const double* blockColor = nullptr, double blockOpacity = -1.0);
+  /// Keeps the cached geometry of the renderer's traceable props that VTK's
+  /// culler left out of this frame (outside the view, or too small) and
+  /// that the last frame traced or kept (`previous`), so that a camera move
+  /// bringing them back builds and uploads nothing, as raster keeps a
+  /// culled actor's buffers; adds them to Present.
+  void KeepCulledProps(vtkRenderer* ren, vtkProp** props, int count,
+    const std::unordered_set<vtkProp*>& previous, FrameCounters& counters);
   /// The polydata pieces `mapper` draws for the actor (its own mapper, or
   /// the polydata mapper of its vtkDataSetMapper), each through
   /// AddPolyData; false (left to raster) when some piece cannot be traced.
@@ -221,6 +229,8 @@ private:
   bool SplitRasterCells = true;
   RasterCells RasterStandIns;
   DataSetSurfaces Surfaces;
+  /// The props the last frame traced or kept (KeepCulledProps).
+  std::unordered_set<vtkProp*> Present;
   std::vector<Instance> Instances;
   bool GeometryDirty = true;
   bool ColorsDirty = true;

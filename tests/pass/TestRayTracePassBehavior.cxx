@@ -515,6 +515,65 @@ void TestApp()
 }
 } // namespace
 
+// A camera move that takes a prop out of the view, where VTK's culler leaves
+// it out of the frame, and brings it back builds and uploads nothing, as
+// raster keeps a culled actor's buffers; the image back is raster's. A prop
+// never in view is built when it first is.
+void TestCulledProps()
+{
+  auto win = MakeWindow(200, 200);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  vtkNew<vtkSphereSource> left, right;
+  left->SetThetaResolution(64);
+  left->SetPhiResolution(64);
+  right->SetCenter(20.0, 0.0, 0.0);
+  vtkNew<vtkPolyDataMapper> leftMapper, rightMapper;
+  leftMapper->SetInputConnection(left->GetOutputPort());
+  rightMapper->SetInputConnection(right->GetOutputPort());
+  vtkNew<vtkActor> leftActor, rightActor;
+  leftActor->SetMapper(leftMapper);
+  rightActor->SetMapper(rightMapper);
+  ren->AddActor(leftActor);
+  ren->AddActor(rightActor);
+  vtkCamera* camera = ren->GetActiveCamera();
+  camera->SetPosition(0.0, 0.0, 5.0);
+  camera->SetFocalPoint(0.0, 0.0, 0.0);
+  ren->ResetCameraClippingRange();
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+  win->Render();
+  const int tracedFirst = pass->GetNumberOfTracedProps();
+  const vtkIdType builtFirst = pass->GetLastBVHBuilds();
+  camera->SetPosition(20.0, 0.0, 5.0);
+  camera->SetFocalPoint(20.0, 0.0, 0.0);
+  ren->ResetCameraClippingRange();
+  win->Render();
+  Check(pass->GetLastBVHBuilds() == 1, "the prop first in view is built: " +
+      std::to_string(pass->GetLastBVHBuilds()) + " builds");
+  std::ostringstream s;
+  for (double x : { 0.0, 20.0, 0.0 })
+  {
+    camera->SetPosition(x, 0.0, 5.0);
+    camera->SetFocalPoint(x, 0.0, 0.0);
+    ren->ResetCameraClippingRange();
+    win->Render();
+    s << " to x " << x << ": " << pass->GetNumberOfTracedProps() << " traced, "
+      << pass->GetLastBVHBuilds() << " builds, " << pass->GetLastGeometryBytesUploaded() << " bytes;";
+    Check(pass->GetNumberOfTracedProps() == 1 && pass->GetLastBVHBuilds() == 0 &&
+        pass->GetLastGeometryBytesUploaded() == 0,
+      "camera moved" + s.str());
+  }
+  Check(tracedFirst == 1 && builtFirst == 1, "the first frame traces and builds the prop in view alone (the other culled)");
+  vtkSmartPointer<vtkImageData> traced = Grab(win);
+  ren->SetPass(nullptr);
+  win->Render();
+  vtkSmartPointer<vtkImageData> raster = Grab(win);
+  const long differing = CountDifferingPixels(traced, raster, 40);
+  Check(differing <= 200 * 200 / 200, "back in view: " + std::to_string(differing) + " pixels differ from raster");
+  NoVTKOutput("CulledProps");
+}
+
 int main(int argc, char* argv[])
 {
   Output = vtkrtTestOutputWindow::Install();
@@ -524,6 +583,7 @@ int main(int argc, char* argv[])
     { "BackgroundBuild", TestBackgroundBuild },
     { "Lifecycle", TestLifecycle },
     { "MovedBetweenWindows", TestMovedBetweenWindows },
+    { "CulledProps", TestCulledProps },
     { "App", TestApp },
   };
   if (argc > 2)
