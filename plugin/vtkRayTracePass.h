@@ -11,11 +11,15 @@
  * raster passes and composites by depth.
  *
  * Traced (everything else falls back to the delegate):
- * - vtkActor + vtkPolyDataMapper / vtkCompositePolyDataMapper(2), opaque
+ * - vtkActor + vtkPolyDataMapper / vtkCompositePolyDataMapper(2) /
+ *   vtkDataSetMapper (the surface its own polydata mapper draws), opaque
  *   or translucent (see SetTraceTranslucency), surface or wireframe
- *   representation, edges (opaque only), no PBR: polygons (fan
- *   triangulated, like VTK), triangle strips; composite block visibility
- *   and colors (inherited); an actor texture (SetTexture: one 2D texture of
+ *   representation, edges (opaque only), no PBR, no shader code or
+ *   replacements of the application's, not ForceOpaque with translucent
+ *   colors; not vtkPointGaussianMapper (splats) or the molecule mapper's
+ *   impostor mappers: polygons (fan triangulated, like VTK), triangle
+ *   strips; composite block visibility and colors (inherited, replacing
+ *   scalar colors); an actor texture (SetTexture: one 2D texture of
  *   8-bit colors, or scalars through its table, any wrap mode, nearest or
  *   interpolated, no mipmaps, transform or sRGB) at the data's texture
  *   coordinates, times the lit color as vtkOpenGLPolyDataMapper (not shown
