@@ -29,7 +29,18 @@ void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCo
   vtkMatrix4x4* vcdc;
   vtkMatrix4x4* wcdc;
   cam->GetKeyMatrices(ren, wcvc, normalMatrix, vcdc, wcdc);
-  cam->GetPosition(this->Eye);
+  // The rays are in the coordinates the camera's model transform takes to
+  // its view (world coordinates but for that transform): so are the eye and
+  // the view direction.
+  vtkNew<vtkMatrix4x4> toModel;
+  vtkMatrix4x4::Invert(cam->GetModelTransformMatrix(), toModel);
+  double eye[4] = { 0.0, 0.0, 0.0, 1.0 };
+  cam->GetPosition(eye);
+  toModel->MultiplyPoint(eye, eye);
+  for (int k = 0; k < 3; ++k)
+  {
+    this->Eye[k] = eye[k] / eye[3];
+  }
   for (int k = 0; k < 3; ++k)
   {
     this->Origin[k] = worldCoordinates ? 0.0 : this->Eye[k];
@@ -65,7 +76,11 @@ void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCo
     this->CameraToPixels->SetElement(0, c, 0.5 * width * this->CameraToClip->GetElement(0, c));
     this->CameraToPixels->SetElement(1, c, 0.5 * height * this->CameraToClip->GetElement(1, c));
   }
-  cam->GetDirectionOfProjection(this->DirectionOfProjection);
+  double dop[4] = { 0.0, 0.0, 0.0, 0.0 };
+  cam->GetDirectionOfProjection(dop);
+  toModel->MultiplyPoint(dop, dop);
+  vtkMath::Normalize(dop);
+  std::copy(dop, dop + 3, this->DirectionOfProjection);
 }
 
 void CameraFrame::UnprojectRay(double x, double y, double org[3], double dir[3]) const
