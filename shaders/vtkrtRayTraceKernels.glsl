@@ -91,9 +91,8 @@ vec3 parallelAxisBias(vec3 invDir)
 // every axis the ray is not parallel to, so the same result there. On a
 // parallel axis (invDir 0, so t0 = t1 = 0; parallelBias 3e38 there, 0
 // elsewhere) the origin decides: inside the closed slab the axis bounds
-// nothing, outside it the distance out times parallelBias pushes tnear past
-// every tfar (an origin out by less than tmax / 3e38 is let in, which only
-// costs box tests). A parallel projection along an axis makes every camera
+// nothing, outside it tnear becomes parallelBias, past every tfar of the
+// ray's other axes. A parallel projection along an axis makes every camera
 // ray parallel to two axes: accepting every box there would walk most of
 // the tree. Needs tmin >= 0 (a parallel axis contributes tnear 0).
 bool intersectRayBoxConservative(vec3 org, vec3 invDir, vec3 parallelBias, vec3 bmin, vec3 bmax,
@@ -104,7 +103,7 @@ bool intersectRayBoxConservative(vec3 org, vec3 invDir, vec3 parallelBias, vec3 
   vec3 t0 = d0 * invDir;
   vec3 t1 = d1 * invDir;
   vec3 outside = max(max(d0, -d1), vec3(0.0));
-  vec3 tn = min(t0, t1) + outside * parallelBias;
+  vec3 tn = min(t0, t1) + sign(outside) * parallelBias;
   vec3 tf = max(t0, t1) * kFarScale + parallelBias;
   tnear = max(max(tn.x, tn.y), max(tn.z, tmin));
   float tfar = min(min(tf.x, tf.y), min(tf.z, tmax));

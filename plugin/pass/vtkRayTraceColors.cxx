@@ -168,6 +168,14 @@ Colors* Scene::GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time
   }
   auto key = std::make_pair(static_cast<const void*>(mapper), static_cast<const void*>(data));
   auto it = this->ColorCache.find(key);
+  if (this->Keeping)
+  {
+    if (it != this->ColorCache.end())
+    {
+      it->second->Used = true;
+    }
+    return nullptr;
+  }
   if (it != this->ColorCache.end() && it->second->SourceTime == time)
   {
     it->second->Used = true;
@@ -251,14 +259,25 @@ Colors* Scene::GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time
   else if (mapped && cellFlag == 2)
   {
     // Field data: vtkOpenGLPolyDataMapper gives every cell the color of the
-    // tuple FieldDataTupleId (other ids: colors past the array's end).
+    // tuple FieldDataTupleId, or with -1 cell i tuple i's (an array shorter
+    // than the cells: colors past its end, left uncolored here).
     const vtkIdType tuple = mapper->GetFieldDataTupleId();
+    const vtkIdType cells = data->GetNumberOfCells();
+    const int comps = mapped->GetNumberOfComponents();
     if (tuple >= 0 && tuple < mapped->GetNumberOfTuples())
     {
-      const int comps = mapped->GetNumberOfComponents();
       colors->CellColors = true;
-      colors->Packed.assign(static_cast<std::size_t>(data->GetNumberOfCells()),
-        packRGBA(mapped->GetPointer(tuple * comps), comps));
+      colors->Packed.assign(
+        static_cast<std::size_t>(cells), packRGBA(mapped->GetPointer(tuple * comps), comps));
+    }
+    else if (tuple < 0 && mapped->GetNumberOfTuples() >= cells)
+    {
+      colors->CellColors = true;
+      colors->Packed.resize(static_cast<std::size_t>(cells));
+      for (vtkIdType i = 0; i < cells; ++i)
+      {
+        colors->Packed[static_cast<std::size_t>(i)] = packRGBA(mapped->GetPointer(i * comps), comps);
+      }
     }
   }
   Colors* result = colors->Packed.empty() ? nullptr : colors.get();

@@ -466,7 +466,10 @@ bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, 
   {
     return false;
   }
-  mapper->Update();
+  if (!this->Keeping)
+  {
+    mapper->Update();
+  }
   vtkDataObject* input = mapper->GetInputDataObject(0, 0);
   std::vector<GlyphSet> sets;
   if (auto* data = vtkDataSet::SafeDownCast(input))
@@ -540,8 +543,21 @@ void Scene::AddGlyphSet(vtkActor* actor, vtkGlyph3DMapper* mapper, const GlyphSp
     std::max({ mapper->vtkObject::GetMTime(), input->GetMTime(), sourceTime });
   // Keyed by (mapper, dataset): each leaf of a composite input has its own
   // entry, rebuilt only when that leaf, the mapper or the source changes.
-  auto& entry = this->SphereCache[std::make_pair(
-    static_cast<const void*>(mapper), static_cast<const void*>(input))];
+  const auto key = std::make_pair(static_cast<const void*>(mapper), static_cast<const void*>(input));
+  if (this->Keeping)
+  {
+    const auto cached = this->SphereCache.find(key);
+    if (cached != this->SphereCache.end())
+    {
+      cached->second->Used = true;
+      if (auto* asPoly = vtkPolyData::SafeDownCast(input))
+      {
+        this->GetColors(mapper, asPoly, input->GetMTime());
+      }
+    }
+    return;
+  }
+  auto& entry = this->SphereCache[key];
   if (!entry || entry->SourceTime != time || entry->Quality != this->BuildQuality)
   {
     const auto start = std::chrono::steady_clock::now();

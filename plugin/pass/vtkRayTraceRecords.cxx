@@ -168,7 +168,7 @@ void CameraFrame::SetAffineRays()
 }
 
 ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* ren,
-  const double localToShader[16], const double eyeInShader[3], double shaderScale)
+  const double localToShader[16], const double eyeInShader[3], const double dop[3], double shaderScale)
 {
   ScreenSphereRadii out;
   const Geometry& g = *inst.Geom;
@@ -214,8 +214,6 @@ ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* re
   else
   {
     // depth(c) = dop . (M c + t - eye), affine in the local center c.
-    double dop[3];
-    cam->GetDirectionOfProjection(dop);
     double w = 0.0;
     for (int r = 0; r < 3; ++r)
     {
@@ -444,7 +442,8 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     }
     // Points drawn as spheres: radii from this frame's camera.
     const ScreenSphereRadii screen =
-      ComputeScreenSphereRadii(inst, ren, toShader->GetData(), eyeInShader, camera.Scale);
+      ComputeScreenSphereRadii(
+        inst, ren, toShader->GetData(), eyeInShader, camera.DirectionOfProjection, camera.Scale);
     out.WorldBoxes[i] = worldBox(inst);
     out.Outlines[i] = OutlineOf(inst, toShader->GetData(), outlineDepth);
     if (screen.MaxWorld > 0.0)

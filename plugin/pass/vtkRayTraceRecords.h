@@ -115,10 +115,11 @@ struct ScreenSphereRadii
 };
 
 /// `localToShader`: row-major local (Geometry) to shader coordinates,
-/// `eyeInShader`: the camera position in shader coordinates, `shaderScale`:
-/// shader units per world unit.
+/// `eyeInShader`: the camera position in shader coordinates, `dop`: the
+/// direction of projection in the rays' coordinates (CameraFrame's),
+/// `shaderScale`: shader units per world unit.
 ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* ren,
-  const double localToShader[16], const double eyeInShader[3], double shaderScale);
+  const double localToShader[16], const double eyeInShader[3], const double dop[3], double shaderScale);
 
 /// The smallest instance size in shader units float can shade: 2^-60 (a
 /// normal's squared length in shader units grows as the inverse square of

@@ -12,10 +12,7 @@
 #include "vtkDataObject.h"
 #include "vtkDataObjectTree.h"
 #include "vtkDataObjectTreeIterator.h"
-#include "vtkDataSetMapper.h"
 #include "vtkGlyph3DMapper.h"
-#include "vtkOpenGLPolyDataMapper.h"
-#include "vtkOpenGLShaderProperty.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -87,6 +84,19 @@ void markUnused(Cache& cache)
   {
     usedFlag(e.second) = false;
   }
+}
+
+/// Marks the cache's entry for `key` used, if there is one; whether there is.
+template <class Cache, class Key>
+bool markCached(Cache& cache, const Key& key)
+{
+  const auto it = cache.find(key);
+  if (it == cache.end())
+  {
+    return false;
+  }
+  usedFlag(it->second) = true;
+  return true;
 }
 
 /// Whether `g` was built from `source` (its objects, at its time).
@@ -217,107 +227,21 @@ void FillEdges(vtkProperty* property, Instance& inst)
   inst.LineWidth = property->GetLineWidth();
 }
 
-/// The shader code a vtkOpenGLPolyDataMapper was given through VTK 9.0's
-/// deprecated mapper API (AddShaderReplacement, SetFragmentShaderCode ...):
-/// read through a pointer to the protected member, as its getter would
-/// create one.
-struct LegacyShaderPropertyOf : vtkOpenGLPolyDataMapper
-{
-  static vtkShaderProperty* Get(vtkOpenGLPolyDataMapper* mapper)
-  {
-    return (mapper->*(&LegacyShaderPropertyOf::LegacyShaderProperty)).GetPointer();
-  }
-};
-
-/// Whether raster runs shader code of the application's for the actor,
-/// which the tracer cannot run.
-bool hasCustomShaders(vtkActor* actor, vtkMapper* mapper)
-{
-  auto custom = [](vtkShaderProperty* p) {
-    return p &&
-      (p->HasVertexShaderCode() || p->HasFragmentShaderCode() || p->HasGeometryShaderCode() ||
-        p->GetNumberOfShaderReplacements() > 0);
-  };
-  auto* gl = vtkOpenGLPolyDataMapper::SafeDownCast(mapper);
-  return custom(actor->GetShaderProperty()) || (gl && custom(LegacyShaderPropertyOf::Get(gl)));
-}
-
-/// Mappers that draw something other than their data's cells: VTK's point
-/// splats and its molecule mapper's sphere and stick impostors.
-bool drawsOtherThanCells(vtkMapper* mapper)
-{
-  return mapper->IsA("vtkPointGaussianMapper") || mapper->IsA("vtkOpenGLSphereMapper") ||
-    mapper->IsA("vtkOpenGLStickMapper");
-}
-
-/// VTK blends every fragment, so an actor forced opaque whose colors are
-/// not opaque is blended over what raster drew before it, in its opaque
-/// pass; the tracer would draw it opaque.
-bool forcedOpaqueButTranslucent(vtkActor* actor, vtkMapper* mapper)
-{
-  return actor->GetForceOpaque() &&
-    (actor->GetProperty()->GetOpacity() < 1.0 || mapper->HasTranslucentPolygonalGeometry());
-}
-
 } // namespace
-
-bool Scene::IsTraceable(vtkProp* prop, bool translucency)
-{
-  vtkActor* actor = vtkActor::SafeDownCast(prop);
-  if (!actor || !actor->GetVisibility() || !actor->GetMapper())
-  {
-    return false;
-  }
-  vtkMapper* mapper = actor->GetMapper();
-  const bool glyphs = vtkGlyph3DMapper::SafeDownCast(mapper) != nullptr;
-  if (!glyphs && !vtkPolyDataMapper::SafeDownCast(mapper) &&
-    !vtkCompositePolyDataMapper::SafeDownCast(mapper) && !vtkDataSetMapper::SafeDownCast(mapper))
-  {
-    return false;
-  }
-  if (drawsOtherThanCells(mapper) || hasCustomShaders(actor, mapper) ||
-    forcedOpaqueButTranslucent(actor, mapper))
-  {
-    return false;
-  }
-  vtkProperty* property = actor->GetProperty();
-  const int representation = property->GetRepresentation();
-  // Edges and wires of glyphs stay with raster (and of polygons drawn as
-  // tubes, VTK's shaded fake tubes: decided with the data, in
-  // hasUntraceableCells).
-  const bool edges = property->GetEdgeVisibility() || representation == VTK_WIREFRAME;
-  if (property->GetInterpolation() == VTK_PBR || (edges && glyphs))
-  {
-    return false;
-  }
-  // Translucent: polygonal surfaces without edges. Not glyphs (raster's
-  // glyph mapper blends their layers unlike a mesh's, docs/pass.md), a
-  // translucent back face (a property of its own) or edges and wires
-  // (raster blends them as lines over the layers); points as spheres and
-  // tubes are decided with the data (hasUntraceableCells).
-  if (actor->HasTranslucentPolygonalGeometry() &&
-    (!translucency || glyphs || edges || actor->GetBackfaceProperty()))
-  {
-    return false;
-  }
-  // Textures, culling and back-face colors: on polygonal surfaces (a
-  // translucent back face is left to raster, as a translucent front).
-  vtkProperty* back = actor->GetBackfaceProperty();
-  const bool surfaceLooks = actor->GetTexture() || property->GetNumberOfTextures() > 0 || back ||
-    property->GetBackfaceCulling() || property->GetFrontfaceCulling();
-  // Raster's wires are lines: never culled, never back faces, untextured.
-  if (surfaceLooks &&
-    (glyphs || representation == VTK_WIREFRAME || (back && back->GetOpacity() < 1.0) ||
-      !TextureCache::Untraceable(actor).empty() ||
-      (actor->GetTexture() && representation != VTK_SURFACE)))
-  {
-    return false;
-  }
-  return representation != VTK_POINTS || (!glyphs && property->GetRenderPointsAsSpheres());
-}
 
 const std::shared_ptr<Geometry>& Scene::TriangleGeometry(vtkPolyData* poly, FrameCounters& counters)
 {
+  if (this->Keeping)
+  {
+    static const std::shared_ptr<Geometry> none = std::make_shared<Geometry>();
+    const auto it = this->TriangleCache.find(poly);
+    if (it == this->TriangleCache.end())
+    {
+      return none;
+    }
+    it->second->Used = true;
+    return it->second;
+  }
   // Keyed by what the triangles are made of: new scalars (colors) keep
   // the BVH and its records.
   const GeometrySource source = GeometrySourceOf(poly);
@@ -424,7 +348,12 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     }
   }
 
-  if (pointsAsSpheres)
+  const auto sphereKey = std::make_pair(static_cast<const void*>(poly), static_cast<const void*>(nullptr));
+  if (pointsAsSpheres && this->Keeping)
+  {
+    markCached(this->SphereCache, sphereKey);
+  }
+  else if (pointsAsSpheres)
   {
     // VTK draws these PointSize pixels wide at any distance: the BVH is
     // over the bare centers, the radii come with each frame's camera
@@ -435,7 +364,7 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     // Keyed as the triangles (a superset of what the spheres are made of):
     // new scalars keep the spheres' BVH.
     const GeometrySource source = GeometrySourceOf(poly);
-    auto& entry = this->SphereCache[std::make_pair(static_cast<const void*>(poly), nullptr)];
+    auto& entry = this->SphereCache[sphereKey];
     if (!entry || !builtFrom(*entry, source) || entry->SourceKey != key.str() ||
       entry->Quality != this->BuildQuality)
     {
@@ -473,7 +402,13 @@ void Scene::AddTubes(
   // LineWidth pixels wide at any distance, as VTK draws them: the BVH is
   // over the bare segments and the radii come with each frame's camera, as
   // for points drawn as spheres.
-  auto& entry = this->SphereCache[std::make_pair(static_cast<const void*>(poly), &kTubesKey)];
+  const auto cacheKey = std::make_pair(static_cast<const void*>(poly), static_cast<const void*>(&kTubesKey));
+  if (this->Keeping)
+  {
+    markCached(this->SphereCache, cacheKey);
+    return;
+  }
+  auto& entry = this->SphereCache[cacheKey];
   const vtkMTimeType time = poly->GetMTime();
   if (!entry || entry->SourceTime != time || entry->Quality != this->BuildQuality)
   {
@@ -499,7 +434,10 @@ void Scene::AddTubes(
 bool Scene::AddPolyDataMapper(vtkActor* actor, vtkMapper* mapper, int propIndex,
   FrameCounters& counters, std::vector<vtkProp*>& standIns)
 {
-  mapper->Update();
+  if (!this->Keeping)
+  {
+    mapper->Update();
+  }
   vtkDataObject* input = mapper->GetInputDataObject(0, 0);
   const bool pointsAsSpheres = actor->GetProperty()->GetRenderPointsAsSpheres();
   const bool linesAsTubes = DrawsLinesAsTubes(actor->GetProperty());
@@ -625,9 +563,6 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
     {
       this->KeepCulledProps(ren, props, count, previous, counters);
     }
-  }
-  if (!keep)
-  {
     this->RasterStandIns.EndFrame();
     this->Surfaces.EndFrame();
   }
@@ -646,40 +581,6 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
   {
     counters.TracedPrimitives += inst.Geom->PrimitiveCount;
   }
-}
-
-void Scene::KeepCulledProps(vtkRenderer* ren, vtkProp** props, int count,
-  const std::unordered_set<vtkProp*>& previous, FrameCounters& counters)
-{
-  const std::unordered_set<vtkProp*> inFrame(props, props + count);
-  std::vector<vtkProp*> kept;
-  vtkCollectionSimpleIterator it;
-  vtkPropCollection* all = ren->GetViewProps();
-  all->InitTraversal(it);
-  while (vtkProp* prop = all->GetNextProp(it))
-  {
-    // Only what the last frame traced or kept: a prop never in view yet is
-    // built when it first is, as raster makes its buffers.
-    if (inFrame.count(prop) || !previous.count(prop) || !IsTraceable(prop, this->TraceTranslucency))
-    {
-      continue;
-    }
-    kept.push_back(prop);
-    // Its geometry, colors and stand-ins marked used, its instances dropped.
-    vtkActor* actor = vtkActor::SafeDownCast(prop);
-    const std::size_t first = this->Instances.size();
-    std::vector<vtkProp*> standIns;
-    if (auto* glyphs = vtkGlyph3DMapper::SafeDownCast(actor->GetMapper()))
-    {
-      this->AddGlyphs(actor, glyphs, -1, counters);
-    }
-    else
-    {
-      this->AddPolyDataMapper(actor, this->Surfaces.MapperFor(actor->GetMapper()), -1, counters, standIns);
-    }
-    this->Instances.resize(first);
-  }
-  this->Present.insert(kept.begin(), kept.end());
 }
 
 bool Scene::HasTriangles() const

@@ -231,6 +231,8 @@ private:
   DataSetSurfaces Surfaces;
   /// The props the last frame traced or kept (KeepCulledProps).
   std::unordered_set<vtkProp*> Present;
+  /// While KeepCulledProps runs: cache entries are marked used, never built.
+  bool Keeping = false;
   std::vector<Instance> Instances;
   bool GeometryDirty = true;
   bool ColorsDirty = true;

@@ -102,8 +102,7 @@ void testBoxTest()
     missedByMutant += exact && !mutant;
     if (parallelToAnAxis(dir))
     {
-      // The origin decides a parallel axis, as the core's: here it is
-      // never out by less than tmax / 3e38.
+      // The origin decides a parallel axis, as the core's.
       ++parallel;
       parallelMissed += !core;
       VTKRT_CHECK(twin == core);

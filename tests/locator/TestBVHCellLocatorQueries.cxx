@@ -375,7 +375,7 @@ int TestQueriesBlankedCells()
       }
     }
     blankedBest += bestAll < best ? 1 : 0;
-    LT_CHECK_MSG(grid->IsCellVisible(cellId) && dist2 >= 0.0 && std::abs(dist2 - best) <= 1e-12 * (1.0 + best),
+    LT_CHECK_MSG(cellId >= 0 && grid->IsCellVisible(cellId) && dist2 >= 0.0 && std::abs(dist2 - best) <= 1e-12 * (1.0 + best),
       "probe " << probe << ": cell " << cellId << " dist2 " << dist2 << ", brute force over visible cells "
                << bestId << " " << best);
   }

@@ -15,9 +15,8 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
-#include "vtkTransform.h"
-#include "vtkLightKit.h"
 #include "vtkGlyph3DMapper.h"
+#include "vtkLightKit.h"
 #include "vtkLookupTable.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
@@ -30,6 +29,7 @@
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
+#include "vtkTransform.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtkCellData.h"
 #include "vtkColor.h"
@@ -772,7 +772,8 @@ int main(int argc, char* argv[])
     { "Glyphs", TestGlyphs },
     { "Actors", TestActors },
     { "Scalars", TestScalars },
-    { "Parallel", TestParallel }, { "ParallelAlongAxes", TestParallelAlongAxes }, { "CameraModelTransform", TestCameraModelTransform },
+    { "Parallel", TestParallel }, { "ParallelAlongAxes", TestParallelAlongAxes },
+    { "CameraModelTransform", TestCameraModelTransform },
     { "ClipPlanes", TestClipPlanes },
     { "Lights", TestLights },
     { "Fallback", TestFallback },

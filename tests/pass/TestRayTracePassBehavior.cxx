@@ -513,8 +513,6 @@ void TestApp()
   }
   NoVTKOutput("app");
 }
-} // namespace
-
 // A camera move that takes a prop out of the view, where VTK's culler leaves
 // it out of the frame, and brings it back builds and uploads nothing, as
 // raster keeps a culled actor's buffers; the image back is raster's. A prop
@@ -571,8 +569,30 @@ void TestCulledProps()
   vtkSmartPointer<vtkImageData> raster = Grab(win);
   const long differing = CountDifferingPixels(traced, raster, 40);
   Check(differing <= 200 * 200 / 200, "back in view: " + std::to_string(differing) + " pixels differ from raster");
+  // A culled prop whose data changes is not built until it is in view (as
+  // raster, which does nothing for it), then built once.
+  ren->SetPass(pass);
+  right->SetThetaResolution(40);
+  win->Render();
+  const vtkIdType culledBuilds = pass->GetLastBVHBuilds();
+  camera->SetPosition(20.0, 0.0, 5.0);
+  camera->SetFocalPoint(20.0, 0.0, 0.0);
+  ren->ResetCameraClippingRange();
+  win->Render();
+  const vtkIdType shownBuilds = pass->GetLastBVHBuilds();
+  traced = Grab(win);
+  ren->SetPass(nullptr);
+  win->Render();
+  raster = Grab(win);
+  const long changedDiffering = CountDifferingPixels(traced, raster, 40);
+  Check(culledBuilds == 0 && shownBuilds == 1 && changedDiffering <= 200 * 200 / 200,
+    "a culled prop changed: " + std::to_string(culledBuilds) + " builds while culled, " +
+      std::to_string(shownBuilds) + " when shown, " + std::to_string(changedDiffering) +
+      " pixels differ from raster");
   NoVTKOutput("CulledProps");
 }
+
+} // namespace
 
 int main(int argc, char* argv[])
 {

@@ -265,7 +265,7 @@ void TestLeftToRaster()
 // Colors that replace scalars: a composite block's color (its own or
 // inherited) replaces point and cell scalar colors, as
 // vtkCompositePolyDataMapper2 draws it; field-data coloring gives every cell
-// the color of the tuple FieldDataTupleId.
+// the color of the tuple FieldDataTupleId, or with -1 cell i tuple i's.
 void TestReplacedColors()
 {
   for (bool cellScalars : { false, true })
@@ -317,15 +317,16 @@ void TestReplacedColors()
     scene.View();
     scene.Compare(std::string("block colors over ") + (cellScalars ? "cell" : "point") + " scalars", 1, 2.0);
   }
-  for (int tuple : { 0, 3 })
+  // -1: cell i takes tuple i (the array as long as the cells).
+  for (int tuple : { 0, 3, -1 })
   {
     Scene scene;
     vtkSmartPointer<vtkPolyData> sphere = Sphere(0.0, 32);
     vtkNew<vtkFloatArray> field;
     field->SetName("field");
-    for (int i = 0; i < 5; ++i)
+    for (vtkIdType i = 0; i < sphere->GetNumberOfCells(); ++i)
     {
-      field->InsertNextValue(static_cast<float>(i));
+      field->InsertNextValue(static_cast<float>(i % 5));
     }
     sphere->GetFieldData()->AddArray(field);
     vtkNew<vtkPolyDataMapper> mapper;

@@ -67,9 +67,8 @@ inline vec3 parallelAxisBias(const vec3& invDir)
 /// shader's SIMD groups would run both sides of each): the same arithmetic
 /// and result on every axis the ray is not parallel to. On a parallel axis
 /// (invDir 0, parallelBias 3e38) the origin decides, as in clipSlab: inside
-/// the closed slab the axis bounds nothing; outside it, the distance out
-/// times parallelBias pushes tnear past every tfar (an origin out by less
-/// than tmax / 3e38 is let in: more box tests, never a lost hit). Testing
+/// the closed slab the axis bounds nothing; outside it, tnear becomes
+/// parallelBias, past every tfar of the ray's other axes. Testing
 /// the origin matters: a parallel projection along an axis makes every
 /// camera ray parallel to two axes, and a walk that accepted every box on
 /// them would visit most of the tree. Needs tmin >= 0. glm's min and max
@@ -82,7 +81,7 @@ inline bool intersectRayBoxConservative(const vec3& org, const vec3& invDir, con
   const vec3 t0 = d0 * invDir;
   const vec3 t1 = d1 * invDir;
   const vec3 outside = glm::max(glm::max(d0, -d1), vec3(0.0f));
-  const vec3 tn = glm::min(t0, t1) + outside * parallelBias;
+  const vec3 tn = glm::min(t0, t1) + glm::sign(outside) * parallelBias;
   const vec3 tf = glm::max(t0, t1) * kFarScale + parallelBias;
   tnear = glm::max(glm::max(tn.x, tn.y), glm::max(tn.z, tmin));
   const float tfar = glm::min(glm::min(tf.x, tf.y), glm::min(tf.z, tmax));

@@ -1,0 +1,174 @@
+#include "vtkRayTraceScene.h"
+
+#include "vtkActor.h"
+#include "vtkCompositePolyDataMapper.h"
+#include "vtkDataSetMapper.h"
+#include "vtkGlyph3DMapper.h"
+#include "vtkOpenGLPolyDataMapper.h"
+#include "vtkOpenGLShaderProperty.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkPropCollection.h"
+#include "vtkRenderer.h"
+
+#include <unordered_set>
+
+namespace vtkrt
+{
+namespace pass
+{
+
+namespace
+{
+/// The shader code a vtkOpenGLPolyDataMapper was given through VTK 9.0's
+/// deprecated mapper API (AddShaderReplacement, SetFragmentShaderCode ...):
+/// read through a pointer to the protected member, as its getter would
+/// create one; null where VTK has no such member (ParaView 5.11's).
+struct LegacyShaderPropertyOf : vtkOpenGLPolyDataMapper
+{
+  template <class P>
+  static auto Read(vtkOpenGLPolyDataMapper* mapper, P*, int)
+    -> decltype((mapper->*(&P::LegacyShaderProperty)).GetPointer())
+  {
+    return (mapper->*(&P::LegacyShaderProperty)).GetPointer();
+  }
+  template <class P>
+  static vtkShaderProperty* Read(vtkOpenGLPolyDataMapper*, P*, long)
+  {
+    return nullptr;
+  }
+  static vtkShaderProperty* Get(vtkOpenGLPolyDataMapper* mapper)
+  {
+    return Read<LegacyShaderPropertyOf>(mapper, nullptr, 0);
+  }
+};
+
+/// Whether raster runs shader code of the application's for the actor,
+/// which the tracer cannot run.
+bool hasCustomShaders(vtkActor* actor, vtkMapper* mapper)
+{
+  auto custom = [](vtkShaderProperty* p) {
+    return p &&
+      (p->HasVertexShaderCode() || p->HasFragmentShaderCode() || p->HasGeometryShaderCode() ||
+        p->GetNumberOfShaderReplacements() > 0);
+  };
+  auto* gl = vtkOpenGLPolyDataMapper::SafeDownCast(mapper);
+  return custom(actor->GetShaderProperty()) || (gl && custom(LegacyShaderPropertyOf::Get(gl)));
+}
+
+/// Mappers that draw something other than their data's cells: VTK's point
+/// splats, its molecule mapper's sphere and stick impostors and ParaView's
+/// surface LIC.
+bool drawsOtherThanCells(vtkMapper* mapper)
+{
+  return mapper->IsA("vtkPointGaussianMapper") || mapper->IsA("vtkOpenGLSphereMapper") ||
+    mapper->IsA("vtkOpenGLStickMapper") || mapper->IsA("vtkSurfaceLICMapper") ||
+    mapper->IsA("vtkCompositeSurfaceLICMapper");
+}
+
+/// VTK blends every fragment, so an actor forced opaque whose colors are
+/// not opaque is blended over what raster drew before it, in its opaque
+/// pass; the tracer would draw it opaque.
+bool forcedOpaqueButTranslucent(vtkActor* actor, vtkMapper* mapper)
+{
+  return actor->GetForceOpaque() &&
+    (actor->GetProperty()->GetOpacity() < 1.0 || mapper->HasTranslucentPolygonalGeometry());
+}
+} // namespace
+
+bool Scene::IsTraceable(vtkProp* prop, bool translucency)
+{
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  if (!actor || !actor->GetVisibility() || !actor->GetMapper())
+  {
+    return false;
+  }
+  vtkMapper* mapper = actor->GetMapper();
+  const bool glyphs = vtkGlyph3DMapper::SafeDownCast(mapper) != nullptr;
+  if (!glyphs && !vtkPolyDataMapper::SafeDownCast(mapper) &&
+    !vtkCompositePolyDataMapper::SafeDownCast(mapper) && !vtkDataSetMapper::SafeDownCast(mapper))
+  {
+    return false;
+  }
+  // A vtkDataSetMapper without input: raster reports it.
+  if (drawsOtherThanCells(mapper) || hasCustomShaders(actor, mapper) ||
+    forcedOpaqueButTranslucent(actor, mapper) ||
+    (vtkDataSetMapper::SafeDownCast(mapper) && mapper->GetNumberOfInputConnections(0) == 0))
+  {
+    return false;
+  }
+  vtkProperty* property = actor->GetProperty();
+  const int representation = property->GetRepresentation();
+  // Edges and wires of glyphs stay with raster (and of polygons drawn as
+  // tubes, VTK's shaded fake tubes: decided with the data, in
+  // hasUntraceableCells).
+  const bool edges = property->GetEdgeVisibility() || representation == VTK_WIREFRAME;
+  if (property->GetInterpolation() == VTK_PBR || (edges && glyphs))
+  {
+    return false;
+  }
+  // Translucent: polygonal surfaces without edges. Not glyphs (raster's
+  // glyph mapper blends their layers unlike a mesh's, docs/pass.md), a
+  // translucent back face (a property of its own) or edges and wires
+  // (raster blends them as lines over the layers); points as spheres and
+  // tubes are decided with the data (hasUntraceableCells).
+  if (actor->HasTranslucentPolygonalGeometry() &&
+    (!translucency || glyphs || edges || actor->GetBackfaceProperty()))
+  {
+    return false;
+  }
+  // Textures, culling and back-face colors: on polygonal surfaces (a
+  // translucent back face is left to raster, as a translucent front).
+  vtkProperty* back = actor->GetBackfaceProperty();
+  const bool surfaceLooks = actor->GetTexture() || property->GetNumberOfTextures() > 0 || back ||
+    property->GetBackfaceCulling() || property->GetFrontfaceCulling();
+  // Raster's wires are lines: never culled, never back faces, untextured.
+  if (surfaceLooks &&
+    (glyphs || representation == VTK_WIREFRAME || (back && back->GetOpacity() < 1.0) ||
+      !TextureCache::Untraceable(actor).empty() ||
+      (actor->GetTexture() && representation != VTK_SURFACE)))
+  {
+    return false;
+  }
+  return representation != VTK_POINTS || (!glyphs && property->GetRenderPointsAsSpheres());
+}
+
+void Scene::KeepCulledProps(vtkRenderer* ren, vtkProp** props, int count,
+  const std::unordered_set<vtkProp*>& previous, FrameCounters& counters)
+{
+  const std::unordered_set<vtkProp*> inFrame(props, props + count);
+  std::vector<vtkProp*> kept;
+  this->Keeping = true;
+  vtkCollectionSimpleIterator it;
+  vtkPropCollection* all = ren->GetViewProps();
+  all->InitTraversal(it);
+  while (vtkProp* prop = all->GetNextProp(it))
+  {
+    // Only what the last frame traced or kept: a prop never in view yet is
+    // built when it first is, as raster makes its buffers.
+    if (inFrame.count(prop) || !previous.count(prop) || !IsTraceable(prop, this->TraceTranslucency))
+    {
+      continue;
+    }
+    kept.push_back(prop);
+    // What it has cached marked used (nothing built, no pipeline run, as
+    // raster does nothing for it), its instances dropped.
+    vtkActor* actor = vtkActor::SafeDownCast(prop);
+    const std::size_t first = this->Instances.size();
+    std::vector<vtkProp*> standIns;
+    if (auto* glyphs = vtkGlyph3DMapper::SafeDownCast(actor->GetMapper()))
+    {
+      this->AddGlyphs(actor, glyphs, -1, counters);
+    }
+    else
+    {
+      this->AddPolyDataMapper(actor, this->Surfaces.MapperFor(actor->GetMapper()), -1, counters, standIns);
+    }
+    this->Instances.resize(first);
+  }
+  this->Keeping = false;
+  this->Present.insert(kept.begin(), kept.end());
+}
+
+} // namespace pass
+} // namespace vtkrt
