@@ -309,10 +309,20 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
   inst.PropIndex = propIndex;
   this->FillMaterial(actor, mapper, inst);
   // A block color replaces the scalar colors too, as
-  // vtkCompositePolyDataMapper2 draws it.
+  // vtkCompositePolyDataMapper2 draws it, but not their alpha: translucent
+  // scalar colors under a block color are left to raster.
   Colors* colors = nullptr;
   if (blockColor)
   {
+    if (Colors* scalars = this->GetColors(mapper, poly, time))
+    {
+      const std::size_t first = scalars->Texture ? scalars->Packed[0] : 0;
+      if (std::any_of(scalars->Packed.begin() + first, scalars->Packed.end(),
+            [](std::uint32_t rgba) { return (rgba >> 24) < 255u; }))
+      {
+        return false;
+      }
+    }
     ApplyBlockColor(inst, property, blockColor, false);
   }
   else

@@ -15,6 +15,7 @@
 #include "vtkDataSetTriangleFilter.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkLookupTable.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkPointData.h"
@@ -316,6 +317,44 @@ void TestReplacedColors()
     scene.Renderer->AddActor(actor);
     scene.View();
     scene.Compare(std::string("block colors over ") + (cellScalars ? "cell" : "point") + " scalars", 1, 2.0);
+  }
+  {
+    // Scalar colors with alpha under a block color: raster keeps their
+    // alpha (the block translucent over the plane behind it): left to raster.
+    Scene scene;
+    vtkNew<vtkMultiBlockDataSet> blocks;
+    blocks->SetNumberOfBlocks(2);
+    for (unsigned int b = 0; b < 2; ++b)
+    {
+      vtkSmartPointer<vtkPolyData> sphere = Sphere(1.2 * b, 24);
+      vtkNew<vtkFloatArray> values;
+      for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+      {
+        values->InsertNextValue(static_cast<float>(i % 5));
+      }
+      sphere->GetPointData()->SetScalars(values);
+      blocks->SetBlock(b, sphere);
+    }
+    vtkNew<vtkLookupTable> table;
+    table->SetAlphaRange(0.4, 0.4);
+    table->Build();
+    vtkNew<vtkCompositePolyDataMapper2> mapper;
+    mapper->SetInputDataObject(blocks);
+    mapper->SetScalarRange(0.0, 4.0);
+    mapper->SetLookupTable(table);
+    vtkNew<vtkCompositeDataDisplayAttributes> attributes;
+    mapper->SetCompositeDataDisplayAttributes(attributes);
+    double yellow[3] = { 1.0, 1.0, 0.0 };
+    mapper->SetBlockColor(1, yellow);
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    scene.Renderer->AddActor(actor);
+    auto plane = MeshActor(Sphere(0.6, 8));
+    plane->SetPosition(0.0, 0.0, -2.0);
+    plane->SetScale(4.0, 4.0, 0.1);
+    scene.Renderer->AddActor(plane);
+    scene.View();
+    scene.Compare("block color over scalars with alpha 0.4", 1, 2.0);
   }
   // -1: cell i takes tuple i (the array as long as the cells).
   for (int tuple : { 0, 3, -1 })
