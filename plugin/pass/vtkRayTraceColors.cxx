@@ -167,15 +167,12 @@ Colors* Scene::GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time
     time = std::max(time, lut->GetMTime());
   }
   auto key = std::make_pair(static_cast<const void*>(mapper), static_cast<const void*>(data));
-  auto it = this->ColorCache.find(key);
   if (this->Keeping)
   {
-    if (it != this->ColorCache.end())
-    {
-      it->second->Used = true;
-    }
+    markCached(this->ColorCache, key);
     return nullptr;
   }
+  auto it = this->ColorCache.find(key);
   if (it != this->ColorCache.end() && it->second->SourceTime == time)
   {
     it->second->Used = true;

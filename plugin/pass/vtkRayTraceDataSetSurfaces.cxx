@@ -1,5 +1,7 @@
 #include "vtkRayTraceDataSetSurfaces.h"
 
+#include "vtkRayTraceTypes.h"
+
 #include "vtkDataSet.h"
 #include "vtkDataSetMapper.h"
 #include "vtkDataSetSurfaceFilter.h"
@@ -14,18 +16,12 @@ namespace pass
 
 void DataSetSurfaces::BeginFrame()
 {
-  for (auto& e : this->Entries)
-  {
-    e.second.Used = false;
-  }
+  markUnused(this->Entries);
 }
 
 void DataSetSurfaces::EndFrame()
 {
-  for (auto it = this->Entries.begin(); it != this->Entries.end();)
-  {
-    it = it->second.Used ? std::next(it) : this->Entries.erase(it);
-  }
+  dropUnused(this->Entries);
 }
 
 vtkMapper* DataSetSurfaces::MapperFor(vtkMapper* mapper)

@@ -546,10 +546,8 @@ void Scene::AddGlyphSet(vtkActor* actor, vtkGlyph3DMapper* mapper, const GlyphSp
   const auto key = std::make_pair(static_cast<const void*>(mapper), static_cast<const void*>(input));
   if (this->Keeping)
   {
-    const auto cached = this->SphereCache.find(key);
-    if (cached != this->SphereCache.end())
+    if (markCached(this->SphereCache, key))
     {
-      cached->second->Used = true;
       if (auto* asPoly = vtkPolyData::SafeDownCast(input))
       {
         this->GetColors(mapper, asPoly, input->GetMTime());

@@ -1,5 +1,7 @@
 #include "vtkRayTraceRasterCells.h"
 
+#include "vtkRayTraceTypes.h"
+
 #include "vtkActor.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -15,18 +17,12 @@ namespace pass
 
 void RasterCells::BeginFrame()
 {
-  for (auto& e : this->Entries)
-  {
-    e.second.Used = false;
-  }
+  markUnused(this->Entries);
 }
 
 void RasterCells::EndFrame()
 {
-  for (auto it = this->Entries.begin(); it != this->Entries.end();)
-  {
-    it = it->second.Used ? std::next(it) : this->Entries.erase(it);
-  }
+  dropUnused(this->Entries);
 }
 
 vtkProp* RasterCells::OwnerOf(vtkProp* prop) const

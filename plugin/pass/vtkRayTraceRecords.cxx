@@ -40,9 +40,6 @@ void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCo
   for (int k = 0; k < 3; ++k)
   {
     this->Eye[k] = eye[k] / eye[3];
-  }
-  for (int k = 0; k < 3; ++k)
-  {
     this->Origin[k] = worldCoordinates ? 0.0 : this->Eye[k];
   }
   vtkNew<vtkMatrix4x4> worldToClip; // row-major P * V

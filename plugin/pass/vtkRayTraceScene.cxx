@@ -6,7 +6,6 @@
 #include "vtkActor.h"
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkCompositeDataSet.h"
-#include "vtkCompositePolyDataMapper.h"
 #include "vtkCompositePolyDataMapper2.h"
 #include "vtkDataObjectTreeRange.h"
 #include "vtkDataObject.h"
@@ -64,41 +63,6 @@ bool hasUntraceableCells(vtkPolyData* poly, vtkActor* actor, bool pointsAsSphere
 /// geometry of the same polydata has none).
 const char kTubesKey = 0;
 
-/// A cache entry's "used this frame" flag (entries held by pointer or by value).
-template <class Pointer>
-auto usedFlag(Pointer& entry) -> decltype((entry->Used))
-{
-  return entry->Used;
-}
-template <class T>
-auto usedFlag(T& entry) -> decltype((entry.Used))
-{
-  return entry.Used;
-}
-
-/// Marks every entry of a cache unused (the frame's props mark theirs).
-template <class Cache>
-void markUnused(Cache& cache)
-{
-  for (auto& e : cache)
-  {
-    usedFlag(e.second) = false;
-  }
-}
-
-/// Marks the cache's entry for `key` used, if there is one; whether there is.
-template <class Cache, class Key>
-bool markCached(Cache& cache, const Key& key)
-{
-  const auto it = cache.find(key);
-  if (it == cache.end())
-  {
-    return false;
-  }
-  usedFlag(it->second) = true;
-  return true;
-}
-
 /// Whether `g` was built from `source` (its objects, at its time).
 bool builtFrom(const Geometry& g, const GeometrySource& source)
 {
@@ -126,24 +90,6 @@ void takeCachePlace(const Geometry& from, Geometry& to)
   to.Used = from.Used;
   to.TriangulationSeconds = from.TriangulationSeconds;
   to.BuildSeconds = from.BuildSeconds;
-}
-
-/// Drops the entries no prop used this frame; returns whether any went.
-template <class Cache>
-bool dropUnused(Cache& cache)
-{
-  bool dropped = false;
-  for (auto it = cache.begin(); it != cache.end();)
-  {
-    if (usedFlag(it->second))
-    {
-      ++it;
-      continue;
-    }
-    it = cache.erase(it);
-    dropped = true;
-  }
-  return dropped;
 }
 
 /// A polydata leaf of a composite input with its inherited block color.
@@ -504,6 +450,16 @@ bool Scene::AddPolyDataMapper(vtkActor* actor, vtkMapper* mapper, int propIndex,
   return ok;
 }
 
+bool Scene::AddActor(vtkActor* actor, int propIndex, FrameCounters& counters, std::vector<vtkProp*>& standIns)
+{
+  vtkMapper* mapper = actor->GetMapper();
+  if (auto* glyphs = vtkGlyph3DMapper::SafeDownCast(mapper))
+  {
+    return this->AddGlyphs(actor, glyphs, propIndex, counters);
+  }
+  return this->AddPolyDataMapper(actor, this->Surfaces.MapperFor(mapper), propIndex, counters, standIns);
+}
+
 void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vtkProp*>& traced,
   std::vector<vtkProp*>& others, FrameCounters& counters)
 {
@@ -527,7 +483,6 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
       continue;
     }
     vtkActor* actor = vtkActor::SafeDownCast(prop);
-    vtkMapper* mapper = actor->GetMapper();
     if (actor->HasTranslucentPolygonalGeometry() && actor->GetProperty()->GetOpacity() <= 0.0)
     {
       // Invisible, and never selected (vtkOpenGLActor): traced as nothing.
@@ -537,18 +492,9 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
     const int propIndex = static_cast<int>(traced.size());
     const std::size_t firstInstance = this->Instances.size();
     std::vector<vtkProp*> standIns;
-    bool ok = false;
-    if (auto* glyphs = vtkGlyph3DMapper::SafeDownCast(mapper))
-    {
-      ok = this->AddGlyphs(actor, glyphs, propIndex, counters);
-    }
-    else
-    {
-      ok = this->AddPolyDataMapper(
-        actor, this->Surfaces.MapperFor(mapper), propIndex, counters, standIns);
-    }
     // An actor whose every cell is raster's is left to raster whole.
-    ok = ok && (standIns.empty() || this->Instances.size() > firstInstance);
+    const bool ok = this->AddActor(actor, propIndex, counters, standIns) &&
+      (standIns.empty() || this->Instances.size() > firstInstance);
     if (ok)
     {
       traced.push_back(prop);

@@ -165,6 +165,10 @@ private:
   /// (negative: none) replace the property's.
   bool AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
     FrameCounters& counters, const double* blockColor = nullptr, double blockOpacity = -1.0);
+  /// A traceable actor's glyphs (AddGlyphs) or polydata pieces
+  /// (AddPolyDataMapper, through its vtkDataSetMapper's polydata mapper if
+  /// it has one); false when it is left to raster.
+  bool AddActor(vtkActor* actor, int propIndex, FrameCounters& counters, std::vector<vtkProp*>& standIns);
   /// Keeps the cached geometry of the renderer's traceable props that VTK's
   /// culler left out of this frame (outside the view, or too small) and
   /// that the last frame traced or kept (`previous`), so that a camera move

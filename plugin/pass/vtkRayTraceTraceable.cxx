@@ -85,15 +85,16 @@ bool Scene::IsTraceable(vtkProp* prop, bool translucency)
   }
   vtkMapper* mapper = actor->GetMapper();
   const bool glyphs = vtkGlyph3DMapper::SafeDownCast(mapper) != nullptr;
-  if (!glyphs && !vtkPolyDataMapper::SafeDownCast(mapper) &&
-    !vtkCompositePolyDataMapper::SafeDownCast(mapper) && !vtkDataSetMapper::SafeDownCast(mapper))
+  const bool dataSetMapper = vtkDataSetMapper::SafeDownCast(mapper) != nullptr;
+  if (!glyphs && !dataSetMapper && !vtkPolyDataMapper::SafeDownCast(mapper) &&
+    !vtkCompositePolyDataMapper::SafeDownCast(mapper))
   {
     return false;
   }
   // A vtkDataSetMapper without input: raster reports it.
   if (drawsOtherThanCells(mapper) || hasCustomShaders(actor, mapper) ||
     forcedOpaqueButTranslucent(actor, mapper) ||
-    (vtkDataSetMapper::SafeDownCast(mapper) && mapper->GetNumberOfInputConnections(0) == 0))
+    (dataSetMapper && mapper->GetNumberOfInputConnections(0) == 0))
   {
     return false;
   }
@@ -153,17 +154,9 @@ void Scene::KeepCulledProps(vtkRenderer* ren, vtkProp** props, int count,
     kept.push_back(prop);
     // What it has cached marked used (nothing built, no pipeline run, as
     // raster does nothing for it), its instances dropped.
-    vtkActor* actor = vtkActor::SafeDownCast(prop);
     const std::size_t first = this->Instances.size();
     std::vector<vtkProp*> standIns;
-    if (auto* glyphs = vtkGlyph3DMapper::SafeDownCast(actor->GetMapper()))
-    {
-      this->AddGlyphs(actor, glyphs, -1, counters);
-    }
-    else
-    {
-      this->AddPolyDataMapper(actor, this->Surfaces.MapperFor(actor->GetMapper()), -1, counters, standIns);
-    }
+    this->AddActor(vtkActor::SafeDownCast(prop), -1, counters, standIns);
     this->Instances.resize(first);
   }
   this->Keeping = false;

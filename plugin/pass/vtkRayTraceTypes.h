@@ -270,6 +270,62 @@ struct FrameCounters
   }
 };
 
+// The frame caches' bookkeeping: an entry is marked used by the props of a
+// frame that need it, and what no prop used is dropped after the frame.
+
+/// A cache entry's "used this frame" flag (entries held by pointer or by value).
+template <class Pointer>
+auto usedFlag(Pointer& entry) -> decltype((entry->Used))
+{
+  return entry->Used;
+}
+template <class T>
+auto usedFlag(T& entry) -> decltype((entry.Used))
+{
+  return entry.Used;
+}
+
+/// Marks every entry of a cache unused (the frame's props mark theirs).
+template <class Cache>
+void markUnused(Cache& cache)
+{
+  for (auto& e : cache)
+  {
+    usedFlag(e.second) = false;
+  }
+}
+
+/// Marks the cache's entry for `key` used, if there is one; whether there is.
+template <class Cache, class Key>
+bool markCached(Cache& cache, const Key& key)
+{
+  const auto it = cache.find(key);
+  if (it == cache.end())
+  {
+    return false;
+  }
+  usedFlag(it->second) = true;
+  return true;
+}
+
+/// Drops the entries no prop used this frame; returns whether any went.
+template <class Cache>
+bool dropUnused(Cache& cache)
+{
+  bool dropped = false;
+  for (auto it = cache.begin(); it != cache.end();)
+  {
+    if (usedFlag(it->second))
+    {
+      ++it;
+      continue;
+    }
+    it = cache.erase(it);
+    dropped = true;
+  }
+  return dropped;
+}
+
 } // namespace pass
 } // namespace vtkrt
 

@@ -37,28 +37,14 @@ namespace
 {
 constexpr int kSize = 320;
 
-struct Scene
+/// The mappers' scenes, seen from one orbit: failed images as mappers-N.*.png.
+struct Scene : ComparedScene
 {
-  vtkSmartPointer<vtkEGLHeadlessRenderWindow> Window = MakeWindow(kSize, kSize);
-  vtkNew<vtkRenderer> Renderer;
   Scene()
+    : ComparedScene(kSize, "mappers")
   {
-    this->Window->AddRenderer(this->Renderer);
-    this->Renderer->SetBackground(0.1, 0.1, 0.15);
   }
-  void View()
-  {
-    this->Renderer->ResetCamera();
-    this->Renderer->GetActiveCamera()->Azimuth(30.0);
-    this->Renderer->GetActiveCamera()->Elevation(20.0);
-    this->Renderer->ResetCameraClippingRange();
-  }
-  RasterAndTraced Compare(const std::string& label, int traced, double bound)
-  {
-    static int written = 0;
-    return CompareBlurred(
-      this->Window, this->Renderer, label, traced, bound, "mappers-" + std::to_string(written++));
-  }
+  void View() { this->ComparedScene::View(30.0, 20.0); }
 };
 
 /// A block of n^3 voxels with point scalars (distance from a corner).
@@ -209,56 +195,44 @@ void TestDataSetMapper()
 // opaque whose opacity is not 1 (VTK blends it in its opaque pass).
 void TestLeftToRaster()
 {
-  auto mesh = [](Scene& scene) {
+  // `actor` beside a traced mesh: only the mesh is traced.
+  auto compareBeside = [](const std::string& label, vtkActor* actor) {
+    Scene scene;
     scene.Renderer->AddActor(MeshActor(Sphere(-0.6, 24)));
+    scene.Renderer->AddActor(actor);
+    scene.View();
+    scene.Compare(label, 1, 2.0);
   };
   {
-    Scene scene;
-    mesh(scene);
     vtkNew<vtkPointGaussianMapper> splats;
     splats->SetInputData(Sphere(0.6, 16));
     splats->SetScaleFactor(0.08);
     splats->EmissiveOff();
     vtkNew<vtkActor> actor;
     actor->SetMapper(splats);
-    scene.Renderer->AddActor(actor);
-    scene.View();
-    scene.Compare("vtkPointGaussianMapper of a sphere with polygons", 1, 2.0);
+    compareBeside("vtkPointGaussianMapper of a sphere with polygons", actor);
+  }
+  const std::string red = "//VTK::Light::Impl\n  gl_FragData[0] = vec4(1.0, 0.0, 0.0, 1.0);\n";
+  {
+    auto actor = MeshActor(Sphere(0.6, 24));
+    actor->GetShaderProperty()->AddFragmentShaderReplacement("//VTK::Light::Impl", false, red, false);
+    compareBeside("a shader replacement on the actor's shader property", actor);
   }
   {
-    Scene scene;
-    mesh(scene);
-    auto red = MeshActor(Sphere(0.6, 24));
-    red->GetShaderProperty()->AddFragmentShaderReplacement("//VTK::Light::Impl", false,
-      "//VTK::Light::Impl\n  gl_FragData[0] = vec4(1.0, 0.0, 0.0, 1.0);\n", false);
-    scene.Renderer->AddActor(red);
-    scene.View();
-    scene.Compare("a shader replacement on the actor's shader property", 1, 2.0);
-  }
-  {
-    Scene scene;
-    mesh(scene);
-    auto red = MeshActor(Sphere(0.6, 24));
-    auto* mapper = vtkOpenGLPolyDataMapper::SafeDownCast(red->GetMapper());
+    auto actor = MeshActor(Sphere(0.6, 24));
+    auto* mapper = vtkOpenGLPolyDataMapper::SafeDownCast(actor->GetMapper());
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wdeprecated-declarations"
-    mapper->AddShaderReplacement(vtkShader::Fragment, "//VTK::Light::Impl", false,
-      "//VTK::Light::Impl\n  gl_FragData[0] = vec4(1.0, 0.0, 0.0, 1.0);\n", false);
+    mapper->AddShaderReplacement(vtkShader::Fragment, "//VTK::Light::Impl", false, red, false);
 #pragma GCC diagnostic pop
     Output->Clear(); // VTK's deprecation warning
-    scene.Renderer->AddActor(red);
-    scene.View();
-    scene.Compare("a shader replacement through the mapper's deprecated API", 1, 2.0);
+    compareBeside("a shader replacement through the mapper's deprecated API", actor);
   }
   {
-    Scene scene;
-    mesh(scene);
     auto glass = MeshActor(Sphere(0.6, 24));
     glass->GetProperty()->SetOpacity(0.3);
     glass->ForceOpaqueOn();
-    scene.Renderer->AddActor(glass);
-    scene.View();
-    scene.Compare("an actor forced opaque with opacity 0.3", 1, 2.0);
+    compareBeside("an actor forced opaque with opacity 0.3", glass);
   }
   NoVTKOutput("left to raster");
 }

@@ -129,29 +129,12 @@ vtkSmartPointer<vtkActor> TubeActor(vtkPolyData* poly, double lineWidth, double 
   return actor;
 }
 
-struct Scene
+/// The tubes' scenes: failed images as tubes-N.*.png.
+struct Scene : ComparedScene
 {
-  vtkSmartPointer<vtkEGLHeadlessRenderWindow> Window = MakeWindow(kSize, kSize);
-  vtkNew<vtkRenderer> Renderer;
   Scene()
+    : ComparedScene(kSize, "tubes")
   {
-    this->Window->AddRenderer(this->Renderer);
-    this->Renderer->SetBackground(0.1, 0.1, 0.15);
-  }
-  void View(double azimuth, double elevation, bool parallel)
-  {
-    this->Renderer->GetActiveCamera()->SetParallelProjection(parallel);
-    this->Renderer->ResetCamera();
-    this->Renderer->GetActiveCamera()->Azimuth(azimuth);
-    this->Renderer->GetActiveCamera()->Elevation(elevation);
-    this->Renderer->ResetCameraClippingRange();
-  }
-  /// Raster, then traced: `traced` props traced, and the RGB RMSE of the
-  /// blurred images at most `bound`.
-  RasterAndTraced Compare(const std::string& label, int traced, double bound)
-  {
-    static int written = 0;
-    return CompareBlurred(this->Window, this->Renderer, label, traced, bound, "tubes-" + std::to_string(written++));
   }
 };
 

@@ -523,6 +523,39 @@ inline RasterAndTraced CompareBlurred(vtkRenderWindow* win, vtkRenderer* ren, co
   return frames;
 }
 
+/// A window of `size` x `size` pixels with one renderer, viewed from an
+/// orbit, whose raster and traced frames are compared blurred; failed
+/// images are written as `name`-N.*.png.
+struct ComparedScene
+{
+  vtkSmartPointer<vtkEGLHeadlessRenderWindow> Window;
+  vtkNew<vtkRenderer> Renderer;
+  std::string Name;
+  int Written = 0;
+  ComparedScene(int size, const std::string& name)
+    : Window(MakeWindow(size, size))
+    , Name(name)
+  {
+    this->Window->AddRenderer(this->Renderer);
+    this->Renderer->SetBackground(0.1, 0.1, 0.15);
+  }
+  void View(double azimuth, double elevation, bool parallel = false)
+  {
+    this->Renderer->GetActiveCamera()->SetParallelProjection(parallel);
+    this->Renderer->ResetCamera();
+    this->Renderer->GetActiveCamera()->Azimuth(azimuth);
+    this->Renderer->GetActiveCamera()->Elevation(elevation);
+    this->Renderer->ResetCameraClippingRange();
+  }
+  /// Raster, then traced: `traced` props traced, and the RGB RMSE of the
+  /// blurred images at most `bound`.
+  RasterAndTraced Compare(const std::string& label, int traced, double bound)
+  {
+    return CompareBlurred(this->Window, this->Renderer, label, traced, bound,
+      this->Name + "-" + std::to_string(this->Written++));
+  }
+};
+
 /// A renderer in `win` set up as VTK's depth peeling draws translucency
 /// exactly: many peels, occlusion ratio 0.
 inline void SetUpDepthPeeling(vtkRenderWindow* win, vtkRenderer* ren)
