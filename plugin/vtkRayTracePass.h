@@ -67,6 +67,10 @@
  *   or, scaled by vector components, as analytic ellipsoids (each ray is
  *   mapped onto the glyph's unit sphere; orientation by direction, rotation
  *   or quaternion, as vtkOpenGLGlyph3DMapper).
+ * - vtkAssembly (nested too) whose visible parts are all such actors: each
+ *   part under its path's matrix, as vtkAssembly draws it; selected and
+ *   picked as the assembly, as raster reports it. An assembly with another
+ *   part (a volume, shader code ...) falls back whole.
  * Shading: vtkProperty ambient/diffuse/specular, normals as
  * vtkOpenGLPolyDataMapper takes them (interpolated point normals unless flat,
  * else cell normals, else each triangle's geometric normal), point or cell

@@ -739,7 +739,12 @@ void vtkRayTracePass::Internals::Select(vtkRayTracePass& pass, const vtkRenderSt
   std::vector<bool> traced(this->Traced.size(), false);
   for (std::size_t i = 0; i < this->Traced.size(); ++i)
   {
-    selectable[i].Actor = vtkActor::SafeDownCast(this->Traced[i]);
+    std::vector<vtkrt::pass::PropPart> parts;
+    vtkrt::pass::PartsOf(this->Traced[i], parts);
+    for (const vtkrt::pass::PropPart& part : parts)
+    {
+      selectable[i].Actors.push_back(part.Actor);
+    }
     traced[i] = this->Traced[i]->GetPickable() &&
       std::find(props.begin(), props.end(), this->Traced[i]) != props.end();
   }

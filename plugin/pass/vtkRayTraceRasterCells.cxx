@@ -31,7 +31,7 @@ vtkProp* RasterCells::OwnerOf(vtkProp* prop) const
   {
     if (e.second.Actor.GetPointer() == prop)
     {
-      return e.first;
+      return e.first.first;
     }
   }
   return nullptr;
@@ -64,9 +64,10 @@ void RasterCells::CopyCells(vtkPolyData* poly, RasterCellKinds kinds, vtkPolyDat
   }
 }
 
-vtkActor* RasterCells::Get(vtkActor* actor, vtkMapper* source, vtkPolyData* poly, RasterCellKinds kinds)
+vtkActor* RasterCells::Get(vtkProp* owner, int part, vtkActor* actor, vtkMapper* source,
+  vtkPolyData* poly, RasterCellKinds kinds)
 {
-  Entry& e = this->Entries[actor];
+  Entry& e = this->Entries[{ owner, part }];
   e.Used = true;
   if (!e.Actor)
   {

@@ -10,6 +10,7 @@
 #include "vtkType.h"
 
 #include <map>
+#include <utility>
 
 class vtkActor;
 class vtkMapper;
@@ -30,20 +31,24 @@ struct RasterCellKinds
   bool Any() const { return this->Verts || this->Lines; }
 };
 
-/// Stand-in actors per traced actor, kept while the actor is traced.
+/// Stand-in actors per traced actor (a prop, or a part of an assembly),
+/// kept while the actor is traced.
 class RasterCells
 {
 public:
   /// Marks every stand-in unused (the frame's actors mark theirs).
   void BeginFrame();
-  /// The stand-in drawing `kinds` of `poly` as `actor` draws them through
-  /// `mapper` (the actor's, or the polydata mapper of its
-  /// vtkDataSetMapper), brought up to date with the actor (property,
-  /// matrix), the mapper's settings and the data.
-  vtkActor* Get(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, RasterCellKinds kinds);
+  /// The stand-in drawing `kinds` of `poly` as part `part` of renderer prop
+  /// `owner`, `actor`, draws them through `mapper` (the actor's, or the
+  /// polydata mapper of its vtkDataSetMapper), brought up to date with the
+  /// actor (property, matrix as it is now), the mapper's settings and the
+  /// data.
+  vtkActor* Get(vtkProp* owner, int part, vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly,
+    RasterCellKinds kinds);
   /// Forgets the stand-ins no actor used this frame.
   void EndFrame();
-  /// The traced actor a stand-in draws for, or null when `prop` is none.
+  /// The renderer's traced prop a stand-in draws for, or null when `prop`
+  /// is none.
   vtkProp* OwnerOf(vtkProp* prop) const;
 
 private:
@@ -59,7 +64,7 @@ private:
   /// Rebuilds the polydata of the chosen cells (shared points and point
   /// data, the cells' own cell data).
   static void CopyCells(vtkPolyData* poly, RasterCellKinds kinds, vtkPolyData* out);
-  std::map<vtkActor*, Entry> Entries;
+  std::map<std::pair<vtkProp*, int>, Entry> Entries;
 };
 
 } // namespace pass

@@ -387,9 +387,10 @@ void Scene::AddTubes(
   }
 }
 
-bool Scene::AddPolyDataMapper(vtkActor* actor, vtkMapper* mapper, int propIndex,
+bool Scene::AddPolyDataMapper(const PropPart& part, vtkMapper* mapper, int propIndex,
   FrameCounters& counters, std::vector<vtkProp*>& standIns)
 {
+  vtkActor* actor = part.Actor;
   if (!this->Keeping)
   {
     mapper->Update();
@@ -428,7 +429,8 @@ bool Scene::AddPolyDataMapper(vtkActor* actor, vtkMapper* mapper, int propIndex,
       !hasUntraceableCells(piece.Poly, actor, pointsAsSpheres, linesAsTubes);
     if (ok && kinds.Any())
     {
-      standIns.push_back(this->RasterStandIns.Get(actor, mapper, piece.Poly, kinds));
+      standIns.push_back(
+        this->RasterStandIns.Get(part.Owner, part.Index, actor, mapper, piece.Poly, kinds));
     }
   }
   if (ok)
@@ -450,14 +452,47 @@ bool Scene::AddPolyDataMapper(vtkActor* actor, vtkMapper* mapper, int propIndex,
   return ok;
 }
 
-bool Scene::AddActor(vtkActor* actor, int propIndex, FrameCounters& counters, std::vector<vtkProp*>& standIns)
+bool Scene::AddActor(const PropPart& part, int propIndex, FrameCounters& counters, std::vector<vtkProp*>& standIns)
 {
+  vtkActor* actor = part.Actor;
+  if (actor->HasTranslucentPolygonalGeometry() && actor->GetProperty()->GetOpacity() <= 0.0)
+  {
+    // Invisible, and never selected (vtkOpenGLActor): traced as nothing.
+    return true;
+  }
   vtkMapper* mapper = actor->GetMapper();
   if (auto* glyphs = vtkGlyph3DMapper::SafeDownCast(mapper))
   {
     return this->AddGlyphs(actor, glyphs, propIndex, counters);
   }
-  return this->AddPolyDataMapper(actor, this->Surfaces.MapperFor(mapper), propIndex, counters, standIns);
+  return this->AddPolyDataMapper(part, this->Surfaces.MapperFor(mapper), propIndex, counters, standIns);
+}
+
+bool Scene::AddProp(vtkProp* prop, int propIndex, FrameCounters& counters, std::vector<vtkProp*>& standIns)
+{
+  std::vector<PropPart> parts;
+  if (!PartsOf(prop, parts))
+  {
+    return false;
+  }
+  for (const PropPart& part : parts)
+  {
+    // As vtkAssembly renders a part: its path's matrix poked in, then its own restored.
+    if (part.Matrix)
+    {
+      part.Actor->PokeMatrix(part.Matrix);
+    }
+    const bool ok = this->AddActor(part, propIndex, counters, standIns);
+    if (part.Matrix)
+    {
+      part.Actor->PokeMatrix(nullptr);
+    }
+    if (!ok)
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vtkProp*>& traced,
@@ -482,18 +517,11 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
       others.push_back(prop);
       continue;
     }
-    vtkActor* actor = vtkActor::SafeDownCast(prop);
-    if (actor->HasTranslucentPolygonalGeometry() && actor->GetProperty()->GetOpacity() <= 0.0)
-    {
-      // Invisible, and never selected (vtkOpenGLActor): traced as nothing.
-      traced.push_back(prop);
-      continue;
-    }
     const int propIndex = static_cast<int>(traced.size());
     const std::size_t firstInstance = this->Instances.size();
     std::vector<vtkProp*> standIns;
     // An actor whose every cell is raster's is left to raster whole.
-    const bool ok = this->AddActor(actor, propIndex, counters, standIns) &&
+    const bool ok = this->AddProp(prop, propIndex, counters, standIns) &&
       (standIns.empty() || this->Instances.size() > firstInstance);
     if (ok)
     {

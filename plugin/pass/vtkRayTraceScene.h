@@ -14,6 +14,9 @@
 
 #include "vtkrt/core/BVH.h"
 
+#include "vtkMatrix4x4.h" // PropPart
+#include "vtkSmartPointer.h"
+
 #include <map>
 #include <memory>
 #include <unordered_set>
@@ -40,6 +43,22 @@ void ApplyBlockColor(Instance& inst, vtkProperty* property, const double color[3
 /// The options of the triangle BVHs for the pass's BuildQuality and
 /// LeafSize, their parallel work on VTK's SMP pool.
 core::BuildOptions TriangleBuildOptions(int buildQuality, std::uint32_t leafSize);
+
+/// An actor that a renderer prop draws: the prop itself, or a visible actor
+/// at a leaf of a vtkAssembly's paths with the path's matrix, which
+/// vtkAssembly pokes into the actor while it renders it.
+struct PropPart
+{
+  vtkProp* Owner = nullptr; ///< the renderer's prop
+  int Index = 0;            ///< which of its parts
+  vtkActor* Actor = nullptr;
+  vtkSmartPointer<vtkMatrix4x4> Matrix; ///< null: the actor's own
+};
+
+/// The actors `prop` draws, in the order raster draws them: an actor alone,
+/// or the visible leaves of a vtkAssembly (nested ones too); false when it
+/// is neither or some visible leaf is not an actor (a volume, say).
+bool PartsOf(vtkProp* prop, std::vector<PropPart>& parts);
 
 /// Renderer props -> instances, with geometry cached by (data object, MTime).
 class Scene
@@ -127,8 +146,9 @@ public:
   /// Whether translucent actors are traced (default) or left to raster.
   void SetTraceTranslucency(bool trace) { this->TraceTranslucency = trace; }
 
-  /// Whether this prop would be traced (public for documentation/tests);
-  /// `translucency`: whether translucent actors can be.
+  /// Whether this prop would be traced (public for documentation/tests):
+  /// an actor, or an assembly whose every visible part is a traceable
+  /// actor; `translucency`: whether translucent actors can be.
   static bool IsTraceable(vtkProp* prop, bool translucency = true);
 
   /// Whether an actor's plain lines and points go to raster through a
@@ -165,10 +185,16 @@ private:
   /// (negative: none) replace the property's.
   bool AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
     FrameCounters& counters, const double* blockColor = nullptr, double blockOpacity = -1.0);
-  /// A traceable actor's glyphs (AddGlyphs) or polydata pieces
+  /// Whether a lone actor, or an assembly's part, would be traced.
+  static bool IsTraceableActor(vtkActor* actor, bool translucency);
+  /// Every part of a traceable prop through AddActor, each under its
+  /// assembly's matrix; false when some part is left to raster (and so is
+  /// the prop, whole).
+  bool AddProp(vtkProp* prop, int propIndex, FrameCounters& counters, std::vector<vtkProp*>& standIns);
+  /// A traceable part's glyphs (AddGlyphs) or polydata pieces
   /// (AddPolyDataMapper, through its vtkDataSetMapper's polydata mapper if
   /// it has one); false when it is left to raster.
-  bool AddActor(vtkActor* actor, int propIndex, FrameCounters& counters, std::vector<vtkProp*>& standIns);
+  bool AddActor(const PropPart& part, int propIndex, FrameCounters& counters, std::vector<vtkProp*>& standIns);
   /// Keeps the cached geometry of the renderer's traceable props that VTK's
   /// culler left out of this frame (outside the view, or too small) and
   /// that the last frame traced or kept (`previous`), so that a camera move
@@ -180,7 +206,7 @@ private:
   /// the polydata mapper of its vtkDataSetMapper), each through
   /// AddPolyData; false (left to raster) when some piece cannot be traced.
   /// `standIns` receives the raster stand-ins of its plain lines and points.
-  bool AddPolyDataMapper(vtkActor* actor, vtkMapper* mapper, int propIndex,
+  bool AddPolyDataMapper(const PropPart& part, vtkMapper* mapper, int propIndex,
     FrameCounters& counters, std::vector<vtkProp*>& standIns);
   /// A glyph mapper's plain input or every visible, non-empty leaf of its
   /// composite input (as vtkOpenGLGlyph3DMapper), each through AddGlyphSet;

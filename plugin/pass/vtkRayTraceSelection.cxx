@@ -16,6 +16,7 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace vtkrt
 {
@@ -133,24 +134,34 @@ int Selection::RenderPass(vtkOpenGLRenderWindow* win, vtkRenderer* ren,
 {
   this->Window = win;
   this->Counters = &counters;
-  while (this->StandIns.size() < traced.size())
-  {
-    this->StandIns.push_back(vtkSmartPointer<vtkRayTraceSelectionMapper>::New());
-  }
-  // The actors keep their own mappers except for this one call.
-  std::vector<vtkSmartPointer<vtkMapper>> originals(traced.size());
+  // The actors keep their own mappers except for this one call. An actor
+  // in two traced props (two assemblies) draws the first one's ids.
+  std::vector<std::pair<vtkActor*, vtkSmartPointer<vtkMapper>>> originals;
+  std::size_t used = 0;
   for (std::size_t i = 0; i < traced.size(); ++i)
   {
-    vtkActor* actor = traced[i].Actor;
-    originals[i] = actor->GetMapper();
-    this->StandIns[i]->SetStandIn(this, static_cast<int>(i), traced[i].MaximumId, originals[i]);
-    actor->SetMapper(this->StandIns[i]);
+    for (vtkActor* actor : traced[i].Actors)
+    {
+      if (std::any_of(originals.begin(), originals.end(),
+            [actor](const std::pair<vtkActor*, vtkSmartPointer<vtkMapper>>& o) { return o.first == actor; }))
+      {
+        continue;
+      }
+      if (used == this->StandIns.size())
+      {
+        this->StandIns.push_back(vtkSmartPointer<vtkRayTraceSelectionMapper>::New());
+      }
+      vtkRayTraceSelectionMapper* standIn = this->StandIns[used++];
+      originals.emplace_back(actor, actor->GetMapper());
+      standIn->SetStandIn(this, static_cast<int>(i), traced[i].MaximumId, actor->GetMapper());
+      actor->SetMapper(standIn);
+    }
   }
   const int rendered = selector->Render(ren, props.data(), static_cast<int>(props.size()));
-  for (std::size_t i = 0; i < traced.size(); ++i)
+  for (std::size_t k = 0; k < originals.size(); ++k)
   {
-    traced[i].Actor->SetMapper(originals[i]);
-    this->StandIns[i]->SetStandIn(nullptr, 0, 0, nullptr);
+    originals[k].first->SetMapper(originals[k].second);
+    this->StandIns[k]->SetStandIn(nullptr, 0, 0, nullptr);
   }
   this->Window = nullptr;
   this->Counters = nullptr;

@@ -37,7 +37,8 @@ namespace pass
 /// A traced prop as the selector sees it.
 struct SelectableProp
 {
-  vtkActor* Actor = nullptr;
+  /// The actors it draws (an assembly's parts), whose mappers draw its ids.
+  std::vector<vtkActor*> Actors;
   std::uint32_t MaximumId = 0; ///< the largest VTK id its pixels can carry
 };
 

@@ -1,9 +1,13 @@
 #include "vtkRayTraceScene.h"
 
 #include "vtkActor.h"
+#include "vtkAssembly.h"
+#include "vtkAssemblyNode.h"
+#include "vtkAssemblyPath.h"
 #include "vtkCompositePolyDataMapper.h"
 #include "vtkDataSetMapper.h"
 #include "vtkGlyph3DMapper.h"
+#include "vtkMatrix4x4.h"
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkOpenGLShaderProperty.h"
 #include "vtkPolyDataMapper.h"
@@ -11,6 +15,7 @@
 #include "vtkPropCollection.h"
 #include "vtkRenderer.h"
 
+#include <algorithm>
 #include <unordered_set>
 
 namespace vtkrt
@@ -76,10 +81,58 @@ bool forcedOpaqueButTranslucent(vtkActor* actor, vtkMapper* mapper)
 }
 } // namespace
 
+bool PartsOf(vtkProp* prop, std::vector<PropPart>& parts)
+{
+  parts.clear();
+  if (auto* actor = vtkActor::SafeDownCast(prop))
+  {
+    parts.push_back({ prop, 0, actor, nullptr });
+    return true;
+  }
+  auto* assembly = vtkAssembly::SafeDownCast(prop);
+  if (!assembly)
+  {
+    return false;
+  }
+  // vtkAssembly::RenderOpaqueGeometry's walk: the leaves of its paths, each
+  // drawn under its path's matrix when visible.
+  assembly->InitPathTraversal();
+  while (vtkAssemblyPath* path = assembly->GetNextPath())
+  {
+    vtkAssemblyNode* leaf = path->GetLastNode();
+    vtkProp* part = leaf->GetViewProp();
+    if (!part->GetVisibility())
+    {
+      continue;
+    }
+    auto* actor = vtkActor::SafeDownCast(part);
+    if (!actor)
+    {
+      parts.clear();
+      return false;
+    }
+    parts.push_back({ prop, static_cast<int>(parts.size()), actor, leaf->GetMatrix() });
+  }
+  return true;
+}
+
 bool Scene::IsTraceable(vtkProp* prop, bool translucency)
 {
-  vtkActor* actor = vtkActor::SafeDownCast(prop);
-  if (!actor || !actor->GetVisibility() || !actor->GetMapper())
+  if (auto* actor = vtkActor::SafeDownCast(prop))
+  {
+    return IsTraceableActor(actor, translucency);
+  }
+  // An assembly is traced whole or left to raster whole, as its selection
+  // reports one prop.
+  std::vector<PropPart> parts;
+  return prop && prop->GetVisibility() && PartsOf(prop, parts) && !parts.empty() &&
+    std::all_of(parts.begin(), parts.end(),
+      [translucency](const PropPart& part) { return IsTraceableActor(part.Actor, translucency); });
+}
+
+bool Scene::IsTraceableActor(vtkActor* actor, bool translucency)
+{
+  if (!actor->GetVisibility() || !actor->GetMapper())
   {
     return false;
   }
@@ -156,7 +209,7 @@ void Scene::KeepCulledProps(vtkRenderer* ren, vtkProp** props, int count,
     // raster does nothing for it), its instances dropped.
     const std::size_t first = this->Instances.size();
     std::vector<vtkProp*> standIns;
-    this->AddActor(vtkActor::SafeDownCast(prop), -1, counters, standIns);
+    this->AddProp(prop, -1, counters, standIns);
     this->Instances.resize(first);
   }
   this->Keeping = false;

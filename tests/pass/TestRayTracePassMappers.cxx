@@ -2,19 +2,26 @@
 // same scene: vtkDataSetMapper (its surface traced as its own polydata
 // mapper draws it: colors, cell ids, updates), mappers and actors raster
 // must keep (point splats, custom shader code, an actor forced opaque with
-// translucent colors), and composite and field-data colors.
+// translucent colors), composite and field-data colors, and vtkAssembly
+// parts (traced under their paths' matrices, selected as their assembly).
 #include "vtkrtPassTestUtils.h"
 #include "vtkrtTestOutputWindow.h"
 
 #include "vtkActor.h"
+#include "vtkAppendPolyData.h"
+#include "vtkAssembly.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkCompositePolyDataMapper2.h"
+#include "vtkConeSource.h"
+#include "vtkCubeSource.h"
 #include "vtkDataSetMapper.h"
 #include "vtkDataSetTriangleFilter.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkLineSource.h"
 #include "vtkLookupTable.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkOpenGLPolyDataMapper.h"
@@ -22,11 +29,18 @@
 #include "vtkPointGaussianMapper.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkPropPicker.h"
 #include "vtkProperty.h"
+#include "vtkSelection.h"
+#include "vtkSelectionNode.h"
 #include "vtkShaderProperty.h"
 #include "vtkSphereSource.h"
 #include "vtkUnstructuredGrid.h"
 
+#include <cstdlib>
+#include <map>
+#include <numeric>
 #include <set>
 #include <sstream>
 #include <string>
@@ -357,6 +371,185 @@ void TestReplacedColors()
   NoVTKOutput("replaced colors");
 }
 
+
+/// A sphere and a cube side by side and a cone in an assembly nested in
+/// theirs, every level turned, moved or scaled (origins too); a yellow
+/// segment beside the sphere when `withLine` (its part's lines go to
+/// raster through a stand-in).
+struct Parts
+{
+  vtkNew<vtkAssembly> Assembly;
+  vtkNew<vtkAssembly> Inner;
+  vtkSmartPointer<vtkActor> Ball, Box, Cone;
+  explicit Parts(bool withLine)
+  {
+    vtkSmartPointer<vtkPolyData> ball = Sphere(0.0, 32);
+    if (withLine)
+    {
+      vtkNew<vtkLineSource> line;
+      line->SetPoint1(-1.0, -0.8, 0.0);
+      line->SetPoint2(1.0, 0.8, 0.6);
+      vtkNew<vtkAppendPolyData> append;
+      append->AddInputData(ball);
+      append->AddInputConnection(line->GetOutputPort());
+      append->Update();
+      ball = append->GetOutput();
+    }
+    this->Ball = MeshActor(ball);
+    this->Ball->GetProperty()->SetColor(1.0, 1.0, 0.0);
+    this->Ball->GetProperty()->SetLineWidth(3.0);
+    vtkNew<vtkCubeSource> cube;
+    cube->Update();
+    this->Box = MeshActor(cube->GetOutput());
+    this->Box->GetProperty()->SetColor(0.3, 0.9, 0.3);
+    this->Box->SetPosition(1.4, 0.0, 0.0);
+    this->Box->RotateZ(30.0);
+    vtkNew<vtkConeSource> cone;
+    cone->SetResolution(24);
+    cone->Update();
+    this->Cone = MeshActor(cone->GetOutput());
+    this->Cone->GetProperty()->SetColor(0.3, 0.4, 1.0);
+    this->Cone->SetPosition(0.0, 1.3, 0.0);
+    this->Cone->SetScale(1.0, 1.6, 1.0);
+    this->Inner->AddPart(this->Cone);
+    this->Inner->SetPosition(0.5, 0.0, 0.0);
+    this->Inner->RotateX(20.0);
+    this->Assembly->AddPart(this->Ball);
+    this->Assembly->AddPart(this->Box);
+    this->Assembly->AddPart(this->Inner);
+    this->Assembly->SetOrigin(0.5, 0.5, 0.0);
+    this->Assembly->RotateY(35.0);
+    this->Assembly->SetScale(1.2);
+  }
+};
+
+/// The props and cell counts a cell selection of the whole window reports.
+std::map<vtkProp*, vtkIdType> SelectedProps(vtkRenderer* ren)
+{
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(ren);
+  selector->SetArea(0, 0, kSize - 1, kSize - 1);
+  selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_CELLS);
+  vtkSmartPointer<vtkSelection> result = vtk::TakeSmartPointer(selector->Select());
+  std::map<vtkProp*, vtkIdType> props;
+  for (unsigned int n = 0; result && n < result->GetNumberOfNodes(); ++n)
+  {
+    vtkSelectionNode* node = result->GetNode(n);
+    auto* prop = vtkProp::SafeDownCast(node->GetProperties()->Get(vtkSelectionNode::PROP()));
+    props[prop] += node->GetSelectionList()->GetNumberOfTuples();
+  }
+  return props;
+}
+
+// vtkAssembly: its parts are traced under their paths' matrices (nested
+// assemblies, origins, scales), cast traced shadows, keep their raster
+// lines, are selected and picked as raster selects them (the assembly),
+// follow camera and part moves without rebuilding, and keep their geometry
+// while culled; an assembly with a part the tracer cannot draw goes to
+// raster whole.
+void TestAssemblies()
+{
+  {
+    Scene scene;
+    Parts parts(false);
+    scene.Renderer->AddActor(parts.Assembly);
+    scene.View();
+    RasterAndTraced frames = scene.Compare("a nested assembly", 1, 1.0);
+    Check(frames.Pass->GetLastTracedInstances() == 3,
+      "its three parts are traced (" + std::to_string(frames.Pass->GetLastTracedInstances()) +
+        " instances)");
+
+    const std::map<vtkProp*, vtkIdType> traced = SelectedProps(scene.Renderer);
+    scene.Renderer->SetPass(nullptr);
+    const std::map<vtkProp*, vtkIdType> raster = SelectedProps(scene.Renderer);
+    auto cells = [](const std::map<vtkProp*, vtkIdType>& m, vtkProp* p) {
+      const auto it = m.find(p);
+      return it == m.end() ? vtkIdType(0) : it->second;
+    };
+    const vtkIdType r = cells(raster, parts.Assembly), t = cells(traced, parts.Assembly);
+    Check(raster.size() == 1 && traced.size() == 1 && r > 100 && std::abs(t - r) <= 1 + r / 50,
+      "a selection reports the assembly, raster / traced: " + std::to_string(r) + " / " +
+        std::to_string(t) + " cells");
+    scene.Renderer->SetPass(frames.Pass);
+    scene.Renderer->GetActiveCamera()->Azimuth(20.0);
+    scene.Window->Render();
+    Check(frames.Pass->GetLastGeometryBytesUploaded() == 0 && frames.Pass->GetLastBVHBuilds() == 0,
+      "a camera move uploads no geometry");
+    parts.Box->SetPosition(1.4, 0.4, 0.0);
+    parts.Inner->RotateX(10.0);
+    scene.Window->Render();
+    Check(frames.Pass->GetLastGeometryBytesUploaded() == 0 && frames.Pass->GetLastBVHBuilds() == 0,
+      "moving a part and a nested assembly uploads no geometry");
+    scene.Compare("parts moved", 1, 1.0);
+    parts.Ball->VisibilityOff();
+    scene.Compare("a part hidden", 1, 1.0);
+    parts.Ball->VisibilityOn();
+
+    // Culled: the camera turned away, then back.
+    scene.Renderer->SetPass(frames.Pass);
+    scene.Window->Render();
+    vtkCamera* camera = scene.Renderer->GetActiveCamera();
+    camera->Yaw(120.0);
+    scene.Window->Render();
+    const int culledInstances = frames.Pass->GetLastTracedInstances();
+    camera->Yaw(-120.0);
+    scene.Window->Render();
+    Check(culledInstances == 0 && frames.Pass->GetLastBVHBuilds() == 0 &&
+        frames.Pass->GetLastGeometryBytesUploaded() == 0,
+      "culled and back in view: " + std::to_string(culledInstances) + " instances while culled, " +
+        std::to_string(frames.Pass->GetLastBVHBuilds()) + " builds after");
+
+    scene.Renderer->GetActiveCamera()->Azimuth(-20.0);
+    scene.Window->Render();
+    vtkNew<vtkPropPicker> picker;
+    Check(picker->Pick(kSize / 2, kSize / 2, 0.0, scene.Renderer) &&
+        picker->GetViewProp() == parts.Assembly.GetPointer(),
+      "a pick in its middle picks the assembly");
+  }
+  {
+    // A light above: the parts' traced shadows darken the floor; the
+    // ball's segment is drawn by raster beside them.
+    Scene scene;
+    Parts parts(true);
+    parts.Assembly->SetPosition(0.0, 1.2, 0.0);
+    scene.Renderer->AddActor(parts.Assembly);
+    scene.Renderer->AddActor(FloorActor(3.0));
+    vtkNew<vtkLight> light;
+    light->SetLightTypeToSceneLight();
+    light->SetPosition(0.3, 10.0, 0.2);
+    light->SetFocalPoint(0.0, 0.0, 0.0);
+    scene.Renderer->AddLight(light);
+    scene.View();
+    RasterAndTraced frames = scene.Compare("an assembly with a line over a floor", 2, 1.5);
+    const unsigned char yellow[3] = { 255, 255, 0 };
+    const long rasterLine = CountColor(frames.Raster, yellow);
+    frames.Pass->SetShadows(true);
+    scene.Window->Render();
+    vtkSmartPointer<vtkImageData> shadowed = Grab(scene.Window);
+    std::vector<long> all(static_cast<std::size_t>(kSize) * kSize);
+    std::iota(all.begin(), all.end(), 0L);
+    const double unshadowedMean = MeanOver(frames.Traced, all);
+    const double shadowedMean = MeanOver(shadowed, all);
+    const long shadowedLine = CountColor(shadowed, yellow);
+    std::ostringstream s;
+    s << "shadows: mean level " << unshadowedMean << " -> " << shadowedMean
+      << "; the segment's yellow pixels raster / shadowed " << rasterLine << " / " << shadowedLine;
+    Check(shadowedMean < unshadowedMean - 2.0 && rasterLine > 20 && shadowedLine >= rasterLine / 2, s.str());
+  }
+  {
+    Scene scene;
+    Parts parts(false);
+    const std::string red = "//VTK::Light::Impl\n  gl_FragData[0] = vec4(1.0, 0.0, 0.0, 1.0);\n";
+    parts.Cone->GetShaderProperty()->AddFragmentShaderReplacement(
+      "//VTK::Light::Impl", false, red, false);
+    scene.Renderer->AddActor(parts.Assembly);
+    scene.Renderer->AddActor(MeshActor(Sphere(-1.5, 24)));
+    scene.View();
+    scene.Compare("an assembly with a part of custom shader code beside a mesh", 1, 1.0);
+  }
+  NoVTKOutput("assemblies");
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
@@ -364,5 +557,5 @@ int main(int argc, char* argv[])
   Output = vtkrtTestOutputWindow::Install();
   return RunCase(argc, argv,
     { { "DataSetMapper", TestDataSetMapper }, { "LeftToRaster", TestLeftToRaster },
-      { "ReplacedColors", TestReplacedColors } });
+      { "ReplacedColors", TestReplacedColors }, { "Assemblies", TestAssemblies } });
 }
