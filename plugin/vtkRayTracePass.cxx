@@ -6,8 +6,9 @@ using vtkrt::pass::FrameCounters;
 vtkStandardNewMacro(vtkRayTracePass);
 
 vtkRayTracePass::vtkRayTracePass()
-  : Internal(new Internals)
+  : States(new RendererStates)
 {
+  this->Internal = this->States->Entries.front().State.get();
   // Default delegate: what the renderer draws without a pass, after its
   // clear (which would wipe the traced image).
   vtkNew<vtkRayTraceRasterSteps> steps;
@@ -16,7 +17,7 @@ vtkRayTracePass::vtkRayTracePass()
 
 vtkRayTracePass::~vtkRayTracePass()
 {
-  this->Internal->Detach();
+  this->States->DetachAll();
   this->SetDelegatePass(nullptr);
 }
 
@@ -193,7 +194,10 @@ int vtkRayTracePass::GetLastBackgroundBuildsTaken() const
 }
 void vtkRayTracePass::WaitForBackgroundBuilds()
 {
-  this->Internal->Scene.WaitForBackgroundBuilds();
+  for (const RendererStates::Entry& e : this->States->Entries)
+  {
+    e.State->Scene.WaitForBackgroundBuilds();
+  }
 }
 int vtkRayTracePass::GetNumberOfBackgroundBuilds() const
 {
@@ -272,7 +276,7 @@ const char* vtkRayTracePass::GetLastFragmentShaderSource() const
 void vtkRayTracePass::ReleaseGraphicsResources(vtkWindow* w)
 {
   // The window may be going away: the next Render starts afresh.
-  this->Internal->Detach();
+  this->States->DetachAll();
   if (this->DelegatePass)
   {
     this->DelegatePass->ReleaseGraphicsResources(w);
@@ -282,15 +286,17 @@ void vtkRayTracePass::ReleaseGraphicsResources(vtkWindow* w)
 void vtkRayTracePass::Render(const vtkRenderState* s)
 {
   this->NumberOfRenderedProps = 0;
-  Internals& in = *this->Internal;
-  in.Counters = FrameCounters();
   vtkOpenGLRenderer* ren = vtkOpenGLRenderer::SafeDownCast(s->GetRenderer());
   vtkOpenGLRenderWindow* win = ren ? vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()) : nullptr;
   if (!win)
   {
+    this->Internal->Counters = FrameCounters();
     vtkErrorMacro("vtkRayTracePass needs a vtkOpenGLRenderer in a vtkOpenGLRenderWindow.");
     return;
   }
+  this->Internal = &this->States->For(ren);
+  Internals& in = *this->Internal;
+  in.Counters = FrameCounters();
   in.Attach(win);
   vtkOpenGLCamera* cam = vtkOpenGLCamera::SafeDownCast(ren->GetActiveCamera());
   if (!cam)

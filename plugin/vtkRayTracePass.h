@@ -88,7 +88,8 @@
  * vtkOpenGLRenderWindow (tested: vtkEGLHeadlessRenderWindow, and VTK's
  * default X11 window, vtkXOpenGLRenderWindow). Shaders are assembled from the scene's
  * features and cached by feature key. The per-frame counters say what the
- * last frame did. One pass serves one renderer.
+ * last frame did. A pass set on several renderers keeps a scene, GL objects
+ * and counters for each (the getters report the renderer rendered last).
  */
 #ifndef vtkRayTracePass_h
 #define vtkRayTracePass_h
@@ -473,7 +474,11 @@ private:
   void operator=(const vtkRayTracePass&) = delete;
 
   struct Internals;
-  std::unique_ptr<Internals> Internal;
+  struct RendererStates;
+  /// A state (scene, GL objects, counters) per renderer the pass serves.
+  std::unique_ptr<RendererStates> States;
+  /// The state of the renderer rendered last, which the getters report.
+  Internals* Internal = nullptr;
 };
 
 #endif

@@ -42,6 +42,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -197,6 +198,66 @@ struct vtkRayTracePass::Internals
   void SetTileEntries(vtkOpenGLRenderer* ren, vtkOpenGLRenderWindow* win, Prepared& p);
   /// Draws what the pass did not trace through the delegate.
   void RenderOthers(vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren);
+};
+
+/// One state per renderer, so that a pass shared by renderers keeps each
+/// one's scene (as raster keeps each mapper's buffers) instead of
+/// rebuilding it whenever the other renderer drew last.
+struct vtkRayTracePass::RendererStates
+{
+  struct Entry
+  {
+    vtkWeakPointer<vtkRenderer> Renderer;
+    bool Claimed = false; ///< a renderer has used it (it may be gone since)
+    std::unique_ptr<Internals> State = std::make_unique<Internals>();
+  };
+  /// The first entry waits for the first renderer, so that the getters
+  /// have a state before any frame.
+  std::vector<Entry> Entries = std::vector<Entry>(1);
+
+  /// `ren`'s state, made on its first frame; the states of deleted
+  /// renderers are released.
+  Internals& For(vtkRenderer* ren)
+  {
+    for (auto it = this->Entries.begin(); it != this->Entries.end();)
+    {
+      if (it->Claimed && !it->Renderer && this->Entries.size() > 1)
+      {
+        it->State->Detach();
+        it = this->Entries.erase(it);
+        continue;
+      }
+      ++it;
+    }
+    for (Entry& e : this->Entries)
+    {
+      if (e.Claimed && e.Renderer == ren)
+      {
+        return *e.State;
+      }
+    }
+    for (Entry& e : this->Entries)
+    {
+      if (!e.Claimed || !e.Renderer)
+      {
+        e.Renderer = ren;
+        e.Claimed = true;
+        return *e.State;
+      }
+    }
+    this->Entries.emplace_back();
+    this->Entries.back().Renderer = ren;
+    this->Entries.back().Claimed = true;
+    return *this->Entries.back().State;
+  }
+  /// Every state's GL objects released (the window may be going away).
+  void DetachAll()
+  {
+    for (Entry& e : this->Entries)
+    {
+      e.State->Detach();
+    }
+  }
 };
 
 #endif
