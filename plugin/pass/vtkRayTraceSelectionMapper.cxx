@@ -2,10 +2,31 @@
 
 #include "vtkRayTraceSelection.h"
 
+#include "vtkCellData.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkHardwareSelector.h"
+#include "vtkIdTypeArray.h"
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLPolyDataMapper.h"
+#include "vtkPolyData.h"
 #include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+
+#include <algorithm>
+
+namespace
+{
+/// A value of the selector's 24-bit color encoding (low byte first), with
+/// the high pass's byte when there is one.
+vtkIdType decode(const unsigned char* low, const unsigned char* high, unsigned int pos)
+{
+  vtkIdType value = high ? static_cast<vtkIdType>(high[pos]) << 24 : 0;
+  return value | (static_cast<vtkIdType>(low[pos + 2]) << 16) |
+    (static_cast<vtkIdType>(low[pos + 1]) << 8) | low[pos];
+}
+} // namespace
 
 vtkStandardNewMacro(vtkRayTraceSelectionMapper);
 
@@ -29,9 +50,88 @@ void vtkRayTraceSelectionMapper::Render(vtkRenderer* ren, vtkActor*)
     return;
   }
   selector->BeginRenderProp();
-  selector->UpdateMaximumCellId(static_cast<vtkIdType>(this->MaximumId));
+  vtkIdType maximum = static_cast<vtkIdType>(this->MaximumId);
+  for (const auto& ids : this->CellIdArrays())
+  {
+    if (ids.second->GetNumberOfTuples() > 0)
+    {
+      maximum = std::max(maximum, static_cast<vtkIdType>(ids.second->GetRange(0)[1]));
+    }
+  }
+  selector->UpdateMaximumCellId(maximum);
   this->Selection->DrawProp(selector, this->Index);
   selector->EndRenderProp();
+}
+
+std::map<unsigned int, vtkIdTypeArray*> vtkRayTraceSelectionMapper::CellIdArrays() const
+{
+  std::map<unsigned int, vtkIdTypeArray*> arrays;
+  auto* gl = vtkOpenGLPolyDataMapper::SafeDownCast(this->Original);
+  const char* name = gl ? gl->GetCellIdArrayName() : nullptr;
+  if (!name)
+  {
+    return arrays;
+  }
+  vtkDataObject* input = gl->GetInputDataObject(0, 0);
+  if (auto* poly = vtkPolyData::SafeDownCast(input))
+  {
+    if (auto* ids = vtkIdTypeArray::SafeDownCast(poly->GetCellData()->GetArray(name)))
+    {
+      arrays[0] = ids;
+    }
+  }
+  else if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
+  {
+    vtkSmartPointer<vtkCompositeDataIterator> it = vtk::TakeSmartPointer(composite->NewIterator());
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      auto* poly = vtkPolyData::SafeDownCast(it->GetCurrentDataObject());
+      auto* ids = poly ? vtkIdTypeArray::SafeDownCast(poly->GetCellData()->GetArray(name)) : nullptr;
+      if (ids)
+      {
+        arrays[it->GetCurrentFlatIndex()] = ids;
+      }
+    }
+  }
+  return arrays;
+}
+
+void vtkRayTraceSelectionMapper::ProcessSelectorPixelBuffers(
+  vtkHardwareSelector* sel, std::vector<unsigned int>& pixeloffsets, vtkProp*)
+{
+  const int pass = sel->GetCurrentPass();
+  if (pass != vtkHardwareSelector::CELL_ID_LOW24 && pass != vtkHardwareSelector::CELL_ID_HIGH24)
+  {
+    return;
+  }
+  const std::map<unsigned int, vtkIdTypeArray*> arrays = this->CellIdArrays();
+  const unsigned char* low = sel->GetRawPixelBuffer(vtkHardwareSelector::CELL_ID_LOW24);
+  const unsigned char* high = sel->GetRawPixelBuffer(vtkHardwareSelector::CELL_ID_HIGH24);
+  const unsigned char* composite = sel->GetRawPixelBuffer(vtkHardwareSelector::COMPOSITE_INDEX_PASS);
+  unsigned char* out = sel->GetPixelBuffer(pass);
+  const bool plain = arrays.size() == 1 && arrays.begin()->first == 0;
+  if (arrays.empty() || !low || !out || (pass == vtkHardwareSelector::CELL_ID_HIGH24 && !high) ||
+    (!plain && !composite))
+  {
+    return;
+  }
+  // The traced pixels hold the cell id and the block's flat index as the
+  // selector reads them (VTK's mappers convert their primitive ids to that).
+  for (unsigned int pos : pixeloffsets)
+  {
+    const vtkIdType cell = decode(low, high, pos);
+    const auto found = plain ? arrays.begin()
+                             : arrays.find(static_cast<unsigned int>(decode(composite, nullptr, pos)));
+    if (cell < 0 || found == arrays.end() || cell >= found->second->GetNumberOfTuples())
+    {
+      continue;
+    }
+    const vtkIdType value = found->second->GetValue(cell);
+    const int shift = pass == vtkHardwareSelector::CELL_ID_LOW24 ? 0 : 24;
+    out[pos] = static_cast<unsigned char>((value >> shift) & 0xff);
+    out[pos + 1] = static_cast<unsigned char>((value >> (shift + 8)) & 0xff);
+    out[pos + 2] = static_cast<unsigned char>((value >> (shift + 16)) & 0xff);
+  }
 }
 
 double* vtkRayTraceSelectionMapper::GetBounds()
@@ -51,3 +151,4 @@ void vtkRayTraceSelectionMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumId: " << this->MaximumId << "\n";
   os << indent << "Original: " << this->Original << "\n";
 }
+

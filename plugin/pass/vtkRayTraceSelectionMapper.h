@@ -9,8 +9,11 @@
  * announces the prop to the selector as VTK's mappers do (BeginRenderProp,
  * the largest id its pixels carry) and draws the prop's traced pixels,
  * instead of rasterizing the geometry again. It reports the bounds of the
- * mapper it stands in for, and leaves the selector's pixel buffers as they
- * are (the traced ids are already VTK's cell and point ids).
+ * mapper it stands in for. The traced ids are already VTK's cell ids; where
+ * the original mapper names a cell id array (CellIdArrayName, as ParaView's
+ * vtkOriginalCellIds), ProcessSelectorPixelBuffers maps them through it, as
+ * vtkOpenGLPolyDataMapper and vtkCompositePolyDataMapper2 do (a block's own
+ * array by its composite index).
  */
 #ifndef vtkRayTraceSelectionMapper_h
 #define vtkRayTraceSelectionMapper_h
@@ -18,6 +21,10 @@
 #include "vtkMapper.h"
 
 #include <cstdint>
+#include <map>
+#include <vector>
+
+class vtkIdTypeArray;
 
 namespace vtkrt
 {
@@ -42,6 +49,8 @@ public:
     vtkrt::pass::Selection* selection, int index, std::uint32_t maximumId, vtkMapper* original);
 
   void Render(vtkRenderer* ren, vtkActor* actor) override;
+  void ProcessSelectorPixelBuffers(
+    vtkHardwareSelector* sel, std::vector<unsigned int>& pixeloffsets, vtkProp* prop) override;
   double* GetBounds() override;
   using vtkMapper::GetBounds;
 
@@ -52,6 +61,10 @@ protected:
 private:
   vtkRayTraceSelectionMapper(const vtkRayTraceSelectionMapper&) = delete;
   void operator=(const vtkRayTraceSelectionMapper&) = delete;
+
+  /// The original mapper's cell id arrays by composite flat index (key 0
+  /// and any index: a polydata input's), empty when it names none.
+  std::map<unsigned int, vtkIdTypeArray*> CellIdArrays() const;
 
   vtkrt::pass::Selection* Selection = nullptr;
   int Index = 0;
