@@ -17,7 +17,7 @@ vtkRayTracePass::vtkRayTracePass()
 
 vtkRayTracePass::~vtkRayTracePass()
 {
-  this->States->DetachAll();
+  this->States->Detach(nullptr);
   this->SetDelegatePass(nullptr);
 }
 
@@ -275,8 +275,8 @@ const char* vtkRayTracePass::GetLastFragmentShaderSource() const
 
 void vtkRayTracePass::ReleaseGraphicsResources(vtkWindow* w)
 {
-  // The window may be going away: the next Render starts afresh.
-  this->States->DetachAll();
+  // The window may be going away: the next Render there starts afresh.
+  this->States->Detach(w);
   if (this->DelegatePass)
   {
     this->DelegatePass->ReleaseGraphicsResources(w);
@@ -294,8 +294,13 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     vtkErrorMacro("vtkRayTracePass needs a vtkOpenGLRenderer in a vtkOpenGLRenderWindow.");
     return;
   }
-  this->Internal = &this->States->For(ren);
+  bool released = false;
+  this->Internal = &this->States->For(ren, released);
   Internals& in = *this->Internal;
+  if (released)
+  {
+    win->MakeCurrent();
+  }
   in.Counters = FrameCounters();
   in.Attach(win);
   vtkOpenGLCamera* cam = vtkOpenGLCamera::SafeDownCast(ren->GetActiveCamera());

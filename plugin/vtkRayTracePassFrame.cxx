@@ -739,6 +739,7 @@ void vtkRayTracePass::Internals::Select(vtkRayTracePass& pass, const vtkRenderSt
   std::vector<bool> traced(this->Traced.size(), false);
   for (std::size_t i = 0; i < this->Traced.size(); ++i)
   {
+    selectable[i].Prop = this->Traced[i];
     std::vector<vtkrt::pass::PropPart> parts;
     vtkrt::pass::PartsOf(this->Traced[i], parts);
     for (const vtkrt::pass::PropPart& part : parts)

@@ -216,13 +216,16 @@ struct vtkRayTracePass::RendererStates
   std::vector<Entry> Entries = std::vector<Entry>(1);
 
   /// `ren`'s state, made on its first frame; the states of deleted
-  /// renderers are released.
-  Internals& For(vtkRenderer* ren)
+  /// renderers are released (`released`: some was, in its own window's
+  /// context, which may have left another current).
+  Internals& For(vtkRenderer* ren, bool& released)
   {
+    released = false;
     for (auto it = this->Entries.begin(); it != this->Entries.end();)
     {
       if (it->Claimed && !it->Renderer && this->Entries.size() > 1)
       {
+        released = released || it->State->Window;
         it->State->Detach();
         it = this->Entries.erase(it);
         continue;
@@ -250,12 +253,16 @@ struct vtkRayTracePass::RendererStates
     this->Entries.back().Claimed = true;
     return *this->Entries.back().State;
   }
-  /// Every state's GL objects released (the window may be going away).
-  void DetachAll()
+  /// The GL objects of the states in `w` (every state's when null)
+  /// released: the window may be going away.
+  void Detach(vtkWindow* w)
   {
     for (Entry& e : this->Entries)
     {
-      e.State->Detach();
+      if (!w || e.State->Window.GetPointer() == w)
+      {
+        e.State->Detach();
+      }
     }
   }
 };

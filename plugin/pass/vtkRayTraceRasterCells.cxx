@@ -88,10 +88,13 @@ vtkActor* RasterCells::Get(vtkProp* owner, int part, vtkActor* actor, vtkMapper*
   // coincident topology), then its cells: vtkMapper's copy, not the OpenGL
   // mapper's, which copies (deprecated) shader code too.
   auto* mapper = vtkPolyDataMapper::SafeDownCast(e.Actor->GetMapper());
-  if (mapper->GetMTime() < source->GetMTime() || mapper->GetInput() != e.Cells)
+  // A part index may pass to another actor of its assembly (one hidden).
+  if (e.SourceMapper != source || mapper->GetMTime() < source->GetMTime() ||
+    mapper->GetInput() != e.Cells)
   {
     mapper->vtkMapper::ShallowCopy(source);
     mapper->SetInputData(e.Cells);
+    e.SourceMapper = source;
   }
   if (e.Actor->GetProperty() != actor->GetProperty())
   {

@@ -57,6 +57,7 @@ private:
     vtkSmartPointer<vtkActor> Actor;
     vtkSmartPointer<vtkPolyData> Cells;
     vtkPolyData* Source = nullptr;
+    vtkMapper* SourceMapper = nullptr; ///< whose settings the stand-in's mapper has
     vtkMTimeType SourceTime = 0;
     RasterCellKinds Kinds;
     bool Used = false;

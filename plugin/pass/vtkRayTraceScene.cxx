@@ -475,19 +475,31 @@ bool Scene::AddProp(vtkProp* prop, int propIndex, FrameCounters& counters, std::
   {
     return false;
   }
+  /// As vtkAssembly renders a part: its path's matrix poked in, then its
+  /// own restored (also when the build throws).
+  struct PokedMatrix
+  {
+    const PropPart& Part;
+    explicit PokedMatrix(const PropPart& part)
+      : Part(part)
+    {
+      if (part.Matrix)
+      {
+        part.Actor->PokeMatrix(part.Matrix);
+      }
+    }
+    ~PokedMatrix()
+    {
+      if (this->Part.Matrix)
+      {
+        this->Part.Actor->PokeMatrix(nullptr);
+      }
+    }
+  };
   for (const PropPart& part : parts)
   {
-    // As vtkAssembly renders a part: its path's matrix poked in, then its own restored.
-    if (part.Matrix)
-    {
-      part.Actor->PokeMatrix(part.Matrix);
-    }
-    const bool ok = this->AddActor(part, propIndex, counters, standIns);
-    if (part.Matrix)
-    {
-      part.Actor->PokeMatrix(nullptr);
-    }
-    if (!ok)
+    PokedMatrix poked(part);
+    if (!this->AddActor(part, propIndex, counters, standIns))
     {
       return false;
     }

@@ -51,6 +51,15 @@ struct ViewportPickList : vtkViewport
     return viewport->*(&ViewportPickList::PickFromProps);
   }
 };
+/// VTK 9.1 keeps the prop a selector renders (its PropID) protected with no
+/// accessor; the stand-in mappers need it to know which prop draws them.
+struct SelectorPropID : vtkHardwareSelector
+{
+  static int Of(vtkHardwareSelector* selector)
+  {
+    return selector->*(&SelectorPropID::PropID);
+  }
+};
 } // namespace
 
 std::vector<vtkProp*> SelectionProps(vtkRenderer* ren, vtkProp** props, int count)
@@ -134,8 +143,9 @@ int Selection::RenderPass(vtkOpenGLRenderWindow* win, vtkRenderer* ren,
 {
   this->Window = win;
   this->Counters = &counters;
-  // The actors keep their own mappers except for this one call. An actor
-  // in two traced props (two assemblies) draws the first one's ids.
+  this->Props = &traced;
+  // The actors keep their own mappers except for this one call; an actor
+  // in two props draws the ids of the one being rendered.
   std::vector<std::pair<vtkActor*, vtkSmartPointer<vtkMapper>>> originals;
   std::size_t used = 0;
   for (std::size_t i = 0; i < traced.size(); ++i)
@@ -153,7 +163,7 @@ int Selection::RenderPass(vtkOpenGLRenderWindow* win, vtkRenderer* ren,
       }
       vtkRayTraceSelectionMapper* standIn = this->StandIns[used++];
       originals.emplace_back(actor, actor->GetMapper());
-      standIn->SetStandIn(this, static_cast<int>(i), traced[i].MaximumId, actor->GetMapper());
+      standIn->SetStandIn(this, actor->GetMapper());
       actor->SetMapper(standIn);
     }
   }
@@ -161,12 +171,37 @@ int Selection::RenderPass(vtkOpenGLRenderWindow* win, vtkRenderer* ren,
   for (std::size_t k = 0; k < originals.size(); ++k)
   {
     originals[k].first->SetMapper(originals[k].second);
-    this->StandIns[k]->SetStandIn(nullptr, 0, 0, nullptr);
+    this->StandIns[k]->SetStandIn(nullptr, nullptr);
   }
+  this->Props = nullptr;
   this->Window = nullptr;
   this->Counters = nullptr;
   this->Traced = false;
   return rendered;
+}
+
+int Selection::CurrentIndex(vtkHardwareSelector* selector) const
+{
+  vtkProp* current = selector->GetPropFromID(SelectorPropID::Of(selector));
+  if (!this->Props || !current)
+  {
+    return -1;
+  }
+  for (std::size_t i = 0; i < this->Props->size(); ++i)
+  {
+    if ((*this->Props)[i].Prop == current)
+    {
+      return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
+std::uint32_t Selection::MaximumId(int index) const
+{
+  return this->Props && index >= 0 && index < static_cast<int>(this->Props->size())
+    ? (*this->Props)[static_cast<std::size_t>(index)].MaximumId
+    : 0u;
 }
 
 void Selection::DrawProp(vtkHardwareSelector* selector, int index)

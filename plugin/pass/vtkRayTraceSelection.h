@@ -37,6 +37,7 @@ namespace pass
 /// A traced prop as the selector sees it.
 struct SelectableProp
 {
+  vtkProp* Prop = nullptr; ///< the renderer's prop
   /// The actors it draws (an assembly's parts), whose mappers draw its ids.
   std::vector<vtkActor*> Actors;
   std::uint32_t MaximumId = 0; ///< the largest VTK id its pixels can carry
@@ -64,6 +65,13 @@ public:
     std::vector<vtkProp*>& props, const std::vector<SelectableProp>& traced,
     FrameCounters& counters);
 
+  /// Which traced prop the selector is rendering (-1: one the pass left to
+  /// raster), so that an actor in two props (assemblies) draws each one's
+  /// pixels.
+  int CurrentIndex(vtkHardwareSelector* selector) const;
+  /// The largest VTK id traced prop `index`'s pixels carry.
+  std::uint32_t MaximumId(int index) const;
+
   /// Draws traced prop `index`'s pixels in the encoding of the selector's
   /// current pass (what its stand-in mapper renders).
   void DrawProp(vtkHardwareSelector* selector, int index);
@@ -78,6 +86,7 @@ private:
   vtkNew<vtkTextureObject> Depth;
   std::unique_ptr<vtkOpenGLQuadHelper> DrawProgram;
   std::vector<vtkSmartPointer<vtkRayTraceSelectionMapper>> StandIns;
+  const std::vector<SelectableProp>* Props = nullptr; ///< during RenderPass
   vtkOpenGLRenderWindow* Window = nullptr; ///< during RenderPass
   FrameCounters* Counters = nullptr;       ///< during RenderPass
   bool Traced = false;                     ///< the id buffer holds this pass's trace

@@ -33,24 +33,31 @@ vtkStandardNewMacro(vtkRayTraceSelectionMapper);
 vtkRayTraceSelectionMapper::vtkRayTraceSelectionMapper() = default;
 vtkRayTraceSelectionMapper::~vtkRayTraceSelectionMapper() = default;
 
-void vtkRayTraceSelectionMapper::SetStandIn(
-  vtkrt::pass::Selection* selection, int index, std::uint32_t maximumId, vtkMapper* original)
+void vtkRayTraceSelectionMapper::SetStandIn(vtkrt::pass::Selection* selection, vtkMapper* original)
 {
   this->Selection = selection;
-  this->Index = index;
-  this->MaximumId = maximumId;
   this->Original = original;
 }
 
-void vtkRayTraceSelectionMapper::Render(vtkRenderer* ren, vtkActor*)
+void vtkRayTraceSelectionMapper::Render(vtkRenderer* ren, vtkActor* actor)
 {
   vtkHardwareSelector* selector = ren->GetSelector();
   if (!selector || !this->Selection)
   {
     return;
   }
+  const int index = this->Selection->CurrentIndex(selector);
+  if (index < 0)
+  {
+    // The actor is also a part of a prop the pass left to raster.
+    if (this->Original)
+    {
+      this->Original->Render(ren, actor);
+    }
+    return;
+  }
   selector->BeginRenderProp();
-  vtkIdType maximum = static_cast<vtkIdType>(this->MaximumId);
+  vtkIdType maximum = static_cast<vtkIdType>(this->Selection->MaximumId(index));
   for (const auto& ids : this->CellIdArrays())
   {
     if (ids.second->GetNumberOfTuples() > 0)
@@ -59,7 +66,7 @@ void vtkRayTraceSelectionMapper::Render(vtkRenderer* ren, vtkActor*)
     }
   }
   selector->UpdateMaximumCellId(maximum);
-  this->Selection->DrawProp(selector, this->Index);
+  this->Selection->DrawProp(selector, index);
   selector->EndRenderProp();
 }
 
@@ -147,8 +154,6 @@ double* vtkRayTraceSelectionMapper::GetBounds()
 void vtkRayTraceSelectionMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Index: " << this->Index << "\n";
-  os << indent << "MaximumId: " << this->MaximumId << "\n";
   os << indent << "Original: " << this->Original << "\n";
 }
 

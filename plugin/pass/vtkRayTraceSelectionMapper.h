@@ -7,8 +7,10 @@
  * color and calls RenderOpaqueGeometry. For an actor the pass traces, this
  * stand-in takes the place of the actor's mapper during that call: it
  * announces the prop to the selector as VTK's mappers do (BeginRenderProp,
- * the largest id its pixels carry) and draws the prop's traced pixels,
- * instead of rasterizing the geometry again. It reports the bounds of the
+ * the largest id its pixels carry) and draws the traced pixels of the prop
+ * being rendered (an actor may be a part of two assemblies), instead of
+ * rasterizing the geometry again; for a prop the pass left to raster it
+ * renders the actor with the original mapper. It reports the bounds of the
  * mapper it stands in for. The traced ids are already VTK's cell ids; where
  * the original mapper names a cell id array (CellIdArrayName, as ParaView's
  * vtkOriginalCellIds), ProcessSelectorPixelBuffers maps them through it, as
@@ -42,11 +44,11 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /**
-   * What to draw: traced prop `index` of `selection`, whose ids go up to
-   * `maximumId`, standing in for `original` (kept, for its bounds).
+   * What to draw: the pixels of the traced prop of `selection` the selector
+   * renders, standing in for `original` (kept, for its bounds and to draw
+   * the actor for a prop the pass left to raster).
    */
-  void SetStandIn(
-    vtkrt::pass::Selection* selection, int index, std::uint32_t maximumId, vtkMapper* original);
+  void SetStandIn(vtkrt::pass::Selection* selection, vtkMapper* original);
 
   void Render(vtkRenderer* ren, vtkActor* actor) override;
   void ProcessSelectorPixelBuffers(
@@ -67,8 +69,6 @@ private:
   std::map<unsigned int, vtkIdTypeArray*> CellIdArrays() const;
 
   vtkrt::pass::Selection* Selection = nullptr;
-  int Index = 0;
-  std::uint32_t MaximumId = 0;
   vtkMapper* Original = nullptr;
 };
 

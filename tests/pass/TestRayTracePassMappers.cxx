@@ -547,6 +547,44 @@ void TestAssemblies()
     scene.View();
     scene.Compare("an assembly with a part of custom shader code beside a mesh", 1, 1.0);
   }
+  {
+    // One actor in three assemblies: a traced one beside it, and one left
+    // to raster by a part of shader code; each is selected where it is.
+    Scene scene;
+    Parts parts(false);
+    vtkNew<vtkAssembly> twin, mixed;
+    // The ball: triangles, whose ids VTK 9.1's raster reports as cells
+    // (under an assembly it reports a quad's triangles, not its cell).
+    twin->AddPart(parts.Ball);
+    twin->SetPosition(0.0, -1.6, 0.0);
+    auto coded = MeshActor(Sphere(0.0, 16));
+    coded->GetShaderProperty()->AddFragmentShaderReplacement("//VTK::Light::Impl", false,
+      "//VTK::Light::Impl\n  gl_FragData[0] = vec4(1.0, 0.0, 0.0, 1.0);\n", false);
+    coded->SetPosition(1.5, 0.0, 0.0);
+    mixed->AddPart(parts.Ball);
+    mixed->AddPart(coded);
+    mixed->SetPosition(-2.0, 1.5, 0.0);
+    for (vtkAssembly* a : { parts.Assembly.GetPointer(), twin.GetPointer(), mixed.GetPointer() })
+    {
+      scene.Renderer->AddActor(a);
+    }
+    scene.View();
+    RasterAndTraced frames = scene.Compare("one actor in three assemblies", 2, 1.0);
+    const std::map<vtkProp*, vtkIdType> traced = SelectedProps(scene.Renderer);
+    scene.Renderer->SetPass(nullptr);
+    const std::map<vtkProp*, vtkIdType> raster = SelectedProps(scene.Renderer);
+    std::ostringstream s;
+    s << "one actor in three assemblies, cells selected raster / traced:";
+    bool same = raster.size() == 3 && traced.size() == 3;
+    for (const auto& r : raster)
+    {
+      const auto t = traced.find(r.first);
+      const vtkIdType n = t == traced.end() ? 0 : t->second;
+      s << " " << r.second << " / " << n;
+      same = same && r.second > 20 && std::abs(n - r.second) <= 1 + r.second / 20;
+    }
+    Check(same, s.str());
+  }
   NoVTKOutput("assemblies");
 }
 
