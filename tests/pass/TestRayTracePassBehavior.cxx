@@ -567,6 +567,17 @@ void TestSharedByRenderers()
       s.str());
     Check(Difference(Grab(win[0]), own[0]) == 0.0 && Difference(Grab(win[1]), own[1]) == 0.0,
       label + ": each image is the one a pass of its own traces");
+    if (twoWindows)
+    {
+      // The first window's renderer removed (it releases the pass's objects
+      // there): the second window's keep theirs.
+      win[0]->RemoveRenderer(ren[0]);
+      counts[1].Bytes = 0;
+      win[1]->Render();
+      Check(counts[1].Bytes == 0 && Difference(Grab(win[1]), own[1]) == 0.0,
+        label + ": after the first window's renderer is removed the second uploads " +
+          std::to_string(counts[1].Bytes) + " bytes");
+    }
     for (int i = 0; i < 2; ++i)
     {
       counts[i].Pass = nullptr;
