@@ -638,7 +638,9 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRen
   vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
   ostate->vtkglEnable(GL_DEPTH_TEST);
-  ostate->vtkglDepthFunc(GL_ALWAYS);
+  // A renderer that keeps the depth below it (a layer over another, say)
+  // hides what lies behind it there, as its raster geometry would be.
+  ostate->vtkglDepthFunc(ren->GetPreserveDepthBuffer() ? GL_LEQUAL : GL_ALWAYS);
   ostate->vtkglDepthMask(GL_TRUE);
   ostate->vtkglDisable(GL_BLEND);
   if (p.F.Translucent && p.F.SamplesPerPixel == 0)

@@ -12,9 +12,6 @@
 //   MovedBetweenWindows one pass moved between two live windows' renderers and
 //                     back, then its first window deleted: every frame traced
 //                     as by a fresh pass, raster unharmed
-//   SharedByRenderers one pass set on two renderers (two viewports of a
-//                     window, two windows): each keeps its scene, so frames
-//                     after the first build and upload nothing
 //   App <vtkrt-render> vtkrt-render --mode raytrace on the demo and on a file,
 //                     against its raster mode
 // (What a frame writes to the GL buffers: TestRayTracePassUpload.)
@@ -24,7 +21,6 @@
 
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
-#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkElevationFilter.h"
 #include "vtkDataObject.h"
@@ -473,121 +469,6 @@ void TestMovedBetweenWindows()
   NoVTKOutput("moved");
 }
 
-// One pass set on two renderers, as an application with several views may
-// do: two viewports of one window, then two windows. Each renderer keeps
-// its own scene, so every frame after the first builds and uploads no
-// geometry, and each image is the one a pass of its own traces.
-void TestSharedByRenderers()
-{
-  struct Counts
-  {
-    vtkRayTracePass* Pass = nullptr;
-    int Builds = 0;
-    vtkTypeInt64 Bytes = 0;
-  };
-  auto record = [](vtkRenderer* ren, Counts& counts) {
-    vtkNew<vtkCallbackCommand> end;
-    end->SetClientData(&counts);
-    end->SetCallback([](vtkObject*, unsigned long, void* data, void*) {
-      auto* c = static_cast<Counts*>(data);
-      if (c->Pass)
-      {
-        c->Builds += c->Pass->GetLastBVHBuilds();
-        c->Bytes += c->Pass->GetLastGeometryBytesUploaded();
-      }
-    });
-    ren->AddObserver(vtkCommand::EndEvent, end);
-  };
-  auto meshRenderer = [](const char* file, double azimuth) {
-    auto ren = vtkSmartPointer<vtkRenderer>::New();
-    ren->AddActor(MeshActor(ReadPolyData(file)));
-    ren->ResetCamera();
-    ren->GetActiveCamera()->Azimuth(azimuth);
-    return ren;
-  };
-  for (const bool twoWindows : { false, true })
-  {
-    const std::string label = twoWindows ? "two windows" : "two viewports";
-    vtkSmartPointer<vtkRenderer> ren[2] = { meshRenderer("bunny.vtp", 0.0),
-      meshRenderer("bunny.vtp", 60.0) };
-    ren[1]->AddActor(SphereActor(0.05, 0.1, 0.0, 0.03));
-    vtkSmartPointer<vtkEGLHeadlessRenderWindow> win[2] = { MakeWindow(160, 120), nullptr };
-    win[1] = twoWindows ? MakeWindow(160, 120) : win[0];
-    if (!twoWindows)
-    {
-      ren[0]->SetViewport(0.0, 0.0, 0.5, 1.0);
-      ren[1]->SetViewport(0.5, 0.0, 1.0, 1.0);
-    }
-    win[0]->AddRenderer(ren[0]);
-    win[1]->AddRenderer(ren[1]);
-    // What a pass of its own traces for each.
-    vtkSmartPointer<vtkImageData> own[2];
-    for (int i = 0; i < 2; ++i)
-    {
-      vtkNew<vtkRayTracePass> fresh;
-      ren[i]->SetPass(fresh);
-      win[i]->Render();
-      ren[i]->SetPass(nullptr);
-    }
-    own[0] = Grab(win[0]);
-    own[1] = Grab(win[1]);
-
-    vtkNew<vtkRayTracePass> pass;
-    Counts counts[2];
-    for (int i = 0; i < 2; ++i)
-    {
-      ren[i]->SetPass(pass);
-      counts[i].Pass = pass;
-      record(ren[i], counts[i]);
-    }
-    auto renderAll = [&]() {
-      win[0]->Render();
-      if (twoWindows)
-      {
-        win[1]->Render();
-      }
-    };
-    renderAll();
-    Check(counts[0].Builds > 0 && counts[1].Builds > 0,
-      label + ": the first frame builds each renderer's scene");
-    for (Counts& c : counts)
-    {
-      c.Builds = 0;
-      c.Bytes = 0;
-    }
-    for (int frame = 0; frame < 3; ++frame)
-    {
-      renderAll();
-    }
-    std::ostringstream s;
-    s << label << ": three frames more build " << counts[0].Builds << " and " << counts[1].Builds
-      << " trees and upload " << counts[0].Bytes << " and " << counts[1].Bytes << " bytes";
-    Check(counts[0].Builds == 0 && counts[1].Builds == 0 && counts[0].Bytes == 0 &&
-        counts[1].Bytes == 0,
-      s.str());
-    Check(Difference(Grab(win[0]), own[0]) == 0.0 && Difference(Grab(win[1]), own[1]) == 0.0,
-      label + ": each image is the one a pass of its own traces");
-    if (twoWindows)
-    {
-      // The first window's renderer removed (it releases the pass's objects
-      // there): the second window's keep theirs.
-      win[0]->RemoveRenderer(ren[0]);
-      counts[1].Bytes = 0;
-      win[1]->Render();
-      Check(counts[1].Bytes == 0 && Difference(Grab(win[1]), own[1]) == 0.0,
-        label + ": after the first window's renderer is removed the second uploads " +
-          std::to_string(counts[1].Bytes) + " bytes");
-    }
-    for (int i = 0; i < 2; ++i)
-    {
-      counts[i].Pass = nullptr;
-      ren[i]->SetPass(nullptr);
-    }
-    NoGLError(win[0], label);
-  }
-  NoVTKOutput("shared by renderers");
-}
-
 void TestApp()
 {
   if (AppPath.empty())
@@ -723,7 +604,6 @@ int main(int argc, char* argv[])
     { "Lifecycle", TestLifecycle },
     { "MovedBetweenWindows", TestMovedBetweenWindows },
     { "CulledProps", TestCulledProps },
-    { "SharedByRenderers", TestSharedByRenderers },
     { "App", TestApp },
   };
   if (argc > 2)
