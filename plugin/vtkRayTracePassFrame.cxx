@@ -735,26 +735,15 @@ void vtkRayTracePass::Internals::Select(vtkRayTracePass& pass, const vtkRenderSt
       selector->Render(ren, props.data(), static_cast<int>(props.size()));
     return;
   }
-  // Traced prop i is drawn by stand-in i; only the pickable ones in the
-  // selection's props are traced, so that the others hide nothing.
-  std::vector<vtkrt::pass::SelectableProp> selectable(this->Traced.size());
+  // Only the pickable traced props in the selection's props are traced,
+  // so that the others hide nothing.
+  const std::vector<vtkrt::pass::SelectableProp> selectable =
+    vtkrt::pass::SelectablePropsOf(this->Traced, this->Scene.GetInstances());
   std::vector<bool> traced(this->Traced.size(), false);
   for (std::size_t i = 0; i < this->Traced.size(); ++i)
   {
-    selectable[i].Prop = this->Traced[i];
-    std::vector<vtkrt::pass::PropPart> parts;
-    vtkrt::pass::PartsOf(this->Traced[i], parts);
-    for (const vtkrt::pass::PropPart& part : parts)
-    {
-      selectable[i].Actors.push_back(part.Actor);
-    }
     traced[i] = this->Traced[i]->GetPickable() &&
       std::find(props.begin(), props.end(), this->Traced[i]) != props.end();
-  }
-  for (const Instance& inst : this->Scene.GetInstances())
-  {
-    std::uint32_t& maximum = selectable[static_cast<std::size_t>(inst.PropIndex)].MaximumId;
-    maximum = std::max(maximum, inst.Geom->MaximumId);
   }
   Prepared p;
   if (!this->Traced.empty() && this->Prepare(pass, ren, win, cam, &traced, true, p))

@@ -1,5 +1,6 @@
 #include "vtkRayTraceSelection.h"
 
+#include "vtkRayTraceScene.h"
 #include "vtkRayTraceSelectionMapper.h"
 #include "vtkRayTraceShader.h"
 
@@ -61,6 +62,28 @@ struct SelectorPropID : vtkHardwareSelector
   }
 };
 } // namespace
+
+std::vector<SelectableProp> SelectablePropsOf(
+  const std::vector<vtkProp*>& traced, const std::vector<Instance>& instances)
+{
+  std::vector<SelectableProp> selectable(traced.size());
+  std::vector<PropPart> parts;
+  for (std::size_t i = 0; i < traced.size(); ++i)
+  {
+    selectable[i].Prop = traced[i];
+    PartsOf(traced[i], parts);
+    for (const PropPart& part : parts)
+    {
+      selectable[i].Actors.push_back(part.Actor);
+    }
+  }
+  for (const Instance& inst : instances)
+  {
+    std::uint32_t& maximum = selectable[static_cast<std::size_t>(inst.PropIndex)].MaximumId;
+    maximum = std::max(maximum, inst.Geom->MaximumId);
+  }
+  return selectable;
+}
 
 std::vector<vtkProp*> SelectionProps(vtkRenderer* ren, vtkProp** props, int count)
 {

@@ -43,6 +43,11 @@ struct SelectableProp
   std::uint32_t MaximumId = 0; ///< the largest VTK id its pixels can carry
 };
 
+/// The traced props (prop index order) with the actors they draw and the
+/// largest id their instances carry.
+std::vector<SelectableProp> SelectablePropsOf(
+  const std::vector<vtkProp*>& traced, const std::vector<Instance>& instances);
+
 /// The props a selector pass renders, as vtkOpenGLRenderer::UpdateGeometry
 /// hands them to vtkHardwareSelector::Render: the renderer's pick list
 /// (its visible props) when it has one, else the render state's props.
