@@ -111,7 +111,11 @@ bool PartsOf(vtkProp* prop, std::vector<PropPart>& parts)
       parts.clear();
       return false;
     }
-    parts.push_back({ prop, static_cast<int>(parts.size()), actor, leaf->GetMatrix() });
+    // An actor without a mapper draws nothing (vtkActor::RenderOpaqueGeometry).
+    if (actor->GetMapper())
+    {
+      parts.push_back({ prop, static_cast<int>(parts.size()), actor, leaf->GetMatrix() });
+    }
   }
   return true;
 }

@@ -484,6 +484,11 @@ void TestAssemblies()
     parts.Ball->VisibilityOff();
     scene.Compare("a part hidden", 1, 1.0);
     parts.Ball->VisibilityOn();
+    // A part without a mapper draws nothing, with raster as traced.
+    vtkNew<vtkActor> empty;
+    parts.Inner->AddPart(empty);
+    scene.Compare("a part without a mapper", 1, 1.0);
+    parts.Inner->RemovePart(empty);
 
     // Culled: the camera turned away, then back.
     scene.Renderer->SetPass(frames.Pass);
