@@ -44,9 +44,11 @@ void ApplyBlockColor(Instance& inst, vtkProperty* property, const double color[3
 /// LeafSize, their parallel work on VTK's SMP pool.
 core::BuildOptions TriangleBuildOptions(int buildQuality, std::uint32_t leafSize);
 
-/// An actor that a renderer prop draws: the prop itself, or a visible actor
-/// at a leaf of a vtkAssembly's paths with the path's matrix, which
-/// vtkAssembly pokes into the actor while it renders it.
+/// An actor that a renderer prop draws: the prop itself, a visible actor at
+/// a leaf of a vtkAssembly's paths with the path's matrix (which vtkAssembly
+/// pokes into the actor while it renders it), or the level chosen for a
+/// vtkLODProp3D (SetSelectedLODID, automatic selection off) with the prop's
+/// matrix.
 struct PropPart
 {
   vtkProp* Owner = nullptr; ///< the renderer's prop
@@ -56,8 +58,11 @@ struct PropPart
 };
 
 /// The actors `prop` draws, in the order raster draws them: an actor alone,
-/// or the visible leaves of a vtkAssembly (nested ones too); false when it
-/// is neither or some visible leaf is not an actor (a volume, say).
+/// the visible leaves of a vtkAssembly (nested ones too) or the level
+/// chosen for a vtkLODProp3D; false when it is none of these, a
+/// vtkLODProp3D selects its level by time, or some visible leaf (or the
+/// level) is not an actor (a volume, say). Actors without a
+/// mapper draw nothing and are left out.
 bool PartsOf(vtkProp* prop, std::vector<PropPart>& parts);
 
 /// Renderer props -> instances, with geometry cached by (data object, MTime).

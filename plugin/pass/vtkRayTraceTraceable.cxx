@@ -7,6 +7,7 @@
 #include "vtkCompositePolyDataMapper.h"
 #include "vtkDataSetMapper.h"
 #include "vtkGlyph3DMapper.h"
+#include "vtkLODProp3D.h"
 #include "vtkMatrix4x4.h"
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkOpenGLShaderProperty.h"
@@ -81,6 +82,23 @@ bool forcedOpaqueButTranslucent(vtkActor* actor, vtkMapper* mapper)
 }
 } // namespace
 
+namespace
+{
+/// The level a vtkLODProp3D draws (chosen in its SetAllocatedRenderTime,
+/// which the renderer calls before the pass): VTK 9.1 keeps it protected.
+struct SelectedLevel : vtkLODProp3D
+{
+  static vtkProp3D* Of(vtkLODProp3D* lod)
+  {
+    const int index = lod->*(&SelectedLevel::SelectedLODIndex);
+    const int entries = lod->*(&SelectedLevel::NumberOfEntries);
+    vtkLODProp3DEntry* levels = lod->*(&SelectedLevel::LODs);
+    return levels && index >= 0 && index < entries && levels[index].ID >= 0 ? levels[index].Prop3D
+                                                                          : nullptr;
+  }
+};
+} // namespace
+
 bool PartsOf(vtkProp* prop, std::vector<PropPart>& parts)
 {
   parts.clear();
@@ -88,6 +106,19 @@ bool PartsOf(vtkProp* prop, std::vector<PropPart>& parts)
   {
     parts.push_back({ prop, 0, actor, nullptr });
     return true;
+  }
+  if (auto* lod = vtkLODProp3D::SafeDownCast(prop))
+  {
+    // Its level under its matrix, as it pushes that matrix into the level.
+    // Automatic selection stays with raster: it tries every level it has no
+    // render time for, which levels the pass traces never get.
+    auto* level = lod->GetAutomaticLODSelection() ? nullptr
+                                                  : vtkActor::SafeDownCast(SelectedLevel::Of(lod));
+    if (level && level->GetMapper())
+    {
+      parts.push_back({ prop, 0, level, lod->GetMatrix() });
+    }
+    return level != nullptr;
   }
   auto* assembly = vtkAssembly::SafeDownCast(prop);
   if (!assembly)

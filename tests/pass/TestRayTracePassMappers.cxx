@@ -3,7 +3,8 @@
 // mapper draws it: colors, cell ids, updates), mappers and actors raster
 // must keep (point splats, custom shader code, an actor forced opaque with
 // translucent colors), composite and field-data colors, and vtkAssembly
-// parts (traced under their paths' matrices, selected as their assembly).
+// parts (traced under their paths' matrices, selected as their assembly)
+// and vtkLODProp3D levels.
 #include "vtkrtPassTestUtils.h"
 #include "vtkrtTestOutputWindow.h"
 
@@ -21,6 +22,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
+#include "vtkLODProp3D.h"
 #include "vtkLineSource.h"
 #include "vtkLookupTable.h"
 #include "vtkMultiBlockDataSet.h"
@@ -593,6 +595,58 @@ void TestAssemblies()
   NoVTKOutput("assemblies");
 }
 
+// vtkLODProp3D: the level chosen for it is traced under its matrix, follows
+// a change of level, and is selected as the LOD prop, as raster does; one
+// that selects its level by time goes to raster.
+void TestLODProps()
+{
+  Scene scene;
+  vtkNew<vtkLODProp3D> lod;
+  int levels[2];
+  vtkSmartPointer<vtkPolyDataMapper> mappers[2];
+  const int resolutions[2] = { 8, 48 };
+  for (int k = 0; k < 2; ++k)
+  {
+    mappers[k] = vtkSmartPointer<vtkPolyDataMapper>::New();
+    mappers[k]->SetInputData(Sphere(0.0, resolutions[k]));
+    vtkNew<vtkProperty> property;
+    property->SetColor(0.9, 0.6 - 0.3 * k, 0.3 + 0.5 * k);
+    levels[k] = lod->AddLOD(mappers[k], property, 1.0 + k);
+  }
+  lod->AutomaticLODSelectionOff();
+  lod->SetSelectedLODID(levels[0]);
+  lod->SetPosition(0.4, 0.2, 0.0);
+  lod->RotateZ(30.0);
+  lod->SetScale(1.0, 1.6, 1.0);
+  scene.Renderer->AddActor(lod);
+  scene.Renderer->AddActor(MeshActor(Sphere(-1.2, 24)));
+  scene.View();
+  RasterAndTraced frames = scene.Compare("a vtkLODProp3D, its coarse level", 2, 1.0);
+  Check(frames.Pass->GetLastTracedPrimitives() < 2 * 24 * 24 + 2 * 8 * 8 + 1,
+    "the coarse level's triangles are traced (" +
+      std::to_string(frames.Pass->GetLastTracedPrimitives()) + " in all)");
+  lod->SetSelectedLODID(levels[1]);
+  frames = scene.Compare("its fine level", 2, 1.0);
+  Check(frames.Pass->GetLastTracedPrimitives() > 2 * 48 * 46,
+    "the fine level's triangles are traced (" +
+      std::to_string(frames.Pass->GetLastTracedPrimitives()) + " in all)");
+  const std::map<vtkProp*, vtkIdType> traced = SelectedProps(scene.Renderer);
+  scene.Renderer->SetPass(nullptr);
+  const std::map<vtkProp*, vtkIdType> raster = SelectedProps(scene.Renderer);
+  const auto t = traced.find(lod.GetPointer());
+  const auto r = raster.find(lod.GetPointer());
+  Check(t != traced.end() && r != raster.end() && r->second > 50 &&
+      std::abs(t->second - r->second) <= 1 + r->second / 50,
+    "a selection reports the LOD prop, raster / traced: " +
+      std::to_string(r == raster.end() ? 0 : r->second) + " / " +
+      std::to_string(t == traced.end() ? 0 : t->second) + " cells");
+  // Automatic selection (by render times the traced levels never get)
+  // stays with raster.
+  lod->AutomaticLODSelectionOn();
+  scene.Compare("its levels selected by time, left to raster", 1, 1.0);
+  NoVTKOutput("LOD props");
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
@@ -600,5 +654,6 @@ int main(int argc, char* argv[])
   Output = vtkrtTestOutputWindow::Install();
   return RunCase(argc, argv,
     { { "DataSetMapper", TestDataSetMapper }, { "LeftToRaster", TestLeftToRaster },
-      { "ReplacedColors", TestReplacedColors }, { "Assemblies", TestAssemblies } });
+      { "ReplacedColors", TestReplacedColors }, { "Assemblies", TestAssemblies },
+      { "LODProps", TestLODProps } });
 }
