@@ -72,7 +72,7 @@
  *   picked as the assembly, as raster reports it. An assembly with another
  *   part (a volume, shader code ...) falls back whole. A vtkLODProp3D with
  *   its level chosen (SetSelectedLODID, automatic selection off): that
- *   level's actor under the prop's matrix.
+ *   level's actor under the prop's matrix. A vtkPropAssembly of such props.
  * Shading: vtkProperty ambient/diffuse/specular, normals as
  * vtkOpenGLPolyDataMapper takes them (interpolated point normals unless flat,
  * else cell normals, else each triangle's geometric normal), point or cell

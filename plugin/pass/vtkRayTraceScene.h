@@ -58,8 +58,9 @@ struct PropPart
 };
 
 /// The actors `prop` draws, in the order raster draws them: an actor alone,
-/// the visible leaves of a vtkAssembly (nested ones too) or the level
-/// chosen for a vtkLODProp3D; false when it is none of these, a
+/// the visible leaves of a vtkAssembly (nested ones too), the level chosen
+/// for a vtkLODProp3D, or the parts of a vtkPropAssembly's visible props
+/// (each one of these); false when it is none of these, a
 /// vtkLODProp3D selects its level by time, or some visible leaf (or the
 /// level) is not an actor (a volume, say). Actors without a
 /// mapper draw nothing and are left out.

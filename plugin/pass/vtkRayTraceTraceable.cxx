@@ -13,6 +13,7 @@
 #include "vtkOpenGLShaderProperty.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
+#include "vtkPropAssembly.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderer.h"
 
@@ -119,6 +120,32 @@ bool PartsOf(vtkProp* prop, std::vector<PropPart>& parts)
       parts.push_back({ prop, 0, level, lod->GetMatrix() });
     }
     return level != nullptr;
+  }
+  if (auto* group = vtkPropAssembly::SafeDownCast(prop))
+  {
+    // vtkPropAssembly::RenderOpaqueGeometry's walk: each visible part as it
+    // draws itself (an actor with a mapper, an assembly, a LOD prop).
+    vtkCollectionSimpleIterator it;
+    vtkPropCollection* children = group->GetParts();
+    std::vector<PropPart> inner;
+    for (children->InitTraversal(it); vtkProp* child = children->GetNextProp(it);)
+    {
+      auto* actor = vtkActor::SafeDownCast(child);
+      if (!child->GetVisibility() || (actor && !actor->GetMapper()))
+      {
+        continue;
+      }
+      if (!PartsOf(child, inner))
+      {
+        parts.clear();
+        return false;
+      }
+      for (PropPart& part : inner)
+      {
+        parts.push_back({ prop, static_cast<int>(parts.size()), part.Actor, part.Matrix });
+      }
+    }
+    return true;
   }
   auto* assembly = vtkAssembly::SafeDownCast(prop);
   if (!assembly)

@@ -4,7 +4,7 @@
 // must keep (point splats, custom shader code, an actor forced opaque with
 // translucent colors), composite and field-data colors, and vtkAssembly
 // parts (traced under their paths' matrices, selected as their assembly)
-// and vtkLODProp3D levels.
+// and vtkLODProp3D levels, vtkPropAssembly groups.
 #include "vtkrtPassTestUtils.h"
 #include "vtkrtTestOutputWindow.h"
 
@@ -32,7 +32,9 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
+#include "vtkPropAssembly.h"
 #include "vtkPropPicker.h"
+#include "vtkTextActor.h"
 #include "vtkProperty.h"
 #include "vtkSelection.h"
 #include "vtkSelectionNode.h"
@@ -647,6 +649,44 @@ void TestLODProps()
   NoVTKOutput("LOD props");
 }
 
+// vtkPropAssembly: its visible props are traced as they draw themselves (an
+// actor, an assembly's parts under their matrices), selected as the group;
+// a group with a prop the tracer cannot draw (a 2D text) goes to raster.
+void TestPropAssemblies()
+{
+  Scene scene;
+  Parts parts(false);
+  vtkNew<vtkPropAssembly> group;
+  auto ball = MeshActor(Sphere(0.0, 24));
+  ball->SetPosition(-1.6, 0.3, 0.0);
+  auto hidden = MeshActor(Sphere(0.0, 12));
+  hidden->VisibilityOff();
+  group->AddPart(ball);
+  group->AddPart(parts.Assembly);
+  group->AddPart(hidden);
+  scene.Renderer->AddActor(group);
+  scene.View();
+  RasterAndTraced frames = scene.Compare("a vtkPropAssembly of an actor and an assembly", 1, 1.0);
+  Check(frames.Pass->GetLastTracedInstances() == 4,
+    "its four visible actors are traced (" +
+      std::to_string(frames.Pass->GetLastTracedInstances()) + " instances)");
+  const std::map<vtkProp*, vtkIdType> traced = SelectedProps(scene.Renderer);
+  scene.Renderer->SetPass(nullptr);
+  const std::map<vtkProp*, vtkIdType> raster = SelectedProps(scene.Renderer);
+  const auto t = traced.find(group.GetPointer());
+  const auto r = raster.find(group.GetPointer());
+  Check(traced.size() == 1 && raster.size() == 1 && t != traced.end() && r != raster.end() &&
+      r->second > 50 && std::abs(t->second - r->second) <= 1 + r->second / 50,
+    "a selection reports the group, raster / traced: " +
+      std::to_string(r == raster.end() ? 0 : r->second) + " / " +
+      std::to_string(t == traced.end() ? 0 : t->second) + " cells");
+  vtkNew<vtkTextActor> text;
+  text->SetInput("a label");
+  group->AddPart(text);
+  scene.Compare("the group with a 2D text, left to raster", 0, 1.0);
+  NoVTKOutput("prop assemblies");
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
@@ -655,5 +695,5 @@ int main(int argc, char* argv[])
   return RunCase(argc, argv,
     { { "DataSetMapper", TestDataSetMapper }, { "LeftToRaster", TestLeftToRaster },
       { "ReplacedColors", TestReplacedColors }, { "Assemblies", TestAssemblies },
-      { "LODProps", TestLODProps } });
+      { "LODProps", TestLODProps }, { "PropAssemblies", TestPropAssemblies } });
 }
