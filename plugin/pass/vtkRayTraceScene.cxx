@@ -468,13 +468,9 @@ bool Scene::AddActor(const PropPart& part, int propIndex, FrameCounters& counter
   return this->AddPolyDataMapper(part, this->Surfaces.MapperFor(mapper), propIndex, counters, standIns);
 }
 
-bool Scene::AddProp(vtkProp* prop, int propIndex, FrameCounters& counters, std::vector<vtkProp*>& standIns)
+bool Scene::AddParts(const std::vector<PropPart>& parts, int propIndex, FrameCounters& counters,
+  std::vector<vtkProp*>& standIns)
 {
-  std::vector<PropPart> parts;
-  if (!PartsOf(prop, parts))
-  {
-    return false;
-  }
   /// As vtkAssembly renders a part: its path's matrix poked in, then its
   /// own restored (also when the build throws).
   struct PokedMatrix
@@ -521,10 +517,11 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
   this->RasterStandIns.BeginFrame();
   this->Surfaces.BeginFrame();
 
+  std::vector<PropPart> parts;
   for (int i = 0; i < count; ++i)
   {
     vtkProp* prop = props[i];
-    if (!IsTraceable(prop, this->TraceTranslucency))
+    if (!TraceableParts(prop, this->TraceTranslucency, parts))
     {
       others.push_back(prop);
       continue;
@@ -533,7 +530,7 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
     const std::size_t firstInstance = this->Instances.size();
     std::vector<vtkProp*> standIns;
     // An actor whose every cell is raster's is left to raster whole.
-    const bool ok = this->AddProp(prop, propIndex, counters, standIns) &&
+    const bool ok = this->AddParts(parts, propIndex, counters, standIns) &&
       (standIns.empty() || this->Instances.size() > firstInstance);
     if (ok)
     {

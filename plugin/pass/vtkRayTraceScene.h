@@ -193,10 +193,12 @@ private:
     FrameCounters& counters, const double* blockColor = nullptr, double blockOpacity = -1.0);
   /// Whether a lone actor, or an assembly's part, would be traced.
   static bool IsTraceableActor(vtkActor* actor, bool translucency);
-  /// Every part of a traceable prop through AddActor, each under its
-  /// assembly's matrix; false when some part is left to raster (and so is
-  /// the prop, whole).
-  bool AddProp(vtkProp* prop, int propIndex, FrameCounters& counters, std::vector<vtkProp*>& standIns);
+  /// IsTraceable, with the prop's parts (PartsOf) in `parts`.
+  static bool TraceableParts(vtkProp* prop, bool translucency, std::vector<PropPart>& parts);
+  /// A traceable prop's parts through AddActor, each under its matrix;
+  /// false when some part is left to raster (and so is the prop, whole).
+  bool AddParts(const std::vector<PropPart>& parts, int propIndex, FrameCounters& counters,
+    std::vector<vtkProp*>& standIns);
   /// A traceable part's glyphs (AddGlyphs) or polydata pieces
   /// (AddPolyDataMapper, through its vtkDataSetMapper's polydata mapper if
   /// it has one); false when it is left to raster.

@@ -180,13 +180,14 @@ bool PartsOf(vtkProp* prop, std::vector<PropPart>& parts)
 
 bool Scene::IsTraceable(vtkProp* prop, bool translucency)
 {
-  if (auto* actor = vtkActor::SafeDownCast(prop))
-  {
-    return IsTraceableActor(actor, translucency);
-  }
+  std::vector<PropPart> parts;
+  return TraceableParts(prop, translucency, parts);
+}
+
+bool Scene::TraceableParts(vtkProp* prop, bool translucency, std::vector<PropPart>& parts)
+{
   // An assembly is traced whole or left to raster whole, as its selection
   // reports one prop.
-  std::vector<PropPart> parts;
   return prop && prop->GetVisibility() && PartsOf(prop, parts) && !parts.empty() &&
     std::all_of(parts.begin(), parts.end(),
       [translucency](const PropPart& part) { return IsTraceableActor(part.Actor, translucency); });
@@ -254,6 +255,7 @@ void Scene::KeepCulledProps(vtkRenderer* ren, vtkProp** props, int count,
 {
   const std::unordered_set<vtkProp*> inFrame(props, props + count);
   std::vector<vtkProp*> kept;
+  std::vector<PropPart> parts;
   this->Keeping = true;
   vtkCollectionSimpleIterator it;
   vtkPropCollection* all = ren->GetViewProps();
@@ -262,7 +264,8 @@ void Scene::KeepCulledProps(vtkRenderer* ren, vtkProp** props, int count,
   {
     // Only what the last frame traced or kept: a prop never in view yet is
     // built when it first is, as raster makes its buffers.
-    if (inFrame.count(prop) || !previous.count(prop) || !IsTraceable(prop, this->TraceTranslucency))
+    if (inFrame.count(prop) || !previous.count(prop) ||
+      !TraceableParts(prop, this->TraceTranslucency, parts))
     {
       continue;
     }
@@ -271,7 +274,7 @@ void Scene::KeepCulledProps(vtkRenderer* ren, vtkProp** props, int count,
     // raster does nothing for it), its instances dropped.
     const std::size_t first = this->Instances.size();
     std::vector<vtkProp*> standIns;
-    this->AddProp(prop, -1, counters, standIns);
+    this->AddParts(parts, -1, counters, standIns);
     this->Instances.resize(first);
   }
   this->Keeping = false;

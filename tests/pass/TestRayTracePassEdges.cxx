@@ -101,31 +101,20 @@ vtkSmartPointer<vtkImageData> NarrowBlurred(vtkImageData* image)
   return blurred;
 }
 
-/// The scene's window and renderer: a view of whatever is added.
-struct Scene
+/// The scene's window and renderer: a view of whatever is added, compared
+/// narrowly blurred.
+struct Scene : ComparedScene
 {
-  vtkSmartPointer<vtkEGLHeadlessRenderWindow> Window = MakeWindow(kSize, kSize);
-  vtkNew<vtkRenderer> Renderer;
   Scene()
+    : ComparedScene(kSize, "edges")
   {
-    this->Window->AddRenderer(this->Renderer);
-    this->Renderer->SetBackground(0.1, 0.1, 0.15);
-  }
-  void View(double azimuth, double elevation, bool parallel = false)
-  {
-    this->Renderer->GetActiveCamera()->SetParallelProjection(parallel);
-    this->Renderer->ResetCamera();
-    this->Renderer->GetActiveCamera()->Azimuth(azimuth);
-    this->Renderer->GetActiveCamera()->Elevation(elevation);
-    this->Renderer->ResetCameraClippingRange();
+    this->Blur = NarrowBlurred;
   }
   /// Raster, then traced: `traced` props traced and the narrowly blurred
   /// images' RGB RMSE at most kBound.
   RasterAndTraced Compare(const std::string& label, int traced)
   {
-    static int written = 0;
-    return CompareBlurred(
-      this->Window, this->Renderer, label, traced, kBound, "edges-" + std::to_string(written++), NarrowBlurred);
+    return this->ComparedScene::Compare(label, traced, kBound);
   }
 };
 

@@ -445,6 +445,33 @@ std::map<vtkProp*, vtkIdType> SelectedProps(vtkRenderer* ren)
   return props;
 }
 
+/// A whole-window cell selection traced (the renderer's pass), then raster
+/// (the pass taken off): the cells each reports per prop.
+struct Selections
+{
+  std::map<vtkProp*, vtkIdType> Traced;
+  std::map<vtkProp*, vtkIdType> Raster;
+  explicit Selections(vtkRenderer* ren)
+    : Traced(SelectedProps(ren))
+  {
+    ren->SetPass(nullptr);
+    this->Raster = SelectedProps(ren);
+  }
+  static vtkIdType CellsOf(const std::map<vtkProp*, vtkIdType>& cells, vtkProp* prop)
+  {
+    const auto it = cells.find(prop);
+    return it == cells.end() ? 0 : it->second;
+  }
+  /// Whether raster selects more than `least` cells of `prop` and traced
+  /// as many within one and a `share`-th; `counts` gets " raster / traced".
+  bool Agree(vtkProp* prop, vtkIdType least, vtkIdType share, std::string& counts) const
+  {
+    const vtkIdType r = CellsOf(this->Raster, prop), t = CellsOf(this->Traced, prop);
+    counts += " " + std::to_string(r) + " / " + std::to_string(t);
+    return r > least && std::abs(t - r) <= 1 + r / share;
+  }
+};
+
 // vtkAssembly: its parts are traced under their paths' matrices (nested
 // assemblies, origins, scales), cast traced shadows, keep their raster
 // lines, are selected and picked as raster selects them (the assembly),
@@ -463,17 +490,11 @@ void TestAssemblies()
       "its three parts are traced (" + std::to_string(frames.Pass->GetLastTracedInstances()) +
         " instances)");
 
-    const std::map<vtkProp*, vtkIdType> traced = SelectedProps(scene.Renderer);
-    scene.Renderer->SetPass(nullptr);
-    const std::map<vtkProp*, vtkIdType> raster = SelectedProps(scene.Renderer);
-    auto cells = [](const std::map<vtkProp*, vtkIdType>& m, vtkProp* p) {
-      const auto it = m.find(p);
-      return it == m.end() ? vtkIdType(0) : it->second;
-    };
-    const vtkIdType r = cells(raster, parts.Assembly), t = cells(traced, parts.Assembly);
-    Check(raster.size() == 1 && traced.size() == 1 && r > 100 && std::abs(t - r) <= 1 + r / 50,
-      "a selection reports the assembly, raster / traced: " + std::to_string(r) + " / " +
-        std::to_string(t) + " cells");
+    const Selections selected(scene.Renderer);
+    std::string counts;
+    const bool agree = selected.Agree(parts.Assembly, 100, 50, counts);
+    Check(selected.Raster.size() == 1 && selected.Traced.size() == 1 && agree,
+      "a selection reports the assembly, raster / traced:" + counts + " cells");
     scene.Renderer->SetPass(frames.Pass);
     scene.Renderer->GetActiveCamera()->Azimuth(20.0);
     scene.Window->Render();
@@ -579,20 +600,14 @@ void TestAssemblies()
     }
     scene.View();
     RasterAndTraced frames = scene.Compare("one actor in three assemblies", 2, 1.0);
-    const std::map<vtkProp*, vtkIdType> traced = SelectedProps(scene.Renderer);
-    scene.Renderer->SetPass(nullptr);
-    const std::map<vtkProp*, vtkIdType> raster = SelectedProps(scene.Renderer);
-    std::ostringstream s;
-    s << "one actor in three assemblies, cells selected raster / traced:";
-    bool same = raster.size() == 3 && traced.size() == 3;
-    for (const auto& r : raster)
+    const Selections selected(scene.Renderer);
+    std::string counts;
+    bool same = selected.Raster.size() == 3 && selected.Traced.size() == 3;
+    for (const auto& r : selected.Raster)
     {
-      const auto t = traced.find(r.first);
-      const vtkIdType n = t == traced.end() ? 0 : t->second;
-      s << " " << r.second << " / " << n;
-      same = same && r.second > 20 && std::abs(n - r.second) <= 1 + r.second / 20;
+      same = selected.Agree(r.first, 20, 20, counts) && same;
     }
-    Check(same, s.str());
+    Check(same, "one actor in three assemblies, cells selected raster / traced:" + counts);
   }
   NoVTKOutput("assemblies");
 }
@@ -632,16 +647,10 @@ void TestLODProps()
   Check(frames.Pass->GetLastTracedPrimitives() > 2 * 48 * 46,
     "the fine level's triangles are traced (" +
       std::to_string(frames.Pass->GetLastTracedPrimitives()) + " in all)");
-  const std::map<vtkProp*, vtkIdType> traced = SelectedProps(scene.Renderer);
-  scene.Renderer->SetPass(nullptr);
-  const std::map<vtkProp*, vtkIdType> raster = SelectedProps(scene.Renderer);
-  const auto t = traced.find(lod.GetPointer());
-  const auto r = raster.find(lod.GetPointer());
-  Check(t != traced.end() && r != raster.end() && r->second > 50 &&
-      std::abs(t->second - r->second) <= 1 + r->second / 50,
-    "a selection reports the LOD prop, raster / traced: " +
-      std::to_string(r == raster.end() ? 0 : r->second) + " / " +
-      std::to_string(t == traced.end() ? 0 : t->second) + " cells");
+  const Selections selected(scene.Renderer);
+  std::string counts;
+  const bool agree = selected.Agree(lod, 50, 50, counts);
+  Check(agree, "a selection reports the LOD prop, raster / traced:" + counts + " cells");
   // Automatic selection (by render times the traced levels never get)
   // stays with raster.
   lod->AutomaticLODSelectionOn();
@@ -670,16 +679,11 @@ void TestPropAssemblies()
   Check(frames.Pass->GetLastTracedInstances() == 4,
     "its four visible actors are traced (" +
       std::to_string(frames.Pass->GetLastTracedInstances()) + " instances)");
-  const std::map<vtkProp*, vtkIdType> traced = SelectedProps(scene.Renderer);
-  scene.Renderer->SetPass(nullptr);
-  const std::map<vtkProp*, vtkIdType> raster = SelectedProps(scene.Renderer);
-  const auto t = traced.find(group.GetPointer());
-  const auto r = raster.find(group.GetPointer());
-  Check(traced.size() == 1 && raster.size() == 1 && t != traced.end() && r != raster.end() &&
-      r->second > 50 && std::abs(t->second - r->second) <= 1 + r->second / 50,
-    "a selection reports the group, raster / traced: " +
-      std::to_string(r == raster.end() ? 0 : r->second) + " / " +
-      std::to_string(t == traced.end() ? 0 : t->second) + " cells");
+  const Selections selected(scene.Renderer);
+  std::string counts;
+  const bool agree = selected.Agree(group, 50, 50, counts);
+  Check(selected.Traced.size() == 1 && selected.Raster.size() == 1 && agree,
+    "a selection reports the group, raster / traced:" + counts + " cells");
   vtkNew<vtkTextActor> text;
   text->SetInput("a label");
   group->AddPart(text);

@@ -532,6 +532,7 @@ struct ComparedScene
   vtkNew<vtkRenderer> Renderer;
   std::string Name;
   int Written = 0;
+  vtkSmartPointer<vtkImageData> (*Blur)(vtkImageData*) = Blurred; ///< applied before comparing
   ComparedScene(int size, const std::string& name)
     : Window(MakeWindow(size, size))
     , Name(name)
@@ -552,7 +553,7 @@ struct ComparedScene
   RasterAndTraced Compare(const std::string& label, int traced, double bound)
   {
     return CompareBlurred(this->Window, this->Renderer, label, traced, bound,
-      this->Name + "-" + std::to_string(this->Written++));
+      this->Name + "-" + std::to_string(this->Written++), this->Blur);
   }
 };
 
