@@ -13,6 +13,7 @@
 #include "vtkPolyData.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
+#include "vtkUnsignedIntArray.h"
 
 #include <algorithm>
 
@@ -58,7 +59,8 @@ void vtkRayTraceSelectionMapper::Render(vtkRenderer* ren, vtkActor* actor)
   }
   selector->BeginRenderProp();
   vtkIdType maximum = static_cast<vtkIdType>(this->Selection->MaximumId(index));
-  for (const auto& ids : this->CellIdArrays())
+  auto* gl = vtkOpenGLPolyDataMapper::SafeDownCast(this->Original);
+  for (const auto& ids : this->CellArrays<vtkIdTypeArray>(gl ? gl->GetCellIdArrayName() : nullptr))
   {
     if (ids.second->GetNumberOfTuples() > 0)
     {
@@ -70,21 +72,21 @@ void vtkRayTraceSelectionMapper::Render(vtkRenderer* ren, vtkActor* actor)
   selector->EndRenderProp();
 }
 
-std::map<unsigned int, vtkIdTypeArray*> vtkRayTraceSelectionMapper::CellIdArrays() const
+template <typename ArrayT>
+std::map<unsigned int, ArrayT*> vtkRayTraceSelectionMapper::CellArrays(const char* name) const
 {
-  std::map<unsigned int, vtkIdTypeArray*> arrays;
+  std::map<unsigned int, ArrayT*> arrays;
   auto* gl = vtkOpenGLPolyDataMapper::SafeDownCast(this->Original);
-  const char* name = gl ? gl->GetCellIdArrayName() : nullptr;
-  if (!name)
+  if (!gl || !name)
   {
     return arrays;
   }
   vtkDataObject* input = gl->GetInputDataObject(0, 0);
   if (auto* poly = vtkPolyData::SafeDownCast(input))
   {
-    if (auto* ids = vtkIdTypeArray::SafeDownCast(poly->GetCellData()->GetArray(name)))
+    if (auto* values = ArrayT::SafeDownCast(poly->GetCellData()->GetArray(name)))
     {
-      arrays[0] = ids;
+      arrays[0] = values;
     }
   }
   else if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
@@ -93,32 +95,28 @@ std::map<unsigned int, vtkIdTypeArray*> vtkRayTraceSelectionMapper::CellIdArrays
     for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
     {
       auto* poly = vtkPolyData::SafeDownCast(it->GetCurrentDataObject());
-      auto* ids = poly ? vtkIdTypeArray::SafeDownCast(poly->GetCellData()->GetArray(name)) : nullptr;
-      if (ids)
+      auto* values = poly ? ArrayT::SafeDownCast(poly->GetCellData()->GetArray(name)) : nullptr;
+      if (values)
       {
-        arrays[it->GetCurrentFlatIndex()] = ids;
+        arrays[it->GetCurrentFlatIndex()] = values;
       }
     }
   }
   return arrays;
 }
 
-void vtkRayTraceSelectionMapper::ProcessSelectorPixelBuffers(
-  vtkHardwareSelector* sel, std::vector<unsigned int>& pixeloffsets, vtkProp*)
+template <typename ArrayT>
+void vtkRayTraceSelectionMapper::MapCells(vtkHardwareSelector* sel,
+  const std::vector<unsigned int>& pixeloffsets, const std::map<unsigned int, ArrayT*>& arrays, int shift)
 {
-  const int pass = sel->GetCurrentPass();
-  if (pass != vtkHardwareSelector::CELL_ID_LOW24 && pass != vtkHardwareSelector::CELL_ID_HIGH24)
-  {
-    return;
-  }
-  const std::map<unsigned int, vtkIdTypeArray*> arrays = this->CellIdArrays();
   const unsigned char* low = sel->GetRawPixelBuffer(vtkHardwareSelector::CELL_ID_LOW24);
   const unsigned char* high = sel->GetRawPixelBuffer(vtkHardwareSelector::CELL_ID_HIGH24);
   const unsigned char* composite = sel->GetRawPixelBuffer(vtkHardwareSelector::COMPOSITE_INDEX_PASS);
-  unsigned char* out = sel->GetPixelBuffer(pass);
+  unsigned char* out = sel->GetPixelBuffer(sel->GetCurrentPass());
   const bool plain = arrays.size() == 1 && arrays.begin()->first == 0;
-  if (arrays.empty() || !low || !out || (pass == vtkHardwareSelector::CELL_ID_HIGH24 && !high) ||
-    (!plain && !composite))
+  // The raw cell ids exist once the selector has rendered its cell passes
+  // (the composite pass is rendered again after them when ids need it).
+  if (arrays.empty() || !low || !out || (shift > 0 && !high) || (!plain && !composite))
   {
     return;
   }
@@ -133,11 +131,35 @@ void vtkRayTraceSelectionMapper::ProcessSelectorPixelBuffers(
     {
       continue;
     }
-    const vtkIdType value = found->second->GetValue(cell);
-    const int shift = pass == vtkHardwareSelector::CELL_ID_LOW24 ? 0 : 24;
+    const vtkIdType value = static_cast<vtkIdType>(found->second->GetValue(cell));
     out[pos] = static_cast<unsigned char>((value >> shift) & 0xff);
     out[pos + 1] = static_cast<unsigned char>((value >> (shift + 8)) & 0xff);
     out[pos + 2] = static_cast<unsigned char>((value >> (shift + 16)) & 0xff);
+  }
+}
+
+void vtkRayTraceSelectionMapper::ProcessSelectorPixelBuffers(
+  vtkHardwareSelector* sel, std::vector<unsigned int>& pixeloffsets, vtkProp*)
+{
+  auto* gl = vtkOpenGLPolyDataMapper::SafeDownCast(this->Original);
+  if (!gl)
+  {
+    return;
+  }
+  switch (sel->GetCurrentPass())
+  {
+    case vtkHardwareSelector::CELL_ID_LOW24:
+      this->MapCells(sel, pixeloffsets, this->CellArrays<vtkIdTypeArray>(gl->GetCellIdArrayName()), 0);
+      break;
+    case vtkHardwareSelector::CELL_ID_HIGH24:
+      this->MapCells(sel, pixeloffsets, this->CellArrays<vtkIdTypeArray>(gl->GetCellIdArrayName()), 24);
+      break;
+    case vtkHardwareSelector::COMPOSITE_INDEX_PASS:
+      this->MapCells(
+        sel, pixeloffsets, this->CellArrays<vtkUnsignedIntArray>(gl->GetCompositeIdArrayName()), 0);
+      break;
+    default:
+      break;
   }
 }
 

@@ -15,7 +15,8 @@
  * the original mapper names a cell id array (CellIdArrayName, as ParaView's
  * vtkOriginalCellIds), ProcessSelectorPixelBuffers maps them through it, as
  * vtkOpenGLPolyDataMapper and vtkCompositePolyDataMapper2 do (a block's own
- * array by its composite index).
+ * array by its composite index), and its CompositeIdArrayName gives the
+ * cells their composite indices.
  */
 #ifndef vtkRayTraceSelectionMapper_h
 #define vtkRayTraceSelectionMapper_h
@@ -26,7 +27,7 @@
 #include <map>
 #include <vector>
 
-class vtkIdTypeArray;
+class vtkHardwareSelector;
 
 namespace vtkrt
 {
@@ -64,9 +65,19 @@ private:
   vtkRayTraceSelectionMapper(const vtkRayTraceSelectionMapper&) = delete;
   void operator=(const vtkRayTraceSelectionMapper&) = delete;
 
-  /// The original mapper's cell id arrays by composite flat index (key 0
-  /// and any index: a polydata input's), empty when it names none.
-  std::map<unsigned int, vtkIdTypeArray*> CellIdArrays() const;
+  /// The original mapper's cell data arrays named `name` of type ArrayT by
+  /// composite flat index (key 0: a polydata input's), empty when it names
+  /// none (its CellIdArrayName, vtkIdTypeArray; CompositeIdArrayName,
+  /// vtkUnsignedIntArray).
+  template <typename ArrayT>
+  std::map<unsigned int, ArrayT*> CellArrays(const char* name) const;
+
+  /// Writes, into the current pass's pixels, the value `arrays` hold for
+  /// each pixel's traced cell (its block's array by the raw composite
+  /// index), shifted right by `shift` bits.
+  template <typename ArrayT>
+  void MapCells(vtkHardwareSelector* sel, const std::vector<unsigned int>& pixeloffsets,
+    const std::map<unsigned int, ArrayT*>& arrays, int shift);
 
   vtkrt::pass::Selection* Selection = nullptr;
   vtkMapper* Original = nullptr;
