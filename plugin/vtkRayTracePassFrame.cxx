@@ -85,6 +85,13 @@ bool Allowed(const char* variable)
   return !value || std::strcmp(value, "0") != 0;
 }
 
+/// Whether a frame casts shadow rays: the pass's Shadows, or the renderer's
+/// UseShadows (raster's shadow maps) that an application turned on.
+bool ShadowsIn(bool passShadows, vtkRenderer* ren)
+{
+  return passShadows || ren->GetUseShadows();
+}
+
 /// A tile's entry list (MakeTileEntryLists) holds at most this many nodes.
 constexpr std::uint32_t kMaxTileEntries = 8;
 /// Trees shallower than this walk from the root: their walks are short, and
@@ -130,7 +137,7 @@ void vtkRayTracePass::Internals::Extract(
   // Hardware selection reports ids per prop: an actor's plain lines cannot
   // come from a stand-in of its own there.
   this->Scene.SetSplitRasterCells(ren->GetSelector() == nullptr || pass.IdMode);
-  if (pass.IdMode || (!pass.Shadows && pass.AmbientOcclusionSamples == 0))
+  if (pass.IdMode || (!ShadowsIn(pass.Shadows, ren) && pass.AmbientOcclusionSamples == 0))
   {
     this->Scene.Extract(
       ren, s->GetPropArray(), s->GetPropArrayCount(), this->Traced, this->Others, this->Counters);
@@ -362,7 +369,7 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   f.SamplesPerPixel = sampled ? pass.SamplesPerPixel : 0;
   // Secondary rays only where they change the image: shaded, lit frames.
   const bool shaded = !pass.IdMode && f.LightComplexity > 0;
-  f.Shadows = shaded && pass.Shadows;
+  f.Shadows = shaded && ShadowsIn(pass.Shadows, ren);
   f.Specular = shaded && this->Scene.HasSpecular();
   f.AmbientOcclusionSamples = shaded ? pass.AmbientOcclusionSamples : 0;
   f.MaximumTraversalSteps = pass.MaximumTraversalSteps;

@@ -1,6 +1,7 @@
 #include "vtkRayTraceRasterSteps.h"
 
 #include "vtkDualDepthPeelingPass.h"
+#include "vtkHiddenLineRemovalPass.h"
 #include "vtkLightsPass.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -95,7 +96,19 @@ void vtkRayTraceRasterSteps::Render(const vtkRenderState* s)
     return;
   }
   this->Step(this->Lights, s);
-  this->Step(this->Opaque, s);
+  if (ren->GetUseHiddenLineRemoval() &&
+    vtkHiddenLineRemovalPass::WireframePropsExist(s->GetPropArray(), s->GetPropArrayCount()))
+  {
+    if (!this->HiddenLines)
+    {
+      this->HiddenLines = vtkSmartPointer<vtkHiddenLineRemovalPass>::New();
+    }
+    this->Step(this->HiddenLines, s);
+  }
+  else
+  {
+    this->Step(this->Opaque, s);
+  }
   bool translucent = false;
   for (int i = 0; i < s->GetPropArrayCount() && !translucent; ++i)
   {
@@ -115,7 +128,7 @@ void vtkRayTraceRasterSteps::Render(const vtkRenderState* s)
 
 void vtkRayTraceRasterSteps::ReleaseGraphicsResources(vtkWindow* w)
 {
-  for (vtkRenderPass* pass : { this->Lights.Get(), this->Opaque.Get(), this->Volumes.Get(),
+  for (vtkRenderPass* pass : { this->Lights.Get(), this->Opaque.Get(), this->HiddenLines.Get(), this->Volumes.Get(),
          this->Overlay.Get(), static_cast<vtkRenderPass*>(this->Blended.Get()),
          static_cast<vtkRenderPass*>(this->Peeled.Get()) })
   {

@@ -5,7 +5,9 @@
  *
  * After the traced image and its depth are in place, the steps of
  * vtkOpenGLRenderer::UpdateGeometry without a pass, minus its clear: lights,
- * opaque geometry, translucent geometry (only when some prop has any) in
+ * opaque geometry (through vtkHiddenLineRemovalPass when the renderer's
+ * UseHiddenLineRemoval is on and a wireframe is among the props, as the
+ * renderer does), translucent geometry (only when some prop has any) in
  * depth order as the renderer says — order-independent blending, or depth
  * peeling (dual when the context supports it) with the renderer's
  * MaximumNumberOfPeels and OcclusionRatio, volumes peeled with them when
@@ -51,6 +53,7 @@ private:
 
   vtkSmartPointer<vtkRenderPass> Lights;
   vtkSmartPointer<vtkRenderPass> Opaque;
+  vtkSmartPointer<vtkRenderPass> HiddenLines; ///< made on first use
   vtkSmartPointer<vtkRenderPass> Volumes;
   vtkSmartPointer<vtkRenderPass> Overlay;
   vtkSmartPointer<vtkOrderIndependentTranslucentPass> Blended;

@@ -517,11 +517,12 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
   this->RasterStandIns.BeginFrame();
   this->Surfaces.BeginFrame();
 
+  this->Rules.HiddenLineRemoval = ren->GetUseHiddenLineRemoval() != 0;
   std::vector<PropPart> parts;
   for (int i = 0; i < count; ++i)
   {
     vtkProp* prop = props[i];
-    if (!TraceableParts(prop, this->TraceTranslucency, parts))
+    if (!TraceableParts(prop, this->Rules, parts))
     {
       others.push_back(prop);
       continue;

@@ -66,6 +66,14 @@ struct PropPart
 /// mapper draw nothing and are left out.
 bool PartsOf(vtkProp* prop, std::vector<PropPart>& parts);
 
+/// What the renderer and the pass's settings leave to raster beside what
+/// the tracer cannot draw.
+struct TraceRules
+{
+  bool Translucency = true;       ///< translucent actors can be traced
+  bool HiddenLineRemoval = false; ///< the renderer's: wireframes go to raster's pass for it
+};
+
 /// Renderer props -> instances, with geometry cached by (data object, MTime).
 class Scene
 {
@@ -150,12 +158,12 @@ public:
   void SetLeafSize(int size) { this->LeafSize = static_cast<std::uint32_t>(size < 1 ? 1 : size); }
 
   /// Whether translucent actors are traced (default) or left to raster.
-  void SetTraceTranslucency(bool trace) { this->TraceTranslucency = trace; }
+  void SetTraceTranslucency(bool trace) { this->Rules.Translucency = trace; }
 
   /// Whether this prop would be traced (public for documentation/tests):
   /// an actor, or an assembly whose every visible part is a traceable
-  /// actor; `translucency`: whether translucent actors can be.
-  static bool IsTraceable(vtkProp* prop, bool translucency = true);
+  /// actor, under `rules`.
+  static bool IsTraceable(vtkProp* prop, const TraceRules& rules = TraceRules());
 
   /// Whether an actor's plain lines and points go to raster through a
   /// stand-in while its surfaces are traced (off: such an actor goes to
@@ -192,9 +200,9 @@ private:
   bool AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
     FrameCounters& counters, const double* blockColor = nullptr, double blockOpacity = -1.0);
   /// Whether a lone actor, or an assembly's part, would be traced.
-  static bool IsTraceableActor(vtkActor* actor, bool translucency);
+  static bool IsTraceableActor(vtkActor* actor, const TraceRules& rules);
   /// IsTraceable, with the prop's parts (PartsOf) in `parts`.
-  static bool TraceableParts(vtkProp* prop, bool translucency, std::vector<PropPart>& parts);
+  static bool TraceableParts(vtkProp* prop, const TraceRules& rules, std::vector<PropPart>& parts);
   /// A traceable prop's parts through AddActor, each under its matrix;
   /// false when some part is left to raster (and so is the prop, whole).
   bool AddParts(const std::vector<PropPart>& parts, int propIndex, FrameCounters& counters,
@@ -245,7 +253,7 @@ private:
 
   int BuildQuality = 1;
   vtkIdType BackgroundBuildThreshold = 0;
-  bool TraceTranslucency = true;
+  TraceRules Rules;
   std::uint32_t LeafSize = 4;
   // Shared: the GPU buffers may hold a geometry's arrays as their storage
   // after the cache lets go of it (SoleGeometry()).

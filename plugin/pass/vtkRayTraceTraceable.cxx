@@ -5,6 +5,7 @@
 #include "vtkAssemblyNode.h"
 #include "vtkAssemblyPath.h"
 #include "vtkCompositePolyDataMapper.h"
+#include "vtkCommand.h"
 #include "vtkDataSetMapper.h"
 #include "vtkGlyph3DMapper.h"
 #include "vtkLODProp3D.h"
@@ -50,7 +51,7 @@ struct LegacyShaderPropertyOf : vtkOpenGLPolyDataMapper
   }
 };
 
-/// Whether raster runs shader code of the application's for the actor,
+/// Whether raster runs shader code or sets uniforms of the application's for the actor,
 /// which the tracer cannot run.
 bool hasCustomShaders(vtkActor* actor, vtkMapper* mapper)
 {
@@ -60,7 +61,9 @@ bool hasCustomShaders(vtkActor* actor, vtkMapper* mapper)
         p->GetNumberOfShaderReplacements() > 0);
   };
   auto* gl = vtkOpenGLPolyDataMapper::SafeDownCast(mapper);
-  return custom(actor->GetShaderProperty()) || (gl && custom(LegacyShaderPropertyOf::Get(gl)));
+  // An UpdateShaderEvent observer sets uniforms of the mapper's program.
+  return custom(actor->GetShaderProperty()) || (gl && custom(LegacyShaderPropertyOf::Get(gl))) ||
+    mapper->HasObserver(vtkCommand::UpdateShaderEvent);
 }
 
 /// Mappers that draw something other than their data's cells: VTK's point
@@ -178,24 +181,25 @@ bool PartsOf(vtkProp* prop, std::vector<PropPart>& parts)
   return true;
 }
 
-bool Scene::IsTraceable(vtkProp* prop, bool translucency)
+bool Scene::IsTraceable(vtkProp* prop, const TraceRules& rules)
 {
   std::vector<PropPart> parts;
-  return TraceableParts(prop, translucency, parts);
+  return TraceableParts(prop, rules, parts);
 }
 
-bool Scene::TraceableParts(vtkProp* prop, bool translucency, std::vector<PropPart>& parts)
+bool Scene::TraceableParts(vtkProp* prop, const TraceRules& rules, std::vector<PropPart>& parts)
 {
   // An assembly is traced whole or left to raster whole, as its selection
   // reports one prop.
   return prop && prop->GetVisibility() && PartsOf(prop, parts) && !parts.empty() &&
     std::all_of(parts.begin(), parts.end(),
-      [translucency](const PropPart& part) { return IsTraceableActor(part.Actor, translucency); });
+      [&rules](const PropPart& part) { return IsTraceableActor(part.Actor, rules); });
 }
 
-bool Scene::IsTraceableActor(vtkActor* actor, bool translucency)
+bool Scene::IsTraceableActor(vtkActor* actor, const TraceRules& rules)
 {
-  if (!actor->GetVisibility() || !actor->GetMapper())
+  // A skybox is the environment drawn behind the scene, not its data.
+  if (!actor->GetVisibility() || !actor->GetMapper() || actor->IsA("vtkSkybox"))
   {
     return false;
   }
@@ -220,7 +224,10 @@ bool Scene::IsTraceableActor(vtkActor* actor, bool translucency)
   // tubes, VTK's shaded fake tubes: decided with the data, in
   // hasUntraceableCells).
   const bool edges = property->GetEdgeVisibility() || representation == VTK_WIREFRAME;
-  if (property->GetInterpolation() == VTK_PBR || (edges && glyphs))
+  // Hidden line removal: raster's pass for it hides wires behind every
+  // wireframe's surfaces, which the tracer does not model.
+  if (property->GetInterpolation() == VTK_PBR || (edges && glyphs) ||
+    (rules.HiddenLineRemoval && representation == VTK_WIREFRAME))
   {
     return false;
   }
@@ -230,7 +237,7 @@ bool Scene::IsTraceableActor(vtkActor* actor, bool translucency)
   // (raster blends them as lines over the layers); points as spheres and
   // tubes are decided with the data (hasUntraceableCells).
   if (actor->HasTranslucentPolygonalGeometry() &&
-    (!translucency || glyphs || edges || actor->GetBackfaceProperty()))
+    (!rules.Translucency || glyphs || edges || actor->GetBackfaceProperty()))
   {
     return false;
   }
@@ -265,7 +272,7 @@ void Scene::KeepCulledProps(vtkRenderer* ren, vtkProp** props, int count,
     // Only what the last frame traced or kept: a prop never in view yet is
     // built when it first is, as raster makes its buffers.
     if (inFrame.count(prop) || !previous.count(prop) ||
-      !TraceableParts(prop, this->TraceTranslucency, parts))
+      !TraceableParts(prop, this->Rules, parts))
     {
       continue;
     }

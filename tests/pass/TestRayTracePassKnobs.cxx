@@ -290,6 +290,13 @@ void TestShadows()
   win->Render();
   Check(HasDefine(pass, "VTKRT_SHADOWS"), "shadows on: shadow code compiled");
   auto shadowed = Grab(win);
+  // The renderer's UseShadows (raster's shadow maps) asks for them too.
+  pass->ShadowsOff();
+  ren->UseShadowsOn();
+  win->Render();
+  Check(CountDifferingPixels(Grab(win), shadowed, 0) == 0, "the renderer's UseShadows: the same shadows");
+  ren->UseShadowsOff();
+  pass->ShadowsOn();
 
   // The shadow's center: the sphere's center projected along the light.
   const int lit = RedAt(ren, shadowed, 1.5, 0.0, 1.0);

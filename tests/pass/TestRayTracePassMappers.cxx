@@ -11,6 +11,7 @@
 #include "vtkActor.h"
 #include "vtkAppendPolyData.h"
 #include "vtkAssembly.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
 #include "vtkCompositeDataDisplayAttributes.h"
@@ -38,7 +39,10 @@
 #include "vtkProperty.h"
 #include "vtkSelection.h"
 #include "vtkSelectionNode.h"
+#include "vtkShaderProgram.h"
 #include "vtkShaderProperty.h"
+#include "vtkSkybox.h"
+#include "vtkTexture.h"
 #include "vtkSphereSource.h"
 #include "vtkUnstructuredGrid.h"
 
@@ -214,13 +218,50 @@ void TestDataSetMapper()
 void TestLeftToRaster()
 {
   // `actor` beside a traced mesh: only the mesh is traced.
-  auto compareBeside = [](const std::string& label, vtkActor* actor) {
+  auto compareBeside = [](const std::string& label, vtkActor* actor, bool hiddenLines = false) {
     Scene scene;
     scene.Renderer->AddActor(MeshActor(Sphere(-0.6, 24)));
     scene.Renderer->AddActor(actor);
+    scene.Renderer->SetUseHiddenLineRemoval(hiddenLines);
     scene.View();
     scene.Compare(label, 1, 2.0);
   };
+  {
+    // An environment texture, as vtkSkybox draws it behind the scene.
+    vtkNew<vtkImageData> grid;
+    grid->SetDimensions(32, 32, 1);
+    grid->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+    auto* texels = static_cast<unsigned char*>(grid->GetScalarPointer());
+    for (int i = 0; i < 32 * 32 * 3; ++i)
+    {
+      texels[i] = static_cast<unsigned char>(((i / 3) % 32 / 4 + (i / 96) / 4) % 2 ? 200 : 40);
+    }
+    vtkNew<vtkTexture> texture;
+    texture->SetInputData(grid);
+    vtkNew<vtkSkybox> skybox;
+    skybox->SetTexture(texture);
+    skybox->SetProjectionToSphere();
+    compareBeside("a vtkSkybox", skybox);
+  }
+  {
+    // The observer sets a uniform of the mapper's own program.
+    auto actor = MeshActor(Sphere(0.6, 24));
+    vtkNew<vtkCallbackCommand> red;
+    red->SetCallback([](vtkObject*, unsigned long, void*, void* data) {
+      const float color[3] = { 1.0f, 0.0f, 0.0f };
+      static_cast<vtkShaderProgram*>(data)->SetUniform3f("diffuseColorUniform", color);
+    });
+    actor->GetMapper()->AddObserver(vtkCommand::UpdateShaderEvent, red);
+    compareBeside("a mapper with an UpdateShaderEvent observer", actor);
+  }
+  {
+    // Raster's hidden line removal hides the wires behind the wireframe's
+    // own surfaces, not those behind the traced mesh only.
+    auto wires = MeshActor(Sphere(0.6, 16));
+    wires->GetProperty()->SetRepresentationToWireframe();
+    wires->GetProperty()->LightingOff();
+    compareBeside("a wireframe under the renderer's hidden line removal", wires, true);
+  }
   {
     vtkNew<vtkPointGaussianMapper> splats;
     splats->SetInputData(Sphere(0.6, 16));
