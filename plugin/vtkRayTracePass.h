@@ -369,7 +369,7 @@ public:
 
   ///@{
   /**
-   * Maximum triangles per leaf of the triangle BVHs (default 4, 1 to 64).
+   * Maximum triangles per leaf of the triangle BVHs (default 8, 1 to 64).
    * Small leaves: deeper trees, more node visits; large leaves: more
    * triangle tests per visit. Images do not depend on it. Changing it
    * rebuilds the triangle geometry on the next frame (sphere BVHs keep
@@ -434,13 +434,13 @@ public:
    * the preset again if the knob is set back). A new pass is CUSTOM: its
    * defaults are none of the presets.
    *
-   * - INTERACTIVE: BuildQuality 0 (fast build), LeafSize 4, 1 sample per
+   * - INTERACTIVE: BuildQuality 0 (fast build), LeafSize 8, 1 sample per
    *   pixel with ProgressiveAccumulation, no shadows, no ambient occlusion:
    *   the cheapest frame, anti-aliased over still frames.
-   * - BALANCED: BuildQuality 1, LeafSize 4, 1 sample per pixel with
+   * - BALANCED: BuildQuality 1, LeafSize 8, 1 sample per pixel with
    *   ProgressiveAccumulation, shadows, 2 ambient occlusion rays per sample:
    *   about 3x an INTERACTIVE frame, near EXACT after a few still frames.
-   * - EXACT: BuildQuality 1, LeafSize 4, 4 samples per pixel with
+   * - EXACT: BuildQuality 1, LeafSize 8, 4 samples per pixel with
    *   ProgressiveAccumulation, shadows, 4 ambient occlusion rays per sample:
    *   the reference the benchmark measures every other setting against.
    */
@@ -466,7 +466,7 @@ protected:
   int AmbientOcclusionSamples = 0;
   double AmbientOcclusionRadius = 0.0;
   int MaximumTraversalSteps = 0;
-  int LeafSize = 4;
+  int LeafSize = 8;
   int PrecisionMode = CAMERA_RELATIVE;
   vtkTypeInt64 MaximumTextureBufferTexels = 0;
   vtkRenderPass* DelegatePass = nullptr;

@@ -48,7 +48,7 @@ struct PassSettings
   bool Shadows = false;
   int AmbientOcclusionSamples = 0;
   bool Progressive = false;
-  int LeafSize = 4;
+  int LeafSize = 8;
   int PrecisionMode = vtkRayTracePass::CAMERA_RELATIVE;
   int Lights = 0; // > 0: this many scene lights instead of the headlight
 };

@@ -29,9 +29,9 @@ struct Expected
 };
 
 const Expected Presets[] = {
-  { vtkRayTracePass::INTERACTIVE, "Interactive", 0, 4, 1, true, false, 0 },
-  { vtkRayTracePass::BALANCED, "Balanced", 1, 4, 1, true, true, 2 },
-  { vtkRayTracePass::EXACT, "Exact", 1, 4, 4, true, true, 4 },
+  { vtkRayTracePass::INTERACTIVE, "Interactive", 0, 8, 1, true, false, 0 },
+  { vtkRayTracePass::BALANCED, "Balanced", 1, 8, 1, true, true, 2 },
+  { vtkRayTracePass::EXACT, "Exact", 1, 8, 4, true, true, 4 },
 };
 
 /// Knobs away from every preset's values, as a user might have left them.

@@ -368,12 +368,12 @@ void TestLeafSize()
   ren->ResetCamera();
 
   vtkNew<vtkRayTracePass> pass;
-  Check(pass->GetLeafSize() == 4, "default leaf size 4");
+  Check(pass->GetLeafSize() == 8, "default leaf size 8");
   ren->SetPass(pass);
   win->Render();
   Check(pass->GetLastBVHBuilds() == 2, "first frame builds the mesh and the glyphs");
   auto reference = Grab(win);
-  for (int leaf : { 1, 2, 8, 16, 64 })
+  for (int leaf : { 1, 2, 4, 16, 64 })
   {
     pass->SetLeafSize(leaf);
     win->Render();

@@ -23,9 +23,9 @@ def knobs(p):
 
 
 expected = {
-    "Interactive": (Pass.INTERACTIVE, (0, 4, 1, True, False, 0, 0, Pass.CAMERA_RELATIVE)),
-    "Balanced": (Pass.BALANCED, (1, 4, 1, True, True, 2, 0, Pass.CAMERA_RELATIVE)),
-    "Exact": (Pass.EXACT, (1, 4, 4, True, True, 4, 0, Pass.CAMERA_RELATIVE)),
+    "Interactive": (Pass.INTERACTIVE, (0, 8, 1, True, False, 0, 0, Pass.CAMERA_RELATIVE)),
+    "Balanced": (Pass.BALANCED, (1, 8, 1, True, True, 2, 0, Pass.CAMERA_RELATIVE)),
+    "Exact": (Pass.EXACT, (1, 8, 4, True, True, 4, 0, Pass.CAMERA_RELATIVE)),
 }
 for name, (preset, values) in expected.items():
     ray_pass.SetPrecisionModeToWorld()
