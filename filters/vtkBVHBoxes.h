@@ -88,7 +88,7 @@ public:
 
   ///@{
   /**
-   * Most triangles per leaf (default 4).
+   * Most triangles per leaf (default 8, as vtkRayTracePass).
    */
   vtkSetClampMacro(MaximumLeafSize, int, 1, 1024);
   vtkGetMacro(MaximumLeafSize, int);
@@ -114,7 +114,7 @@ protected:
   bool LeavesOnly = false;
   int OutputStyle = OUTLINE;
   int BuildQuality = MEDIUM;
-  int MaximumLeafSize = 4;
+  int MaximumLeafSize = 8;
 
   vtkIdType NumberOfNodes = 0;
   vtkIdType NumberOfLeaves = 0;

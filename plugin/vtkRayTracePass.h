@@ -14,9 +14,11 @@
  * - vtkActor + vtkPolyDataMapper / vtkCompositePolyDataMapper(2) /
  *   vtkDataSetMapper (the surface its own polydata mapper draws), opaque
  *   or translucent (see SetTraceTranslucency), surface or wireframe
- *   representation, edges (opaque only), no PBR, no shader code or
- *   replacements of the application's, not ForceOpaque with translucent
- *   colors; not vtkPointGaussianMapper (splats) or the molecule mapper's
+ *   representation (wireframe actors go to raster's hidden line removal
+ *   under the renderer's UseHiddenLineRemoval), edges (opaque only), no
+ *   PBR, no shader code, replacements or UpdateShaderEvent observers of
+ *   the application's, not ForceOpaque with translucent colors; not
+ *   vtkSkybox, vtkPointGaussianMapper (splats) or the molecule mapper's
  *   impostor mappers: polygons (fan triangulated, like VTK), triangle
  *   strips; composite block visibility and colors (inherited, replacing
  *   scalar colors); an actor texture (SetTexture: one 2D texture of
@@ -118,7 +120,9 @@ public:
   /**
    * The pass that renders the props this pass does not trace, after the
    * traced image (and its depth) is in place, composited by depth. By
-   * default the renderer's own steps: lights, opaque, translucent geometry
+   * default the renderer's own steps: lights, opaque (through VTK's hidden
+   * line removal pass under the renderer's UseHiddenLineRemoval, which
+   * then takes lone wireframe actors from the tracer), translucent geometry
    * as the renderer says (order-independent blending, or depth peeling with
    * UseDepthPeeling, MaximumNumberOfPeels, OcclusionRatio and
    * UseDepthPeelingForVolumes), volumes, overlays. A vtkRenderStepsPass
@@ -307,7 +311,9 @@ public:
    * headlight) meets traced geometry. Ray origins are offset off the surface
    * along the geometric normal by float-ulp integer arithmetic (Wächter &
    * Binder, Ray Tracing Gems ch. 6), so surfaces do not shadow themselves.
-   * Props drawn by raster neither cast nor receive shadows.
+   * Props drawn by raster neither cast nor receive shadows. The renderer's
+   * UseShadows (raster's shadow maps) turns them on too, whatever this
+   * says (and whatever a preset set).
    */
   vtkSetMacro(Shadows, bool);
   vtkGetMacro(Shadows, bool);

@@ -30,7 +30,7 @@ std::vector<Knob> PassKnobs(const Options& opt)
       [](PassSettings& k, int v) { k.AmbientOcclusionSamples = v; } },
     // Reference: the default (images do not depend on the leaf size).
     { "pass leaf size",
-      opt.Quick ? std::vector<int>{ 4, 1, 16 } : std::vector<int>{ 4, 1, 2, 8, 16, 32 },
+      opt.Quick ? std::vector<int>{ 8, 1, 16 } : std::vector<int>{ 8, 1, 2, 4, 16, 32 },
       [](PassSettings& k, int v) { k.LeafSize = v; } },
   };
 }

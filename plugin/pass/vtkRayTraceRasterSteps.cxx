@@ -128,7 +128,8 @@ void vtkRayTraceRasterSteps::Render(const vtkRenderState* s)
 
 void vtkRayTraceRasterSteps::ReleaseGraphicsResources(vtkWindow* w)
 {
-  for (vtkRenderPass* pass : { this->Lights.Get(), this->Opaque.Get(), this->HiddenLines.Get(), this->Volumes.Get(),
+  for (vtkRenderPass* pass : { this->Lights.Get(), this->Opaque.Get(), this->HiddenLines.Get(),
+         this->Volumes.Get(),
          this->Overlay.Get(), static_cast<vtkRenderPass*>(this->Blended.Get()),
          static_cast<vtkRenderPass*>(this->Peeled.Get()) })
   {

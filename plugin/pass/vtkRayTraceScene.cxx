@@ -517,7 +517,6 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
   this->RasterStandIns.BeginFrame();
   this->Surfaces.BeginFrame();
 
-  this->Rules.HiddenLineRemoval = ren->GetUseHiddenLineRemoval() != 0;
   std::vector<PropPart> parts;
   for (int i = 0; i < count; ++i)
   {

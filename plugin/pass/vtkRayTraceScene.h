@@ -71,7 +71,7 @@ bool PartsOf(vtkProp* prop, std::vector<PropPart>& parts);
 struct TraceRules
 {
   bool Translucency = true;       ///< translucent actors can be traced
-  bool HiddenLineRemoval = false; ///< the renderer's: wireframes go to raster's pass for it
+  bool HiddenLineRemoval = false; ///< lone wireframe actors go to raster's pass for it
 };
 
 /// Renderer props -> instances, with geometry cached by (data object, MTime).
@@ -152,13 +152,15 @@ public:
   /// was made.
   vtkIdType GetNumberOfBackgroundBuildsTaken() const { return this->BackgroundBuildsTaken; }
 
-  /// Maximum triangles per leaf of the triangle BVHs (>= 1, default 4).
+  /// Maximum triangles per leaf of the triangle BVHs (>= 1, default 8, as the pass).
   /// Triangle geometry built with another leaf size is rebuilt on its next
   /// use; sphere BVHs keep their own leaf size.
   void SetLeafSize(int size) { this->LeafSize = static_cast<std::uint32_t>(size < 1 ? 1 : size); }
 
   /// Whether translucent actors are traced (default) or left to raster.
   void SetTraceTranslucency(bool trace) { this->Rules.Translucency = trace; }
+  /// Whether lone wireframe actors go to raster for its hidden line removal.
+  void SetHiddenLineRemoval(bool raster) { this->Rules.HiddenLineRemoval = raster; }
 
   /// Whether this prop would be traced (public for documentation/tests):
   /// an actor, or an assembly whose every visible part is a traceable
@@ -254,7 +256,7 @@ private:
   int BuildQuality = 1;
   vtkIdType BackgroundBuildThreshold = 0;
   TraceRules Rules;
-  std::uint32_t LeafSize = 4;
+  std::uint32_t LeafSize = 8;
   // Shared: the GPU buffers may hold a geometry's arrays as their storage
   // after the cache lets go of it (SoleGeometry()).
   std::map<const void*, std::shared_ptr<Geometry>> TriangleCache;

@@ -107,7 +107,8 @@ std::map<unsigned int, ArrayT*> vtkRayTraceSelectionMapper::CellArrays(const cha
 
 template <typename ArrayT>
 void vtkRayTraceSelectionMapper::MapCells(vtkHardwareSelector* sel,
-  const std::vector<unsigned int>& pixeloffsets, const std::map<unsigned int, ArrayT*>& arrays, int shift)
+  const std::vector<unsigned int>& pixeloffsets, const std::map<unsigned int, ArrayT*>& arrays,
+  int shift)
 {
   const unsigned char* low = sel->GetRawPixelBuffer(vtkHardwareSelector::CELL_ID_LOW24);
   const unsigned char* high = sel->GetRawPixelBuffer(vtkHardwareSelector::CELL_ID_HIGH24);
@@ -115,7 +116,8 @@ void vtkRayTraceSelectionMapper::MapCells(vtkHardwareSelector* sel,
   unsigned char* out = sel->GetPixelBuffer(sel->GetCurrentPass());
   const bool plain = arrays.size() == 1 && arrays.begin()->first == 0;
   // The raw cell ids exist once the selector has rendered its cell passes
-  // (the composite pass is rendered again after them when ids need it).
+  // (VTK 9.1 renders the composite pass again in its second run over the
+  // passes, after them).
   if (arrays.empty() || !low || !out || (shift > 0 && !high) || (!plain && !composite))
   {
     return;
@@ -127,7 +129,7 @@ void vtkRayTraceSelectionMapper::MapCells(vtkHardwareSelector* sel,
     const vtkIdType cell = decode(low, high, pos);
     const auto found = plain ? arrays.begin()
                              : arrays.find(static_cast<unsigned int>(decode(composite, nullptr, pos)));
-    if (cell < 0 || found == arrays.end() || cell >= found->second->GetNumberOfTuples())
+    if (found == arrays.end() || cell >= found->second->GetNumberOfTuples())
     {
       continue;
     }
@@ -146,17 +148,18 @@ void vtkRayTraceSelectionMapper::ProcessSelectorPixelBuffers(
   {
     return;
   }
+  const char* cellIds = gl->GetCellIdArrayName();
   switch (sel->GetCurrentPass())
   {
     case vtkHardwareSelector::CELL_ID_LOW24:
-      this->MapCells(sel, pixeloffsets, this->CellArrays<vtkIdTypeArray>(gl->GetCellIdArrayName()), 0);
+      this->MapCells(sel, pixeloffsets, this->CellArrays<vtkIdTypeArray>(cellIds), 0);
       break;
     case vtkHardwareSelector::CELL_ID_HIGH24:
-      this->MapCells(sel, pixeloffsets, this->CellArrays<vtkIdTypeArray>(gl->GetCellIdArrayName()), 24);
+      this->MapCells(sel, pixeloffsets, this->CellArrays<vtkIdTypeArray>(cellIds), 24);
       break;
     case vtkHardwareSelector::COMPOSITE_INDEX_PASS:
-      this->MapCells(
-        sel, pixeloffsets, this->CellArrays<vtkUnsignedIntArray>(gl->GetCompositeIdArrayName()), 0);
+      this->MapCells(sel, pixeloffsets,
+        this->CellArrays<vtkUnsignedIntArray>(gl->GetCompositeIdArrayName()), 0);
       break;
     default:
       break;

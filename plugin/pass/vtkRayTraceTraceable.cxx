@@ -4,8 +4,8 @@
 #include "vtkAssembly.h"
 #include "vtkAssemblyNode.h"
 #include "vtkAssemblyPath.h"
-#include "vtkCompositePolyDataMapper.h"
 #include "vtkCommand.h"
+#include "vtkCompositePolyDataMapper.h"
 #include "vtkDataSetMapper.h"
 #include "vtkGlyph3DMapper.h"
 #include "vtkLODProp3D.h"
@@ -17,6 +17,7 @@
 #include "vtkPropAssembly.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderer.h"
+#include "vtkSkybox.h"
 
 #include <algorithm>
 #include <unordered_set>
@@ -51,7 +52,7 @@ struct LegacyShaderPropertyOf : vtkOpenGLPolyDataMapper
   }
 };
 
-/// Whether raster runs shader code or sets uniforms of the application's for the actor,
+/// Whether raster runs shader code of the application's for the actor,
 /// which the tracer cannot run.
 bool hasCustomShaders(vtkActor* actor, vtkMapper* mapper)
 {
@@ -62,8 +63,14 @@ bool hasCustomShaders(vtkActor* actor, vtkMapper* mapper)
   };
   auto* gl = vtkOpenGLPolyDataMapper::SafeDownCast(mapper);
   // An UpdateShaderEvent observer sets uniforms of the mapper's program.
-  return custom(actor->GetShaderProperty()) || (gl && custom(LegacyShaderPropertyOf::Get(gl))) ||
-    mapper->HasObserver(vtkCommand::UpdateShaderEvent);
+  return custom(actor->GetShaderProperty()) || (gl && custom(LegacyShaderPropertyOf::Get(gl)));
+}
+
+/// Whether the application sets uniforms of raster's program for the
+/// mapper (an UpdateShaderEvent observer, e.g. a color of its own).
+bool hasShaderObservers(vtkMapper* mapper)
+{
+  return mapper->HasObserver(vtkCommand::UpdateShaderEvent) != 0;
 }
 
 /// Mappers that draw something other than their data's cells: VTK's point
@@ -191,6 +198,14 @@ bool Scene::TraceableParts(vtkProp* prop, const TraceRules& rules, std::vector<P
 {
   // An assembly is traced whole or left to raster whole, as its selection
   // reports one prop.
+  // Hidden line removal: raster's pass for it hides wires behind every
+  // wireframe's surfaces, which the tracer does not model; it takes lone
+  // actors only (an assembly's wireframe parts draw plainly).
+  auto* lone = vtkActor::SafeDownCast(prop);
+  if (rules.HiddenLineRemoval && lone && lone->GetProperty()->GetRepresentation() == VTK_WIREFRAME)
+  {
+    return false;
+  }
   return prop && prop->GetVisibility() && PartsOf(prop, parts) && !parts.empty() &&
     std::all_of(parts.begin(), parts.end(),
       [&rules](const PropPart& part) { return IsTraceableActor(part.Actor, rules); });
@@ -199,7 +214,7 @@ bool Scene::TraceableParts(vtkProp* prop, const TraceRules& rules, std::vector<P
 bool Scene::IsTraceableActor(vtkActor* actor, const TraceRules& rules)
 {
   // A skybox is the environment drawn behind the scene, not its data.
-  if (!actor->GetVisibility() || !actor->GetMapper() || actor->IsA("vtkSkybox"))
+  if (!actor->GetVisibility() || !actor->GetMapper() || vtkSkybox::SafeDownCast(actor))
   {
     return false;
   }
@@ -212,7 +227,7 @@ bool Scene::IsTraceableActor(vtkActor* actor, const TraceRules& rules)
     return false;
   }
   // A vtkDataSetMapper without input: raster reports it.
-  if (drawsOtherThanCells(mapper) || hasCustomShaders(actor, mapper) ||
+  if (drawsOtherThanCells(mapper) || hasCustomShaders(actor, mapper) || hasShaderObservers(mapper) ||
     forcedOpaqueButTranslucent(actor, mapper) ||
     (dataSetMapper && mapper->GetNumberOfInputConnections(0) == 0))
   {
@@ -224,10 +239,7 @@ bool Scene::IsTraceableActor(vtkActor* actor, const TraceRules& rules)
   // tubes, VTK's shaded fake tubes: decided with the data, in
   // hasUntraceableCells).
   const bool edges = property->GetEdgeVisibility() || representation == VTK_WIREFRAME;
-  // Hidden line removal: raster's pass for it hides wires behind every
-  // wireframe's surfaces, which the tracer does not model.
-  if (property->GetInterpolation() == VTK_PBR || (edges && glyphs) ||
-    (rules.HiddenLineRemoval && representation == VTK_WIREFRAME))
+  if (property->GetInterpolation() == VTK_PBR || (edges && glyphs))
   {
     return false;
   }

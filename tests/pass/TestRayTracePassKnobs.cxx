@@ -294,7 +294,8 @@ void TestShadows()
   pass->ShadowsOff();
   ren->UseShadowsOn();
   win->Render();
-  Check(CountDifferingPixels(Grab(win), shadowed, 0) == 0, "the renderer's UseShadows: the same shadows");
+  Check(CountDifferingPixels(Grab(win), shadowed, 0) == 0,
+    "the renderer's UseShadows: the same shadows");
   ren->UseShadowsOff();
   pass->ShadowsOn();
 

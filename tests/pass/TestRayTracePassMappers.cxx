@@ -35,6 +35,7 @@
 #include "vtkPolyDataMapper.h"
 #include "vtkPropAssembly.h"
 #include "vtkPropPicker.h"
+#include "vtkRenderStepsPass.h"
 #include "vtkTextActor.h"
 #include "vtkProperty.h"
 #include "vtkSelection.h"
@@ -42,8 +43,8 @@
 #include "vtkShaderProgram.h"
 #include "vtkShaderProperty.h"
 #include "vtkSkybox.h"
-#include "vtkTexture.h"
 #include "vtkSphereSource.h"
+#include "vtkTexture.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <cstdlib>
@@ -261,6 +262,32 @@ void TestLeftToRaster()
     wires->GetProperty()->SetRepresentationToWireframe();
     wires->GetProperty()->LightingOff();
     compareBeside("a wireframe under the renderer's hidden line removal", wires, true);
+    // Raster's pass for it takes lone actors: an assembly's wireframe part
+    // is drawn plainly, so it is traced.
+    Scene scene;
+    scene.Renderer->AddActor(MeshActor(Sphere(-0.6, 24)));
+    vtkNew<vtkAssembly> group;
+    group->AddPart(wires);
+    scene.Renderer->AddActor(group);
+    scene.Renderer->UseHiddenLineRemovalOn();
+    scene.View();
+    scene.Compare("an assembly's wireframe part under hidden line removal", 2, 2.0);
+    // Only the default delegate draws it; id mode draws no raster.
+    vtkNew<vtkRayTracePass> pass;
+    scene.Renderer->RemoveActor(group);
+    scene.Renderer->AddActor(wires);
+    scene.Renderer->SetPass(pass);
+    for (const bool ids : { false, true })
+    {
+      pass->SetIdMode(ids);
+      vtkNew<vtkRenderStepsPass> steps;
+      pass->SetDelegatePass(ids ? nullptr : steps.Get());
+      scene.Window->Render();
+      Check(pass->GetNumberOfTracedProps() == 2,
+        ids ? "hidden line removal in id mode: the wireframe traced"
+            : "hidden line removal with a user's delegate: the wireframe traced");
+    }
+    scene.Renderer->SetPass(nullptr);
   }
   {
     vtkNew<vtkPointGaussianMapper> splats;

@@ -15,7 +15,6 @@
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkMultiBlockDataSet.h"
-#include "vtkOpenGLPolyDataMapper.h"
 #include "vtkOutlineSource.h"
 #include "vtkPropPicker.h"
 #include "vtkSelection.h"
@@ -27,7 +26,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <functional>
 #include <set>
 #include <sstream>
 #include <string>
