@@ -687,7 +687,8 @@ void vtkBVHCellLocator::PrintSelf(ostream& os, vtkIndent indent)
   }
   else
   {
-    const char* later = "(binary tree not built yet: the first point, box or all-hits query builds it)";
+    const char* later = "(binary tree not built yet: GenerateRepresentation, or a query in a "
+                        "flush-to-zero FPU mode, builds it)";
     os << indent << "Nodes: " << later << "\n";
     os << indent << "Leaves: " << (d.Lazy ? d.Lazy->leafCount() : 0) << " (picking tree, so far)\n";
     os << indent << "Depth: " << (d.Lazy ? d.Lazy->depth() : 0) << " (picking tree levels, so far)\n";

@@ -158,7 +158,10 @@ public:
 
   /**
    * Every intersection of the segment with the cells (tolerance 0 for the
-   * 4-argument form), one per cell (its nearest), sorted along the segment.
+   * 4-argument form), one per cell (its nearest), sorted along the segment:
+   * a crossing through an edge or vertex shared by n cells is listed n
+   * times, as VTK's cell locators list it (vtkOBBTree lists it once);
+   * merge hits at the same point before counting crossings for parity.
    * Either list may be null. Returns 0 when nothing is hit; otherwise -1 if
    * p1 is inside a closed, outward-oriented surface (the first crossing
    * leaves it) and +1 otherwise, as vtkOBBTree does.
@@ -169,15 +172,21 @@ public:
     vtkPoints* points, vtkIdList* cellIds, vtkGenericCell* cell = nullptr);
 
   /**
-   * Ids of the cells whose bounds (grown by tolerance) meet the segment:
-   * every cell the segment may hit, in increasing id order.
+   * Ids of the cells whose triangles' bounds (grown by tolerance) meet the
+   * segment: every cell the segment may hit, in increasing id order. For
+   * triangles these are the cells' bounds, as VTK's locators test; a
+   * polygon or strip whose bounds meet the segment while none of its
+   * triangles' bounds do is not listed (VTK's locators list it).
    */
   void FindCellsAlongLine(
     const double p1[3], const double p2[3], double tolerance, vtkIdList* cells) override;
 
   /**
-   * Ids of the cells whose bounds meet bbox (xmin,xmax,ymin,ymax,zmin,zmax),
-   * in increasing id order.
+   * Ids of the cells whose triangles' bounds meet bbox (xmin,xmax,ymin,
+   * ymax,zmin,zmax), in increasing id order: every cell that meets the box,
+   * and for triangles exactly the cells whose bounds meet it, as VTK's
+   * locators answer; a polygon or strip whose bounds meet the box while
+   * none of its triangles' bounds do is not listed (VTK's locators list it).
    */
   void FindCellsWithinBounds(double* bbox, vtkIdList* cells) override;
 

@@ -60,8 +60,12 @@ vtkDataArray* FindArray(const SceneMesh& mesh, const ScalarOptions& options)
   vtkFieldData* fields = options.Cells ? static_cast<vtkFieldData*>(mesh.Mesh->GetCellData())
                                        : static_cast<vtkFieldData*>(mesh.Mesh->GetPointData());
   auto* attributes = static_cast<vtkDataSetAttributes*>(fields);
-  vtkDataArray* array =
-    options.Array.empty() ? attributes->GetScalars() : fields->GetArray(options.Array.c_str());
+  // Normals this tool computed for shading are not the file's data.
+  auto fromFile = [&](vtkDataArray* a) {
+    return a && !(mesh.ComputedNormals && a == attributes->GetNormals()) ? a : nullptr;
+  };
+  vtkDataArray* array = fromFile(
+    options.Array.empty() ? attributes->GetScalars() : fields->GetArray(options.Array.c_str()));
   // No active scalars: the first numeric array that is not the normals or
   // texture coordinates (whose colours mean nothing), else the first.
   for (int i = 0; !array && options.Array.empty() && i < fields->GetNumberOfArrays(); ++i)
@@ -74,7 +78,7 @@ vtkDataArray* FindArray(const SceneMesh& mesh, const ScalarOptions& options)
   }
   for (int i = 0; !array && options.Array.empty() && i < fields->GetNumberOfArrays(); ++i)
   {
-    array = fields->GetArray(i);
+    array = fromFile(fields->GetArray(i));
   }
   const std::string kind = options.Cells ? "cell" : "point";
   if (!array)
@@ -82,7 +86,7 @@ vtkDataArray* FindArray(const SceneMesh& mesh, const ScalarOptions& options)
     std::string names;
     for (int i = 0; i < fields->GetNumberOfArrays(); ++i)
     {
-      if (fields->GetArray(i) && fields->GetArrayName(i))
+      if (fromFile(fields->GetArray(i)) && fields->GetArrayName(i))
       {
         names += std::string(names.empty() ? "" : ", ") + fields->GetArrayName(i);
       }

@@ -121,7 +121,8 @@ void AddMesh(Scene& scene, const std::string& file, vtkPolyData* mesh, const dou
   property->SetPointSize(static_cast<float>(look.PointSize));
   property->SetRenderPointsAsSpheres(cloud);
   scene.Renderer->AddActor(actor);
-  scene.Meshes.push_back(SceneMesh{ file, shaded, actor });
+  const bool computed = shaded->GetPointData()->GetNormals() && !mesh->GetPointData()->GetNormals();
+  scene.Meshes.push_back(SceneMesh{ file, shaded, actor, computed });
   scene.Triangles += CountTriangles(mesh);
   scene.Points += cloud ? mesh->GetNumberOfPoints() : 0;
 }

@@ -619,6 +619,10 @@ void TestBadInput()
     { vtu + " --up W", "--up expects one of \\+X -X \\+Y -Y \\+Z -Z" },
     { vtu + " --resolution 100x100", "--resolution expects W,H" },
     { "'" + Data + "/bunny.vtp' --output x.gif", "--output 'x.gif': unknown image type" },
+    // The teapot has no arrays; the normals the tool computes to shade it
+    // are not data to colour by.
+    { "'" + Data + "/teapot.obj' --scalars --output '" + Tmp + "/bad.png'",
+      "--scalars: '[^']*teapot.obj' has no point array \\(its point arrays: none\\)" },
   };
   for (const auto& c : cases)
   {
