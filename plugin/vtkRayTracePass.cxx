@@ -283,6 +283,20 @@ void vtkRayTracePass::ReleaseGraphicsResources(vtkWindow* w)
   }
 }
 
+namespace
+{
+/// Each traced prop's share of the traced part of a frame, as raster props
+/// report their draw times (vtkLODProp3D chooses its level by them).
+void ReportRenderTimes(const std::vector<vtkProp*>& traced, double seconds, vtkRenderer* ren)
+{
+  const double share = std::max(seconds, 1e-6) / static_cast<double>(std::max<std::size_t>(traced.size(), 1));
+  for (vtkProp* prop : traced)
+  {
+    prop->AddEstimatedRenderTime(share, ren);
+  }
+}
+} // namespace
+
 void vtkRayTracePass::Render(const vtkRenderState* s)
 {
   this->NumberOfRenderedProps = 0;
@@ -336,6 +350,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
   if (selector && !this->IdMode)
   {
     in.Select(*this, s, ren, win, cam, selector);
+    ReportRenderTimes(in.Traced, vtkrt::pass::SecondsSince(extractStart), ren);
     vtkOpenGLCheckErrorMacro("failed after vtkRayTracePass::Render (selection)");
     return;
   }
@@ -344,6 +359,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
   if (!in.Traced.empty())
   {
     in.Trace(*this, ren, win, cam, framesBefore);
+    ReportRenderTimes(in.Traced, vtkrt::pass::SecondsSince(extractStart), ren);
   }
   this->NumberOfRenderedProps += static_cast<int>(in.Traced.size());
   in.RenderOthers(*this, s, ren);

@@ -72,9 +72,11 @@
  * - vtkAssembly (nested too) whose visible parts are all such actors: each
  *   part under its path's matrix, as vtkAssembly draws it; selected and
  *   picked as the assembly, as raster reports it. An assembly with another
- *   part (a volume, shader code ...) falls back whole. A vtkLODProp3D with
- *   its level chosen (SetSelectedLODID, automatic selection off): that
- *   level's actor under the prop's matrix. A vtkPropAssembly of such props.
+ *   part (a volume, shader code ...) falls back whole. A vtkLODProp3D: its
+ *   chosen level's actor under the prop's matrix (chosen by hand, or by
+ *   render time: traced props report their share of the traced frame's
+ *   time, as raster props their draw times). A vtkPropAssembly of such
+ *   props.
  * Shading: vtkProperty ambient/diffuse/specular, normals as
  * vtkOpenGLPolyDataMapper takes them (interpolated point normals unless flat,
  * else cell normals, else each triangle's geometric normal), point or cell

@@ -120,11 +120,9 @@ bool PartsOf(vtkProp* prop, std::vector<PropPart>& parts)
   }
   if (auto* lod = vtkLODProp3D::SafeDownCast(prop))
   {
-    // Its level under its matrix, as it pushes that matrix into the level.
-    // Automatic selection stays with raster: it tries every level it has no
-    // render time for, which levels the pass traces never get.
-    auto* level = lod->GetAutomaticLODSelection() ? nullptr
-                                                  : vtkActor::SafeDownCast(SelectedLevel::Of(lod));
+    // Its level under its matrix, as it pushes that matrix into the level
+    // (chosen by hand, or by the render times the pass reports).
+    auto* level = vtkActor::SafeDownCast(SelectedLevel::Of(lod));
     if (level && level->GetMapper())
     {
       parts.push_back({ prop, 0, level, lod->GetMatrix() });

@@ -1,17 +1,16 @@
 // Which mappers the pass traces, and as what, against VTK's raster of the
 // same scene: vtkDataSetMapper (its surface traced as its own polydata
-// mapper draws it: colors, cell ids, updates), mappers and actors raster
-// must keep (point splats, custom shader code, an actor forced opaque with
-// translucent colors), composite and field-data colors, and vtkAssembly
-// parts (traced under their paths' matrices, selected as their assembly)
-// and vtkLODProp3D levels, vtkPropAssembly groups.
+// mapper draws it: colors, cell ids, updates), composite and field-data
+// colors, and vtkAssembly parts (traced under their paths' matrices,
+// selected as their assembly) and vtkLODProp3D levels (chosen by hand or
+// by render time), vtkPropAssembly groups. Mappers and actors raster must
+// keep: TestRayTracePassLeftToRaster.
 #include "vtkrtPassTestUtils.h"
 #include "vtkrtTestOutputWindow.h"
 
 #include "vtkActor.h"
 #include "vtkAppendPolyData.h"
 #include "vtkAssembly.h"
-#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
 #include "vtkCompositeDataDisplayAttributes.h"
@@ -27,24 +26,18 @@
 #include "vtkLineSource.h"
 #include "vtkLookupTable.h"
 #include "vtkMultiBlockDataSet.h"
-#include "vtkOpenGLPolyDataMapper.h"
 #include "vtkPointData.h"
-#include "vtkPointGaussianMapper.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkPropAssembly.h"
 #include "vtkPropPicker.h"
-#include "vtkRenderStepsPass.h"
 #include "vtkTextActor.h"
 #include "vtkProperty.h"
 #include "vtkSelection.h"
 #include "vtkSelectionNode.h"
-#include "vtkShaderProgram.h"
 #include "vtkShaderProperty.h"
-#include "vtkSkybox.h"
 #include "vtkSphereSource.h"
-#include "vtkTexture.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <cstdlib>
@@ -209,118 +202,6 @@ void TestDataSetMapper()
   blockActor->GetMapper()->SetScalarRange(0.0, 0.6);
   scene.Compare("block, a new scalar range", 2, 2.0);
   NoVTKOutput("vtkDataSetMapper");
-}
-
-// Mappers and actors that only raster can draw as VTK does are left to it
-// beside a traced mesh: point splats (their polygons would be traced as a
-// surface), shader code of the application's (on the actor's shader
-// property or through the mapper's deprecated API), and an actor forced
-// opaque whose opacity is not 1 (VTK blends it in its opaque pass).
-void TestLeftToRaster()
-{
-  // `actor` beside a traced mesh: only the mesh is traced.
-  auto compareBeside = [](const std::string& label, vtkActor* actor, bool hiddenLines = false) {
-    Scene scene;
-    scene.Renderer->AddActor(MeshActor(Sphere(-0.6, 24)));
-    scene.Renderer->AddActor(actor);
-    scene.Renderer->SetUseHiddenLineRemoval(hiddenLines);
-    scene.View();
-    scene.Compare(label, 1, 2.0);
-  };
-  {
-    // An environment texture, as vtkSkybox draws it behind the scene.
-    vtkNew<vtkImageData> grid;
-    grid->SetDimensions(32, 32, 1);
-    grid->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
-    auto* texels = static_cast<unsigned char*>(grid->GetScalarPointer());
-    for (int i = 0; i < 32 * 32 * 3; ++i)
-    {
-      texels[i] = static_cast<unsigned char>(((i / 3) % 32 / 4 + (i / 96) / 4) % 2 ? 200 : 40);
-    }
-    vtkNew<vtkTexture> texture;
-    texture->SetInputData(grid);
-    vtkNew<vtkSkybox> skybox;
-    skybox->SetTexture(texture);
-    skybox->SetProjectionToSphere();
-    compareBeside("a vtkSkybox", skybox);
-  }
-  {
-    // The observer sets a uniform of the mapper's own program.
-    auto actor = MeshActor(Sphere(0.6, 24));
-    vtkNew<vtkCallbackCommand> red;
-    red->SetCallback([](vtkObject*, unsigned long, void*, void* data) {
-      const float color[3] = { 1.0f, 0.0f, 0.0f };
-      static_cast<vtkShaderProgram*>(data)->SetUniform3f("diffuseColorUniform", color);
-    });
-    actor->GetMapper()->AddObserver(vtkCommand::UpdateShaderEvent, red);
-    compareBeside("a mapper with an UpdateShaderEvent observer", actor);
-  }
-  {
-    // Raster's hidden line removal hides the wires behind the wireframe's
-    // own surfaces, not those behind the traced mesh only.
-    auto wires = MeshActor(Sphere(0.6, 16));
-    wires->GetProperty()->SetRepresentationToWireframe();
-    wires->GetProperty()->LightingOff();
-    compareBeside("a wireframe under the renderer's hidden line removal", wires, true);
-    // Raster's pass for it takes lone actors: an assembly's wireframe part
-    // is drawn plainly, so it is traced.
-    Scene scene;
-    scene.Renderer->AddActor(MeshActor(Sphere(-0.6, 24)));
-    vtkNew<vtkAssembly> group;
-    group->AddPart(wires);
-    scene.Renderer->AddActor(group);
-    scene.Renderer->UseHiddenLineRemovalOn();
-    scene.View();
-    scene.Compare("an assembly's wireframe part under hidden line removal", 2, 2.0);
-    // Only the default delegate draws it; id mode draws no raster.
-    vtkNew<vtkRayTracePass> pass;
-    scene.Renderer->RemoveActor(group);
-    scene.Renderer->AddActor(wires);
-    scene.Renderer->SetPass(pass);
-    for (const bool ids : { false, true })
-    {
-      pass->SetIdMode(ids);
-      vtkNew<vtkRenderStepsPass> steps;
-      pass->SetDelegatePass(ids ? nullptr : steps.Get());
-      scene.Window->Render();
-      Check(pass->GetNumberOfTracedProps() == 2,
-        ids ? "hidden line removal in id mode: the wireframe traced"
-            : "hidden line removal with a user's delegate: the wireframe traced");
-    }
-    scene.Renderer->SetPass(nullptr);
-  }
-  {
-    vtkNew<vtkPointGaussianMapper> splats;
-    splats->SetInputData(Sphere(0.6, 16));
-    splats->SetScaleFactor(0.08);
-    splats->EmissiveOff();
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(splats);
-    compareBeside("vtkPointGaussianMapper of a sphere with polygons", actor);
-  }
-  const std::string red = "//VTK::Light::Impl\n  gl_FragData[0] = vec4(1.0, 0.0, 0.0, 1.0);\n";
-  {
-    auto actor = MeshActor(Sphere(0.6, 24));
-    actor->GetShaderProperty()->AddFragmentShaderReplacement("//VTK::Light::Impl", false, red, false);
-    compareBeside("a shader replacement on the actor's shader property", actor);
-  }
-  {
-    auto actor = MeshActor(Sphere(0.6, 24));
-    auto* mapper = vtkOpenGLPolyDataMapper::SafeDownCast(actor->GetMapper());
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
-    mapper->AddShaderReplacement(vtkShader::Fragment, "//VTK::Light::Impl", false, red, false);
-#pragma GCC diagnostic pop
-    Output->Clear(); // VTK's deprecation warning
-    compareBeside("a shader replacement through the mapper's deprecated API", actor);
-  }
-  {
-    auto glass = MeshActor(Sphere(0.6, 24));
-    glass->GetProperty()->SetOpacity(0.3);
-    glass->ForceOpaqueOn();
-    compareBeside("an actor forced opaque with opacity 0.3", glass);
-  }
-  NoVTKOutput("left to raster");
 }
 
 // Colors that replace scalars: a composite block's color (its own or
@@ -719,11 +600,56 @@ void TestLODProps()
   std::string counts;
   const bool agree = selected.Agree(lod, 50, 50, counts);
   Check(agree, "a selection reports the LOD prop, raster / traced:" + counts + " cells");
-  // Automatic selection (by render times the traced levels never get)
-  // stays with raster.
-  lod->AutomaticLODSelectionOn();
-  scene.Compare("its levels selected by time, left to raster", 1, 1.0);
   NoVTKOutput("LOD props");
+}
+
+// vtkLODProp3D choosing its level by render time (automatic selection):
+// each traced level reports its share of the traced frame, as raster
+// levels report their draw times, so it measures every level once (none
+// has a time yet) and then keeps the best level within the window's time,
+// as with raster, which an unmeasured level would take from it forever.
+void TestLODPropsByTime()
+{
+  std::vector<int> chosen[2];
+  for (const bool traced : { false, true })
+  {
+    Scene scene;
+    vtkNew<vtkLODProp3D> lod;
+    const int resolutions[3] = { 8, 24, 48 };
+    for (int k = 0; k < 3; ++k)
+    {
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputData(Sphere(0.0, resolutions[k]));
+      vtkNew<vtkProperty> property;
+      property->SetColor(0.9, 0.7 - 0.3 * k, 0.2 + 0.3 * k);
+      lod->SetLODLevel(lod->AddLOD(mapper, property, 0.0), 2.0 - k); // the finest is level 0
+    }
+    scene.Renderer->AddActor(lod);
+    scene.View();
+    vtkNew<vtkRayTracePass> pass;
+    scene.Renderer->SetPass(traced ? pass.Get() : nullptr);
+    for (int frame = 0; frame < 6; ++frame)
+    {
+      scene.Window->Render();
+      chosen[traced].push_back(lod->GetLastRenderedLODID());
+    }
+    if (traced)
+    {
+      scene.Compare("a vtkLODProp3D choosing its level by time, then", 1, 1.0);
+    }
+  }
+  auto text = [](const std::vector<int>& ids) {
+    std::string s;
+    for (int id : ids)
+    {
+      s += " " + std::to_string(id);
+    }
+    return s;
+  };
+  Check(chosen[0] == chosen[1] && std::set<int>(chosen[1].begin(), chosen[1].end()).size() == 3,
+    "levels chosen by time, raster:" + text(chosen[0]) + ", traced:" + text(chosen[1]) +
+      " (each tried, then the finest)");
+  NoVTKOutput("LOD props by time");
 }
 
 // vtkPropAssembly: its visible props are traced as they draw themselves (an
@@ -765,7 +691,7 @@ int main(int argc, char* argv[])
 {
   Output = vtkrtTestOutputWindow::Install();
   return RunCase(argc, argv,
-    { { "DataSetMapper", TestDataSetMapper }, { "LeftToRaster", TestLeftToRaster },
+    { { "DataSetMapper", TestDataSetMapper },
       { "ReplacedColors", TestReplacedColors }, { "Assemblies", TestAssemblies },
-      { "LODProps", TestLODProps }, { "PropAssemblies", TestPropAssemblies } });
+      { "LODProps", TestLODProps }, { "LODPropsByTime", TestLODPropsByTime }, { "PropAssemblies", TestPropAssemblies } });
 }
