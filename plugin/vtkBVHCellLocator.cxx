@@ -676,8 +676,8 @@ void vtkBVHCellLocator::PrintSelf(ostream& os, vtkIndent indent)
        << " buckets built so far";
   }
   os << "\n";
-  // PrintSelf does not build: the fast build makes the binary tree at the
-  // first query that needs it.
+  // PrintSelf does not build: the fast build makes the binary tree only
+  // when something needs it.
   if (d.TreeBuilt.Ready.load())
   {
     os << indent << "Nodes: " << d.Stats.Nodes << "\n";
@@ -687,8 +687,8 @@ void vtkBVHCellLocator::PrintSelf(ostream& os, vtkIndent indent)
   }
   else
   {
-    const char* later = "(binary tree not built yet: GenerateRepresentation, or a query in a "
-                        "flush-to-zero FPU mode, builds it)";
+    const char* later = "(binary tree not built yet: GenerateRepresentation, the tree "
+                        "statistics, or a query the float walk cannot answer builds it)";
     os << indent << "Nodes: " << later << "\n";
     os << indent << "Leaves: " << (d.Lazy ? d.Lazy->leafCount() : 0) << " (picking tree, so far)\n";
     os << indent << "Depth: " << (d.Lazy ? d.Lazy->depth() : 0) << " (picking tree levels, so far)\n";

@@ -1,6 +1,8 @@
 #include "vtkRayTracePass.h"
 #include "vtkRayTracePassInternals.h"
 
+#include "vtkDataObject.h"
+
 using vtkrt::pass::FrameCounters;
 
 vtkStandardNewMacro(vtkRayTracePass);
@@ -285,14 +287,24 @@ void vtkRayTracePass::ReleaseGraphicsResources(vtkWindow* w)
 
 namespace
 {
-/// Each traced prop's share of the traced part of a frame, as raster props
-/// report their draw times (vtkLODProp3D chooses its level by them).
-void ReportRenderTimes(const std::vector<vtkProp*>& traced, double seconds, vtkRenderer* ren)
+/// Each traced prop of the frame's props gets its share of the tracing's
+/// GPU time, as raster props report their draw times (vtkLODProp3D chooses
+/// its level by them): builds and uploads, once per geometry, are not in
+/// it, and props traced while culled (for shadows) are not the frame's.
+void ReportRenderTimes(
+  const std::vector<vtkProp*>& traced, double seconds, const vtkRenderState* s, vtkRenderer* ren)
 {
-  const double share = std::max(seconds, 1e-6) / static_cast<double>(std::max<std::size_t>(traced.size(), 1));
+  const std::unordered_set<vtkProp*> inFrame(s->GetPropArray(), s->GetPropArray() + s->GetPropArrayCount());
+  const auto count = static_cast<double>(std::count_if(
+    traced.begin(), traced.end(), [&inFrame](vtkProp* prop) { return inFrame.count(prop) > 0; }));
+  // VTK's mappers report at least 0.1 ms (zero means "never rendered").
+  const double share = std::max(seconds / std::max(count, 1.0), 1e-4);
   for (vtkProp* prop : traced)
   {
-    prop->AddEstimatedRenderTime(share, ren);
+    if (inFrame.count(prop))
+    {
+      prop->AddEstimatedRenderTime(share, ren);
+    }
   }
 }
 } // namespace
@@ -350,7 +362,11 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
   if (selector && !this->IdMode)
   {
     in.Select(*this, s, ren, win, cam, selector);
-    ReportRenderTimes(in.Traced, vtkrt::pass::SecondsSince(extractStart), ren);
+    // Points are drawn by raster, whose mappers report their own times.
+    if (selector->GetFieldAssociation() != vtkDataObject::FIELD_ASSOCIATION_POINTS)
+    {
+      ReportRenderTimes(in.Traced, in.TraceTimer->GetReusableElapsedSeconds(), s, ren);
+    }
     vtkOpenGLCheckErrorMacro("failed after vtkRayTracePass::Render (selection)");
     return;
   }
@@ -358,8 +374,10 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
   const int framesBefore = in.Accumulated.BeginFrame();
   if (!in.Traced.empty())
   {
+    in.TraceTimer->ReusableStart();
     in.Trace(*this, ren, win, cam, framesBefore);
-    ReportRenderTimes(in.Traced, vtkrt::pass::SecondsSince(extractStart), ren);
+    in.TraceTimer->ReusableStop();
+    ReportRenderTimes(in.Traced, in.TraceTimer->GetReusableElapsedSeconds(), s, ren);
   }
   this->NumberOfRenderedProps += static_cast<int>(in.Traced.size());
   in.RenderOthers(*this, s, ren);

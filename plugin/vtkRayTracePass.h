@@ -74,9 +74,9 @@
  *   picked as the assembly, as raster reports it. An assembly with another
  *   part (a volume, shader code ...) falls back whole. A vtkLODProp3D: its
  *   chosen level's actor under the prop's matrix (chosen by hand, or by
- *   render time: traced props report their share of the traced frame's
+ *   render time: traced props report their share of the tracing's GPU
  *   time, as raster props their draw times). A vtkPropAssembly of such
- *   props.
+ *   props (not of LOD props, which choose while the group renders).
  * Shading: vtkProperty ambient/diffuse/specular, normals as
  * vtkOpenGLPolyDataMapper takes them (interpolated point normals unless flat,
  * else cell normals, else each triangle's geometric normal), point or cell

@@ -25,6 +25,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLCamera.h"
+#include "vtkOpenGLRenderTimer.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -81,6 +82,9 @@ struct vtkRayTracePass::Internals
   vtkrt::pass::TopLevel Top;
   vtkrt::pass::Accumulation Accumulated;
   vtkrt::pass::Selection Selecting;
+  /// GPU time of the tracing, one frame late, as vtkOpenGLPolyDataMapper
+  /// times its draws (the props' render times, ReportRenderTimes).
+  std::unique_ptr<vtkOpenGLRenderTimer> TraceTimer = std::make_unique<vtkOpenGLRenderTimer>();
 
   /// A frame ready to trace: what Prepare made for the tracer.
   struct Prepared
@@ -106,6 +110,7 @@ struct vtkRayTracePass::Internals
   {
     this->Accumulated.Release(w);
     this->Selecting.Release(w);
+    this->TraceTimer->ReleaseGraphicsResources();
     this->Programs.Release(w);
     this->Buffers.Release(w);
     this->GeometryOnGpu = false;

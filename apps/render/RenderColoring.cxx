@@ -62,7 +62,7 @@ vtkDataArray* FindArray(const SceneMesh& mesh, const ScalarOptions& options)
   auto* attributes = static_cast<vtkDataSetAttributes*>(fields);
   // Normals this tool computed for shading are not the file's data.
   auto fromFile = [&](vtkDataArray* a) {
-    return a && !(mesh.ComputedNormals && a == attributes->GetNormals()) ? a : nullptr;
+    return a && !(mesh.ComputedNormals && !options.Cells && a == attributes->GetNormals()) ? a : nullptr;
   };
   vtkDataArray* array = fromFile(
     options.Array.empty() ? attributes->GetScalars() : fields->GetArray(options.Array.c_str()));

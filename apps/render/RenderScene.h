@@ -24,7 +24,7 @@ struct SceneMesh
   std::string File;
   vtkSmartPointer<vtkPolyData> Mesh; // as drawn (with normals): the picking locator's input
   vtkSmartPointer<vtkActor> Actor;
-  bool ComputedNormals = false; // Mesh's normals are ours, not the file's
+  bool ComputedNormals = false; // Mesh's point normals are ours, not the file's
 };
 
 struct Scene

@@ -46,9 +46,8 @@ core::BuildOptions TriangleBuildOptions(int buildQuality, std::uint32_t leafSize
 
 /// An actor that a renderer prop draws: the prop itself, a visible actor at
 /// a leaf of a vtkAssembly's paths with the path's matrix (which vtkAssembly
-/// pokes into the actor while it renders it), or the level chosen for a
-/// vtkLODProp3D (SetSelectedLODID, automatic selection off) with the prop's
-/// matrix.
+/// pokes into the actor while it renders it), or the level a vtkLODProp3D
+/// chose (by hand or by render time) with the prop's matrix.
 struct PropPart
 {
   vtkProp* Owner = nullptr; ///< the renderer's prop
@@ -60,10 +59,10 @@ struct PropPart
 /// The actors `prop` draws, in the order raster draws them: an actor alone,
 /// the visible leaves of a vtkAssembly (nested ones too), the level chosen
 /// for a vtkLODProp3D, or the parts of a vtkPropAssembly's visible props
-/// (each one of these); false when it is none of these, a
-/// vtkLODProp3D selects its level by time, or some visible leaf (or the
-/// level) is not an actor (a volume, say). Actors without a
-/// mapper draw nothing and are left out.
+/// (actors and assemblies); false when it is none of these, a vtkLODProp3D
+/// has chosen no level yet or is in a vtkPropAssembly (it chooses while the
+/// group renders), or some visible leaf (or the level) is not an actor (a
+/// volume, say). Actors without a mapper draw nothing and are left out.
 bool PartsOf(vtkProp* prop, std::vector<PropPart>& parts);
 
 /// What the renderer and the pass's settings leave to raster beside what

@@ -132,7 +132,9 @@ bool PartsOf(vtkProp* prop, std::vector<PropPart>& parts)
   if (auto* group = vtkPropAssembly::SafeDownCast(prop))
   {
     // vtkPropAssembly::RenderOpaqueGeometry's walk: each visible part as it
-    // draws itself (an actor with a mapper, an assembly, a LOD prop).
+    // draws itself (an actor with a mapper, an assembly). A LOD prop among
+    // them chooses its level when the group renders (the renderer gives
+    // the group its time, the group its parts): the group goes to raster.
     vtkCollectionSimpleIterator it;
     vtkPropCollection* children = group->GetParts();
     std::vector<PropPart> inner;
@@ -143,7 +145,7 @@ bool PartsOf(vtkProp* prop, std::vector<PropPart>& parts)
       {
         continue;
       }
-      if (!PartsOf(child, inner))
+      if (vtkLODProp3D::SafeDownCast(child) || !PartsOf(child, inner))
       {
         parts.clear();
         return false;

@@ -562,8 +562,7 @@ void TestAssemblies()
 }
 
 // vtkLODProp3D: the level chosen for it is traced under its matrix, follows
-// a change of level, and is selected as the LOD prop, as raster does; one
-// that selects its level by time goes to raster.
+// a change of level, and is selected as the LOD prop, as raster does.
 void TestLODProps()
 {
   Scene scene;
@@ -632,6 +631,8 @@ void TestLODPropsByTime()
     {
       scene.Window->Render();
       chosen[traced].push_back(lod->GetLastRenderedLODID());
+      Check(!traced || pass->GetNumberOfTracedProps() == 1,
+        "frame " + std::to_string(frame) + ": the chosen level traced");
     }
     if (traced)
     {
@@ -682,6 +683,18 @@ void TestPropAssemblies()
   text->SetInput("a label");
   group->AddPart(text);
   scene.Compare("the group with a 2D text, left to raster", 0, 1.0);
+  // A LOD prop chooses its level while the group renders (the group hands
+  // it its time), which a traced group never does: left to raster.
+  vtkNew<vtkPropAssembly> levels;
+  vtkNew<vtkLODProp3D> lod;
+  vtkNew<vtkPolyDataMapper> coarse;
+  coarse->SetInputData(Sphere(0.0, 12));
+  vtkNew<vtkProperty> look;
+  lod->AddLOD(coarse, look, 0.0);
+  levels->AddPart(lod);
+  scene.Renderer->RemoveViewProp(group);
+  scene.Renderer->AddViewProp(levels);
+  scene.Compare("a group with a vtkLODProp3D, left to raster", 0, 1.0);
   NoVTKOutput("prop assemblies");
 }
 
@@ -693,5 +706,6 @@ int main(int argc, char* argv[])
   return RunCase(argc, argv,
     { { "DataSetMapper", TestDataSetMapper },
       { "ReplacedColors", TestReplacedColors }, { "Assemblies", TestAssemblies },
-      { "LODProps", TestLODProps }, { "LODPropsByTime", TestLODPropsByTime }, { "PropAssemblies", TestPropAssemblies } });
+      { "LODProps", TestLODProps }, { "LODPropsByTime", TestLODPropsByTime },
+      { "PropAssemblies", TestPropAssemblies } });
 }
