@@ -62,7 +62,6 @@ bool hasCustomShaders(vtkActor* actor, vtkMapper* mapper)
         p->GetNumberOfShaderReplacements() > 0);
   };
   auto* gl = vtkOpenGLPolyDataMapper::SafeDownCast(mapper);
-  // An UpdateShaderEvent observer sets uniforms of the mapper's program.
   return custom(actor->GetShaderProperty()) || (gl && custom(LegacyShaderPropertyOf::Get(gl)));
 }
 
@@ -196,11 +195,11 @@ bool Scene::IsTraceable(vtkProp* prop, const TraceRules& rules)
 
 bool Scene::TraceableParts(vtkProp* prop, const TraceRules& rules, std::vector<PropPart>& parts)
 {
-  // An assembly is traced whole or left to raster whole, as its selection
-  // reports one prop.
   // Hidden line removal: raster's pass for it hides wires behind every
   // wireframe's surfaces, which the tracer does not model; it takes lone
-  // actors only (an assembly's wireframe parts draw plainly).
+  // actors only (an assembly's wireframe parts draw plainly). An assembly
+  // is traced whole or left to raster whole, as its selection reports one
+  // prop.
   auto* lone = vtkActor::SafeDownCast(prop);
   if (rules.HiddenLineRemoval && lone && lone->GetProperty()->GetRepresentation() == VTK_WIREFRAME)
   {

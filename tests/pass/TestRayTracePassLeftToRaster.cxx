@@ -17,7 +17,6 @@
 #include "vtkShaderProgram.h"
 #include "vtkShaderProperty.h"
 #include "vtkSkybox.h"
-#include "vtkSphereSource.h"
 #include "vtkTexture.h"
 
 #include <string>
@@ -35,19 +34,6 @@ struct Scene : ComparedScene
   }
   void View() { this->ComparedScene::View(30.0, 20.0); }
 };
-
-vtkSmartPointer<vtkPolyData> Sphere(double cx, int res)
-{
-  vtkNew<vtkSphereSource> source;
-  source->SetCenter(cx, 0.0, 0.0);
-  source->SetRadius(0.5);
-  source->SetThetaResolution(res);
-  source->SetPhiResolution(res);
-  source->Update();
-  auto poly = vtkSmartPointer<vtkPolyData>::New();
-  poly->DeepCopy(source->GetOutput());
-  return poly;
-}
 
 // Mappers and actors that only raster can draw as VTK does are left to it
 // beside a traced mesh: point splats (their polygons would be traced as a

@@ -37,7 +37,6 @@
 #include "vtkSelection.h"
 #include "vtkSelectionNode.h"
 #include "vtkShaderProperty.h"
-#include "vtkSphereSource.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <cstdlib>
@@ -108,19 +107,6 @@ vtkSmartPointer<vtkActor> DataSetActor(vtkDataSet* data, double lo, double hi)
   auto actor = vtkSmartPointer<vtkActor>::New();
   actor->SetMapper(mapper);
   return actor;
-}
-
-vtkSmartPointer<vtkPolyData> Sphere(double cx, int res)
-{
-  vtkNew<vtkSphereSource> source;
-  source->SetCenter(cx, 0.0, 0.0);
-  source->SetRadius(0.5);
-  source->SetThetaResolution(res);
-  source->SetPhiResolution(res);
-  source->Update();
-  auto poly = vtkSmartPointer<vtkPolyData>::New();
-  poly->DeepCopy(source->GetOutput());
-  return poly;
 }
 
 /// The pixels of the screen's left half and right half.

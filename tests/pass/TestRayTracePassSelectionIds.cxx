@@ -97,6 +97,26 @@ std::set<std::pair<unsigned int, vtkIdType>> CompositeCells(vtkRenderer* ren)
   return cells;
 }
 
+/// A mapper of `input` (a composite mapper for blocks) naming the planes'
+/// "original" array as its cell ids and their "group" array as its
+/// composite ids, as asked.
+vtkSmartPointer<vtkMapper> MapperNaming(vtkDataObject* input, bool cellIds, bool compositeIds)
+{
+  vtkSmartPointer<vtkOpenGLPolyDataMapper> mapper;
+  if (vtkPolyData::SafeDownCast(input))
+  {
+    mapper = vtkSmartPointer<vtkOpenGLPolyDataMapper>::New();
+  }
+  else
+  {
+    mapper = vtkSmartPointer<vtkCompositePolyDataMapper2>::New();
+  }
+  mapper->SetInputDataObject(input);
+  mapper->SetCellIdArrayName(cellIds ? "original" : nullptr);
+  mapper->SetCompositeIdArrayName(compositeIds ? "group" : nullptr);
+  return mapper;
+}
+
 /// A mapper's CellIdArrayName (ParaView's vtkOriginalCellIds) maps the
 /// selected cells through that array, and its CompositeIdArrayName gives
 /// each selected cell its composite index, as raster does: a polydata
@@ -110,52 +130,24 @@ void TestRemappedIds()
     std::vector<vtkIdType> Bases; ///< of the planes' arrays
     bool CellIds;                 ///< the mapper names "original"
     bool CompositeIds;            ///< the mapper names "group"
-    std::function<vtkSmartPointer<vtkMapper>()> Mapper;
+    std::function<vtkSmartPointer<vtkDataObject>()> Input;
   };
   const vtkIdType high = (vtkIdType(1) << 24) + 3;
+  auto plane = [](int nx, int ny, vtkIdType base) {
+    return [=]() -> vtkSmartPointer<vtkDataObject> { return NumberedPlane(-0.9, nx, ny, base); };
+  };
+  auto blocks = []() -> vtkSmartPointer<vtkDataObject> {
+    auto two = vtkSmartPointer<vtkMultiBlockDataSet>::New();
+    two->SetBlock(0, NumberedPlane(-2.0, 5, 4, 500));
+    two->SetBlock(2, NumberedPlane(0.2, 7, 3, 90000));
+    return two;
+  };
   const Case cases[] = {
-    { "a polydata mapper", { 1000 }, true, false,
-      []() -> vtkSmartPointer<vtkMapper> {
-        auto mapper = vtkSmartPointer<vtkOpenGLPolyDataMapper>::New();
-        mapper->SetInputData(NumberedPlane(-0.9, 8, 6, 1000));
-        mapper->SetCellIdArrayName("original");
-        return mapper;
-      } },
-    { "a composite mapper", { 500, 90000 }, true, false,
-      []() -> vtkSmartPointer<vtkMapper> {
-        vtkNew<vtkMultiBlockDataSet> blocks;
-        blocks->SetBlock(0, NumberedPlane(-2.0, 5, 4, 500));
-        blocks->SetBlock(2, NumberedPlane(0.2, 7, 3, 90000));
-        auto mapper = vtkSmartPointer<vtkCompositePolyDataMapper2>::New();
-        mapper->SetInputDataObject(blocks);
-        mapper->SetCellIdArrayName("original");
-        return mapper;
-      } },
-    { "ids past 2^24", { high }, true, false,
-      [high]() -> vtkSmartPointer<vtkMapper> {
-        auto mapper = vtkSmartPointer<vtkOpenGLPolyDataMapper>::New();
-        mapper->SetInputData(NumberedPlane(-0.9, 6, 5, high));
-        mapper->SetCellIdArrayName("original");
-        return mapper;
-      } },
-    { "a composite id array", { 1000 }, false, true,
-      []() -> vtkSmartPointer<vtkMapper> {
-        auto mapper = vtkSmartPointer<vtkOpenGLPolyDataMapper>::New();
-        mapper->SetInputData(NumberedPlane(-0.9, 8, 6, 1000));
-        mapper->SetCompositeIdArrayName("group");
-        return mapper;
-      } },
-    { "composite and cell id arrays of blocks", { 500, 90000 }, true, true,
-      []() -> vtkSmartPointer<vtkMapper> {
-        vtkNew<vtkMultiBlockDataSet> blocks;
-        blocks->SetBlock(0, NumberedPlane(-2.0, 5, 4, 500));
-        blocks->SetBlock(2, NumberedPlane(0.2, 7, 3, 90000));
-        auto mapper = vtkSmartPointer<vtkCompositePolyDataMapper2>::New();
-        mapper->SetInputDataObject(blocks);
-        mapper->SetCellIdArrayName("original");
-        mapper->SetCompositeIdArrayName("group");
-        return mapper;
-      } },
+    { "a polydata mapper", { 1000 }, true, false, plane(8, 6, 1000) },
+    { "a composite mapper", { 500, 90000 }, true, false, blocks },
+    { "ids past 2^24", { high }, true, false, plane(6, 5, high) },
+    { "a composite id array", { 1000 }, false, true, plane(8, 6, 1000) },
+    { "composite and cell id arrays of blocks", { 500, 90000 }, true, true, blocks },
   };
   for (const Case& c : cases)
   {
@@ -166,7 +158,7 @@ void TestRemappedIds()
       vtkNew<vtkRenderer> ren;
       win->AddRenderer(ren);
       vtkNew<vtkActor> actor;
-      actor->SetMapper(c.Mapper());
+      actor->SetMapper(MapperNaming(c.Input(), c.CellIds, c.CompositeIds));
       ren->AddActor(actor);
       ren->ResetCamera();
       vtkNew<vtkRayTracePass> pass;

@@ -311,6 +311,20 @@ inline void AddUnlitWhiteSphereGlyphs(vtkRenderer* ren, const double (&spheres)[
   actor->GetProperty()->SetColor(1, 1, 1);
   ren->AddActor(actor);
 }
+/// A tessellated sphere's polydata (res x res), radius 0.5 about (cx, 0, 0).
+inline vtkSmartPointer<vtkPolyData> Sphere(double cx, int res)
+{
+  vtkNew<vtkSphereSource> source;
+  source->SetCenter(cx, 0.0, 0.0);
+  source->SetRadius(0.5);
+  source->SetThetaResolution(res);
+  source->SetPhiResolution(res);
+  source->Update();
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->DeepCopy(source->GetOutput());
+  return poly;
+}
+
 /// A tessellated sphere actor (res x res), default material.
 inline vtkSmartPointer<vtkActor> SphereActor(
   double x, double y, double z, double r, int res = 32)
