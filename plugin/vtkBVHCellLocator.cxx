@@ -469,7 +469,7 @@ void vtkBVHCellLocator::FindCellsAlongLine(
     return;
   }
   std::vector<vtkIdType> ids;
-  this->Internals->Data.CellsAlongLine(p1, p2, std::abs(tolerance), ids);
+  this->Internals->Data.CellsAlongLine(p1, p2, std::abs(tolerance), this->DataSet, ids);
   if (ids.empty() && BeyondLocalFrame(this->Internals->Data, p1, p2))
   {
     vtkErrorMacro("FindCellsAlongLine: " << kBeyondLocalFrame);
@@ -491,7 +491,7 @@ void vtkBVHCellLocator::FindCellsWithinBounds(double* bbox, vtkIdList* cells)
     return;
   }
   std::vector<vtkIdType> ids;
-  this->Internals->Data.CellsInBox(bbox, ids);
+  this->Internals->Data.CellsInBox(bbox, this->DataSet, ids);
   cells->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
   std::copy(ids.begin(), ids.end(), cells->GetPointer(0));
 }

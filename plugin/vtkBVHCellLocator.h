@@ -172,21 +172,19 @@ public:
     vtkPoints* points, vtkIdList* cellIds, vtkGenericCell* cell = nullptr);
 
   /**
-   * Ids of the cells whose triangles' bounds (grown by tolerance) meet the
-   * segment: every cell the segment may hit, in increasing id order. For
-   * triangles these are the cells' bounds, as VTK's locators test; a
-   * polygon or strip whose bounds meet the segment while none of its
-   * triangles' bounds do is not listed (VTK's locators list it).
+   * Ids of the cells whose bounds (grown by tolerance) meet the segment, in
+   * increasing id order: every cell the segment may hit, and exactly those
+   * whose bounds it meets (VTK's locators list the cells of the buckets
+   * the segment passes, a superset).
    */
   void FindCellsAlongLine(
     const double p1[3], const double p2[3], double tolerance, vtkIdList* cells) override;
 
   /**
-   * Ids of the cells whose triangles' bounds meet bbox (xmin,xmax,ymin,
-   * ymax,zmin,zmax), in increasing id order: every cell that meets the box,
-   * and for triangles exactly the cells whose bounds meet it, as VTK's
-   * locators answer; a polygon or strip whose bounds meet the box while
-   * none of its triangles' bounds do is not listed (VTK's locators list it).
+   * Ids of the cells whose bounds meet bbox (xmin,xmax,ymin,ymax,zmin,
+   * zmax), in increasing id order, as vtkCellTreeLocator answers
+   * (vtkStaticCellLocator and vtkCellLocator list the cells of the buckets
+   * the box overlaps, a superset).
    */
   void FindCellsWithinBounds(double* bbox, vtkIdList* cells) override;
 

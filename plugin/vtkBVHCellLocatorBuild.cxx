@@ -239,7 +239,8 @@ size_t BVHCellLocatorData::MemorySize() const
     this->TriSub.capacity() * sizeof(std::int32_t) + this->TriFlags.capacity() +
     this->GenCell.capacity() * sizeof(vtkIdType) + this->GenBox.capacity() * sizeof(Box) +
     this->Tree.memoryBytes() +
-    this->Wide.capacity() * sizeof(WideNode);
+    this->Wide.capacity() * sizeof(WideNode) +
+    this->MultiTriangleCells.capacity() * sizeof(vtkIdType) + this->MultiCellBytes();
 }
 
 //------------------------------------------------------------------------------

@@ -78,37 +78,68 @@ void BVHCellLocatorData::Extract(vtkDataSet* ds)
   {
     this->SrcVerts = this->TriVerts.data();
   }
-  this->ComputeMultiTriangleCellReach();
+  this->ListMultiTriangleCells();
   this->WarmUpCellAccess(ds);
   this->ComputeGeneralBoxes(ds);
 }
 
 //------------------------------------------------------------------------------
-void BVHCellLocatorData::ComputeMultiTriangleCellReach()
+void BVHCellLocatorData::ListMultiTriangleCells()
 {
+  this->MultiTriangleCells.clear();
   this->MultiTriangleCellReach = 0.0;
+  this->FindCellReachesCells = true;
   const vtkIdType n = this->NumberOfTriangles();
-  if (this->UniformCellBase >= 0 || n == 0)
+  if (this->UniformCellBase >= 0)
   {
     return; // one triangle a cell
   }
+  double extents = 0.0;
   Box cell;
+  auto endCell = [&]() {
+    const Vec3d e = cell.max - cell.min;
+    const double reach = std::max({ e.x, e.y, e.z });
+    this->MultiTriangleCellReach = std::max(this->MultiTriangleCellReach, reach);
+    extents += reach;
+  };
   for (vtkIdType i = 0; i < n; ++i)
   {
-    if (i > 0 && this->TriCell[i] != this->TriCell[i - 1])
-    {
-      cell = Box();
-    }
     if (this->TriFlags[i] & WholeTriangle)
     {
       continue;
+    }
+    const vtkIdType cellId = this->TriCell[i];
+    if (this->MultiTriangleCells.empty() || this->MultiTriangleCells.back() != cellId)
+    {
+      if (!this->MultiTriangleCells.empty())
+      {
+        endCell();
+      }
+      this->MultiTriangleCells.push_back(cellId);
+      cell = Box();
     }
     for (int k = 0; k < 3; ++k)
     {
       cell.extend(this->LocalPoint(this->SrcVerts[3 * static_cast<std::size_t>(i) + k]));
     }
-    const Vec3d e = cell.max - cell.min;
-    this->MultiTriangleCellReach = std::max({ this->MultiTriangleCellReach, e.x, e.y, e.z });
+  }
+  if (this->MultiTriangleCells.empty())
+  {
+    return;
+  }
+  endCell();
+  // FindCell looks as far as the largest such cell reaches while that is
+  // about the typical cell's size; beyond, a point would gather many cells'
+  // triangles, and it searches MultiCells instead.
+  const double mean = extents / static_cast<double>(this->MultiTriangleCells.size());
+  this->FindCellReachesCells = this->MultiTriangleCellReach <= 4.0 * mean;
+  // Cells are extracted in id order; sorted anyway, as the queries assume.
+  if (!std::is_sorted(this->MultiTriangleCells.begin(), this->MultiTriangleCells.end()))
+  {
+    std::sort(this->MultiTriangleCells.begin(), this->MultiTriangleCells.end());
+    this->MultiTriangleCells.erase(
+      std::unique(this->MultiTriangleCells.begin(), this->MultiTriangleCells.end()),
+      this->MultiTriangleCells.end());
   }
 }
 

@@ -210,10 +210,45 @@ public:
     }
   };
   CopyTime CopiedCoordsTime;
-  /// The largest extent (local units) of a cell made of several triangles
-  /// (a quad, polygon or strip): a point its bounds hold may lie that far
-  /// from all its triangles' boxes, so FindCell looks that far.
+  /// Cells made of several triangles (quads, polygons, strips), in id
+  /// order. Their bounds can hold a point or meet a box or segment that no
+  /// box of their triangles meets, so FindCell and the bounds queries also
+  /// search MultiCells, a tree over these cells' own bounds.
+  std::vector<vtkIdType> MultiTriangleCells;
+  /// The largest extent (local units) of such a cell: a point its bounds
+  /// hold may lie that far from all its triangles' boxes.
   double MultiTriangleCellReach = 0.0;
+  /// Whether FindCell looks MultiTriangleCellReach around a point (cells of
+  /// about one size) rather than in MultiCells (a few much larger cells).
+  bool FindCellReachesCells = true;
+  /// The tree over MultiTriangleCells' bounds (local coordinates), built by
+  /// the first query that needs it (EnsureMultiCells). Copying copies
+  /// nothing: a copy builds its own on demand.
+  struct MultiCellTree
+  {
+    std::atomic<bool> Ready{ false };
+    std::mutex Mutex;
+    std::vector<Box> Boxes; ///< one per MultiTriangleCells entry
+    core::BVH Tree;
+    MultiCellTree() = default;
+    MultiCellTree(const MultiCellTree&) {}
+    MultiCellTree& operator=(const MultiCellTree&)
+    {
+      this->Ready.store(false);
+      this->Boxes.clear();
+      this->Tree = core::BVH();
+      return *this;
+    }
+  };
+  mutable MultiCellTree MultiCells;
+  size_t MultiCellBytes() const
+  {
+    if (!this->MultiCells.Ready.load(std::memory_order_acquire))
+    {
+      return 0;
+    }
+    return this->MultiCells.Boxes.capacity() * sizeof(Box) + this->MultiCells.Tree.memoryBytes();
+  }
   /// Original cell id per triangle (in extraction order, sized but not
   /// written when UniformCellBase gives the ids).
   TriangleArray<vtkIdType> TriCell;
@@ -419,11 +454,13 @@ public:
   void AllHits(const double p1[3], const double p2[3], double tol, vtkDataSet* ds,
     vtkGenericCell* cell, std::vector<LineHit>& hits) const;
   /// The cells whose bounds, grown by tol, the segment meets (sorted ids).
-  void CellsAlongLine(
-    const double p1[3], const double p2[3], double tol, std::vector<vtkIdType>& cells) const;
+  void CellsAlongLine(const double p1[3], const double p2[3], double tol, vtkDataSet* ds,
+    std::vector<vtkIdType>& cells) const;
   /// The cells whose bounds overlap bbox (sorted ids).
-  void CellsInBox(const double bbox[6], std::vector<vtkIdType>& cells) const;
-  /// The same for a box in local coordinates.
+  void CellsInBox(const double bbox[6], vtkDataSet* ds, std::vector<vtkIdType>& cells) const;
+  /// The cells with a triangle or general cell whose box overlaps q (local
+  /// coordinates; sorted ids): every cell that meets q, but not every cell
+  /// of several triangles whose bounds do.
   void CellsInLocalBox(const Box& q, std::vector<vtkIdType>& cells) const;
   /// The cells a zero-length segment at p hits (VTK's cells decide), t = 0.
   void CellsThroughPoint(const double p[3], double tol, vtkDataSet* ds, vtkGenericCell* cell,
@@ -521,9 +558,19 @@ private:
     return static_cast<vtkIdType>(prim) < nTri ? this->TriCell[prim] : this->GenCell[prim - nTri];
   }
 
-  /// Sets MultiTriangleCellReach from the extraction's triangles (a cell's
-  /// are consecutive there).
-  void ComputeMultiTriangleCellReach();
+  /// Sets MultiTriangleCells from the extraction's triangles (a cell's are
+  /// consecutive there).
+  void ListMultiTriangleCells();
+
+  // The cells of several triangles by their own bounds
+  // (vtkBVHCellLocatorCellBounds.cxx); ds is the dataset built from.
+  /// Builds MultiCells if a query has not yet; safe from several threads.
+  void EnsureMultiCells(vtkDataSet* ds) const;
+  /// Appends the cells of several triangles whose bounds overlap q (local).
+  void MultiCellsInLocalBox(vtkDataSet* ds, const Box& q, std::vector<vtkIdType>& cells) const;
+  /// Appends those whose bounds, grown by localTol, the segment `ray` meets.
+  void MultiCellsAlongSegment(vtkDataSet* ds, const core::Ray<double>& ray, double localTol,
+    std::vector<vtkIdType>& cells) const;
 
   // Builds
   void BuildDeferredTree() const;

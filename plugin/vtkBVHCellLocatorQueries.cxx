@@ -465,8 +465,8 @@ void BVHCellLocatorData::AllHits(const double p1[3], const double p2[3], double 
 }
 
 //------------------------------------------------------------------------------
-void BVHCellLocatorData::CellsAlongLine(
-  const double p1[3], const double p2[3], double tol, std::vector<vtkIdType>& cells) const
+void BVHCellLocatorData::CellsAlongLine(const double p1[3], const double p2[3], double tol,
+  vtkDataSet* ds, std::vector<vtkIdType>& cells) const
 {
   cells.clear();
   core::Ray<double> ray;
@@ -477,7 +477,7 @@ void BVHCellLocatorData::CellsAlongLine(
       // A point: the cells whose bounds, grown by tol, hold it.
       const double box[6] = { p1[0] - tol, p1[0] + tol, p1[1] - tol, p1[1] + tol, p1[2] - tol,
         p1[2] + tol };
-      this->CellsInBox(box, cells);
+      this->CellsInBox(box, ds, cells);
     }
     return;
   }
@@ -495,6 +495,7 @@ void BVHCellLocatorData::CellsAlongLine(
   };
   // Cells by their bounds: every triangle of a leaf the segment reaches.
   core::allHitsSegment(PickingScene{ this }, ray, triPre, localTol, false, isect);
+  this->MultiCellsAlongSegment(ds, ray, localTol, cells);
   std::sort(cells.begin(), cells.end());
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
 }
@@ -507,9 +508,11 @@ void BVHCellLocatorData::CellsAlongLine(
 void BVHCellLocatorData::CellsThroughPoint(const double p[3], double tol, vtkDataSet* ds,
   vtkGenericCell* cell, bool firstOnly, std::vector<LineHit>& hits) const
 {
+  // A point on a cell lies on one of its triangles: their boxes suffice.
   std::vector<vtkIdType> candidates;
-  const double box[6] = { p[0] - tol, p[0] + tol, p[1] - tol, p[1] + tol, p[2] - tol, p[2] + tol };
-  this->CellsInBox(box, candidates);
+  this->CellsInLocalBox(
+    Box(this->ToLocal(Vec3d(p[0] - tol, p[1] - tol, p[2] - tol)), this->ToLocal(Vec3d(p[0] + tol, p[1] + tol, p[2] + tol))),
+    candidates);
   if (!ds || candidates.empty())
   {
     return;
@@ -538,11 +541,18 @@ void BVHCellLocatorData::CellsThroughPoint(const double p[3], double tol, vtkDat
 }
 
 //------------------------------------------------------------------------------
-void BVHCellLocatorData::CellsInBox(const double bbox[6], std::vector<vtkIdType>& cells) const
+void BVHCellLocatorData::CellsInBox(
+  const double bbox[6], vtkDataSet* ds, std::vector<vtkIdType>& cells) const
 {
   const Box q(this->ToLocal(Vec3d(bbox[0], bbox[2], bbox[4])),
     this->ToLocal(Vec3d(bbox[1], bbox[3], bbox[5])));
   this->CellsInLocalBox(q, cells);
+  if (!this->MultiTriangleCells.empty())
+  {
+    this->MultiCellsInLocalBox(ds, q, cells);
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -691,15 +701,16 @@ vtkIdType BVHCellLocatorData::FindCell(
   const Vec3d x = this->ToLocal(xw);
   // VTK tests the cells' bounds in world coordinates: candidates are
   // gathered with its rounding there allowed, then tested on those bounds;
-  // and as far out as a cell of several triangles reaches beyond their
-  // boxes (a tilted quad's bounds hold points no box of its two triangles
-  // holds).
+  // and cells of several triangles as far out as they reach beyond their
+  // triangles' boxes (a tilted quad's bounds hold points no box of its two
+  // triangles holds), or by their own bounds where a few reach far.
   double m = 0.0;
   for (int k = 0; k < 3; ++k)
   {
     m = std::max({ m, std::abs(xw[k]), std::abs(this->Origin[k]) });
   }
-  const Vec3d slack(this->ToLocalLength(3e-6 * m) + this->MultiTriangleCellReach);
+  const bool reach = this->FindCellReachesCells;
+  const Vec3d slack(this->ToLocalLength(3e-6 * m) + (reach ? this->MultiTriangleCellReach : 0.0));
   const Box q(x - slack, x + slack);
   // Candidates (cell id, primitive) in cell id order: a VTK_TRIANGLE cell
   // is filled from its kept point ids, not looked up in the dataset. The
@@ -716,6 +727,16 @@ vtkIdType BVHCellLocatorData::FindCell(
   {
     this->EnsureTree();
     core::queryBox(this->Tree, q, overlap);
+  }
+  if (!reach)
+  {
+    thread_local std::vector<vtkIdType> multi;
+    multi.clear();
+    this->MultiCellsInLocalBox(ds, q, multi);
+    for (const vtkIdType cellId : multi)
+    {
+      candidates.emplace_back(cellId, core::kInvalidIndex); // no triangle: the cell itself
+    }
   }
   std::sort(candidates.begin(), candidates.end());
   double xx[3] = { xw[0], xw[1], xw[2] };

@@ -32,6 +32,7 @@ int TestQueriesClosestPointProbes();
 int TestQueriesFirstQueryBuildsNothing();
 int TestQueriesAxisParallelSegments();
 int TestQueriesBlankedCells();
+int TestQueriesCellsOfSeveralTriangles();
 
 int main(int argc, char* argv[])
 {
@@ -62,7 +63,8 @@ int main(int argc, char* argv[])
     { "QueriesClosestPointProbes", TestQueriesClosestPointProbes },
     { "QueriesFirstQueryBuildsNothing", TestQueriesFirstQueryBuildsNothing },
     { "QueriesAxisParallelSegments", TestQueriesAxisParallelSegments },
-    { "QueriesBlankedCells", TestQueriesBlankedCells } };
+    { "QueriesBlankedCells", TestQueriesBlankedCells },
+    { "QueriesCellsOfSeveralTriangles", TestQueriesCellsOfSeveralTriangles } };
   if (argc < 2)
   {
     std::cerr << "usage: " << argv[0] << " CASE" << std::endl;

@@ -2,10 +2,12 @@
 // brute force over probes as a user's (on the surface, near it, around it,
 // far away, the center of a sphere), through the float walk and the double
 // one; segments parallel to an axis; and that no query after BuildLocator()
-// builds the binary tree; closest points among blanked cells.
+// builds the binary tree; closest points among blanked cells; cells of
+// several triangles found by their own bounds.
 #include "LocatorTestUtils.h"
 
 #include "vtkBVHCellLocator.h"
+#include "vtkCellArray.h"
 #include "vtkGenericCell.h"
 #include "vtkStructuredGrid.h"
 
@@ -381,5 +383,150 @@ int TestQueriesBlankedCells()
   }
   // Probes whose nearest cell is a blanked one: the case that matters.
   LT_CHECK_MSG(blankedBest > 20, blankedBest << " probes nearest a blanked cell");
+  return 0;
+}
+
+namespace
+{
+/// Planar cells of several triangles whose bounds reach where no box of
+/// their triangles does: tilted non-convex stars (8-point polygons), tilted
+/// quads, zig-zag strips, beside plain triangles; cell ids interleave them.
+/// A large tilted quad under them all makes FindCell search the cells'
+/// bounds tree rather than around the point.
+vtkSmartPointer<vtkPolyData> SeveralTriangleCells(Random& rng, bool largeQuad)
+{
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> polys, strips;
+  auto tilted = [&](double cx, double cy, double u, double v, double tx, double ty) {
+    return pts->InsertNextPoint(cx + u, cy + v, 0.7 * tx * u + 0.5 * ty * v);
+  };
+  for (int i = 0; i < 6; ++i)
+  {
+    for (int j = 0; j < 6; ++j)
+    {
+      const double cx = 3.0 * i, cy = 3.0 * j, tx = rng.Next(-1, 1), ty = rng.Next(-1, 1);
+      vtkIdType ids[8];
+      for (int k = 0; k < 8; ++k)
+      {
+        const double a = vtkMath::Pi() / 4.0 * k, r = (k % 2 == 0) ? 1.2 : 0.35;
+        ids[k] = tilted(cx, cy, r * std::cos(a), r * std::sin(a), tx, ty);
+      }
+      polys->InsertNextCell(8, ids);
+      const vtkIdType quad[4] = { tilted(cx + 1.4, cy, 0, 0, tx, ty), tilted(cx + 1.4, cy, 0.9, 0.3, tx, ty),
+        tilted(cx + 1.4, cy, 1.2, 1.3, tx, ty), tilted(cx + 1.4, cy, 0.2, 1.0, tx, ty) };
+      polys->InsertNextCell(4, quad);
+      const vtkIdType tri[3] = { tilted(cx, cy + 1.5, 0, 0, tx, ty), tilted(cx, cy + 1.5, 0.8, 0.1, tx, ty),
+        tilted(cx, cy + 1.5, 0.3, 0.9, tx, ty) };
+      polys->InsertNextCell(3, tri);
+      vtkIdType strip[7];
+      for (int k = 0; k < 7; ++k)
+      {
+        strip[k] = pts->InsertNextPoint(cx + 0.3 * k, cy - 1.2 + 0.5 * (k % 2) + 0.08 * k * k, 0.2 * k * (k % 2));
+      }
+      strips->InsertNextCell(7, strip);
+    }
+  }
+  if (largeQuad)
+  {
+    const vtkIdType quad[4] = { pts->InsertNextPoint(-2, -2, -1.5), pts->InsertNextPoint(17, -2, -0.5),
+      pts->InsertNextPoint(18, 17, 0.5), pts->InsertNextPoint(-1, 16, -0.5) };
+    polys->InsertNextCell(4, quad);
+  }
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(pts);
+  pd->SetPolys(polys);
+  pd->SetStrips(strips);
+  return pd;
+}
+} // namespace
+
+/// FindCellsWithinBounds, FindCellsAlongLine and FindCell answer from the
+/// cells' own bounds, as VTK's locators do, for polygons, quads and strips
+/// whose bounds reach beyond their triangles' boxes: against brute force
+/// over the cells' bounds, for the fast build and the SAH build.
+int TestQueriesCellsOfSeveralTriangles()
+{
+  Random rng(5);
+  for (int variant = 0; variant < 4; ++variant)
+  {
+    const int quality = variant % 2 == 0 ? vtkBVHCellLocator::FAST : vtkBVHCellLocator::SAH;
+    auto pd = SeveralTriangleCells(rng, variant >= 2);
+    double b[6];
+    pd->GetBounds(b);
+    vtkNew<vtkBVHCellLocator> loc;
+    loc->SetBuildQuality(quality);
+    loc->SetDataSet(pd);
+    loc->BuildLocator();
+    vtkNew<vtkIdList> ids;
+    int boxCells = 0;
+    for (int i = 0; i < 400; ++i)
+    {
+      double box[6];
+      for (int a = 0; a < 3; ++a)
+      {
+        const double c = rng.Next(b[2 * a], b[2 * a + 1]), h = rng.Next(0.0, 0.3);
+        box[2 * a] = c - h;
+        box[2 * a + 1] = c + h;
+      }
+      loc->FindCellsWithinBounds(box, ids);
+      const std::vector<vtkIdType> ref = BruteForceCellsInBox(pd, box);
+      LT_CHECK_MSG(ToVector(ids) == ref, "box " << i << ": " << ids->GetNumberOfIds() << " cells, "
+                                                << ref.size() << " by brute force");
+      boxCells += static_cast<int>(ref.size());
+    }
+    LT_CHECK(boxCells > 200);
+    for (const Segment& s : RandomSegments(pd, 200, rng))
+    {
+      for (double tol : { 0.0, 0.05 })
+      {
+        loc->FindCellsAlongLine(s.P1, s.P2, tol, ids);
+        std::vector<vtkIdType> ref;
+        for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c)
+        {
+          double cb[6];
+          pd->GetCellBounds(c, cb);
+          for (int k = 0; k < 6; ++k)
+          {
+            cb[k] += (k % 2 == 0 ? -tol : tol);
+          }
+          if (SegmentMeetsBox(s.P1, s.P2, cb))
+          {
+            ref.push_back(c);
+          }
+        }
+        LT_CHECK_MSG(ToVector(ids) == ref, "segment: " << ids->GetNumberOfIds() << " cells, " << ref.size()
+                                                       << " by brute force, tolerance " << tol);
+      }
+    }
+    // FindCell: the lowest-id cell whose bounds hold x and into which x
+    // projects, as VTK 9.1's locators answer for surface cells.
+    vtkNew<vtkGenericCell> cell;
+    std::vector<double> w(16);
+    int located = 0;
+    for (int i = 0; i < 600; ++i)
+    {
+      double x[3] = { rng.Next(b[0], b[1]), rng.Next(b[2], b[3]), rng.Next(b[4], b[5]) }, pc[3];
+      vtkIdType ref = -1;
+      for (vtkIdType c = 0; c < pd->GetNumberOfCells() && ref < 0; ++c)
+      {
+        double cb[6], cp[3], d2;
+        int sub;
+        pd->GetCellBounds(c, cb);
+        pd->GetCell(c, cell);
+        if (x[0] >= cb[0] && x[0] <= cb[1] && x[1] >= cb[2] && x[1] <= cb[3] && x[2] >= cb[4] &&
+          x[2] <= cb[5] && cell->EvaluatePosition(x, cp, sub, pc, d2, w.data()) == 1)
+        {
+          ref = c;
+        }
+      }
+      const vtkIdType ours = loc->FindCell(x, 0.0, cell, pc, w.data());
+      LT_CHECK_MSG(ours == ref, "FindCell gives " << ours << ", brute force " << ref);
+      located += ref >= 0 ? 1 : 0;
+    }
+    LT_CHECK(located > 30);
+    std::cout << "quality " << quality << (variant >= 2 ? ", a large quad" : "") << ": " << boxCells << " cells in 400 boxes, " << located
+              << " of 600 points located, as brute force" << std::endl;
+  }
   return 0;
 }
