@@ -309,6 +309,32 @@ void ReportRenderTimes(
 }
 } // namespace
 
+namespace
+{
+/// Viewport, scissor and VTK's own clear (solid or gradient background), as
+/// vtkCameraPass sets them: the renderer's tiled viewport, or all of the
+/// framebuffer a wrapping pass (vtkSSAAPass, an image processing pass)
+/// hands over in the render state.
+void BeginDrawing(const vtkRenderState* s, vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam)
+{
+  if (!s->GetFrameBuffer())
+  {
+    cam->Render(ren);
+    return;
+  }
+  int size[2] = { 0, 0 };
+  s->GetWindowSize(size);
+  vtkOpenGLState* ostate = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow())->GetState();
+  ostate->vtkglViewport(0, 0, size[0], size[1]);
+  ostate->vtkglEnable(GL_SCISSOR_TEST);
+  ostate->vtkglScissor(0, 0, size[0], size[1]);
+  if (ren->GetRenderWindow()->GetErase() && ren->GetErase())
+  {
+    ren->Clear();
+  }
+}
+} // namespace
+
 void vtkRayTracePass::Render(const vtkRenderState* s)
 {
   this->NumberOfRenderedProps = 0;
@@ -335,8 +361,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     vtkErrorMacro("vtkRayTracePass needs a vtkOpenGLCamera.");
     return;
   }
-  // Viewport, scissor and VTK's own clear (solid or gradient background).
-  cam->Render(ren);
+  BeginDrawing(s, ren, cam);
   // Lights follow the camera and VTK computes the lighting complexity.
   in.Lights->Render(s);
 
@@ -375,7 +400,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
   if (!in.Traced.empty())
   {
     in.TraceTimer->ReusableStart();
-    in.Trace(*this, ren, win, cam, framesBefore);
+    in.Trace(*this, s, ren, win, cam, framesBefore);
     in.TraceTimer->ReusableStop();
     ReportRenderTimes(in.Traced, in.TraceTimer->GetReusableElapsedSeconds(), s, ren);
   }

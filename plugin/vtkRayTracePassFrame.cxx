@@ -71,6 +71,20 @@ std::size_t ScissorTo(vtkOpenGLState* ostate, const int rect[4])
   return ScissorTo(ostate, rect, DrawingBound(ostate));
 }
 
+/// The pixels a frame draws, as VTK's vtkCameraPass sets them: the
+/// renderer's tiled viewport, or all of a framebuffer that a wrapping pass
+/// (vtkSSAAPass, an image processing pass) draws the frame into.
+void DrawnViewport(const vtkRenderState* s, vtkRenderer* ren, int size[2], int origin[2])
+{
+  if (s && s->GetFrameBuffer())
+  {
+    s->GetWindowSize(size);
+    origin[0] = origin[1] = 0;
+    return;
+  }
+  ren->GetTiledSizeAndOrigin(size, size + 1, origin, origin + 1);
+}
+
 /// False when the environment variable is 0: tests compare the pass with
 /// and without a way of saving work, which must not change the image.
 /// VTKRT_FOOTPRINT_TILES=0: camera rays over the traced footprint's
@@ -346,12 +360,14 @@ void vtkRayTracePass::Internals::SetUniforms(vtkShaderProgram* program, const Fe
   vtkrt::pass::SetLightUniforms(program, lights);
 }
 
-bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren,
-  vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam, const std::vector<bool>* traced, bool selectIds,
-  Prepared& p)
+bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, const vtkRenderState* s,
+  vtkOpenGLRenderer* ren, vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam,
+  const std::vector<bool>* traced, bool selectIds, Prepared& p)
 {
   const std::vector<Instance>& instances = this->Scene.GetInstances();
-  p.Camera.Set(ren, cam, pass.PrecisionMode == WORLD, vtkrt::pass::ViewScale(cam));
+  int size[2] = { 0, 0 }, origin[2] = { 0, 0 };
+  DrawnViewport(s, ren, size, origin);
+  p.Camera.Set(ren, cam, pass.PrecisionMode == WORLD, vtkrt::pass::ViewScale(cam), size, origin);
   vtkrt::pass::FrameRecords& frame = p.Frame;
   if (!vtkrt::pass::MakeFrameRecords(instances, this->Places, p.Camera, ren, frame))
   {
@@ -460,11 +476,11 @@ void vtkRayTracePass::Internals::SetTileEntries(vtkOpenGLRenderer* ren, vtkOpenG
   p.Tracer->Program->SetUniform4f("uTileGrid", lists.Grid);
 }
 
-void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren,
-  vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam, int framesBefore)
+void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRenderState* s,
+  vtkOpenGLRenderer* ren, vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam, int framesBefore)
 {
   Prepared p;
-  if (!this->Prepare(pass, ren, win, cam, nullptr, false, p))
+  if (!this->Prepare(pass, s, ren, win, cam, nullptr, false, p))
   {
     return;
   }
@@ -532,12 +548,11 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, vtkOpenGLRen
     const bool restart = !pass.ProgressiveAccumulation || this->Counters.GeometryBytesUploaded > 0 ||
       this->Counters.ShaderCompiles > 0;
     // The accumulation traces the footprint (or the viewport) into its own buffer.
-    int width = 0, height = 0;
-    ren->GetTiledSize(&width, &height);
+    const int* size = p.Camera.ViewportSize;
     this->Counters.TracedPixels += narrowed ? static_cast<std::size_t>(footprint[2]) * footprint[3]
-                                            : static_cast<std::size_t>(width) * height;
-    this->Accumulated.Trace(win, ren, tracer, std::move(signature), restart, framesBefore,
-      pass.SamplesPerPixel, narrowed ? footprint : nullptr);
+                                            : static_cast<std::size_t>(size[0]) * size[1];
+    this->Accumulated.Trace(win, size, p.Camera.ViewportOrigin, tracer, std::move(signature),
+      restart, framesBefore, pass.SamplesPerPixel, narrowed ? footprint : nullptr);
     for (vtkTextureObject* t : p.Active)
     {
       t->Deactivate();
@@ -584,7 +599,7 @@ void vtkRayTracePass::Internals::Select(vtkRayTracePass& pass, const vtkRenderSt
       std::find(props.begin(), props.end(), this->Traced[i]) != props.end();
   }
   Prepared p;
-  if (!this->Traced.empty() && this->Prepare(pass, ren, win, cam, &traced, true, p))
+  if (!this->Traced.empty() && this->Prepare(pass, s, ren, win, cam, &traced, true, p))
   {
     this->Selecting.TraceIds(win, ren, p.Tracer);
     for (vtkTextureObject* t : p.Active)

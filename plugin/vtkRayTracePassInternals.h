@@ -182,11 +182,12 @@ struct vtkRayTracePass::Internals
   /// lights and shader (the selection ids variant when `selectIds`): the
   /// tracer ready, its uniforms set, its samplers bound; false when it
   /// cannot trace.
-  bool Prepare(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren, vtkOpenGLRenderWindow* win,
-    vtkOpenGLCamera* cam, const std::vector<bool>* traced, bool selectIds, Prepared& p);
+  bool Prepare(const vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren,
+    vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam, const std::vector<bool>* traced,
+    bool selectIds, Prepared& p);
   /// Prepare, then the trace (straight or accumulated).
-  void Trace(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren, vtkOpenGLRenderWindow* win,
-    vtkOpenGLCamera* cam, int framesBefore);
+  void Trace(const vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren,
+    vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam, int framesBefore);
   /// One pass of the renderer's vtkHardwareSelector instead of a frame.
   void Select(vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren,
     vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam, vtkHardwareSelector* selector);

@@ -45,15 +45,13 @@ void Accumulation::Allocate(vtkOpenGLRenderWindow* win, int width, int height)
   this->Size[1] = height;
 }
 
-void Accumulation::Trace(vtkOpenGLRenderWindow* win, vtkRenderer* ren, vtkOpenGLQuadHelper* tracer,
-  std::vector<float> signature, bool restart, int framesBefore, int samplesPerPixel,
-  const int* footprint)
+void Accumulation::Trace(vtkOpenGLRenderWindow* win, const int viewportSize[2],
+  const int viewportOrigin[2], vtkOpenGLQuadHelper* tracer, std::vector<float> signature,
+  bool restart, int framesBefore, int samplesPerPixel, const int* footprint)
 {
   vtkOpenGLState* ostate = win->GetState();
-  int width = 0, height = 0, originX = 0, originY = 0;
-  ren->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);
-  width = std::max(width, 1);
-  height = std::max(height, 1);
+  const int width = std::max(viewportSize[0], 1), height = std::max(viewportSize[1], 1);
+  const int originX = viewportOrigin[0], originY = viewportOrigin[1];
   const bool resized = width != this->Size[0] || height != this->Size[1];
   restart = restart || resized || framesBefore == 0 || signature != this->Signature;
   if (resized)

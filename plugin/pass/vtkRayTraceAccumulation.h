@@ -41,10 +41,11 @@ public:
   /// (`framesBefore` 0) or when `signature` (what the image is traced from)
   /// changed; else it continues the sample sequence. With a `footprint`
   /// (window x, y, width, height; see TracedFootprint) only its pixels are
-  /// traced: none outside it can hold a hit.
-  void Trace(vtkOpenGLRenderWindow* win, vtkRenderer* ren, vtkOpenGLQuadHelper* tracer,
-    std::vector<float> signature, bool restart, int framesBefore, int samplesPerPixel,
-    const int* footprint);
+  /// traced: none outside it can hold a hit. The buffer covers the
+  /// viewport (CameraFrame::ViewportSize, at ViewportOrigin in the target).
+  void Trace(vtkOpenGLRenderWindow* win, const int viewportSize[2], const int viewportOrigin[2],
+    vtkOpenGLQuadHelper* tracer, std::vector<float> signature, bool restart, int framesBefore,
+    int samplesPerPixel, const int* footprint);
 
   /// Draws the average into the bound framebuffer; false when the resolve
   /// shader does not compile.

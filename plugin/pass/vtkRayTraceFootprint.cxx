@@ -273,8 +273,8 @@ InstanceOutline OutlineOf(const Instance& inst, const double localToShader[16], 
 bool TracedFootprint(const CameraFrame& camera, const FrameRecords& frame, vtkRenderer* ren,
   int rect[4])
 {
-  int width = 0, height = 0, x0 = 0, y0 = 0;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  const int width = camera.ViewportSize[0], height = camera.ViewportSize[1];
+  const int x0 = camera.ViewportOrigin[0], y0 = camera.ViewportOrigin[1];
   if (width <= 0 || height <= 0 || frame.WorldBoxes.empty())
   {
     return false;
@@ -383,8 +383,8 @@ bool markInstance(const CameraFrame& camera, const FrameRecords& frame, std::siz
 std::vector<std::array<int, 4>> TracedTiles(const CameraFrame& camera, const FrameRecords& frame,
   vtkRenderer* ren, const int* footprint, int tileSize, std::size_t maxRects)
 {
-  int width = 0, height = 0, x0 = 0, y0 = 0;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  const int width = camera.ViewportSize[0], height = camera.ViewportSize[1];
+  const int x0 = camera.ViewportOrigin[0], y0 = camera.ViewportOrigin[1];
   const int size[2] = { width, height };
   if (width <= 0 || height <= 0 || frame.Outlines.size() != frame.WorldBoxes.size())
   {
@@ -588,8 +588,7 @@ TileEntryLists MakeTileEntryLists(const CameraFrame& camera, const FrameRecords&
     return RootLists(root);
   }
   const InstanceOutline& outline = frame.Outlines[0];
-  int width = 0, height = 0, x0 = 0, y0 = 0;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  const int width = camera.ViewportSize[0], height = camera.ViewportSize[1];
   if (!outline.Tree || outline.Tree->Nodes.size() == 0 || width <= 0 || height <= 0)
   {
     return RootLists(root);

@@ -23,7 +23,17 @@ namespace pass
 
 void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCoordinates, double scale)
 {
+  int size[2] = { 0, 0 }, origin[2] = { 0, 0 };
+  ren->GetTiledSizeAndOrigin(size, size + 1, origin, origin + 1);
+  this->Set(ren, cam, worldCoordinates, scale, size, origin);
+}
+
+void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCoordinates, double scale,
+  const int viewportSize[2], const int viewportOrigin[2])
+{
   this->Scale = scale;
+  std::copy(viewportSize, viewportSize + 2, this->ViewportSize);
+  std::copy(viewportOrigin, viewportOrigin + 2, this->ViewportOrigin);
   vtkMatrix4x4* wcvc;
   vtkMatrix3x3* normalMatrix;
   vtkMatrix4x4* vcdc;
@@ -65,8 +75,7 @@ void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCo
   }
   vtkMatrix4x4::Invert(this->CameraToClip, this->ClipToCamera);
   this->SetAffineRays();
-  int width = 0, height = 0, x0 = 0, y0 = 0;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  const int width = this->ViewportSize[0], height = this->ViewportSize[1];
   this->CameraToPixels->DeepCopy(this->CameraToClip);
   for (int c = 0; c < 4; ++c)
   {
@@ -164,7 +173,7 @@ void CameraFrame::SetAffineRays()
   this->RayDepth[3] = farPoint[3] - nearPoint[3];
 }
 
-ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* ren,
+ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* ren, int viewportHeight,
   const double localToShader[16], const double eyeInShader[3], const double dop[3], double shaderScale)
 {
   ScreenSphereRadii out;
@@ -181,10 +190,7 @@ ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* re
     return out;
   }
   vtkCamera* cam = ren->GetActiveCamera();
-  int size[2];
-  int origin[2];
-  ren->GetTiledSizeAndOrigin(size, size + 1, origin, origin + 1);
-  const double pixels = static_cast<double>(std::max(1, size[1]));
+  const double pixels = static_cast<double>(std::max(1, viewportHeight));
   // Radius per unit of view depth (perspective) or constant (parallel), in
   // shader units.
   const double perDepth =
@@ -439,8 +445,7 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
     }
     // Points drawn as spheres: radii from this frame's camera.
     const ScreenSphereRadii screen =
-      ComputeScreenSphereRadii(
-        inst, ren, toShader->GetData(), eyeInShader, camera.DirectionOfProjection, camera.Scale);
+      ComputeScreenSphereRadii(inst, ren, camera.ViewportSize[1], toShader->GetData(), eyeInShader, camera.DirectionOfProjection, camera.Scale);
     out.WorldBoxes[i] = worldBox(inst);
     out.Outlines[i] = OutlineOf(inst, toShader->GetData(), outlineDepth);
     if (screen.MaxWorld > 0.0)

@@ -62,7 +62,15 @@ struct CameraFrame
   /// RayDepth[3]): clip z and w are affine along a ray, and the same at
   /// both ends of every ray (the near and far planes).
   double RayDepth[4] = { -1.0, 2.0, 1.0, 0.0 };
+  /// The pixels drawn: the renderer's tiled viewport in the window, or the
+  /// whole framebuffer a wrapping pass (vtkSSAAPass, vtkGaussianBlurPass,
+  /// ...) hands over in the render state, as VTK's vtkCameraPass draws.
+  int ViewportSize[2] = { 1, 1 };
+  int ViewportOrigin[2] = { 0, 0 };
 
+  void Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCoordinates, double scale,
+    const int viewportSize[2], const int viewportOrigin[2]);
+  /// The same over the renderer's tiled viewport.
   void Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCoordinates, double scale);
   /// RayOrigin, RayDirection and AffineRays from ClipToCamera.
   void SetAffineRays();
@@ -118,7 +126,7 @@ struct ScreenSphereRadii
 /// `eyeInShader`: the camera position in shader coordinates, `dop`: the
 /// direction of projection in the rays' coordinates (CameraFrame's),
 /// `shaderScale`: shader units per world unit.
-ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* ren,
+ScreenSphereRadii ComputeScreenSphereRadii(const Instance& inst, vtkRenderer* ren, int viewportHeight,
   const double localToShader[16], const double eyeInShader[3], const double dop[3], double shaderScale);
 
 /// The smallest instance size in shader units float can shade: 2^-60 (a
