@@ -17,6 +17,7 @@
 #include "vtkPropAssembly.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderer.h"
+#include "vtkSelection.h"
 #include "vtkSkybox.h"
 
 #include <algorithm>
@@ -70,6 +71,17 @@ bool hasCustomShaders(vtkActor* actor, vtkMapper* mapper)
 bool hasShaderObservers(vtkMapper* mapper)
 {
   return mapper->HasObserver(vtkCommand::UpdateShaderEvent) != 0;
+}
+
+/// Whether raster draws more than the cells' surfaces over them: a
+/// selection handed to the mapper (VTK draws the selected cells' or points'
+/// outlines in the property's selection color) or vertices (VTK draws them,
+/// in the vertex color, beside the edges of a surface with edges).
+bool drawsHighlights(vtkActor* actor, vtkMapper* mapper)
+{
+  vtkProperty* property = actor->GetProperty();
+  return (mapper->GetSelection() && mapper->GetSelection()->GetNumberOfNodes() > 0) ||
+    (property->GetVertexVisibility() && property->GetEdgeVisibility());
 }
 
 /// Mappers that draw something other than their data's cells: VTK's point
@@ -227,7 +239,7 @@ bool Scene::IsTraceableActor(vtkActor* actor, const TraceRules& rules)
   }
   // A vtkDataSetMapper without input: raster reports it.
   if (drawsOtherThanCells(mapper) || hasCustomShaders(actor, mapper) || hasShaderObservers(mapper) ||
-    forcedOpaqueButTranslucent(actor, mapper) ||
+    drawsHighlights(actor, mapper) || forcedOpaqueButTranslucent(actor, mapper) ||
     (dataSetMapper && mapper->GetNumberOfInputConnections(0) == 0))
   {
     return false;

@@ -6,6 +6,7 @@
 #include "vtkActor.h"
 #include "vtkAssembly.h"
 #include "vtkCallbackCommand.h"
+#include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkPointGaussianMapper.h"
@@ -13,6 +14,8 @@
 #include "vtkProperty.h"
 #include "vtkRenderStepsPass.h"
 #include "vtkRenderer.h"
+#include "vtkSelection.h"
+#include "vtkSelectionNode.h"
 #include "vtkShader.h"
 #include "vtkShaderProgram.h"
 #include "vtkShaderProperty.h"
@@ -39,7 +42,9 @@ struct Scene : ComparedScene
 // beside a traced mesh: point splats (their polygons would be traced as a
 // surface), shader code of the application's (on the actor's shader
 // property or through the mapper's deprecated API), and an actor forced
-// opaque whose opacity is not 1 (VTK blends it in its opaque pass).
+// opaque whose opacity is not 1 (VTK blends it in its opaque pass), and
+// highlights VTK draws over a surface (a mapper's selection, vertices
+// beside edges).
 void TestLeftToRaster()
 {
   // `actor` beside a traced mesh: only the mesh is traced.
@@ -143,6 +148,33 @@ void TestLeftToRaster()
     glass->GetProperty()->SetOpacity(0.3);
     glass->ForceOpaqueOn();
     compareBeside("an actor forced opaque with opacity 0.3", glass);
+  }
+  {
+    // VTK 9.1's mapper-side highlight: the selected cells' outlines.
+    auto actor = MeshActor(Sphere(0.6, 24));
+    vtkNew<vtkIdTypeArray> ids;
+    for (vtkIdType i = 0; i < 300; i += 3)
+    {
+      ids->InsertNextValue(i);
+    }
+    vtkNew<vtkSelectionNode> node;
+    node->SetContentType(vtkSelectionNode::INDICES);
+    node->SetFieldType(vtkSelectionNode::CELL);
+    node->SetSelectionList(ids);
+    vtkNew<vtkSelection> selection;
+    selection->AddNode(node);
+    actor->GetMapper()->SetSelection(selection);
+    actor->GetProperty()->SetSelectionColor(1.0, 0.0, 0.0, 1.0);
+    actor->GetProperty()->SetSelectionLineWidth(2.0);
+    compareBeside("a mapper given a selection to highlight", actor);
+  }
+  {
+    auto actor = MeshActor(Sphere(0.6, 16));
+    actor->GetProperty()->EdgeVisibilityOn();
+    actor->GetProperty()->VertexVisibilityOn();
+    actor->GetProperty()->SetVertexColor(1.0, 0.0, 0.0);
+    actor->GetProperty()->SetPointSize(5.0);
+    compareBeside("vertices drawn over a surface with edges", actor);
   }
   NoVTKOutput("left to raster");
 }
