@@ -1,5 +1,7 @@
 #include "vtkRayTracePassInternals.h"
 
+#include "vtkOpenGLFramebufferObject.h"
+
 #include "vtkrt/core/GpuTraversal.h"
 
 #include <array>
@@ -69,6 +71,16 @@ std::size_t ScissorTo(vtkOpenGLState* ostate, const int rect[4], const std::arra
 std::size_t ScissorTo(vtkOpenGLState* ostate, const int rect[4])
 {
   return ScissorTo(ostate, rect, DrawingBound(ostate));
+}
+
+/// Whether the frame is drawn into float colors: the framebuffer a
+/// wrapping pass hands over (vtkToneMappingPass's) has a float color
+/// texture.
+bool DrawsFloatColors(const vtkRenderState* s)
+{
+  auto* fbo = vtkOpenGLFramebufferObject::SafeDownCast(s ? s->GetFrameBuffer() : nullptr);
+  vtkTextureObject* color = fbo ? fbo->GetColorAttachmentAsTextureObject(0) : nullptr;
+  return color && (color->GetVTKDataType() == VTK_FLOAT || color->GetVTKDataType() == VTK_DOUBLE);
 }
 
 /// The pixels a frame draws, as VTK's vtkCameraPass sets them: the
@@ -192,9 +204,10 @@ void vtkRayTracePass::Internals::Extract(
 
 Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   vtkOpenGLRenderer* ren, const vtkrt::pass::CameraFrame& camera, const vtkrt::pass::FrameRecords& frame,
-  std::size_t lights, bool topLevel) const
+  std::size_t lights, bool topLevel, bool floatColors) const
 {
   Features f;
+  f.FloatColors = floatColors && !pass.IdMode;
   f.Triangles = this->Scene.HasTriangles();
   f.Spheres = this->Scene.HasSpheres();
   f.VertexNormals = this->Scene.HasVertexNormals();
@@ -417,7 +430,7 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, const vtkR
   }
   this->Counters.UploadSeconds += vtkrt::pass::SecondsSince(uploadStart);
   p.Lights = vtkrt::pass::CollectLights(ren, p.Camera.Origin, p.Camera.Scale);
-  p.F = this->FrameFeatures(pass, ren, p.Camera, frame, p.Lights.size(), topLevel);
+  p.F = this->FrameFeatures(pass, ren, p.Camera, frame, p.Lights.size(), topLevel, DrawsFloatColors(s));
   if (selectIds)
   {
     // Ids only: one centered ray a pixel, nothing shaded.

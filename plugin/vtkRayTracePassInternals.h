@@ -194,7 +194,7 @@ struct vtkRayTracePass::Internals
   /// What the frame needs from the shader.
   vtkrt::pass::Features FrameFeatures(const vtkRayTracePass& pass, vtkOpenGLRenderer* ren,
     const vtkrt::pass::CameraFrame& camera, const vtkrt::pass::FrameRecords& frame, std::size_t lights,
-    bool topLevel) const;
+    bool topLevel, bool floatColors) const;
   /// The uniforms of the tracer other than the samplers.
   void SetUniforms(vtkShaderProgram* program, const vtkrt::pass::Features& f,
     const vtkrt::pass::CameraFrame& camera, const vtkrt::pass::FrameRecords& frame,

@@ -325,7 +325,11 @@ vec4 shadeSurface(vec3 p, vec3 dir, int hitInstance, uint flags, HitSurface s, v
     return vec4(max(color, 0.0), alpha);
   }
 #endif
+#ifdef VTKRT_FLOAT_COLORS
+  return vec4(max(color, 0.0), alpha);
+#else
   return vec4(clamp(color, 0.0, 1.0), alpha);
+#endif
 }
 #endif
 

@@ -184,7 +184,11 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, 
     }
     tMin = nextLayerTMin(tLayer);
   }
+#ifdef VTKRT_FLOAT_COLORS
+  outColor = accumulated;
+#else
   outColor = vec4(min(accumulated.rgb, vec3(1.0)), accumulated.a);
+#endif
   return hitAny;
 }
 

@@ -47,7 +47,8 @@ std::string Features::Key() const
     << this->SurfaceEdges << "V" << this->Wireframe << "J"
     << this->Tubes << "i" << this->SingleInstance << "p"
     << this->ProjectiveRays << "e" << this->TileEntries << "l" << this->LeafTrees << "w"
-    << this->PackedStackEntries << "h" << this->Specular << "n" << this->InterleavedWalks << "c" << this->SphereCellIds;
+    << this->PackedStackEntries << "h" << this->Specular << "n" << this->InterleavedWalks << "c" << this->SphereCellIds
+    << "f" << this->FloatColors;
   return s.str();
 }
 
@@ -94,6 +95,7 @@ ShaderSources AssembleShaders(const Features& f, int flatSlots)
   }
   define(f.Shadows, "VTKRT_SHADOWS");
   define(f.Specular, "VTKRT_SPECULAR");
+  define(f.FloatColors, "VTKRT_FLOAT_COLORS");
   define(f.WorldCoordinates, "VTKRT_WORLD_COORDINATES");
   define(f.ScreenSpheres, "VTKRT_SCREEN_SPHERES");
   define(f.Spheres && f.SphereCellIds, "VTKRT_SPHERE_CELL_IDS");

@@ -217,6 +217,9 @@ struct Features
   bool FaceCulling = false;      ///< some triangles are culled on one side
   bool BackfaceProperties = false; ///< some triangles have a back-face material
   bool Specular = false;         ///< some lit surface has a specular color (else no specular term)
+  /// The frame is drawn into float colors (a wrapping vtkToneMappingPass's
+  /// buffer): colors above 1 are kept, as raster's fragments keep them.
+  bool FloatColors = false;
   bool TextureCutOuts = false;   ///< some textures have fully transparent texels
   bool Translucent = false;      ///< some instances are translucent (layers composited)
   /// With translucency and shadow or occlusion rays (the frame sets it only
