@@ -4,6 +4,7 @@
 #include "vtkRayTraceTubes.h"
 
 #include "vtkActor.h"
+#include "vtkColorTransferFunction.h"
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkCompositePolyDataMapper2.h"
@@ -12,6 +13,7 @@
 #include "vtkDataObjectTree.h"
 #include "vtkDataObjectTreeIterator.h"
 #include "vtkGlyph3DMapper.h"
+#include "vtkLookupTable.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -152,6 +154,43 @@ bool collectPieces(vtkDataObject* object, vtkCompositeDataDisplayAttributes* att
     return ok;
   }
   return false;
+}
+
+/// vtkCompositePolyDataMapper2's ColorMissingArraysWithNanColor: a block
+/// without the array the mapper colors by is drawn in the lookup table's
+/// NaN color (its RGB replaces the ambient and diffuse colors, as a block
+/// color does; the block keeps its opacity).
+void ColorMissingArrays(vtkMapper* mapper, std::vector<Piece>& pieces)
+{
+  auto* m2 = vtkCompositePolyDataMapper2::SafeDownCast(mapper);
+  if (!m2 || !m2->GetColorMissingArraysWithNanColor() || !m2->GetScalarVisibility())
+  {
+    return;
+  }
+  double nan[4] = { 0.0, 0.0, 0.0, 1.0 };
+  vtkScalarsToColors* colors = m2->GetLookupTable();
+  if (auto* lut = vtkLookupTable::SafeDownCast(colors))
+  {
+    lut->GetNanColor(nan);
+  }
+  else if (auto* ctf = vtkColorTransferFunction::SafeDownCast(colors))
+  {
+    ctf->GetNanColor(nan);
+  }
+  else
+  {
+    return;
+  }
+  for (Piece& piece : pieces)
+  {
+    int cellFlag = 0;
+    if (!vtkAbstractMapper::GetAbstractScalars(piece.Poly, m2->GetScalarMode(),
+          m2->GetArrayAccessMode(), m2->GetArrayId(), m2->GetArrayName(), cellFlag))
+    {
+      piece.HasColor = true;
+      std::copy(nan, nan + 3, piece.Color.begin());
+    }
+  }
 }
 
 /// A triangle instance's cell edges as the property asks: VTK draws edges
@@ -414,6 +453,7 @@ bool Scene::AddPolyDataMapper(const PropPart& part, vtkMapper* mapper, int propI
     Piece root{ nullptr, false, { { 0, 0, 0 } }, 0u };
     unsigned int flatIndex = 0;
     ok = collectPieces(input, attributes, true, root, flatIndex, pieces);
+    ColorMissingArrays(mapper, pieces);
   }
   else if (input)
   {

@@ -13,6 +13,7 @@
 #include "vtkAssembly.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
+#include "vtkColorTransferFunction.h"
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkCompositePolyDataMapper2.h"
 #include "vtkConeSource.h"
@@ -686,6 +687,78 @@ void TestPropAssemblies()
 
 } // namespace
 
+/// vtkCompositePolyDataMapper2's ColorMissingArraysWithNanColor: blocks
+/// without the array the mapper colors by are drawn in the lookup table's
+/// NaN color (a vtkLookupTable's, then a vtkColorTransferFunction's), by
+/// point and by cell field data, and a new NaN color recolors them.
+void TestMissingArraysNanColor()
+{
+  for (bool cells : { false, true })
+  {
+    for (bool transferFunction : { false, true })
+    {
+      Scene scene;
+      vtkNew<vtkMultiBlockDataSet> blocks;
+      blocks->SetNumberOfBlocks(3);
+      for (unsigned int b = 0; b < 3; ++b)
+      {
+        vtkSmartPointer<vtkPolyData> sphere = Sphere(1.2 * b, 24);
+        if (b == 1)
+        {
+          vtkNew<vtkFloatArray> values;
+          values->SetName("values");
+          const vtkIdType n = cells ? sphere->GetNumberOfCells() : sphere->GetNumberOfPoints();
+          for (vtkIdType i = 0; i < n; ++i)
+          {
+            values->InsertNextValue(static_cast<float>(i % 5));
+          }
+          (cells ? static_cast<vtkDataSetAttributes*>(sphere->GetCellData()) : sphere->GetPointData())
+            ->AddArray(values);
+        }
+        blocks->SetBlock(b, sphere);
+      }
+      vtkNew<vtkCompositePolyDataMapper2> mapper;
+      mapper->SetInputDataObject(blocks);
+      mapper->SetScalarRange(0.0, 4.0);
+      cells ? mapper->SetScalarModeToUseCellFieldData() : mapper->SetScalarModeToUsePointFieldData();
+      mapper->SelectColorArray("values");
+      mapper->ColorMissingArraysWithNanColorOn();
+      vtkNew<vtkLookupTable> lut;
+      vtkNew<vtkColorTransferFunction> ctf;
+      ctf->AddRGBPoint(0.0, 0.1, 0.1, 0.9);
+      ctf->AddRGBPoint(4.0, 0.9, 0.9, 0.1);
+      if (transferFunction)
+      {
+        ctf->SetNanColor(0.1, 0.9, 0.2);
+        mapper->SetLookupTable(ctf);
+      }
+      else
+      {
+        lut->SetNanColor(0.1, 0.9, 0.2, 1.0);
+        mapper->SetLookupTable(lut);
+      }
+      vtkNew<vtkActor> actor;
+      actor->SetMapper(mapper);
+      scene.Renderer->AddActor(actor);
+      scene.View();
+      const std::string what = std::string(cells ? "cell" : "point") + " field array missing from two blocks, " +
+        (transferFunction ? "a color transfer function" : "a lookup table");
+      const RasterAndTraced first = scene.Compare(what + ": NaN color", 1, 2.0);
+      // The same pass, its next frame.
+      transferFunction ? ctf->SetNanColor(0.9, 0.2, 0.7) : lut->SetNanColor(0.9, 0.2, 0.7, 1.0);
+      scene.Window->Render();
+      auto traced = Grab(scene.Window);
+      scene.Renderer->SetPass(nullptr);
+      scene.Window->Render();
+      auto raster = Grab(scene.Window);
+      const double rmse = RootMeanSquareError(Blurred(raster), Blurred(traced));
+      Check(rmse <= 2.0 && RootMeanSquareError(first.Traced, traced) > 10.0,
+        what + ": another NaN color, the next frame: blurred RGB RMSE vs raster " + std::to_string(rmse));
+    }
+  }
+  NoVTKOutput("missing arrays in the NaN color");
+}
+
 int main(int argc, char* argv[])
 {
   Output = vtkrtTestOutputWindow::Install();
@@ -693,5 +766,5 @@ int main(int argc, char* argv[])
     { { "DataSetMapper", TestDataSetMapper },
       { "ReplacedColors", TestReplacedColors }, { "Assemblies", TestAssemblies },
       { "LODProps", TestLODProps }, { "LODPropsByTime", TestLODPropsByTime },
-      { "PropAssemblies", TestPropAssemblies } });
+      { "PropAssemblies", TestPropAssemblies }, { "MissingArraysNanColor", TestMissingArraysNanColor } });
 }
