@@ -389,7 +389,7 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, const vtkR
   }
   if (traced)
   {
-    vtkrt::pass::KeepTracedProps(*traced, frame);
+    vtkrt::pass::KeepPickableInstances(*traced, instances, frame);
   }
   else if (frame.TooSmallProps != this->WarnedTooSmallProps)
   {

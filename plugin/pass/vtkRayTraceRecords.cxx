@@ -514,13 +514,14 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
   return true;
 }
 
-void KeepTracedProps(const std::vector<bool>& traced, FrameRecords& frame)
+void KeepPickableInstances(
+  const std::vector<bool>& traced, const std::vector<Instance>& instances, FrameRecords& frame)
 {
   std::size_t kept = 0;
   for (std::size_t i = 0; i < frame.Records.size(); ++i)
   {
     const std::uint32_t prop = frame.Records[i].propIndex;
-    if (prop < traced.size() && traced[prop])
+    if (prop < traced.size() && traced[prop] && (i >= instances.size() || instances[i].Pickable))
     {
       frame.Records[kept] = frame.Records[i];
       frame.WorldBoxes[kept] = frame.WorldBoxes[i];

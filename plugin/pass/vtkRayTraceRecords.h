@@ -163,8 +163,9 @@ bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlaceme
   const CameraFrame& camera, vtkRenderer* ren, FrameRecords& out);
 
 /// Drops the records (with their world boxes and outlines) of the props `traced` leaves out
-/// (indexed by prop index).
-void KeepTracedProps(const std::vector<bool>& traced, FrameRecords& frame);
+/// (indexed by prop index) and of unpickable instances: what a selection sees.
+void KeepPickableInstances(
+  const std::vector<bool>& traced, const std::vector<Instance>& instances, FrameRecords& frame);
 
 } // namespace pass
 } // namespace vtkrt

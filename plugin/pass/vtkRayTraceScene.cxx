@@ -102,11 +102,13 @@ struct Piece
   std::array<double, 3> Color;
   unsigned int FlatIndex; ///< the composite index hardware selection reports
   double Opacity = -1.0;  ///< the block opacity it inherits; negative: none
+  bool Pickable = true;   ///< the block pickability it inherits
 };
 
 /// Walks a composite dataset as vtkCompositePolyDataMapper2 does: block
 /// visibility, color and opacity apply to the block and everything below
-/// it, and blocks are numbered in its order (flatIndex: the next block's
+/// it (pickability too, for selections), and blocks are numbered in its
+/// order (flatIndex: the next block's
 /// number; an empty child takes one too). A block opacity replaces the
 /// property's, as vtkCompositePolyDataMapper2 draws it. Returns false when
 /// something cannot be traced (a non-polydata leaf).
@@ -127,6 +129,10 @@ bool collectPieces(vtkDataObject* object, vtkCompositeDataDisplayAttributes* att
     if (attributes->HasBlockOpacity(object))
     {
       inherited.Opacity = attributes->GetBlockOpacity(object);
+    }
+    if (attributes->HasBlockPickability(object))
+    {
+      inherited.Pickable = attributes->GetBlockPickability(object);
     }
     if (attributes->HasBlockColor(object))
     {
@@ -486,6 +492,7 @@ bool Scene::AddPolyDataMapper(const PropPart& part, vtkMapper* mapper, int propI
       for (std::size_t i = first; i < this->Instances.size(); ++i)
       {
         this->Instances[i].CompositeIndex = piece.FlatIndex;
+        this->Instances[i].Pickable = piece.Pickable;
       }
     }
   }

@@ -144,6 +144,9 @@ struct Instance
   /// What vtkHardwareSelector's composite index pass reports for it: the
   /// block's flat index under a composite mapper, 1 under a plain one.
   unsigned int CompositeIndex = 1;
+  /// False for a composite block made unpickable (block pickability): a
+  /// selection looks through it, as raster's does.
+  bool Pickable = true;
   std::array<double, 16> Matrix; ///< model to world, row-major (actor matrix)
   std::array<float, 3> Ambient{ { 0, 0, 0 } };
   std::array<float, 3> Diffuse{ { 0, 0, 0 } };

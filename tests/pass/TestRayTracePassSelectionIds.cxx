@@ -1,10 +1,12 @@
 // A mapper's id arrays with the pass on: vtkHardwareSelector reports the
 // cell ids and composite indices the arrays a mapper names give, as with
-// raster (the selection of the same scene rasterized is the reference).
+// raster (the selection of the same scene rasterized is the reference);
+// unpickable blocks are looked through.
 #include "vtkrtPassTestUtils.h"
 
 #include "vtkActor.h"
 #include "vtkCellData.h"
+#include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkCompositePolyDataMapper2.h"
 #include "vtkDataObject.h"
 #include "vtkHardwareSelector.h"
@@ -14,6 +16,8 @@
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkPlaneSource.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkPropPicker.h"
 #include "vtkRenderer.h"
 #include "vtkSelection.h"
 #include "vtkSelectionNode.h"
@@ -189,10 +193,78 @@ void TestRemappedIds()
   NoVTKOutput("remapped ids");
 }
 
+/// Block pickability (vtkCompositeDataDisplayAttributes): a selection and
+/// vtkPropPicker look through an unpickable block, and an unpickable root
+/// hides the whole composite from them, as with raster; a plane behind
+/// the blocks is what they find there.
+void TestBlockPickability()
+{
+  for (const int unpickable : { -1, 1, 0 }) // none, the second plane, the root
+  {
+    std::set<std::pair<unsigned int, vtkIdType>> cells[2];
+    vtkProp* picked[2] = { nullptr, nullptr };
+    vtkNew<vtkActor> back, blocksActor;
+    for (const bool traced : { false, true })
+    {
+      auto win = MakeWindow(W, H);
+      vtkNew<vtkRenderer> ren;
+      win->AddRenderer(ren);
+      auto two = vtkSmartPointer<vtkMultiBlockDataSet>::New();
+      two->SetBlock(0, NumberedPlane(-2.0, 5, 4, 500));
+      two->SetBlock(1, NumberedPlane(0.2, 7, 3, 90000));
+      vtkNew<vtkCompositePolyDataMapper2> mapper;
+      mapper->SetInputDataObject(two);
+      vtkNew<vtkCompositeDataDisplayAttributes> attributes;
+      mapper->SetCompositeDataDisplayAttributes(attributes);
+      if (unpickable >= 0)
+      {
+        attributes->SetBlockPickability(unpickable == 0 ? two.Get() : two->GetBlock(1), false);
+      }
+      blocksActor->SetMapper(mapper);
+      ren->AddActor(blocksActor);
+      vtkNew<vtkPlaneSource> behind;
+      behind->SetOrigin(-2.5, -1.5, -0.5);
+      behind->SetPoint1(2.5, -1.5, -0.5);
+      behind->SetPoint2(-2.5, 1.5, -0.5);
+      behind->SetResolution(4, 4);
+      vtkNew<vtkPolyDataMapper> backMapper;
+      backMapper->SetInputConnection(behind->GetOutputPort());
+      back->SetMapper(backMapper);
+      ren->AddActor(back);
+      ren->ResetCamera();
+      vtkNew<vtkRayTracePass> pass;
+      if (traced)
+      {
+        ren->SetPass(pass);
+      }
+      win->Render();
+      Check(!traced || pass->GetNumberOfTracedProps() == 2, "block pickability: traced");
+      cells[traced] = CompositeCells(ren);
+      // The second plane's middle, in front of the plane behind.
+      double x[3] = { 1.1, 0.0, 0.0 };
+      ren->SetWorldPoint(x[0], x[1], x[2], 1.0);
+      ren->WorldToDisplay();
+      double* d = ren->GetDisplayPoint();
+      vtkNew<vtkPropPicker> picker;
+      picker->Pick(d[0], d[1], 0.0, ren);
+      picked[traced] = picker->GetViewProp();
+    }
+    std::ostringstream s;
+    s << (unpickable < 0 ? "all pickable" : unpickable ? "the second plane unpickable" : "the root unpickable")
+      << ": raster / traced select " << cells[0].size() << " / "
+      << cells[1].size() << " cells; vtkPropPicker over the second plane picks "
+      << (picked[1] == back.Get() ? "the plane behind" : picked[1] ? "the blocks" : "nothing");
+    vtkProp* want = unpickable < 0 ? static_cast<vtkProp*>(blocksActor) : back.Get();
+    Check(!cells[0].empty() && cells[0] == cells[1] && picked[0] == want && picked[1] == want, s.str());
+  }
+  NoVTKOutput("block pickability");
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
 {
   Output = vtkrtTestOutputWindow::Install();
-  return RunCase(argc, argv, { { "RemappedIds", TestRemappedIds } });
+  return RunCase(argc, argv,
+    { { "RemappedIds", TestRemappedIds }, { "BlockPickability", TestBlockPickability } });
 }
