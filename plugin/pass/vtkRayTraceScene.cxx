@@ -103,6 +103,7 @@ struct Piece
   unsigned int FlatIndex; ///< the composite index hardware selection reports
   double Opacity = -1.0;  ///< the block opacity it inherits; negative: none
   bool Pickable = true;   ///< the block pickability it inherits
+  bool Visible = true;    ///< false: a hidden block, whose geometry is only kept
 };
 
 /// Walks a composite dataset as vtkCompositePolyDataMapper2 does: block
@@ -142,11 +143,8 @@ bool collectPieces(vtkDataObject* object, vtkCompositeDataDisplayAttributes* att
   }
   if (auto* poly = vtkPolyData::SafeDownCast(object))
   {
-    if (!visible)
-    {
-      return true;
-    }
     inherited.Poly = poly;
+    inherited.Visible = visible;
     pieces.push_back(inherited);
     return true;
   }
@@ -470,6 +468,10 @@ bool Scene::AddPolyDataMapper(const PropPart& part, vtkMapper* mapper, int propI
   const bool splittable = this->SplitRasterCells && vtkPolyData::SafeDownCast(input);
   for (const Piece& piece : pieces)
   {
+    if (!piece.Visible)
+    {
+      continue;
+    }
     const RasterCellKinds kinds = rasterCellKinds(piece.Poly, pointsAsSpheres, linesAsTubes);
     ok = ok && (!kinds.Any() || splittable) &&
       !hasUntraceableCells(piece.Poly, actor, pointsAsSpheres, linesAsTubes);
@@ -484,8 +486,19 @@ bool Scene::AddPolyDataMapper(const PropPart& part, vtkMapper* mapper, int propI
     for (const Piece& piece : pieces)
     {
       const std::size_t first = this->Instances.size();
-      if (!this->AddPolyData(actor, mapper, piece.Poly, propIndex, counters,
-            piece.HasColor ? piece.Color.data() : nullptr, piece.Opacity))
+      // A hidden block keeps what it has cached (showing it again builds
+      // and uploads nothing, as raster keeps its buffers) and draws nothing.
+      const bool keeping = this->Keeping;
+      this->Keeping = keeping || !piece.Visible;
+      const bool added = this->AddPolyData(actor, mapper, piece.Poly, propIndex, counters,
+        piece.HasColor ? piece.Color.data() : nullptr, piece.Opacity);
+      this->Keeping = keeping;
+      if (!piece.Visible)
+      {
+        this->Instances.resize(first);
+        continue;
+      }
+      if (!added)
       {
         return false;
       }
@@ -502,12 +515,20 @@ bool Scene::AddPolyDataMapper(const PropPart& part, vtkMapper* mapper, int propI
 bool Scene::AddActor(const PropPart& part, int propIndex, FrameCounters& counters, std::vector<vtkProp*>& standIns)
 {
   vtkActor* actor = part.Actor;
-  if (actor->HasTranslucentPolygonalGeometry() && actor->GetProperty()->GetOpacity() <= 0.0)
+  vtkMapper* mapper = actor->GetMapper();
+  if (actor->HasTranslucentPolygonalGeometry() && actor->GetProperty()->GetOpacity() <= 0.0 &&
+    !this->Keeping)
   {
-    // Invisible, and never selected (vtkOpenGLActor): traced as nothing.
+    // Invisible, and never selected (vtkOpenGLActor): traced as nothing,
+    // what it has cached kept (as raster keeps its buffers).
+    const std::size_t first = this->Instances.size();
+    std::vector<vtkProp*> none;
+    this->Keeping = true;
+    this->AddActor(part, propIndex, counters, none);
+    this->Keeping = false;
+    this->Instances.resize(first);
     return true;
   }
-  vtkMapper* mapper = actor->GetMapper();
   if (auto* glyphs = vtkGlyph3DMapper::SafeDownCast(mapper))
   {
     return this->AddGlyphs(actor, glyphs, propIndex, counters);

@@ -71,6 +71,7 @@ struct TraceRules
 {
   bool Translucency = true;       ///< translucent actors can be traced
   bool HiddenLineRemoval = false; ///< lone wireframe actors go to raster's pass for it
+  bool Hidden = false;            ///< hidden props count as shown (what KeepCulledProps keeps)
 };
 
 /// Renderer props -> instances, with geometry cached by (data object, MTime).

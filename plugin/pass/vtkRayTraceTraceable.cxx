@@ -217,7 +217,7 @@ bool Scene::TraceableParts(vtkProp* prop, const TraceRules& rules, std::vector<P
   {
     return false;
   }
-  return prop && prop->GetVisibility() && PartsOf(prop, parts) && !parts.empty() &&
+  return prop && (prop->GetVisibility() || rules.Hidden) && PartsOf(prop, parts) && !parts.empty() &&
     std::all_of(parts.begin(), parts.end(),
       [&rules](const PropPart& part) { return IsTraceableActor(part.Actor, rules); });
 }
@@ -225,7 +225,7 @@ bool Scene::TraceableParts(vtkProp* prop, const TraceRules& rules, std::vector<P
 bool Scene::IsTraceableActor(vtkActor* actor, const TraceRules& rules)
 {
   // A skybox is the environment drawn behind the scene, not its data.
-  if (!actor->GetVisibility() || !actor->GetMapper() || vtkSkybox::SafeDownCast(actor))
+  if ((!actor->GetVisibility() && !rules.Hidden) || !actor->GetMapper() || vtkSkybox::SafeDownCast(actor))
   {
     return false;
   }
@@ -286,6 +286,10 @@ void Scene::KeepCulledProps(vtkRenderer* ren, vtkProp** props, int count,
   const std::unordered_set<vtkProp*> inFrame(props, props + count);
   std::vector<vtkProp*> kept;
   std::vector<PropPart> parts;
+  // Hidden props too: showing one again builds and uploads nothing, as
+  // raster keeps an invisible actor's buffers.
+  TraceRules rules = this->Rules;
+  rules.Hidden = true;
   this->Keeping = true;
   vtkCollectionSimpleIterator it;
   vtkPropCollection* all = ren->GetViewProps();
@@ -294,8 +298,7 @@ void Scene::KeepCulledProps(vtkRenderer* ren, vtkProp** props, int count,
   {
     // Only what the last frame traced or kept: a prop never in view yet is
     // built when it first is, as raster makes its buffers.
-    if (inFrame.count(prop) || !previous.count(prop) ||
-      !TraceableParts(prop, this->Rules, parts))
+    if (inFrame.count(prop) || !previous.count(prop) || !TraceableParts(prop, rules, parts))
     {
       continue;
     }

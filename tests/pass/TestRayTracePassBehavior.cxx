@@ -22,6 +22,8 @@
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
 #include "vtkCamera.h"
+#include "vtkCompositeDataDisplayAttributes.h"
+#include "vtkCompositePolyDataMapper2.h"
 #include "vtkElevationFilter.h"
 #include "vtkDataObject.h"
 #include "vtkFloatArray.h"
@@ -29,6 +31,7 @@
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPLYWriter.h"
 #include "vtkPNGReader.h"
@@ -145,13 +148,13 @@ void TestCounters()
 
   // Without spheres the shader has no sphere code at all.
   glyphs->VisibilityOff();
-  frame("glyphs hidden", 0, true, 1);
+  frame("glyphs hidden (their BVH kept, as raster keeps buffers)", 0, false, 1);
   const std::string source = pass->GetLastFragmentShaderSource();
   Check(source.find("raySphereRoots") == std::string::npos &&
       source.find("traverseTriangles") != std::string::npos,
     "a scene without spheres compiles no sphere code");
   glyphs->VisibilityOn();
-  frame("glyphs shown again (their BVH was dropped with them)", 1, true, 0);
+  frame("glyphs shown again: nothing built or uploaded", 0, false, 0);
   pass->SetBuildQuality(0);
   frame("build quality changed: both BVHs rebuilt", 2, true, 0);
   frame("unchanged after the quality change", 0, false, 0);
@@ -592,6 +595,68 @@ void TestCulledProps()
   NoVTKOutput("CulledProps");
 }
 
+/// Props and composite blocks hidden and shown again (VisibilityOff, block
+/// visibility, opacity 0) build and upload nothing, as raster keeps their
+/// buffers, and each frame equals raster's.
+void TestHiddenProps()
+{
+  auto win = MakeWindow(200, 200);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  vtkNew<vtkActor> single;
+  single->SetMapper(vtkSmartPointer<vtkPolyDataMapper>::Take(vtkPolyDataMapper::New()));
+  vtkPolyDataMapper::SafeDownCast(single->GetMapper())->SetInputData(Sphere(-1.2, 48));
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetBlock(0, Sphere(0.0, 48));
+  blocks->SetBlock(1, Sphere(1.2, 48));
+  vtkNew<vtkCompositePolyDataMapper2> composite;
+  composite->SetInputDataObject(blocks);
+  vtkNew<vtkCompositeDataDisplayAttributes> attributes;
+  composite->SetCompositeDataDisplayAttributes(attributes);
+  vtkNew<vtkActor> blocksActor;
+  blocksActor->SetMapper(composite);
+  ren->AddActor(single);
+  ren->AddActor(blocksActor);
+  ren->ResetCamera();
+  vtkNew<vtkRayTracePass> pass;
+  ren->SetPass(pass);
+  win->Render();
+  Check(pass->GetLastBVHBuilds() == 3, "first frame: " + std::to_string(pass->GetLastBVHBuilds()) + " builds");
+  struct Step
+  {
+    std::string Label;
+    std::function<void()> Change;
+    int Traced;
+  };
+  const Step steps[] = {
+    { "the actor hidden", [&] { single->VisibilityOff(); }, 1 },
+    { "the actor shown", [&] { single->VisibilityOn(); }, 2 },
+    { "a block hidden", [&] { attributes->SetBlockVisibility(blocks->GetBlock(1), false); }, 2 },
+    { "the block shown", [&] { attributes->SetBlockVisibility(blocks->GetBlock(1), true); }, 2 },
+    { "the actor at opacity 0", [&] { single->GetProperty()->SetOpacity(0.0); }, 2 }, // traced as nothing
+    { "the actor at opacity 1", [&] { single->GetProperty()->SetOpacity(1.0); }, 2 },
+  };
+  for (const Step& step : steps)
+  {
+    step.Change();
+    composite->Modified();
+    win->Render();
+    std::ostringstream s;
+    s << step.Label << ": " << pass->GetNumberOfTracedProps() << " traced, " << pass->GetLastBVHBuilds()
+      << " builds, " << pass->GetLastGeometryBytesUploaded() << " geometry bytes";
+    const bool nothingNew = pass->GetLastBVHBuilds() == 0 && pass->GetLastGeometryBytesUploaded() == 0;
+    vtkSmartPointer<vtkImageData> traced = Grab(win);
+    ren->SetPass(nullptr);
+    win->Render();
+    vtkSmartPointer<vtkImageData> raster = Grab(win);
+    ren->SetPass(pass);
+    const long differing = CountDifferingPixels(traced, raster, 40);
+    s << ", " << differing << " pixels differ from raster";
+    Check(pass->GetNumberOfTracedProps() == step.Traced && nothingNew && differing <= 200, s.str());
+  }
+  NoVTKOutput("HiddenProps");
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
@@ -604,6 +669,7 @@ int main(int argc, char* argv[])
     { "Lifecycle", TestLifecycle },
     { "MovedBetweenWindows", TestMovedBetweenWindows },
     { "CulledProps", TestCulledProps },
+    { "HiddenProps", TestHiddenProps },
     { "App", TestApp },
   };
   if (argc > 2)
