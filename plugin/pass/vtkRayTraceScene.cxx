@@ -1,19 +1,15 @@
 #include "vtkRayTraceScene.h"
 
+#include "vtkRayTraceCompositePieces.h"
 #include "vtkRayTraceGeometry.h"
 #include "vtkRayTraceTubes.h"
 
 #include "vtkActor.h"
-#include "vtkColorTransferFunction.h"
 #include "vtkCompositeDataDisplayAttributes.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkCompositePolyDataMapper2.h"
-#include "vtkDataObjectTreeRange.h"
 #include "vtkDataObject.h"
-#include "vtkDataObjectTree.h"
-#include "vtkDataObjectTreeIterator.h"
 #include "vtkGlyph3DMapper.h"
-#include "vtkLookupTable.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -92,109 +88,6 @@ void takeCachePlace(const Geometry& from, Geometry& to)
   to.Used = from.Used;
   to.TriangulationSeconds = from.TriangulationSeconds;
   to.BuildSeconds = from.BuildSeconds;
-}
-
-/// A polydata leaf of a composite input with its inherited block color.
-struct Piece
-{
-  vtkPolyData* Poly;
-  bool HasColor;
-  std::array<double, 3> Color;
-  unsigned int FlatIndex; ///< the composite index hardware selection reports
-  double Opacity = -1.0;  ///< the block opacity it inherits; negative: none
-  bool Pickable = true;   ///< the block pickability it inherits
-  bool Visible = true;    ///< false: a hidden block, whose geometry is only kept
-};
-
-/// Walks a composite dataset as vtkCompositePolyDataMapper2 does: block
-/// visibility, color and opacity apply to the block and everything below
-/// it (pickability too, for selections), and blocks are numbered in its
-/// order (flatIndex: the next block's
-/// number; an empty child takes one too). A block opacity replaces the
-/// property's, as vtkCompositePolyDataMapper2 draws it. Returns false when
-/// something cannot be traced (a non-polydata leaf).
-bool collectPieces(vtkDataObject* object, vtkCompositeDataDisplayAttributes* attributes,
-  bool visible, Piece inherited, unsigned int& flatIndex, std::vector<Piece>& pieces)
-{
-  inherited.FlatIndex = flatIndex++;
-  if (!object)
-  {
-    return true;
-  }
-  if (attributes)
-  {
-    if (attributes->HasBlockVisibility(object))
-    {
-      visible = attributes->GetBlockVisibility(object);
-    }
-    if (attributes->HasBlockOpacity(object))
-    {
-      inherited.Opacity = attributes->GetBlockOpacity(object);
-    }
-    if (attributes->HasBlockPickability(object))
-    {
-      inherited.Pickable = attributes->GetBlockPickability(object);
-    }
-    if (attributes->HasBlockColor(object))
-    {
-      inherited.HasColor = true;
-      attributes->GetBlockColor(object, inherited.Color.data());
-    }
-  }
-  if (auto* poly = vtkPolyData::SafeDownCast(object))
-  {
-    inherited.Poly = poly;
-    inherited.Visible = visible;
-    pieces.push_back(inherited);
-    return true;
-  }
-  if (auto* tree = vtkDataObjectTree::SafeDownCast(object))
-  {
-    bool ok = true;
-    for (vtkDataObject* child : vtk::Range(tree, vtk::DataObjectTreeOptions::None))
-    {
-      ok = collectPieces(child, attributes, visible, inherited, flatIndex, pieces) && ok;
-    }
-    return ok;
-  }
-  return false;
-}
-
-/// vtkCompositePolyDataMapper2's ColorMissingArraysWithNanColor: a block
-/// without the array the mapper colors by is drawn in the lookup table's
-/// NaN color (its RGB replaces the ambient and diffuse colors, as a block
-/// color does; the block keeps its opacity).
-void ColorMissingArrays(vtkMapper* mapper, std::vector<Piece>& pieces)
-{
-  auto* m2 = vtkCompositePolyDataMapper2::SafeDownCast(mapper);
-  if (!m2 || !m2->GetColorMissingArraysWithNanColor() || !m2->GetScalarVisibility())
-  {
-    return;
-  }
-  double nan[4] = { 0.0, 0.0, 0.0, 1.0 };
-  vtkScalarsToColors* colors = m2->GetLookupTable();
-  if (auto* lut = vtkLookupTable::SafeDownCast(colors))
-  {
-    lut->GetNanColor(nan);
-  }
-  else if (auto* ctf = vtkColorTransferFunction::SafeDownCast(colors))
-  {
-    ctf->GetNanColor(nan);
-  }
-  else
-  {
-    return;
-  }
-  for (Piece& piece : pieces)
-  {
-    int cellFlag = 0;
-    if (!vtkAbstractMapper::GetAbstractScalars(piece.Poly, m2->GetScalarMode(),
-          m2->GetArrayAccessMode(), m2->GetArrayId(), m2->GetArrayName(), cellFlag))
-    {
-      piece.HasColor = true;
-      std::copy(nan, nan + 3, piece.Color.begin());
-    }
-  }
 }
 
 /// A triangle instance's cell edges as the property asks: VTK draws edges
@@ -456,7 +349,7 @@ bool Scene::AddPolyDataMapper(const PropPart& part, vtkMapper* mapper, int propI
     }
     Piece root{ nullptr, false, { { 0, 0, 0 } }, 0u };
     unsigned int flatIndex = 0;
-    ok = collectPieces(input, attributes, true, root, flatIndex, pieces);
+    ok = CollectPieces(input, attributes, true, root, flatIndex, pieces);
     ColorMissingArrays(mapper, pieces);
   }
   else if (input)
