@@ -1,43 +1,198 @@
-// vtkBVHCellLocator's cells of several triangles (quads, polygons, strips)
-// by their own bounds: VTK's locators answer FindCell, FindCellsWithinBounds
-// and FindCellsAlongLine from cell bounds, which for such a cell can reach
-// where none of its triangles' boxes does (a tilted quad, an L-shaped
-// polygon), so those queries also walk a tree over these cells' bounds.
+// vtkBVHCellLocator's queries by cell bounds (FindCellsWithinBounds,
+// FindCellsAlongLine, and FindCell's candidates): VTK's locators answer them
+// from cell bounds, which for a cell of several triangles (a quad, polygon
+// or strip) can reach where none of its triangles' boxes does (a tilted
+// quad's corner, a star's notch). Such cells are looked for as far around
+// as they reach, or, where a few reach much farther than the mesh's
+// triangles, in a tree over their own bounds.
 #include "vtkBVHCellLocatorInternals.h"
+#include "vtkBVHCellLocatorPickingScene.h"
 
 #include "vtkDataSet.h"
+#include "vtkIdList.h"
+#include "vtkNew.h"
 #include "vtkSMPTools.h"
 
 #include "vtkrt/core/BVHBuild.h"
 #include "vtkrt/core/BVHTraversal.h"
 #include "vtkrt/core/Ray.h"
+#include "vtkrt/core/SegmentQueries.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace vtkrt
 {
 namespace locator
 {
-namespace
+
+//------------------------------------------------------------------------------
+Box BVHCellLocatorData::CellBox(vtkDataSet* ds, vtkIdType cellId, vtkIdList* points) const
 {
+  // The cell's finite points in the local coordinates of its triangles'
+  // boxes (the same points, rounded alike): its box holds each of theirs.
+  ds->GetCellPoints(cellId, points);
+  Box box;
+  for (vtkIdType k = 0; k < points->GetNumberOfIds(); ++k)
+  {
+    const vtkIdType id = points->GetId(k);
+    const Vec3d p = id >= 0 && id < this->NumberOfPoints ? this->LocalPoint(id) : Vec3d(NAN);
+    if (core::isFinite(p))
+    {
+      box.extend(p);
+    }
+  }
+  return box;
+}
 
-/// A binary tree's nodes as core's walks read them, each box grown by a
-/// tolerance (the segment queries' "bounds grown by tol").
-struct GrownNodes
+//------------------------------------------------------------------------------
+bool BVHCellLocatorData::IsMultiTrianglePrimitive(std::uint32_t prim) const
 {
-  using Scalar = double;
-  const core::BVHNode* nodes = nullptr;
-  std::size_t size = 0;
-  Vec3d grow = Vec3d(0.0);
+  // A one-triangle polygon counts too: its box is its cell's bounds.
+  return static_cast<vtkIdType>(prim) < this->NumberOfTriangles() &&
+    !(this->TriangleFlags(prim) & WholeTriangle);
+}
 
-  Vec3d lo(std::uint32_t i) const { return this->nodes[i].min - this->grow; }
-  Vec3d hi(std::uint32_t i) const { return this->nodes[i].max + this->grow; }
-  std::uint32_t index(std::uint32_t i) const { return this->nodes[i].index; }
-  std::uint32_t count(std::uint32_t i) const { return this->nodes[i].count; }
-};
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::AddCellsMeeting(vtkDataSet* ds, std::vector<vtkIdType>& near,
+  const std::function<bool(const Box&)>& meets, std::vector<vtkIdType>& cells) const
+{
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
+  std::sort(cells.begin(), cells.end());
+  vtkNew<vtkIdList> points;
+  const std::size_t listed = cells.size();
+  for (const vtkIdType cellId : near)
+  {
+    if (!std::binary_search(cells.begin(), cells.begin() + listed, cellId) &&
+      meets(this->CellBox(ds, cellId, points)))
+    {
+      cells.push_back(cellId);
+    }
+  }
+}
 
-} // namespace
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::CellsInLocalBox(const Box& q, std::vector<vtkIdType>& cells) const
+{
+  cells.clear();
+  auto overlap = [&](std::uint32_t prim) {
+    if (this->PrimitiveBox(prim).overlaps(q))
+    {
+      cells.push_back(this->PrimitiveCell(prim));
+    }
+  };
+  if (!core::overlapBoxWide(PickingScene{ this }, q, overlap))
+  {
+    this->EnsureTree();
+    core::queryBox(this->Tree, q, overlap);
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::CellsInBox(
+  const double bbox[6], vtkDataSet* ds, std::vector<vtkIdType>& cells) const
+{
+  const Box q(this->ToLocal(Vec3d(bbox[0], bbox[2], bbox[4])),
+    this->ToLocal(Vec3d(bbox[1], bbox[3], bbox[5])));
+  if (this->MultiTriangleCells.empty() || !ds)
+  {
+    this->CellsInLocalBox(q, cells);
+    return;
+  }
+  if (!this->FindCellReachesCells)
+  {
+    this->CellsInLocalBox(q, cells);
+    this->MultiCellsInLocalBox(ds, q, cells);
+  }
+  else
+  {
+    // Triangles within reach of the box: their cells' own bounds decide.
+    const Vec3d reach(this->MultiTriangleCellReach);
+    const Box grown(q.min - reach, q.max + reach);
+    std::vector<vtkIdType> near;
+    cells.clear();
+    auto overlap = [&](std::uint32_t prim) {
+      const Box b = this->PrimitiveBox(prim);
+      if (b.overlaps(q))
+      {
+        cells.push_back(this->PrimitiveCell(prim));
+      }
+      else if (b.overlaps(grown) && this->IsMultiTrianglePrimitive(prim))
+      {
+        near.push_back(this->PrimitiveCell(prim));
+      }
+    };
+    if (!core::overlapBoxWide(PickingScene{ this }, grown, overlap))
+    {
+      this->EnsureTree();
+      core::queryBox(this->Tree, grown, overlap);
+    }
+    this->AddCellsMeeting(ds, near, [&q](const Box& b) { return b.overlaps(q); }, cells);
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+}
+
+//------------------------------------------------------------------------------
+void BVHCellLocatorData::CellsAlongLine(const double p1[3], const double p2[3], double tol,
+  vtkDataSet* ds, std::vector<vtkIdType>& cells) const
+{
+  cells.clear();
+  core::Ray<double> ray;
+  if (!this->MakeSegment(p1, p2, ray))
+  {
+    if (IsFinitePoint(p1, p2))
+    {
+      // A point: the cells whose bounds, grown by tol, hold it.
+      const double box[6] = { p1[0] - tol, p1[0] + tol, p1[1] - tol, p1[1] + tol, p1[2] - tol,
+        p1[2] + tol };
+      this->CellsInBox(box, ds, cells);
+    }
+    return;
+  }
+  const core::RayBoxPrecomputed<double> boxPre(ray);
+  const core::RayTrianglePrecomputed<double> triPre(ray);
+  const double localTol = this->ToLocalLength(tol);
+  // Cells of several triangles within reach of the segment: their own
+  // bounds decide (or MultiCells, where a few reach far).
+  const bool reaching = !this->MultiTriangleCells.empty() && ds && this->FindCellReachesCells;
+  const double walkTol = localTol + (reaching ? this->MultiTriangleCellReach : 0.0);
+  std::vector<vtkIdType> near;
+  auto meets = [&](const Box& b, double grow, const core::Ray<double>& r) {
+    double tnear;
+    return core::intersectRayAABB(boxPre, b.min - Vec3d(grow), b.max + Vec3d(grow), r.tmin, r.tmax, tnear);
+  };
+  auto isect = [&](std::uint32_t prim, const core::Ray<double>& r, core::Hit<double>&) {
+    const Box b = this->PrimitiveBox(prim);
+    if (meets(b, localTol, r))
+    {
+      cells.push_back(this->PrimitiveCell(prim));
+    }
+    else if (reaching && meets(b, walkTol, r) && this->IsMultiTrianglePrimitive(prim))
+    {
+      near.push_back(this->PrimitiveCell(prim));
+    }
+    return false;
+  };
+  // Cells by their bounds: every triangle of a leaf the segment reaches.
+  core::allHitsSegment(PickingScene{ this }, ray, triPre, walkTol, false, isect);
+  if (reaching)
+  {
+    this->AddCellsMeeting(ds, near, [&](const Box& b) { return meets(b, localTol, ray); }, cells);
+  }
+  else if (ds)
+  {
+    this->MultiCellsAlongSegment(ds, ray, localTol, cells);
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+}
 
 //------------------------------------------------------------------------------
 void BVHCellLocatorData::EnsureMultiCells(vtkDataSet* ds) const
@@ -52,20 +207,13 @@ void BVHCellLocatorData::EnsureMultiCells(vtkDataSet* ds) const
   {
     return;
   }
-  // The bounds as VTK computes them (every point of the cell), in the local
-  // coordinates of the triangles' boxes: a cell's box holds each of its
-  // triangles' boxes exactly.
   const vtkIdType n = static_cast<vtkIdType>(this->MultiTriangleCells.size());
   m.Boxes.resize(this->MultiTriangleCells.size());
   vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
-    double cb[6];
+    vtkNew<vtkIdList> points;
     for (vtkIdType i = b; i < e; ++i)
     {
-      ds->GetCellBounds(this->MultiTriangleCells[i], cb);
-      const Box world(Vec3d(cb[0], cb[2], cb[4]), Vec3d(cb[1], cb[3], cb[5]));
-      m.Boxes[i] = world.isFinite() && !world.isEmpty()
-        ? Box(this->ToLocal(world.min), this->ToLocal(world.max))
-        : Box();
+      m.Boxes[i] = this->CellBox(ds, this->MultiTriangleCells[i], points);
     }
   });
   m.Tree = core::buildBVH(
@@ -102,7 +250,7 @@ void BVHCellLocatorData::MultiCellsAlongSegment(vtkDataSet* ds, const core::Ray<
     return;
   }
   const Vec3d grow(localTol);
-  const GrownNodes nodes{ m.Tree.nodes.data(), m.Tree.nodes.size(), grow };
+  const core::GrownNodeSource nodes{ m.Tree.nodes.data(), m.Tree.nodes.size(), localTol };
   const core::RayBoxPrecomputed<double> pre(ray);
   auto meets = [&](std::uint32_t i, const core::Ray<double>& r, core::Hit<double>&) {
     double tnear;

@@ -94,13 +94,25 @@ void BVHCellLocatorData::ListMultiTriangleCells()
   {
     return; // one triangle a cell
   }
-  double extents = 0.0;
+  auto extentOf = [this](vtkIdType i) {
+    Box box;
+    for (int k = 0; k < 3; ++k)
+    {
+      box.extend(this->LocalPoint(this->SrcVerts[3 * static_cast<std::size_t>(i) + k]));
+    }
+    const Vec3d e = box.max - box.min;
+    return std::make_pair(box, std::max({ e.x, e.y, e.z }));
+  };
   Box cell;
+  int cellTriangles = 0;
   auto endCell = [&]() {
+    if (cellTriangles < 2)
+    {
+      this->MultiTriangleCells.pop_back(); // one triangle: its box is the cell's bounds
+      return;
+    }
     const Vec3d e = cell.max - cell.min;
-    const double reach = std::max({ e.x, e.y, e.z });
-    this->MultiTriangleCellReach = std::max(this->MultiTriangleCellReach, reach);
-    extents += reach;
+    this->MultiTriangleCellReach = std::max({ this->MultiTriangleCellReach, e.x, e.y, e.z });
   };
   for (vtkIdType i = 0; i < n; ++i)
   {
@@ -109,30 +121,41 @@ void BVHCellLocatorData::ListMultiTriangleCells()
       continue;
     }
     const vtkIdType cellId = this->TriCell[i];
-    if (this->MultiTriangleCells.empty() || this->MultiTriangleCells.back() != cellId)
+    if (this->MultiTriangleCells.empty() || this->MultiTriangleCells.back() != cellId || cellTriangles == 0)
     {
-      if (!this->MultiTriangleCells.empty())
+      if (cellTriangles > 0)
       {
         endCell();
       }
       this->MultiTriangleCells.push_back(cellId);
       cell = Box();
+      cellTriangles = 0;
     }
-    for (int k = 0; k < 3; ++k)
-    {
-      cell.extend(this->LocalPoint(this->SrcVerts[3 * static_cast<std::size_t>(i) + k]));
-    }
+    cell.extend(extentOf(i).first);
+    ++cellTriangles;
+  }
+  if (cellTriangles > 0)
+  {
+    endCell();
   }
   if (this->MultiTriangleCells.empty())
   {
     return;
   }
-  endCell();
-  // FindCell looks as far as the largest such cell reaches while that is
-  // about the typical cell's size; beyond, a point would gather many cells'
-  // triangles, and it searches MultiCells instead.
-  const double mean = extents / static_cast<double>(this->MultiTriangleCells.size());
-  this->FindCellReachesCells = this->MultiTriangleCellReach <= 4.0 * mean;
+  // FindCell and the bounds queries look as far around as the largest such
+  // cell reaches while that is about the mesh's typical triangle size (a
+  // quad mesh); beyond (a large quad under a fine mesh) they would gather
+  // much of the mesh, and search MultiCells, a tree over these cells'
+  // bounds, instead. The typical size: the mean over up to 4096 triangles.
+  const vtkIdType step = std::max<vtkIdType>(1, n / 4096);
+  double extents = 0.0;
+  vtkIdType sampled = 0;
+  for (vtkIdType i = 0; i < n; i += step, ++sampled)
+  {
+    extents += extentOf(i).second;
+  }
+  const double typical = extents / static_cast<double>(std::max<vtkIdType>(sampled, 1));
+  this->FindCellReachesCells = this->MultiTriangleCellReach <= kReachOfTypicalSizes * typical;
   // Cells are extracted in id order; sorted anyway, as the queries assume.
   if (!std::is_sorted(this->MultiTriangleCells.begin(), this->MultiTriangleCells.end()))
   {

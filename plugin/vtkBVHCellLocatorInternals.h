@@ -33,6 +33,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <functional>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -218,9 +219,14 @@ public:
   /// The largest extent (local units) of such a cell: a point its bounds
   /// hold may lie that far from all its triangles' boxes.
   double MultiTriangleCellReach = 0.0;
-  /// Whether FindCell looks MultiTriangleCellReach around a point (cells of
-  /// about one size) rather than in MultiCells (a few much larger cells).
+  /// Whether FindCell and the bounds queries look MultiTriangleCellReach
+  /// around what they ask about (such cells no larger than a few typical
+  /// triangles) rather than in MultiCells (some much larger).
   bool FindCellReachesCells = true;
+  /// How many typical triangle sizes a cell of several triangles may reach
+  /// for the queries to look that far around rather than build MultiCells:
+  /// a quad or a regular polygon spans about two of its triangles.
+  static constexpr double kReachOfTypicalSizes = 4.0;
   /// The tree over MultiTriangleCells' bounds (local coordinates), built by
   /// the first query that needs it (EnsureMultiCells). Copying copies
   /// nothing: a copy builds its own on demand.
@@ -571,6 +577,14 @@ private:
   /// Appends those whose bounds, grown by localTol, the segment `ray` meets.
   void MultiCellsAlongSegment(vtkDataSet* ds, const core::Ray<double>& ray, double localTol,
     std::vector<vtkIdType>& cells) const;
+  /// The box (local) of the cell's finite points; `points` is scratch.
+  Box CellBox(vtkDataSet* ds, vtkIdType cellId, vtkIdList* points) const;
+  /// Whether triangle prim is part of a cell that is not one VTK_TRIANGLE.
+  bool IsMultiTrianglePrimitive(std::uint32_t prim) const;
+  /// Appends the cells of `near` (any order, repeats) not in `cells` whose
+  /// box `meets` says so.
+  void AddCellsMeeting(vtkDataSet* ds, std::vector<vtkIdType>& near,
+    const std::function<bool(const Box&)>& meets, std::vector<vtkIdType>& cells) const;
 
   // Builds
   void BuildDeferredTree() const;

@@ -4,6 +4,7 @@
 // the answer in VTK's terms (the cell's pcoords and subId, the caller's
 // vtkGenericCell filled).
 #include "vtkBVHCellLocatorInternals.h"
+#include "vtkBVHCellLocatorPickingScene.h"
 
 #include "vtkDataSet.h"
 #include "vtkDoubleArray.h"
@@ -40,12 +41,6 @@ inline bool IntersectCell(vtkDataSet* ds, vtkIdType cellId, vtkGenericCell* cell
   return cell->IntersectWithLine(p1, p2, tol, t, x, pc, sub) && t >= r.tmin && t <= r.tmax;
 }
 
-/// Whether p1 -> p2 is a zero-length segment at a finite point.
-inline bool IsFinitePoint(const double p1[3], const double p2[3])
-{
-  return p1[0] == p2[0] && p1[1] == p2[1] && p1[2] == p2[2] && std::isfinite(p1[0]) &&
-    std::isfinite(p1[1]) && std::isfinite(p1[2]);
-}
 
 /// vtkTriangle::EvaluatePosition fails (-1) on a zero-area triangle, so
 /// VTK's locators never give one as a closest point.
@@ -132,75 +127,6 @@ void FillTriangleCell(vtkGenericCell* cell, const std::uint32_t* ids, const doub
   }
 }
 } // namespace
-
-//------------------------------------------------------------------------------
-/// The locator's arrays as the core's walks see them (core/WideTraversal.h,
-/// core/SegmentQueries.h): a pointer, copied into the walk, so that its
-/// loads are those of the data's own members.
-struct BVHCellLocatorData::PickingScene
-{
-  const BVHCellLocatorData* D;
-
-  const core::WideNode* pickingRoot() const { return this->D->PickingRoot(); }
-  std::uint32_t triangleCount() const { return static_cast<std::uint32_t>(this->D->TriCell.size()); }
-  std::size_t generalCount() const { return this->D->GenCell.size(); }
-  const std::uint32_t* slotPrimitives() const { return this->D->Tree.primIndex.data(); }
-  const float* floatTriangles() const { return this->D->TrianglesF.data(); }
-  double extent() const { return this->D->Extent; }
-  core::WideSubtree subtree(std::uint32_t k) const { return this->D->Lazy->subtree(k); }
-  const core::BVH& binaryTree() const
-  {
-    this->D->EnsureTree();
-    return this->D->Tree;
-  }
-#if VTKRT_CORE_SSE
-  /// The exact test of a leaf's triangles reads their point ids.
-  VTKRT_ALWAYS_INLINE void prefetchTriangles(std::uint32_t first, std::uint32_t end) const
-  {
-    core::detail::prefetchRange(this->D->TriIds.data() + 3 * static_cast<std::size_t>(first),
-      this->D->TriIds.data() + 3 * static_cast<std::size_t>(end));
-  }
-  /// The exact test reads the double points (which then fill the caller's
-  /// cell), a hit its cell id, subId and flags: for triangles t + lane of
-  /// each lane set in mask.
-  VTKRT_ALWAYS_INLINE void prefetchCandidates(std::size_t t, int mask) const
-  {
-    const BVHCellLocatorData* d = this->D;
-    const double* coords = d->WorldCoords();
-    for (int m = mask; m; m &= m - 1)
-    {
-      const std::size_t prim = t + static_cast<std::size_t>(core::detail::countTrailingZeros(static_cast<unsigned>(m)));
-      for (int k = 0; k < 3; ++k)
-      {
-        _mm_prefetch(reinterpret_cast<const char*>(coords + 3 * static_cast<std::size_t>(d->TriIds[3 * prim + k])), _MM_HINT_T0);
-      }
-      _mm_prefetch(reinterpret_cast<const char*>(&d->TriCell[prim]), _MM_HINT_T0);
-      if (d->UniformCellBase < 0) // else TriangleSubId / TriangleFlags read neither
-      {
-        _mm_prefetch(reinterpret_cast<const char*>(&d->TriSub[prim]), _MM_HINT_T0);
-        _mm_prefetch(reinterpret_cast<const char*>(&d->TriFlags[prim]), _MM_HINT_T0);
-      }
-    }
-  }
-#endif
-};
-
-//------------------------------------------------------------------------------
-inline bool BVHCellLocatorData::MakeSegment(const double p1[3], const double p2[3], core::Ray<double>& ray) const
-{
-  if (!this->PickingRoot()) // every build with primitives makes the picking tree
-  {
-    return false;
-  }
-  // Scaled as ToLocal scales, so the direction is that of the world
-  // segment times Scale, exactly.
-  const double pre = this->PreScale, post = this->PostScale;
-  const Vec3d dir((p2[0] * pre - p1[0] * pre) * post, (p2[1] * pre - p1[1] * pre) * post,
-    (p2[2] * pre - p1[2] * pre) * post);
-  // VTK cells never hit a zero-length segment either.
-  ray = core::Ray<double>(this->ToLocal(p1), dir, 0.0, 1.0);
-  return ray.isValid();
-}
 
 //------------------------------------------------------------------------------
 /// Watertight hit, or (tol > 0) VTK's rule: the crossing of the plane lies
@@ -465,42 +391,6 @@ void BVHCellLocatorData::AllHits(const double p1[3], const double p2[3], double 
 }
 
 //------------------------------------------------------------------------------
-void BVHCellLocatorData::CellsAlongLine(const double p1[3], const double p2[3], double tol,
-  vtkDataSet* ds, std::vector<vtkIdType>& cells) const
-{
-  cells.clear();
-  core::Ray<double> ray;
-  if (!this->MakeSegment(p1, p2, ray))
-  {
-    if (IsFinitePoint(p1, p2))
-    {
-      // A point: the cells whose bounds, grown by tol, hold it.
-      const double box[6] = { p1[0] - tol, p1[0] + tol, p1[1] - tol, p1[1] + tol, p1[2] - tol,
-        p1[2] + tol };
-      this->CellsInBox(box, ds, cells);
-    }
-    return;
-  }
-  const core::RayBoxPrecomputed<double> boxPre(ray);
-  const core::RayTrianglePrecomputed<double> triPre(ray);
-  const double localTol = this->ToLocalLength(tol);
-  auto isect = [&](std::uint32_t prim, const core::Ray<double>& r, core::Hit<double>&) {
-    const Box b = this->PrimitiveBox(prim);
-    double tnear;
-    if (core::intersectRayAABB(boxPre, b.min - Vec3d(localTol), b.max + Vec3d(localTol), r.tmin, r.tmax, tnear))
-    {
-      cells.push_back(this->PrimitiveCell(prim));
-    }
-    return false;
-  };
-  // Cells by their bounds: every triangle of a leaf the segment reaches.
-  core::allHitsSegment(PickingScene{ this }, ray, triPre, localTol, false, isect);
-  this->MultiCellsAlongSegment(ds, ray, localTol, cells);
-  std::sort(cells.begin(), cells.end());
-  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-}
-
-//------------------------------------------------------------------------------
 /// A zero-length segment is a point: it hits the cells whose own
 /// IntersectWithLine(p, p) says so (VTK's cells do when p lies on them), at
 /// t = 0, x = p, pcoords and subId as EvaluatePosition gives them; in cell
@@ -538,40 +428,6 @@ void BVHCellLocatorData::CellsThroughPoint(const double p[3], double tol, vtkDat
       return;
     }
   }
-}
-
-//------------------------------------------------------------------------------
-void BVHCellLocatorData::CellsInBox(
-  const double bbox[6], vtkDataSet* ds, std::vector<vtkIdType>& cells) const
-{
-  const Box q(this->ToLocal(Vec3d(bbox[0], bbox[2], bbox[4])),
-    this->ToLocal(Vec3d(bbox[1], bbox[3], bbox[5])));
-  this->CellsInLocalBox(q, cells);
-  if (!this->MultiTriangleCells.empty())
-  {
-    this->MultiCellsInLocalBox(ds, q, cells);
-    std::sort(cells.begin(), cells.end());
-    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-  }
-}
-
-//------------------------------------------------------------------------------
-void BVHCellLocatorData::CellsInLocalBox(const Box& q, std::vector<vtkIdType>& cells) const
-{
-  cells.clear();
-  auto overlap = [&](std::uint32_t prim) {
-    if (this->PrimitiveBox(prim).overlaps(q))
-    {
-      cells.push_back(this->PrimitiveCell(prim));
-    }
-  };
-  if (!core::overlapBoxWide(PickingScene{ this }, q, overlap))
-  {
-    this->EnsureTree();
-    core::queryBox(this->Tree, q, overlap);
-  }
-  std::sort(cells.begin(), cells.end());
-  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
 }
 
 //------------------------------------------------------------------------------

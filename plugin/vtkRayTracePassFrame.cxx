@@ -436,6 +436,7 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, const vtkR
     // Ids only: one centered ray a pixel, nothing shaded.
     p.F.SelectIds = true;
     p.F.IdMode = false;
+    p.F.FloatColors = false;
     p.F.Translucent = false;
     p.F.InterleavedWalks = false;
     p.F.SamplesPerPixel = 0;
@@ -614,7 +615,7 @@ void vtkRayTracePass::Internals::Select(vtkRayTracePass& pass, const vtkRenderSt
   Prepared p;
   if (!this->Traced.empty() && this->Prepare(pass, s, ren, win, cam, &traced, true, p))
   {
-    this->Selecting.TraceIds(win, ren, p.Tracer);
+    this->Selecting.TraceIds(win, p.Camera.ViewportSize, p.Tracer);
     for (vtkTextureObject* t : p.Active)
     {
       t->Deactivate();

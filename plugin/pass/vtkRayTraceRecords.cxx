@@ -39,14 +39,15 @@ void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCo
   vtkMatrix4x4* vcdc;
   vtkMatrix4x4* wcdc;
   cam->GetKeyMatrices(ren, wcvc, normalMatrix, vcdc, wcdc);
-  // The rays are in the coordinates the camera's model transform takes to
-  // its view (world coordinates but for that transform): so are the eye and
-  // the view direction.
-  vtkNew<vtkMatrix4x4> toModel;
-  vtkMatrix4x4::Invert(cam->GetModelTransformMatrix(), toModel);
+  // The rays are in the coordinates the camera's model-view transform
+  // takes to its view (world coordinates but for a model transform, and
+  // with a user view transform): the eye and the view direction are the
+  // view's origin and -z taken back through it, as raster lights in view
+  // coordinates.
+  vtkNew<vtkMatrix4x4> viewToModel;
+  vtkMatrix4x4::Invert(cam->GetModelViewTransformMatrix(), viewToModel);
   double eye[4] = { 0.0, 0.0, 0.0, 1.0 };
-  cam->GetPosition(eye);
-  toModel->MultiplyPoint(eye, eye);
+  viewToModel->MultiplyPoint(eye, eye);
   for (int k = 0; k < 3; ++k)
   {
     this->Eye[k] = eye[k] / eye[3];
@@ -82,9 +83,8 @@ void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCo
     this->CameraToPixels->SetElement(0, c, 0.5 * width * this->CameraToClip->GetElement(0, c));
     this->CameraToPixels->SetElement(1, c, 0.5 * height * this->CameraToClip->GetElement(1, c));
   }
-  double dop[4] = { 0.0, 0.0, 0.0, 0.0 };
-  cam->GetDirectionOfProjection(dop);
-  toModel->MultiplyPoint(dop, dop);
+  double dop[4] = { 0.0, 0.0, -1.0, 0.0 };
+  viewToModel->MultiplyPoint(dop, dop);
   vtkMath::Normalize(dop);
   std::copy(dop, dop + 3, this->DirectionOfProjection);
 }

@@ -381,11 +381,12 @@ bool Scene::AddPolyDataMapper(const PropPart& part, vtkMapper* mapper, int propI
       const std::size_t first = this->Instances.size();
       // A hidden block keeps what it has cached (showing it again builds
       // and uploads nothing, as raster keeps its buffers) and draws nothing.
-      const bool keeping = this->Keeping;
-      this->Keeping = keeping || !piece.Visible;
-      const bool added = this->AddPolyData(actor, mapper, piece.Poly, propIndex, counters,
-        piece.HasColor ? piece.Color.data() : nullptr, piece.Opacity);
-      this->Keeping = keeping;
+      bool added = false;
+      {
+        const KeepingScope scope(*this, this->Keeping || !piece.Visible);
+        added = this->AddPolyData(actor, mapper, piece.Poly, propIndex, counters,
+          piece.HasColor ? piece.Color.data() : nullptr, piece.Opacity);
+      }
       if (!piece.Visible)
       {
         this->Instances.resize(first);
@@ -416,9 +417,10 @@ bool Scene::AddActor(const PropPart& part, int propIndex, FrameCounters& counter
     // what it has cached kept (as raster keeps its buffers).
     const std::size_t first = this->Instances.size();
     std::vector<vtkProp*> none;
-    this->Keeping = true;
-    this->AddActor(part, propIndex, counters, none);
-    this->Keeping = false;
+    {
+      const KeepingScope scope(*this, true);
+      this->AddActor(part, propIndex, counters, none);
+    }
     this->Instances.resize(first);
     return true;
   }

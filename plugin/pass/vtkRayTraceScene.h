@@ -281,6 +281,21 @@ private:
   std::unordered_set<vtkProp*> Present;
   /// While KeepCulledProps runs: cache entries are marked used, never built.
   bool Keeping = false;
+  /// Keeping set for a scope, restored after it (exceptions included).
+  struct KeepingScope
+  {
+    KeepingScope(Scene& scene, bool keeping)
+      : Owner(scene)
+      , Saved(scene.Keeping)
+    {
+      scene.Keeping = keeping;
+    }
+    ~KeepingScope() { this->Owner.Keeping = this->Saved; }
+    KeepingScope(const KeepingScope&) = delete;
+    KeepingScope& operator=(const KeepingScope&) = delete;
+    Scene& Owner;
+    bool Saved;
+  };
   std::vector<Instance> Instances;
   bool GeometryDirty = true;
   bool ColorsDirty = true;

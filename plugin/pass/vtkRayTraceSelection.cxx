@@ -127,13 +127,10 @@ void Selection::Allocate(vtkOpenGLRenderWindow* win, int width, int height)
   this->Size[1] = height;
 }
 
-void Selection::TraceIds(vtkOpenGLRenderWindow* win, vtkRenderer* ren, vtkOpenGLQuadHelper* tracer)
+void Selection::TraceIds(vtkOpenGLRenderWindow* win, const int viewportSize[2], vtkOpenGLQuadHelper* tracer)
 {
   vtkOpenGLState* ostate = win->GetState();
-  int width = 0, height = 0, originX = 0, originY = 0;
-  ren->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);
-  width = std::max(width, 1);
-  height = std::max(height, 1);
+  const int width = std::max(viewportSize[0], 1), height = std::max(viewportSize[1], 1);
   if (width != this->Size[0] || height != this->Size[1])
   {
     this->Allocate(win, width, height);

@@ -59,9 +59,10 @@ public:
   Selection();
   ~Selection();
 
-  /// Traces the id buffer over the renderer's viewport with `tracer` (built
-  /// with Features::SelectIds, current, its samplers bound).
-  void TraceIds(vtkOpenGLRenderWindow* win, vtkRenderer* ren, vtkOpenGLQuadHelper* tracer);
+  /// Traces the id buffer over the frame's viewport (CameraFrame::
+  /// ViewportSize) with `tracer` (built with Features::SelectIds, current,
+  /// its samplers bound).
+  void TraceIds(vtkOpenGLRenderWindow* win, const int viewportSize[2], vtkOpenGLQuadHelper* tracer);
 
   /// Renders the selector's current pass over `props` through
   /// vtkHardwareSelector::Render, traced prop i (traced[i]) drawn from the

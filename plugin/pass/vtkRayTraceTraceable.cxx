@@ -81,7 +81,17 @@ bool drawsHighlights(vtkActor* actor, vtkMapper* mapper)
 {
   vtkProperty* property = actor->GetProperty();
   return (mapper->GetSelection() && mapper->GetSelection()->GetNumberOfNodes() > 0) ||
-    (property->GetVertexVisibility() && property->GetEdgeVisibility());
+    (property->GetVertexVisibility() && property->GetEdgeVisibility() &&
+      property->GetRepresentation() == VTK_SURFACE);
+}
+
+/// Whether a prop's matrix is affine (last row 0 0 0 1): raster divides by
+/// w after a projective one (a planar shadow's flattening), the tracer's
+/// instance transforms are affine.
+bool IsAffine(vtkMatrix4x4* m)
+{
+  return m->GetElement(3, 0) == 0.0 && m->GetElement(3, 1) == 0.0 && m->GetElement(3, 2) == 0.0 &&
+    m->GetElement(3, 3) == 1.0;
 }
 
 /// Mappers that draw something other than their data's cells: VTK's point
@@ -218,8 +228,10 @@ bool Scene::TraceableParts(vtkProp* prop, const TraceRules& rules, std::vector<P
     return false;
   }
   return prop && (prop->GetVisibility() || rules.Hidden) && PartsOf(prop, parts) && !parts.empty() &&
-    std::all_of(parts.begin(), parts.end(),
-      [&rules](const PropPart& part) { return IsTraceableActor(part.Actor, rules); });
+    std::all_of(parts.begin(), parts.end(), [&rules](const PropPart& part) {
+      return IsTraceableActor(part.Actor, rules) &&
+        IsAffine(part.Matrix ? part.Matrix.Get() : part.Actor->GetMatrix());
+    });
 }
 
 bool Scene::IsTraceableActor(vtkActor* actor, const TraceRules& rules)
@@ -290,7 +302,7 @@ void Scene::KeepCulledProps(vtkRenderer* ren, vtkProp** props, int count,
   // raster keeps an invisible actor's buffers.
   TraceRules rules = this->Rules;
   rules.Hidden = true;
-  this->Keeping = true;
+  const KeepingScope scope(*this, true);
   vtkCollectionSimpleIterator it;
   vtkPropCollection* all = ren->GetViewProps();
   all->InitTraversal(it);
@@ -310,7 +322,6 @@ void Scene::KeepCulledProps(vtkRenderer* ren, vtkProp** props, int count,
     this->AddParts(parts, -1, counters, standIns);
     this->Instances.resize(first);
   }
-  this->Keeping = false;
   this->Present.insert(kept.begin(), kept.end());
 }
 

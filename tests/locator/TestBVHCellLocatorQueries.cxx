@@ -11,8 +11,10 @@
 #include "vtkGenericCell.h"
 #include "vtkStructuredGrid.h"
 
+#include <algorithm>
 #include <array>
 #include <sstream>
+#include <thread>
 
 #if defined(__SSE2__)
 #include <xmmintrin.h>
@@ -390,9 +392,9 @@ namespace
 {
 /// Planar cells of several triangles whose bounds reach where no box of
 /// their triangles does: tilted non-convex stars (8-point polygons), tilted
-/// quads, zig-zag strips, beside plain triangles; cell ids interleave them.
-/// A large tilted quad under them all makes FindCell search the cells'
-/// bounds tree rather than around the point.
+/// quads and plain triangles (their ids interleaved), then zig-zag strips.
+/// A large tilted quad under them all makes the queries search the cells'
+/// bounds tree rather than around what they ask about.
 vtkSmartPointer<vtkPolyData> SeveralTriangleCells(Random& rng, bool largeQuad)
 {
   vtkNew<vtkPoints> pts;
@@ -439,94 +441,172 @@ vtkSmartPointer<vtkPolyData> SeveralTriangleCells(Random& rng, bool largeQuad)
   pd->SetStrips(strips);
   return pd;
 }
+
+/// The large tilted quad of SeveralTriangleCells under a fine triangle mesh
+/// (a bumpy sphere): the quad is the only cell of several triangles.
+vtkSmartPointer<vtkPolyData> TrianglesOverLargeQuad()
+{
+  auto sphere = MakeBumpySphere(40, 3.0);
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->DeepCopy(sphere);
+  vtkPoints* pts = pd->GetPoints();
+  const vtkIdType quad[4] = { pts->InsertNextPoint(-5, -5, -4.5), pts->InsertNextPoint(6, -5, -3.5),
+    pts->InsertNextPoint(7, 6, -3.0), pts->InsertNextPoint(-4, 5, -3.5) };
+  pd->GetPolys()->InsertNextCell(4, quad);
+  return pd;
+}
+
+/// The queries by cell bounds against brute force over the cells' bounds:
+/// 400 boxes, 200 segments at two tolerances, 600 FindCell points. Returns
+/// the cells listed in the boxes and the points located.
+std::pair<int, int> CheckCellBounds(vtkPolyData* pd, vtkBVHCellLocator* loc, Random& rng)
+{
+  double b[6];
+  pd->GetBounds(b);
+  const double size = std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
+  vtkNew<vtkIdList> ids;
+  int boxCells = 0;
+  for (int i = 0; i < 400; ++i)
+  {
+    double box[6];
+    for (int a = 0; a < 3; ++a)
+    {
+      const double c = rng.Next(b[2 * a], b[2 * a + 1]), h = rng.Next(0.0, 0.015 * size);
+      box[2 * a] = c - h;
+      box[2 * a + 1] = c + h;
+    }
+    loc->FindCellsWithinBounds(box, ids);
+    const std::vector<vtkIdType> ref = BruteForceCellsInBox(pd, box);
+    LT_CHECK_MSG(ToVector(ids) == ref, "box " << i << ": " << ids->GetNumberOfIds() << " cells, "
+                                              << ref.size() << " by brute force");
+    boxCells += static_cast<int>(ref.size());
+  }
+  int segmentCells = 0;
+  for (const Segment& s : RandomSegments(pd, 200, rng))
+  {
+    for (double tol : { 0.0, 0.003 * size })
+    {
+      loc->FindCellsAlongLine(s.P1, s.P2, tol, ids);
+      std::vector<vtkIdType> ref;
+      for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c)
+      {
+        double cb[6];
+        pd->GetCellBounds(c, cb);
+        for (int k = 0; k < 6; ++k)
+        {
+          cb[k] += (k % 2 == 0 ? -tol : tol);
+        }
+        if (SegmentMeetsBox(s.P1, s.P2, cb))
+        {
+          ref.push_back(c);
+        }
+      }
+      LT_CHECK_MSG(ToVector(ids) == ref, "segment: " << ids->GetNumberOfIds() << " cells, " << ref.size()
+                                                     << " by brute force, tolerance " << tol);
+      segmentCells += static_cast<int>(ref.size());
+    }
+  }
+  LT_CHECK(segmentCells > 400);
+  // FindCell: the lowest-id cell whose bounds hold x and into which x
+  // projects, as VTK 9.1's locators answer for surface cells.
+  vtkNew<vtkGenericCell> cell;
+  std::vector<double> w(16);
+  int located = 0;
+  for (int i = 0; i < 600; ++i)
+  {
+    double x[3] = { rng.Next(b[0], b[1]), rng.Next(b[2], b[3]), rng.Next(b[4], b[5]) }, pc[3];
+    vtkIdType ref = -1;
+    for (vtkIdType c = 0; c < pd->GetNumberOfCells() && ref < 0; ++c)
+    {
+      double cb[6], cp[3], d2;
+      int sub;
+      pd->GetCellBounds(c, cb);
+      pd->GetCell(c, cell);
+      if (x[0] >= cb[0] && x[0] <= cb[1] && x[1] >= cb[2] && x[1] <= cb[3] && x[2] >= cb[4] &&
+        x[2] <= cb[5] && cell->EvaluatePosition(x, cp, sub, pc, d2, w.data()) == 1)
+      {
+        ref = c;
+      }
+    }
+    const vtkIdType ours = loc->FindCell(x, 0.0, cell, pc, w.data());
+    LT_CHECK_MSG(ours == ref, "FindCell gives " << ours << ", brute force " << ref);
+    located += ref >= 0 ? 1 : 0;
+  }
+  return { boxCells, located };
+}
 } // namespace
 
 /// FindCellsWithinBounds, FindCellsAlongLine and FindCell answer from the
 /// cells' own bounds, as VTK's locators do, for polygons, quads and strips
-/// whose bounds reach beyond their triangles' boxes: against brute force
-/// over the cells' bounds, for the fast build and the SAH build.
+/// whose bounds reach beyond their triangles' boxes: cells of about one
+/// size (looked for around the query), and a large quad under small stars
+/// or under a fine triangle mesh (looked for in the cells' bounds tree),
+/// for the fast build and the SAH build; then the same queries from four
+/// threads at once on a fresh locator, whose first queries build that tree.
 int TestQueriesCellsOfSeveralTriangles()
 {
   Random rng(5);
-  for (int variant = 0; variant < 4; ++variant)
+  struct Case
   {
-    const int quality = variant % 2 == 0 ? vtkBVHCellLocator::FAST : vtkBVHCellLocator::SAH;
-    auto pd = SeveralTriangleCells(rng, variant >= 2);
+    const char* Name;
+    vtkSmartPointer<vtkPolyData> Data;
+  };
+  const Case cases[] = { { "stars, quads and strips", SeveralTriangleCells(rng, false) },
+    { "a large quad under them", SeveralTriangleCells(rng, true) },
+    { "a large quad under triangles", TrianglesOverLargeQuad() } };
+  for (const Case& c : cases)
+  {
+    for (int quality : { vtkBVHCellLocator::FAST, vtkBVHCellLocator::SAH })
+    {
+      vtkNew<vtkBVHCellLocator> loc;
+      loc->SetBuildQuality(quality);
+      loc->SetDataSet(c.Data);
+      loc->BuildLocator();
+      const std::pair<int, int> found = CheckCellBounds(c.Data, loc, rng);
+      LT_CHECK(found.first > 100 && found.second > 30);
+      std::cout << c.Name << ", quality " << quality << ": " << found.first << " cells in 400 boxes, "
+                << found.second << " of 600 points located, as brute force" << std::endl;
+    }
+    // Four threads asking a fresh locator the same questions as one thread.
+    vtkNew<vtkBVHCellLocator> serial, shared;
+    for (vtkBVHCellLocator* loc : { serial.Get(), shared.Get() })
+    {
+      loc->SetDataSet(c.Data);
+      loc->BuildLocator();
+    }
     double b[6];
-    pd->GetBounds(b);
-    vtkNew<vtkBVHCellLocator> loc;
-    loc->SetBuildQuality(quality);
-    loc->SetDataSet(pd);
-    loc->BuildLocator();
-    vtkNew<vtkIdList> ids;
-    int boxCells = 0;
-    for (int i = 0; i < 400; ++i)
-    {
-      double box[6];
-      for (int a = 0; a < 3; ++a)
+    c.Data->GetBounds(b);
+    auto ask = [&b](vtkBVHCellLocator* loc, int seed) {
+      Random r(seed);
+      std::vector<vtkIdType> answers;
+      vtkNew<vtkIdList> ids;
+      vtkNew<vtkGenericCell> cell;
+      double pc[3], w[16];
+      for (int i = 0; i < 200; ++i)
       {
-        const double c = rng.Next(b[2 * a], b[2 * a + 1]), h = rng.Next(0.0, 0.3);
-        box[2 * a] = c - h;
-        box[2 * a + 1] = c + h;
+        double x[3] = { r.Next(b[0], b[1]), r.Next(b[2], b[3]), r.Next(b[4], b[5]) };
+        answers.push_back(loc->FindCell(x, 0.0, cell, pc, w));
+        const double box[6] = { x[0] - 0.05, x[0] + 0.05, x[1] - 0.05, x[1] + 0.05, x[2] - 0.05, x[2] + 0.05 };
+        loc->FindCellsWithinBounds(const_cast<double*>(box), ids);
+        const std::vector<vtkIdType> v = ToVector(ids);
+        answers.insert(answers.end(), v.begin(), v.end());
       }
-      loc->FindCellsWithinBounds(box, ids);
-      const std::vector<vtkIdType> ref = BruteForceCellsInBox(pd, box);
-      LT_CHECK_MSG(ToVector(ids) == ref, "box " << i << ": " << ids->GetNumberOfIds() << " cells, "
-                                                << ref.size() << " by brute force");
-      boxCells += static_cast<int>(ref.size());
-    }
-    LT_CHECK(boxCells > 200);
-    for (const Segment& s : RandomSegments(pd, 200, rng))
+      return answers;
+    };
+    std::vector<vtkIdType> threaded[4];
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t)
     {
-      for (double tol : { 0.0, 0.05 })
-      {
-        loc->FindCellsAlongLine(s.P1, s.P2, tol, ids);
-        std::vector<vtkIdType> ref;
-        for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c)
-        {
-          double cb[6];
-          pd->GetCellBounds(c, cb);
-          for (int k = 0; k < 6; ++k)
-          {
-            cb[k] += (k % 2 == 0 ? -tol : tol);
-          }
-          if (SegmentMeetsBox(s.P1, s.P2, cb))
-          {
-            ref.push_back(c);
-          }
-        }
-        LT_CHECK_MSG(ToVector(ids) == ref, "segment: " << ids->GetNumberOfIds() << " cells, " << ref.size()
-                                                       << " by brute force, tolerance " << tol);
-      }
+      threads.emplace_back([&, t] { threaded[t] = ask(shared, 100 + t); });
     }
-    // FindCell: the lowest-id cell whose bounds hold x and into which x
-    // projects, as VTK 9.1's locators answer for surface cells.
-    vtkNew<vtkGenericCell> cell;
-    std::vector<double> w(16);
-    int located = 0;
-    for (int i = 0; i < 600; ++i)
+    for (std::thread& t : threads)
     {
-      double x[3] = { rng.Next(b[0], b[1]), rng.Next(b[2], b[3]), rng.Next(b[4], b[5]) }, pc[3];
-      vtkIdType ref = -1;
-      for (vtkIdType c = 0; c < pd->GetNumberOfCells() && ref < 0; ++c)
-      {
-        double cb[6], cp[3], d2;
-        int sub;
-        pd->GetCellBounds(c, cb);
-        pd->GetCell(c, cell);
-        if (x[0] >= cb[0] && x[0] <= cb[1] && x[1] >= cb[2] && x[1] <= cb[3] && x[2] >= cb[4] &&
-          x[2] <= cb[5] && cell->EvaluatePosition(x, cp, sub, pc, d2, w.data()) == 1)
-        {
-          ref = c;
-        }
-      }
-      const vtkIdType ours = loc->FindCell(x, 0.0, cell, pc, w.data());
-      LT_CHECK_MSG(ours == ref, "FindCell gives " << ours << ", brute force " << ref);
-      located += ref >= 0 ? 1 : 0;
+      t.join();
     }
-    LT_CHECK(located > 30);
-    std::cout << "quality " << quality << (variant >= 2 ? ", a large quad" : "") << ": " << boxCells << " cells in 400 boxes, " << located
-              << " of 600 points located, as brute force" << std::endl;
+    for (int t = 0; t < 4; ++t)
+    {
+      LT_CHECK_MSG(threaded[t] == ask(serial, 100 + t), c.Name << ": thread " << t << " answers otherwise");
+    }
   }
   return 0;
 }

@@ -316,18 +316,19 @@ void TestParallelAlongAxes()
 void TestCameraModelTransform()
 {
   const char* names[] = { "headlight", "light kit", "positional spot light" };
-  for (int lights = 0; lights < 3; ++lights)
+  for (int lights = 0; lights < 6; ++lights) // then each with a user view transform instead
   {
+    const bool userView = lights >= 3;
     auto win = MakeWindow(320, 240);
     vtkNew<vtkRenderer> ren;
     win->AddRenderer(ren);
     ren->AddActor(BunnyActor());
-    if (lights == 1)
+    if (lights % 3 == 1)
     {
       vtkNew<vtkLightKit> kit;
       kit->AddLightsToRenderer(ren);
     }
-    else if (lights == 2)
+    else if (lights % 3 == 2)
     {
       vtkNew<vtkLight> spot;
       spot->SetLightTypeToSceneLight();
@@ -342,12 +343,17 @@ void TestCameraModelTransform()
     model->RotateY(30.0);
     model->RotateX(-20.0);
     model->Scale(1.5, 1.5, 1.5);
-    ren->GetActiveCamera()->SetModelTransformMatrix(model->GetMatrix());
+    vtkNew<vtkTransform> view;
+    view->RotateY(15.0);
+    view->RotateX(-10.0);
+    view->Translate(0.01, 0.0, 0.0);
+    userView ? ren->GetActiveCamera()->SetUserViewTransform(view)
+             : ren->GetActiveCamera()->SetModelTransformMatrix(model->GetMatrix());
     auto [raster, traced, pass] = RenderRasterThenTraced(win, ren);
     const long differing = CountDifferingPixels(traced, raster, 40);
     const long covered = CountForegroundPixels(traced, ren->GetBackground());
     std::ostringstream s;
-    s << "camera model transform, " << names[lights] << ": " << covered
+    s << (userView ? "camera user view transform, " : "camera model transform, ") << names[lights % 3] << ": " << covered
       << " foreground pixels, " << differing << " differ from raster by > 40 (<= 0.5%)";
     Check(covered > 320 * 240 / 20 && differing <= 320 * 240 / 200, s.str());
     if (differing > 320 * 240 / 200)

@@ -8,6 +8,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
+#include "vtkMatrix4x4.h"
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkPointGaussianMapper.h"
 #include "vtkPolyData.h"
@@ -44,7 +45,7 @@ struct Scene : ComparedScene
 // property or through the mapper's deprecated API), and an actor forced
 // opaque whose opacity is not 1 (VTK blends it in its opaque pass), and
 // highlights VTK draws over a surface (a mapper's selection, vertices
-// beside edges).
+// beside edges), and a projective matrix (raster divides by w).
 void TestLeftToRaster()
 {
   // `actor` beside a traced mesh: only the mesh is traced.
@@ -175,6 +176,16 @@ void TestLeftToRaster()
     actor->GetProperty()->SetVertexColor(1.0, 0.0, 0.0);
     actor->GetProperty()->SetPointSize(5.0);
     compareBeside("vertices drawn over a surface with edges", actor);
+  }
+  {
+    // A planar shadow's matrix: projective (last row not 0 0 0 1).
+    auto actor = MeshActor(Sphere(0.6, 24));
+    vtkNew<vtkMatrix4x4> flatten;
+    flatten->SetElement(1, 1, 0.0);
+    flatten->SetElement(3, 1, -0.5);
+    flatten->SetElement(3, 3, 2.0);
+    actor->SetUserMatrix(flatten);
+    compareBeside("an actor whose matrix is projective", actor);
   }
   NoVTKOutput("left to raster");
 }
