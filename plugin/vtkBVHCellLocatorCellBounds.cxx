@@ -57,18 +57,25 @@ bool BVHCellLocatorData::IsMultiTrianglePrimitive(std::uint32_t prim) const
 }
 
 //------------------------------------------------------------------------------
-void BVHCellLocatorData::AddCellsMeeting(vtkDataSet* ds, std::vector<vtkIdType>& near,
-  const std::function<bool(const Box&)>& meets, std::vector<vtkIdType>& cells) const
+void BVHCellLocatorData::AddCellsMeeting(std::vector<std::pair<vtkIdType, Box>>& near,
+  const std::function<bool(const Box&)>& meets, std::vector<vtkIdType>& cells)
 {
-  std::sort(near.begin(), near.end());
-  near.erase(std::unique(near.begin(), near.end()), near.end());
+  // A cell that meets the query lies within reach of it, so the walk met
+  // all its triangles: the union of their boxes is its bounds. A cell whose
+  // union does not meet the query does not meet it either.
+  std::sort(near.begin(), near.end(),
+    [](const std::pair<vtkIdType, Box>& x, const std::pair<vtkIdType, Box>& y) { return x.first < y.first; });
   std::sort(cells.begin(), cells.end());
-  vtkNew<vtkIdList> points;
   const std::size_t listed = cells.size();
-  for (const vtkIdType cellId : near)
+  for (std::size_t i = 0; i < near.size();)
   {
-    if (!std::binary_search(cells.begin(), cells.begin() + listed, cellId) &&
-      meets(this->CellBox(ds, cellId, points)))
+    const vtkIdType cellId = near[i].first;
+    Box bounds;
+    for (; i < near.size() && near[i].first == cellId; ++i)
+    {
+      bounds.extend(near[i].second);
+    }
+    if (!std::binary_search(cells.begin(), cells.begin() + listed, cellId) && meets(bounds))
     {
       cells.push_back(cellId);
     }
@@ -115,7 +122,7 @@ void BVHCellLocatorData::CellsInBox(
     // Triangles within reach of the box: their cells' own bounds decide.
     const Vec3d reach(this->MultiTriangleCellReach);
     const Box grown(q.min - reach, q.max + reach);
-    std::vector<vtkIdType> near;
+    std::vector<std::pair<vtkIdType, Box>> near;
     cells.clear();
     auto overlap = [&](std::uint32_t prim) {
       const Box b = this->PrimitiveBox(prim);
@@ -125,7 +132,7 @@ void BVHCellLocatorData::CellsInBox(
       }
       else if (b.overlaps(grown) && this->IsMultiTrianglePrimitive(prim))
       {
-        near.push_back(this->PrimitiveCell(prim));
+        near.emplace_back(this->PrimitiveCell(prim), b);
       }
     };
     if (!core::overlapBoxWide(PickingScene{ this }, grown, overlap))
@@ -133,7 +140,7 @@ void BVHCellLocatorData::CellsInBox(
       this->EnsureTree();
       core::queryBox(this->Tree, grown, overlap);
     }
-    this->AddCellsMeeting(ds, near, [&q](const Box& b) { return b.overlaps(q); }, cells);
+    AddCellsMeeting(near, [&q](const Box& b) { return b.overlaps(q); }, cells);
   }
   std::sort(cells.begin(), cells.end());
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
@@ -163,7 +170,7 @@ void BVHCellLocatorData::CellsAlongLine(const double p1[3], const double p2[3], 
   // bounds decide (or MultiCells, where a few reach far).
   const bool reaching = !this->MultiTriangleCells.empty() && ds && this->FindCellReachesCells;
   const double walkTol = localTol + (reaching ? this->MultiTriangleCellReach : 0.0);
-  std::vector<vtkIdType> near;
+  std::vector<std::pair<vtkIdType, Box>> near;
   auto meets = [&](const Box& b, double grow, const core::Ray<double>& r) {
     double tnear;
     return core::intersectRayAABB(boxPre, b.min - Vec3d(grow), b.max + Vec3d(grow), r.tmin, r.tmax, tnear);
@@ -176,7 +183,7 @@ void BVHCellLocatorData::CellsAlongLine(const double p1[3], const double p2[3], 
     }
     else if (reaching && meets(b, walkTol, r) && this->IsMultiTrianglePrimitive(prim))
     {
-      near.push_back(this->PrimitiveCell(prim));
+      near.emplace_back(this->PrimitiveCell(prim), b);
     }
     return false;
   };
@@ -184,7 +191,7 @@ void BVHCellLocatorData::CellsAlongLine(const double p1[3], const double p2[3], 
   core::allHitsSegment(PickingScene{ this }, ray, triPre, walkTol, false, isect);
   if (reaching)
   {
-    this->AddCellsMeeting(ds, near, [&](const Box& b) { return meets(b, localTol, ray); }, cells);
+    AddCellsMeeting(near, [&](const Box& b) { return meets(b, localTol, ray); }, cells);
   }
   else if (ds)
   {

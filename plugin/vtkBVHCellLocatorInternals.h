@@ -581,10 +581,10 @@ private:
   Box CellBox(vtkDataSet* ds, vtkIdType cellId, vtkIdList* points) const;
   /// Whether triangle prim is part of a cell that is not one VTK_TRIANGLE.
   bool IsMultiTrianglePrimitive(std::uint32_t prim) const;
-  /// Appends the cells of `near` (any order, repeats) not in `cells` whose
-  /// box `meets` says so.
-  void AddCellsMeeting(vtkDataSet* ds, std::vector<vtkIdType>& near,
-    const std::function<bool(const Box&)>& meets, std::vector<vtkIdType>& cells) const;
+  /// Appends the cells of `near` (a cell's triangles' boxes, any order) not
+  /// in `cells` whose union of boxes `meets` says so.
+  static void AddCellsMeeting(std::vector<std::pair<vtkIdType, Box>>& near,
+    const std::function<bool(const Box&)>& meets, std::vector<vtkIdType>& cells);
 
   // Builds
   void BuildDeferredTree() const;
