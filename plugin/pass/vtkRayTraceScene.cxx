@@ -218,7 +218,8 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
     inst.Opacity = static_cast<float>(std::min(blockOpacity, 1.0));
   }
 
-  if (property->GetRepresentation() != VTK_POINTS &&
+  // Kept triangles of an actor drawn as points for now (KeepCulledProps).
+  if ((property->GetRepresentation() != VTK_POINTS || this->Keeping) &&
     (poly->GetNumberOfPolys() > 0 || poly->GetNumberOfStrips() > 0))
   {
     const std::shared_ptr<Geometry>& entry = this->TriangleGeometry(poly, counters);
@@ -517,7 +518,7 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
     this->Present.insert(traced.begin(), traced.end());
     if (ren)
     {
-      this->KeepCulledProps(ren, props, count, previous, counters);
+      this->KeepCulledProps(ren, previous, counters);
     }
     this->RasterStandIns.EndFrame();
     this->Surfaces.EndFrame();

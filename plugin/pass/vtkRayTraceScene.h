@@ -72,6 +72,9 @@ struct TraceRules
   bool Translucency = true;       ///< translucent actors can be traced
   bool HiddenLineRemoval = false; ///< lone wireframe actors go to raster's pass for it
   bool Hidden = false;            ///< hidden props count as shown (what KeepCulledProps keeps)
+  /// Any looks count as traceable, for the data a mapper of the pass's
+  /// kinds draws: what KeepCulledProps keeps of a prop left to raster.
+  bool AnyLooks = false;
 };
 
 /// Renderer props -> instances, with geometry cached by (data object, MTime).
@@ -213,13 +216,14 @@ private:
   /// (AddPolyDataMapper, through its vtkDataSetMapper's polydata mapper if
   /// it has one); false when it is left to raster.
   bool AddActor(const PropPart& part, int propIndex, FrameCounters& counters, std::vector<vtkProp*>& standIns);
-  /// Keeps the cached geometry of the renderer's traceable props that VTK's
-  /// culler left out of this frame (outside the view, or too small) and
-  /// that the last frame traced or kept (`previous`), so that a camera move
-  /// bringing them back builds and uploads nothing, as raster keeps a
-  /// culled actor's buffers; adds them to Present.
-  void KeepCulledProps(vtkRenderer* ren, vtkProp** props, int count,
-    const std::unordered_set<vtkProp*>& previous, FrameCounters& counters);
+  /// Keeps the cached geometry of the renderer's props that the last frame
+  /// traced or kept (`previous`) and this one (Present) does not trace:
+  /// culled by VTK (outside the view, or too small), hidden, or left to
+  /// raster for their looks (points representation, PBR, ...), so that
+  /// tracing them again builds and uploads nothing, as raster keeps an
+  /// actor's buffers; adds them to Present.
+  void KeepCulledProps(
+    vtkRenderer* ren, const std::unordered_set<vtkProp*>& previous, FrameCounters& counters);
   /// The polydata pieces `mapper` draws for the actor (its own mapper, or
   /// the polydata mapper of its vtkDataSetMapper), each through
   /// AddPolyData; false (left to raster) when some piece cannot be traced.

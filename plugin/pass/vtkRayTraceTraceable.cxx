@@ -223,14 +223,15 @@ bool Scene::TraceableParts(vtkProp* prop, const TraceRules& rules, std::vector<P
   // is traced whole or left to raster whole, as its selection reports one
   // prop.
   auto* lone = vtkActor::SafeDownCast(prop);
-  if (rules.HiddenLineRemoval && lone && lone->GetProperty()->GetRepresentation() == VTK_WIREFRAME)
+  if (rules.HiddenLineRemoval && !rules.AnyLooks && lone &&
+    lone->GetProperty()->GetRepresentation() == VTK_WIREFRAME)
   {
     return false;
   }
   return prop && (prop->GetVisibility() || rules.Hidden) && PartsOf(prop, parts) && !parts.empty() &&
     std::all_of(parts.begin(), parts.end(), [&rules](const PropPart& part) {
       return IsTraceableActor(part.Actor, rules) &&
-        IsAffine(part.Matrix ? part.Matrix.Get() : part.Actor->GetMatrix());
+        (rules.AnyLooks || IsAffine(part.Matrix ? part.Matrix.Get() : part.Actor->GetMatrix()));
     });
 }
 
@@ -248,6 +249,10 @@ bool Scene::IsTraceableActor(vtkActor* actor, const TraceRules& rules)
     !vtkCompositePolyDataMapper::SafeDownCast(mapper))
   {
     return false;
+  }
+  if (rules.AnyLooks)
+  {
+    return true;
   }
   // A vtkDataSetMapper without input: raster reports it.
   if (drawsOtherThanCells(mapper) || hasCustomShaders(actor, mapper) || hasShaderObservers(mapper) ||
@@ -292,25 +297,27 @@ bool Scene::IsTraceableActor(vtkActor* actor, const TraceRules& rules)
   return representation != VTK_POINTS || (!glyphs && property->GetRenderPointsAsSpheres());
 }
 
-void Scene::KeepCulledProps(vtkRenderer* ren, vtkProp** props, int count,
-  const std::unordered_set<vtkProp*>& previous, FrameCounters& counters)
+void Scene::KeepCulledProps(
+  vtkRenderer* ren, const std::unordered_set<vtkProp*>& previous, FrameCounters& counters)
 {
-  const std::unordered_set<vtkProp*> inFrame(props, props + count);
   std::vector<vtkProp*> kept;
   std::vector<PropPart> parts;
-  // Hidden props too: showing one again builds and uploads nothing, as
-  // raster keeps an invisible actor's buffers.
+  // Hidden props too, and props left to raster this frame for their looks
+  // (points representation, PBR, ...): showing or tracing one again builds
+  // and uploads nothing, as raster keeps an invisible actor's buffers.
   TraceRules rules = this->Rules;
   rules.Hidden = true;
+  rules.AnyLooks = true;
   const KeepingScope scope(*this, true);
   vtkCollectionSimpleIterator it;
   vtkPropCollection* all = ren->GetViewProps();
   all->InitTraversal(it);
   while (vtkProp* prop = all->GetNextProp(it))
   {
-    // Only what the last frame traced or kept: a prop never in view yet is
-    // built when it first is, as raster makes its buffers.
-    if (inFrame.count(prop) || !previous.count(prop) || !TraceableParts(prop, rules, parts))
+    // Only what the last frame traced or kept and this one does not trace:
+    // a prop never traced yet is built when it first is, as raster makes
+    // its buffers.
+    if (this->Present.count(prop) || !previous.count(prop) || !TraceableParts(prop, rules, parts))
     {
       continue;
     }

@@ -596,7 +596,8 @@ void TestCulledProps()
 }
 
 /// Props and composite blocks hidden and shown again (VisibilityOff, block
-/// visibility, opacity 0) build and upload nothing, as raster keeps their
+/// visibility, opacity 0), or left to raster for a frame for their looks,
+/// build and upload nothing when traced again, as raster keeps their
 /// buffers, and each frame equals raster's.
 void TestHiddenProps()
 {
@@ -635,6 +636,11 @@ void TestHiddenProps()
     { "the block shown", [&] { attributes->SetBlockVisibility(blocks->GetBlock(1), true); }, 2 },
     { "the actor at opacity 0", [&] { single->GetProperty()->SetOpacity(0.0); }, 2 }, // traced as nothing
     { "the actor at opacity 1", [&] { single->GetProperty()->SetOpacity(1.0); }, 2 },
+    // Left to raster for its looks, then traced again.
+    { "the actor as points (raster)", [&] { single->GetProperty()->SetRepresentationToPoints(); }, 1 },
+    { "the actor as a surface again", [&] { single->GetProperty()->SetRepresentationToSurface(); }, 2 },
+    { "the blocks in PBR (raster)", [&] { blocksActor->GetProperty()->SetInterpolationToPBR(); }, 1 },
+    { "the blocks in Gouraud again", [&] { blocksActor->GetProperty()->SetInterpolationToGouraud(); }, 2 },
   };
   for (const Step& step : steps)
   {
