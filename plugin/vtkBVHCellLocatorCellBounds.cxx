@@ -11,7 +11,6 @@
 #include "vtkDataSet.h"
 #include "vtkIdList.h"
 #include "vtkNew.h"
-#include "vtkSMPTools.h"
 
 #include "vtkrt/core/BVHBuild.h"
 #include "vtkrt/core/BVHTraversal.h"
@@ -57,23 +56,23 @@ bool BVHCellLocatorData::IsMultiTrianglePrimitive(std::uint32_t prim) const
 }
 
 //------------------------------------------------------------------------------
-void BVHCellLocatorData::AddCellsMeeting(std::vector<std::pair<vtkIdType, Box>>& near,
+void BVHCellLocatorData::AddCellsMeeting(std::vector<std::pair<vtkIdType, Box>>& nearby,
   const std::function<bool(const Box&)>& meets, std::vector<vtkIdType>& cells)
 {
   // A cell that meets the query lies within reach of it, so the walk met
   // all its triangles: the union of their boxes is its bounds. A cell whose
   // union does not meet the query does not meet it either.
-  std::sort(near.begin(), near.end(),
+  std::sort(nearby.begin(), nearby.end(),
     [](const std::pair<vtkIdType, Box>& x, const std::pair<vtkIdType, Box>& y) { return x.first < y.first; });
   std::sort(cells.begin(), cells.end());
   const std::size_t listed = cells.size();
-  for (std::size_t i = 0; i < near.size();)
+  for (std::size_t i = 0; i < nearby.size();)
   {
-    const vtkIdType cellId = near[i].first;
+    const vtkIdType cellId = nearby[i].first;
     Box bounds;
-    for (; i < near.size() && near[i].first == cellId; ++i)
+    for (; i < nearby.size() && nearby[i].first == cellId; ++i)
     {
-      bounds.extend(near[i].second);
+      bounds.extend(nearby[i].second);
     }
     if (!std::binary_search(cells.begin(), cells.begin() + listed, cellId) && meets(bounds))
     {
@@ -112,7 +111,7 @@ void BVHCellLocatorData::CellsInBox(
     this->CellsInLocalBox(q, cells);
     return;
   }
-  if (!this->FindCellReachesCells)
+  if (!this->QueriesLookByReach)
   {
     this->CellsInLocalBox(q, cells);
     this->MultiCellsInLocalBox(ds, q, cells);
@@ -122,7 +121,7 @@ void BVHCellLocatorData::CellsInBox(
     // Triangles within reach of the box: their cells' own bounds decide.
     const Vec3d reach(this->MultiTriangleCellReach);
     const Box grown(q.min - reach, q.max + reach);
-    std::vector<std::pair<vtkIdType, Box>> near;
+    std::vector<std::pair<vtkIdType, Box>> nearby;
     cells.clear();
     auto overlap = [&](std::uint32_t prim) {
       const Box b = this->PrimitiveBox(prim);
@@ -132,7 +131,7 @@ void BVHCellLocatorData::CellsInBox(
       }
       else if (b.overlaps(grown) && this->IsMultiTrianglePrimitive(prim))
       {
-        near.emplace_back(this->PrimitiveCell(prim), b);
+        nearby.emplace_back(this->PrimitiveCell(prim), b);
       }
     };
     if (!core::overlapBoxWide(PickingScene{ this }, grown, overlap))
@@ -140,7 +139,7 @@ void BVHCellLocatorData::CellsInBox(
       this->EnsureTree();
       core::queryBox(this->Tree, grown, overlap);
     }
-    AddCellsMeeting(near, [&q](const Box& b) { return b.overlaps(q); }, cells);
+    AddCellsMeeting(nearby, [&q](const Box& b) { return b.overlaps(q); }, cells);
   }
   std::sort(cells.begin(), cells.end());
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
@@ -168,9 +167,9 @@ void BVHCellLocatorData::CellsAlongLine(const double p1[3], const double p2[3], 
   const double localTol = this->ToLocalLength(tol);
   // Cells of several triangles within reach of the segment: their own
   // bounds decide (or MultiCells, where a few reach far).
-  const bool reaching = !this->MultiTriangleCells.empty() && ds && this->FindCellReachesCells;
+  const bool reaching = !this->MultiTriangleCells.empty() && ds && this->QueriesLookByReach;
   const double walkTol = localTol + (reaching ? this->MultiTriangleCellReach : 0.0);
-  std::vector<std::pair<vtkIdType, Box>> near;
+  std::vector<std::pair<vtkIdType, Box>> nearby;
   auto meets = [&](const Box& b, double grow, const core::Ray<double>& r) {
     double tnear;
     return core::intersectRayAABB(boxPre, b.min - Vec3d(grow), b.max + Vec3d(grow), r.tmin, r.tmax, tnear);
@@ -183,7 +182,7 @@ void BVHCellLocatorData::CellsAlongLine(const double p1[3], const double p2[3], 
     }
     else if (reaching && meets(b, walkTol, r) && this->IsMultiTrianglePrimitive(prim))
     {
-      near.emplace_back(this->PrimitiveCell(prim), b);
+      nearby.emplace_back(this->PrimitiveCell(prim), b);
     }
     return false;
   };
@@ -191,7 +190,7 @@ void BVHCellLocatorData::CellsAlongLine(const double p1[3], const double p2[3], 
   core::allHitsSegment(PickingScene{ this }, ray, triPre, walkTol, false, isect);
   if (reaching)
   {
-    AddCellsMeeting(near, [&](const Box& b) { return meets(b, localTol, ray); }, cells);
+    AddCellsMeeting(nearby, [&](const Box& b) { return meets(b, localTol, ray); }, cells);
   }
   else if (ds)
   {
@@ -216,15 +215,17 @@ void BVHCellLocatorData::EnsureMultiCells(vtkDataSet* ds) const
   }
   const vtkIdType n = static_cast<vtkIdType>(this->MultiTriangleCells.size());
   m.Boxes.resize(this->MultiTriangleCells.size());
-  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
-    vtkNew<vtkIdList> points;
-    for (vtkIdType i = b; i < e; ++i)
-    {
-      m.Boxes[i] = this->CellBox(ds, this->MultiTriangleCells[i], points);
-    }
-  });
-  m.Tree = core::buildBVH(
-    m.Boxes.size(), [&m](std::size_t i) { return m.Boxes[i]; }, this->TreeOptions);
+  // On this thread alone: under the lock, a pool's waiting thread could
+  // take another task of the caller's that asks for this tree again.
+  vtkNew<vtkIdList> points;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    m.Boxes[i] = this->CellBox(ds, this->MultiTriangleCells[i], points);
+  }
+  core::BuildOptions options = this->TreeOptions;
+  options.parallelFor = nullptr;
+  options.numThreads = 1;
+  m.Tree = core::buildBVH(m.Boxes.size(), [&m](std::size_t i) { return m.Boxes[i]; }, options);
   m.Ready.store(true, std::memory_order_release);
 }
 

@@ -88,7 +88,7 @@ void BVHCellLocatorData::ListMultiTriangleCells()
 {
   this->MultiTriangleCells.clear();
   this->MultiTriangleCellReach = 0.0;
-  this->FindCellReachesCells = true;
+  this->QueriesLookByReach = true;
   const vtkIdType n = this->NumberOfTriangles();
   if (this->UniformCellBase >= 0)
   {
@@ -146,16 +146,19 @@ void BVHCellLocatorData::ListMultiTriangleCells()
   // cell reaches while that is about the mesh's typical triangle size (a
   // quad mesh); beyond (a large quad under a fine mesh) they would gather
   // much of the mesh, and search MultiCells, a tree over these cells'
-  // bounds, instead. The typical size: the mean over up to 4096 triangles.
+  // bounds, instead. The typical size: the median over up to 4096
+  // triangles (a minority of large ones does not move it).
   const vtkIdType step = std::max<vtkIdType>(1, n / 4096);
-  double extents = 0.0;
-  vtkIdType sampled = 0;
-  for (vtkIdType i = 0; i < n; i += step, ++sampled)
+  std::vector<double> extents;
+  for (vtkIdType i = 0; i < n; i += step)
   {
-    extents += extentOf(i).second;
+    extents.push_back(extentOf(i).second);
   }
-  const double typical = extents / static_cast<double>(std::max<vtkIdType>(sampled, 1));
-  this->FindCellReachesCells = this->MultiTriangleCellReach <= kReachOfTypicalSizes * typical;
+  std::nth_element(extents.begin(), extents.begin() + extents.size() / 2, extents.end());
+  const double typical = extents[extents.size() / 2];
+  // Rounding of the extents and of the grown query: a few ulps more.
+  this->MultiTriangleCellReach *= 1.0 + 8.0 * std::numeric_limits<double>::epsilon();
+  this->QueriesLookByReach = this->MultiTriangleCellReach <= kReachOfTypicalSizes * typical;
   // Cells are extracted in id order; sorted anyway, as the queries assume.
   if (!std::is_sorted(this->MultiTriangleCells.begin(), this->MultiTriangleCells.end()))
   {

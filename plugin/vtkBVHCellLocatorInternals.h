@@ -33,8 +33,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <functional>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -222,7 +222,7 @@ public:
   /// Whether FindCell and the bounds queries look MultiTriangleCellReach
   /// around what they ask about (such cells no larger than a few typical
   /// triangles) rather than in MultiCells (some much larger).
-  bool FindCellReachesCells = true;
+  bool QueriesLookByReach = true;
   /// How many typical triangle sizes a cell of several triangles may reach
   /// for the queries to look that far around rather than build MultiCells:
   /// a quad or a regular polygon spans about two of its triangles.
@@ -581,9 +581,9 @@ private:
   Box CellBox(vtkDataSet* ds, vtkIdType cellId, vtkIdList* points) const;
   /// Whether triangle prim is part of a cell that is not one VTK_TRIANGLE.
   bool IsMultiTrianglePrimitive(std::uint32_t prim) const;
-  /// Appends the cells of `near` (a cell's triangles' boxes, any order) not
+  /// Appends the cells of `nearby` (a cell's triangles' boxes, any order) not
   /// in `cells` whose union of boxes `meets` says so.
-  static void AddCellsMeeting(std::vector<std::pair<vtkIdType, Box>>& near,
+  static void AddCellsMeeting(std::vector<std::pair<vtkIdType, Box>>& nearby,
     const std::function<bool(const Box&)>& meets, std::vector<vtkIdType>& cells);
 
   // Builds

@@ -565,7 +565,7 @@ vtkIdType BVHCellLocatorData::FindCell(
   {
     m = std::max({ m, std::abs(xw[k]), std::abs(this->Origin[k]) });
   }
-  const bool reach = this->FindCellReachesCells;
+  const bool reach = this->QueriesLookByReach;
   const Vec3d slack(this->ToLocalLength(3e-6 * m) + (reach ? this->MultiTriangleCellReach : 0.0));
   const Box q(x - slack, x + slack);
   // Candidates (cell id, primitive) in cell id order: a VTK_TRIANGLE cell

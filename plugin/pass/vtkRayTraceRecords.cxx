@@ -43,11 +43,28 @@ void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCo
   // takes to its view (world coordinates but for a model transform, and
   // with a user view transform): the eye and the view direction are the
   // view's origin and -z taken back through it, as raster lights in view
-  // coordinates.
+  // coordinates (a scale or shear in a user view transform only about:
+  // raster normalizes each normal after it). A singular one keeps the
+  // camera's own position and direction.
+  vtkMatrix4x4* modelView = cam->GetModelViewTransformMatrix();
   vtkNew<vtkMatrix4x4> viewToModel;
-  vtkMatrix4x4::Invert(cam->GetModelViewTransformMatrix(), viewToModel);
+  const bool invertible = modelView->Determinant() != 0.0;
+  if (invertible)
+  {
+    vtkMatrix4x4::Invert(modelView, viewToModel);
+  }
   double eye[4] = { 0.0, 0.0, 0.0, 1.0 };
-  viewToModel->MultiplyPoint(eye, eye);
+  double dop[4] = { 0.0, 0.0, -1.0, 0.0 };
+  if (invertible)
+  {
+    viewToModel->MultiplyPoint(eye, eye);
+    viewToModel->MultiplyPoint(dop, dop);
+  }
+  else
+  {
+    cam->GetPosition(eye);
+    cam->GetDirectionOfProjection(dop);
+  }
   for (int k = 0; k < 3; ++k)
   {
     this->Eye[k] = eye[k] / eye[3];
@@ -83,8 +100,6 @@ void CameraFrame::Set(vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam, bool worldCo
     this->CameraToPixels->SetElement(0, c, 0.5 * width * this->CameraToClip->GetElement(0, c));
     this->CameraToPixels->SetElement(1, c, 0.5 * height * this->CameraToClip->GetElement(1, c));
   }
-  double dop[4] = { 0.0, 0.0, -1.0, 0.0 };
-  viewToModel->MultiplyPoint(dop, dop);
   vtkMath::Normalize(dop);
   std::copy(dop, dop + 3, this->DirectionOfProjection);
 }

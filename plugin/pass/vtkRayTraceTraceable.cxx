@@ -250,14 +250,17 @@ bool Scene::IsTraceableActor(vtkActor* actor, const TraceRules& rules)
   {
     return false;
   }
+  // A vtkDataSetMapper without input: raster reports it (kept or not).
+  if (dataSetMapper && mapper->GetNumberOfInputConnections(0) == 0)
+  {
+    return false;
+  }
   if (rules.AnyLooks)
   {
     return true;
   }
-  // A vtkDataSetMapper without input: raster reports it.
   if (drawsOtherThanCells(mapper) || hasCustomShaders(actor, mapper) || hasShaderObservers(mapper) ||
-    drawsHighlights(actor, mapper) || forcedOpaqueButTranslucent(actor, mapper) ||
-    (dataSetMapper && mapper->GetNumberOfInputConnections(0) == 0))
+    drawsHighlights(actor, mapper) || forcedOpaqueButTranslucent(actor, mapper))
   {
     return false;
   }
@@ -321,12 +324,14 @@ void Scene::KeepCulledProps(
     {
       continue;
     }
-    kept.push_back(prop);
-    // What it has cached marked used (nothing built, no pipeline run, as
-    // raster does nothing for it), its instances dropped.
+    // What it has cached marked used (nothing built, as raster does
+    // nothing for it), its instances dropped.
     const std::size_t first = this->Instances.size();
     std::vector<vtkProp*> standIns;
-    this->AddParts(parts, -1, counters, standIns);
+    if (this->AddParts(parts, -1, counters, standIns))
+    {
+      kept.push_back(prop);
+    }
     this->Instances.resize(first);
   }
   this->Present.insert(kept.begin(), kept.end());

@@ -347,8 +347,14 @@ void TestCameraModelTransform()
     view->RotateY(15.0);
     view->RotateX(-10.0);
     view->Translate(0.01, 0.0, 0.0);
-    userView ? ren->GetActiveCamera()->SetUserViewTransform(view)
-             : ren->GetActiveCamera()->SetModelTransformMatrix(model->GetMatrix());
+    if (userView)
+    {
+      ren->GetActiveCamera()->SetUserViewTransform(view);
+    }
+    else
+    {
+      ren->GetActiveCamera()->SetModelTransformMatrix(model->GetMatrix());
+    }
     auto [raster, traced, pass] = RenderRasterThenTraced(win, ren);
     const long differing = CountDifferingPixels(traced, raster, 40);
     const long covered = CountForegroundPixels(traced, ren->GetBackground());
