@@ -676,6 +676,15 @@ void vtkBVHCellLocator::PrintSelf(ostream& os, vtkIndent indent)
        << " buckets built so far";
   }
   os << "\n";
+  // How cells of several triangles are found by their own bounds.
+  os << indent << "Cells of several triangles: " << d.MultiTriangleCells.size();
+  if (!d.MultiTriangleCells.empty())
+  {
+    os << (d.QueriesLookByReach ? ", looked for within their reach of a query"
+                                : ", looked for in a tree over their bounds")
+       << " (reach " << d.ToWorldLength(d.MultiTriangleCellReach) << ")";
+  }
+  os << "\n";
   // PrintSelf does not build: the fast build makes the binary tree only
   // when something needs it.
   if (d.TreeBuilt.Ready.load())

@@ -442,16 +442,17 @@ vtkSmartPointer<vtkPolyData> SeveralTriangleCells(Random& rng, bool largeQuad)
   return pd;
 }
 
-/// The large tilted quad of SeveralTriangleCells under a fine triangle mesh
-/// (a bumpy sphere): the quad is the only cell of several triangles.
+/// A large tilted diamond under a fine triangle mesh (a bumpy sphere): the
+/// diamond is the only cell of several triangles, and its two triangles'
+/// boxes leave a quarter of its bounds uncovered.
 vtkSmartPointer<vtkPolyData> TrianglesOverLargeQuad()
 {
   auto sphere = MakeBumpySphere(40, 3.0);
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->DeepCopy(sphere);
   vtkPoints* pts = pd->GetPoints();
-  const vtkIdType quad[4] = { pts->InsertNextPoint(-5, -5, -4.5), pts->InsertNextPoint(6, -5, -3.5),
-    pts->InsertNextPoint(7, 6, -3.0), pts->InsertNextPoint(-4, 5, -3.5) };
+  const vtkIdType quad[4] = { pts->InsertNextPoint(0, -6, -4), pts->InsertNextPoint(6, 0, -2.2),
+    pts->InsertNextPoint(0, 6, -4), pts->InsertNextPoint(-6, 0, -5.8) };
   pd->GetPolys()->InsertNextCell(4, quad);
   return pd;
 }
@@ -459,6 +460,36 @@ vtkSmartPointer<vtkPolyData> TrianglesOverLargeQuad()
 /// The queries by cell bounds against brute force over the cells' bounds:
 /// 400 boxes, 200 segments at two tolerances, 600 FindCell points. Returns
 /// the cells listed in the boxes and the points located.
+/// Per cell, the bounds of each of its triangles (vtkCell::Triangulate).
+std::vector<std::vector<std::array<double, 6>>> TriangleBounds(vtkPolyData* pd)
+{
+  std::vector<std::vector<std::array<double, 6>>> out(pd->GetNumberOfCells());
+  vtkNew<vtkGenericCell> cell;
+  vtkNew<vtkIdList> ids;
+  vtkNew<vtkPoints> pts;
+  for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c)
+  {
+    pd->GetCell(c, cell);
+    cell->Triangulate(0, ids, pts);
+    for (vtkIdType t = 0; t + 2 < pts->GetNumberOfPoints(); t += 3)
+    {
+      std::array<double, 6> bb = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+        VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+      for (int k = 0; k < 3; ++k)
+      {
+        const double* x = pts->GetPoint(t + k);
+        for (int a = 0; a < 3; ++a)
+        {
+          bb[2 * a] = std::min(bb[2 * a], x[a]);
+          bb[2 * a + 1] = std::max(bb[2 * a + 1], x[a]);
+        }
+      }
+      out[c].push_back(bb);
+    }
+  }
+  return out;
+}
+
 std::pair<int, int> CheckCellBounds(vtkPolyData* pd, vtkBVHCellLocator* loc, Random& rng)
 {
   double b[6];
@@ -466,6 +497,10 @@ std::pair<int, int> CheckCellBounds(vtkPolyData* pd, vtkBVHCellLocator* loc, Ran
   const double size = std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
   vtkNew<vtkIdList> ids;
   int boxCells = 0;
+  // Cells a box meets by their bounds while none of their triangles' boxes
+  // does: what answering from the triangles alone would miss.
+  const auto triangles = TriangleBounds(pd);
+  int boundsOnly = 0;
   for (int i = 0; i < 400; ++i)
   {
     double box[6];
@@ -480,7 +515,15 @@ std::pair<int, int> CheckCellBounds(vtkPolyData* pd, vtkBVHCellLocator* loc, Ran
     LT_CHECK_MSG(ToVector(ids) == ref, "box " << i << ": " << ids->GetNumberOfIds() << " cells, "
                                               << ref.size() << " by brute force");
     boxCells += static_cast<int>(ref.size());
+    for (const vtkIdType c : ref)
+    {
+      boundsOnly += std::none_of(triangles[c].begin(), triangles[c].end(), [&box](const std::array<double, 6>& t) {
+        return t[0] <= box[1] && box[0] <= t[1] && t[2] <= box[3] && box[2] <= t[3] && t[4] <= box[5] &&
+          box[4] <= t[5];
+      });
+    }
   }
+  LT_CHECK_MSG(boundsOnly > 0, "no box meets a cell by its bounds alone");
   int segmentCells = 0;
   for (const Segment& s : RandomSegments(pd, 200, rng))
   {
@@ -550,10 +593,13 @@ int TestQueriesCellsOfSeveralTriangles()
   {
     const char* Name;
     vtkSmartPointer<vtkPolyData> Data;
+    const char* How; ///< how PrintSelf says such cells are found
   };
-  const Case cases[] = { { "stars, quads and strips", SeveralTriangleCells(rng, false) },
-    { "a large quad under them", SeveralTriangleCells(rng, true) },
-    { "a large quad under triangles", TrianglesOverLargeQuad() } };
+  const char* reach = "looked for within their reach of a query";
+  const char* tree = "looked for in a tree over their bounds";
+  const Case cases[] = { { "stars, quads and strips", SeveralTriangleCells(rng, false), reach },
+    { "a large quad under them", SeveralTriangleCells(rng, true), tree },
+    { "a large quad under triangles", TrianglesOverLargeQuad(), tree } };
   for (const Case& c : cases)
   {
     for (int quality : { vtkBVHCellLocator::FAST, vtkBVHCellLocator::SAH })
@@ -562,6 +608,9 @@ int TestQueriesCellsOfSeveralTriangles()
       loc->SetBuildQuality(quality);
       loc->SetDataSet(c.Data);
       loc->BuildLocator();
+      std::ostringstream printed;
+      loc->Print(printed);
+      LT_CHECK_MSG(printed.str().find(c.How) != std::string::npos, c.Name << ": not " << c.How);
       const std::pair<int, int> found = CheckCellBounds(c.Data, loc, rng);
       LT_CHECK(found.first > 100 && found.second > 30);
       std::cout << c.Name << ", quality " << quality << ": " << found.first << " cells in 400 boxes, "
