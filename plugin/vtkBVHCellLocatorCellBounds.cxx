@@ -91,11 +91,7 @@ void BVHCellLocatorData::CellsInLocalBox(const Box& q, std::vector<vtkIdType>& c
       cells.push_back(this->PrimitiveCell(prim));
     }
   };
-  if (!core::overlapBoxWide(PickingScene{ this }, q, overlap))
-  {
-    this->EnsureTree();
-    core::queryBox(this->Tree, q, overlap);
-  }
+  PickingScene{ this }.forPrimitivesInBox(q, overlap);
   std::sort(cells.begin(), cells.end());
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
 }
@@ -134,11 +130,7 @@ void BVHCellLocatorData::CellsInBox(
         nearby.emplace_back(this->PrimitiveCell(prim), b);
       }
     };
-    if (!core::overlapBoxWide(PickingScene{ this }, grown, overlap))
-    {
-      this->EnsureTree();
-      core::queryBox(this->Tree, grown, overlap);
-    }
+    PickingScene{ this }.forPrimitivesInBox(grown, overlap);
     AddCellsMeeting(nearby, [&q](const Box& b) { return b.overlaps(q); }, cells);
   }
   std::sort(cells.begin(), cells.end());

@@ -5,6 +5,8 @@
 
 #include "vtkBVHCellLocatorInternals.h"
 
+#include "vtkrt/core/BVHTraversal.h"
+#include "vtkrt/core/WidePointQueries.h"
 #include "vtkrt/core/WideTraversal.h"
 
 #include <cmath>
@@ -40,6 +42,16 @@ struct BVHCellLocatorData::PickingScene
   {
     this->D->EnsureTree();
     return this->D->Tree;
+  }
+  /// fn(prim) for every primitive in a leaf whose box overlaps q (local):
+  /// through the wide walk, or the binary tree where it cannot be trusted.
+  template <class Fn>
+  void forPrimitivesInBox(const Box& q, Fn&& fn) const
+  {
+    if (!core::overlapBoxWide(*this, q, fn))
+    {
+      core::queryBox(this->binaryTree(), q, fn);
+    }
   }
 #if VTKRT_CORE_SSE
   /// The exact test of a leaf's triangles reads their point ids.

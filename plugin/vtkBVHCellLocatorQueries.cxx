@@ -579,11 +579,7 @@ vtkIdType BVHCellLocatorData::FindCell(
       candidates.emplace_back(this->PrimitiveCell(prim), prim);
     }
   };
-  if (!core::overlapBoxWide(PickingScene{ this }, q, overlap))
-  {
-    this->EnsureTree();
-    core::queryBox(this->Tree, q, overlap);
-  }
+  PickingScene{ this }.forPrimitivesInBox(q, overlap);
   if (!reach)
   {
     thread_local std::vector<vtkIdType> multi;

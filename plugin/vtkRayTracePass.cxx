@@ -314,20 +314,19 @@ namespace
 /// Viewport, scissor and VTK's own clear (solid or gradient background), as
 /// vtkCameraPass sets them: the renderer's tiled viewport, or all of the
 /// framebuffer a wrapping pass (vtkSSAAPass, an image processing pass)
-/// hands over in the render state.
-void BeginDrawing(const vtkRenderState* s, vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam)
+/// hands over in the render state (`size` and `origin`: the drawn viewport).
+void BeginDrawing(const vtkRenderState* s, vtkOpenGLRenderer* ren, vtkOpenGLCamera* cam,
+  const int size[2], const int origin[2])
 {
   if (!s->GetFrameBuffer())
   {
     cam->Render(ren);
     return;
   }
-  int size[2] = { 0, 0 };
-  s->GetWindowSize(size);
   vtkOpenGLState* ostate = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow())->GetState();
-  ostate->vtkglViewport(0, 0, size[0], size[1]);
+  ostate->vtkglViewport(origin[0], origin[1], size[0], size[1]);
   ostate->vtkglEnable(GL_SCISSOR_TEST);
-  ostate->vtkglScissor(0, 0, size[0], size[1]);
+  ostate->vtkglScissor(origin[0], origin[1], size[0], size[1]);
   if (ren->GetRenderWindow()->GetErase() && ren->GetErase())
   {
     ren->Clear();
@@ -361,7 +360,9 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     vtkErrorMacro("vtkRayTracePass needs a vtkOpenGLCamera.");
     return;
   }
-  BeginDrawing(s, ren, cam);
+  int size[2] = { 0, 0 }, origin[2] = { 0, 0 };
+  Internals::DrawnViewport(s, ren, size, origin);
+  BeginDrawing(s, ren, cam, size, origin);
   // Lights follow the camera and VTK computes the lighting complexity.
   in.Lights->Render(s);
 

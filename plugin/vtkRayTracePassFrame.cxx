@@ -83,19 +83,6 @@ bool DrawsFloatColors(const vtkRenderState* s)
   return color && (color->GetVTKDataType() == VTK_FLOAT || color->GetVTKDataType() == VTK_DOUBLE);
 }
 
-/// The pixels a frame draws, as VTK's vtkCameraPass sets them: the
-/// renderer's tiled viewport, or all of a framebuffer that a wrapping pass
-/// (vtkSSAAPass, an image processing pass) draws the frame into.
-void DrawnViewport(const vtkRenderState* s, vtkRenderer* ren, int size[2], int origin[2])
-{
-  if (s && s->GetFrameBuffer())
-  {
-    s->GetWindowSize(size);
-    origin[0] = origin[1] = 0;
-    return;
-  }
-  ren->GetTiledSizeAndOrigin(size, size + 1, origin, origin + 1);
-}
 
 /// False when the environment variable is 0: tests compare the pass with
 /// and without a way of saving work, which must not change the image.
@@ -152,6 +139,17 @@ bool GeneralShaderOnly()
   return value && *value && std::strcmp(value, "0") != 0;
 }
 } // namespace
+
+void vtkRayTracePass::Internals::DrawnViewport(const vtkRenderState* s, vtkRenderer* ren, int size[2], int origin[2])
+{
+  if (s && s->GetFrameBuffer())
+  {
+    s->GetWindowSize(size);
+    origin[0] = origin[1] = 0;
+    return;
+  }
+  ren->GetTiledSizeAndOrigin(size, size + 1, origin, origin + 1);
+}
 
 void vtkRayTracePass::Internals::Extract(
   const vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren)

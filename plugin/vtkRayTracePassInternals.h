@@ -182,6 +182,10 @@ struct vtkRayTracePass::Internals
   /// lights and shader (the selection ids variant when `selectIds`): the
   /// tracer ready, its uniforms set, its samplers bound; false when it
   /// cannot trace.
+  /// The pixels a frame draws, as VTK's vtkCameraPass sets them: the
+  /// renderer's tiled viewport, or all of a framebuffer that a wrapping
+  /// pass (vtkSSAAPass, an image processing pass) draws the frame into.
+  static void DrawnViewport(const vtkRenderState* s, vtkRenderer* ren, int size[2], int origin[2]);
   bool Prepare(const vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren,
     vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam, const std::vector<bool>* traced,
     bool selectIds, Prepared& p);

@@ -301,21 +301,7 @@ void CheckBoxAndLineLists(vtkDataSet* ds, vtkBVHCellLocator* bvh, vtkStaticCellL
     for (double tol : { 0.0, 1e-3 * diag })
     {
       bvh->FindCellsAlongLine(s.P1, s.P2, tol, ours);
-      std::vector<vtkIdType> ref;
-      for (vtkIdType c = 0; c < ds->GetNumberOfCells(); ++c)
-      {
-        double cb[6];
-        ds->GetCellBounds(c, cb);
-        for (int k = 0; k < 3; ++k)
-        {
-          cb[2 * k] -= tol;
-          cb[2 * k + 1] += tol;
-        }
-        if (SegmentMeetsBox(s.P1, s.P2, cb))
-        {
-          ref.push_back(c);
-        }
-      }
+      const std::vector<vtkIdType> ref = BruteForceCellsAlongLine(ds, s.P1, s.P2, tol);
       if (cellBoxesArePrimitiveBoxes)
       {
         LT_CHECK_MSG(ToVector(ours) == ref, name << " FindCellsAlongLine differs from brute force");

@@ -489,6 +489,49 @@ inline bool SegmentMeetsBox(const double p1[3], const double p2[3], const double
   return true;
 }
 
+/// Cells whose bounds, grown by tol, segment p1->p2 meets.
+inline std::vector<vtkIdType> BruteForceCellsAlongLine(
+  vtkDataSet* ds, const double p1[3], const double p2[3], double tol)
+{
+  std::vector<vtkIdType> out;
+  for (vtkIdType c = 0; c < ds->GetNumberOfCells(); ++c)
+  {
+    double cb[6];
+    ds->GetCellBounds(c, cb);
+    for (int k = 0; k < 3; ++k)
+    {
+      cb[2 * k] -= tol;
+      cb[2 * k + 1] += tol;
+    }
+    if (SegmentMeetsBox(p1, p2, cb))
+    {
+      out.push_back(c);
+    }
+  }
+  return out;
+}
+
+/// As VTK 9.1's locators answer FindCell: the lowest-id cell whose bounds
+/// hold x and whose EvaluatePosition says inside (-1 if none); `cell` and
+/// `w` are scratch.
+inline vtkIdType BruteForceFindCell(vtkDataSet* ds, const double x[3], vtkGenericCell* cell, double* w)
+{
+  double xx[3] = { x[0], x[1], x[2] };
+  for (vtkIdType c = 0; c < ds->GetNumberOfCells(); ++c)
+  {
+    ds->GetCell(c, cell);
+    const double* b = cell->GetBounds();
+    double cp[3], pc[3], d2;
+    int sub;
+    if (xx[0] >= b[0] && xx[0] <= b[1] && xx[1] >= b[2] && xx[1] <= b[3] && xx[2] >= b[4] &&
+      xx[2] <= b[5] && cell->EvaluatePosition(xx, cp, sub, pc, d2, w) == 1)
+    {
+      return c;
+    }
+  }
+  return -1;
+}
+
 inline std::vector<vtkIdType> ToVector(vtkIdList* ids)
 {
   std::vector<vtkIdType> v(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());

@@ -546,19 +546,7 @@ int TestContractFindCellOnSurfaces()
     double pc[3];
     const vtkIdType ours = loc->FindCell(x, 0.0, cell, pc, w.data());
     LT_CHECK(loc->FindCell(x, 1.0, cell, pc, w.data()) == ours); // tol2 not used
-    vtkIdType ref = -1;
-    for (vtkIdType c = 0; c < pd->GetNumberOfCells() && ref < 0; ++c)
-    {
-      pd->GetCell(c, c2);
-      const double* b = c2->GetBounds();
-      double cp[3], pc2[3], d2;
-      int sub;
-      if (x[0] >= b[0] && x[0] <= b[1] && x[1] >= b[2] && x[1] <= b[3] && x[2] >= b[4] && x[2] <= b[5] &&
-        c2->EvaluatePosition(x, cp, sub, pc2, d2, w.data()) == 1)
-      {
-        ref = c;
-      }
-    }
+    const vtkIdType ref = BruteForceFindCell(pd, x, c2, w.data());
     located += ours >= 0 ? 1 : 0;
     asBruteForce += ours == ref ? 1 : 0;
     asVTK += ours == vtkLoc->FindCell(x) ? 1 : 0;

@@ -284,21 +284,7 @@ int TestQueriesAxisParallelSegments()
         }
         LT_CHECK_MSG(ours == ref, name << " all hits: " << ours.size() << " cells, brute force " << ref.size());
         loc->FindCellsAlongLine(s.P1, s.P2, tol, ids);
-        std::vector<vtkIdType> along;
-        for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c)
-        {
-          double cb[6];
-          pd->GetCellBounds(c, cb);
-          for (int a = 0; a < 3; ++a)
-          {
-            cb[2 * a] -= tol;
-            cb[2 * a + 1] += tol;
-          }
-          if (SegmentMeetsBox(s.P1, s.P2, cb))
-          {
-            along.push_back(c);
-          }
-        }
+        const std::vector<vtkIdType> along = BruteForceCellsAlongLine(pd, s.P1, s.P2, tol);
         LT_CHECK_MSG(ToVector(ids) == along, name << " along line: " << ids->GetNumberOfIds() << " cells, brute force " << along.size());
       }
     }
@@ -530,20 +516,7 @@ std::pair<int, int> CheckCellBounds(vtkPolyData* pd, vtkBVHCellLocator* loc, Ran
     for (double tol : { 0.0, 0.003 * size })
     {
       loc->FindCellsAlongLine(s.P1, s.P2, tol, ids);
-      std::vector<vtkIdType> ref;
-      for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c)
-      {
-        double cb[6];
-        pd->GetCellBounds(c, cb);
-        for (int k = 0; k < 6; ++k)
-        {
-          cb[k] += (k % 2 == 0 ? -tol : tol);
-        }
-        if (SegmentMeetsBox(s.P1, s.P2, cb))
-        {
-          ref.push_back(c);
-        }
-      }
+      const std::vector<vtkIdType> ref = BruteForceCellsAlongLine(pd, s.P1, s.P2, tol);
       LT_CHECK_MSG(ToVector(ids) == ref, "segment: " << ids->GetNumberOfIds() << " cells, " << ref.size()
                                                      << " by brute force, tolerance " << tol);
       segmentCells += static_cast<int>(ref.size());
@@ -558,19 +531,7 @@ std::pair<int, int> CheckCellBounds(vtkPolyData* pd, vtkBVHCellLocator* loc, Ran
   for (int i = 0; i < 600; ++i)
   {
     double x[3] = { rng.Next(b[0], b[1]), rng.Next(b[2], b[3]), rng.Next(b[4], b[5]) }, pc[3];
-    vtkIdType ref = -1;
-    for (vtkIdType c = 0; c < pd->GetNumberOfCells() && ref < 0; ++c)
-    {
-      double cb[6], cp[3], d2;
-      int sub;
-      pd->GetCellBounds(c, cb);
-      pd->GetCell(c, cell);
-      if (x[0] >= cb[0] && x[0] <= cb[1] && x[1] >= cb[2] && x[1] <= cb[3] && x[2] >= cb[4] &&
-        x[2] <= cb[5] && cell->EvaluatePosition(x, cp, sub, pc, d2, w.data()) == 1)
-      {
-        ref = c;
-      }
-    }
+    const vtkIdType ref = BruteForceFindCell(pd, x, cell, w.data());
     const vtkIdType ours = loc->FindCell(x, 0.0, cell, pc, w.data());
     LT_CHECK_MSG(ours == ref, "FindCell gives " << ours << ", brute force " << ref);
     located += ref >= 0 ? 1 : 0;

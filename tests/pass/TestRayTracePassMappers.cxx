@@ -191,6 +191,17 @@ void TestDataSetMapper()
   NoVTKOutput("vtkDataSetMapper");
 }
 
+/// Values 0 1 2 3 4 0 1 ... for `n` points or cells (scalars over [0, 4]).
+vtkSmartPointer<vtkFloatArray> CyclingValues(vtkIdType n)
+{
+  auto values = vtkSmartPointer<vtkFloatArray>::New();
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    values->InsertNextValue(static_cast<float>(i % 5));
+  }
+  return values;
+}
+
 // Colors that replace scalars: a composite block's color (its own or
 // inherited) replaces point and cell scalar colors, as
 // vtkCompositePolyDataMapper2 draws it; field-data coloring gives every cell
@@ -205,12 +216,8 @@ void TestReplacedColors()
     for (unsigned int b = 0; b < 3; ++b)
     {
       vtkSmartPointer<vtkPolyData> sphere = Sphere(1.2 * b, 24);
-      vtkNew<vtkFloatArray> values;
-      const vtkIdType n = cellScalars ? sphere->GetNumberOfCells() : sphere->GetNumberOfPoints();
-      for (vtkIdType i = 0; i < n; ++i)
-      {
-        values->InsertNextValue(static_cast<float>(i % 5));
-      }
+      vtkSmartPointer<vtkFloatArray> values =
+        CyclingValues(cellScalars ? sphere->GetNumberOfCells() : sphere->GetNumberOfPoints());
       if (cellScalars)
       {
         sphere->GetCellData()->SetScalars(values);
@@ -255,12 +262,7 @@ void TestReplacedColors()
     for (unsigned int b = 0; b < 2; ++b)
     {
       vtkSmartPointer<vtkPolyData> sphere = Sphere(1.2 * b, 24);
-      vtkNew<vtkFloatArray> values;
-      for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
-      {
-        values->InsertNextValue(static_cast<float>(i % 5));
-      }
-      sphere->GetPointData()->SetScalars(values);
+      sphere->GetPointData()->SetScalars(CyclingValues(sphere->GetNumberOfPoints()));
       blocks->SetBlock(b, sphere);
     }
     vtkNew<vtkLookupTable> table;
@@ -705,13 +707,9 @@ void TestMissingArraysNanColor()
         vtkSmartPointer<vtkPolyData> sphere = Sphere(1.2 * b, 24);
         if (b == 1)
         {
-          vtkNew<vtkFloatArray> values;
+          vtkSmartPointer<vtkFloatArray> values =
+            CyclingValues(cells ? sphere->GetNumberOfCells() : sphere->GetNumberOfPoints());
           values->SetName("values");
-          const vtkIdType n = cells ? sphere->GetNumberOfCells() : sphere->GetNumberOfPoints();
-          for (vtkIdType i = 0; i < n; ++i)
-          {
-            values->InsertNextValue(static_cast<float>(i % 5));
-          }
           (cells ? static_cast<vtkDataSetAttributes*>(sphere->GetCellData()) : sphere->GetPointData())
             ->AddArray(values);
         }
