@@ -71,10 +71,9 @@ struct TraceRules
 {
   bool Translucency = true;       ///< translucent actors can be traced
   bool HiddenLineRemoval = false; ///< lone wireframe actors go to raster's pass for it
-  bool Hidden = false;            ///< hidden props count as shown (what KeepCulledProps keeps)
-  /// Any looks count as traceable, for the data a mapper of the pass's
-  /// kinds draws: what KeepCulledProps keeps of a prop left to raster.
-  bool AnyLooks = false;
+  /// What KeepCulledProps keeps counts as traceable: hidden props, and any
+  /// looks, for the data a mapper of the pass's kinds draws.
+  bool Kept = false;
 };
 
 /// Renderer props -> instances, with geometry cached by (data object, MTime).

@@ -223,22 +223,22 @@ bool Scene::TraceableParts(vtkProp* prop, const TraceRules& rules, std::vector<P
   // is traced whole or left to raster whole, as its selection reports one
   // prop.
   auto* lone = vtkActor::SafeDownCast(prop);
-  if (rules.HiddenLineRemoval && !rules.AnyLooks && lone &&
+  if (rules.HiddenLineRemoval && !rules.Kept && lone &&
     lone->GetProperty()->GetRepresentation() == VTK_WIREFRAME)
   {
     return false;
   }
-  return prop && (prop->GetVisibility() || rules.Hidden) && PartsOf(prop, parts) && !parts.empty() &&
+  return prop && (prop->GetVisibility() || rules.Kept) && PartsOf(prop, parts) && !parts.empty() &&
     std::all_of(parts.begin(), parts.end(), [&rules](const PropPart& part) {
       return IsTraceableActor(part.Actor, rules) &&
-        (rules.AnyLooks || IsAffine(part.Matrix ? part.Matrix.Get() : part.Actor->GetMatrix()));
+        (rules.Kept || IsAffine(part.Matrix ? part.Matrix.Get() : part.Actor->GetMatrix()));
     });
 }
 
 bool Scene::IsTraceableActor(vtkActor* actor, const TraceRules& rules)
 {
   // A skybox is the environment drawn behind the scene, not its data.
-  if ((!actor->GetVisibility() && !rules.Hidden) || !actor->GetMapper() || vtkSkybox::SafeDownCast(actor))
+  if ((!actor->GetVisibility() && !rules.Kept) || !actor->GetMapper() || vtkSkybox::SafeDownCast(actor))
   {
     return false;
   }
@@ -255,7 +255,7 @@ bool Scene::IsTraceableActor(vtkActor* actor, const TraceRules& rules)
   {
     return false;
   }
-  if (rules.AnyLooks)
+  if (rules.Kept)
   {
     return true;
   }
@@ -309,8 +309,7 @@ void Scene::KeepCulledProps(
   // (points representation, PBR, ...): showing or tracing one again builds
   // and uploads nothing, as raster keeps an invisible actor's buffers.
   TraceRules rules = this->Rules;
-  rules.Hidden = true;
-  rules.AnyLooks = true;
+  rules.Kept = true;
   const KeepingScope scope(*this, true);
   vtkCollectionSimpleIterator it;
   vtkPropCollection* all = ren->GetViewProps();
