@@ -195,6 +195,10 @@ void vtkEGLHeadlessRenderWindow::Initialize()
       this->DestroyContext();
       return;
     }
+    // VTK's raster expects GL_LEQUAL, so that of two coincident surfaces or
+    // lines the one drawn last shows, as in VTK's X11 windows; VTK 9.1's
+    // state initialisation leaves a fresh EGL context at GL_LESS.
+    this->GetState()->vtkglDepthFunc(GL_LEQUAL);
   }
   this->ContextReady = true;
 }

@@ -458,10 +458,12 @@ std::unique_ptr<Geometry> BuildScreenSpheres(
 {
   core::NoFillArray<Vec3<double>> all;
   ReadPoints(poly->GetPoints(), all);
-  // The first cell (VTK's numbering: verts, lines, polygons, strips) that
-  // holds each drawn point: what raster's cell selection reports for it.
+  // The last cell (VTK's numbering and drawing order: verts, lines,
+  // polygons, strips) that holds each drawn point: raster draws the point
+  // once for each, and its GL_LEQUAL depth test keeps the last, for
+  // selection and for colors by cell.
   constexpr std::uint32_t kNoCell = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> firstCell(all.size(), kNoCell);
+  std::vector<std::uint32_t> drawnCell(all.size(), kNoCell);
   std::uint32_t cellId = 0;
   vtkIdType npts;
   const vtkIdType* pts;
@@ -477,10 +479,9 @@ std::unique_ptr<Geometry> BuildScreenSpheres(
       it->GetCurrentCell(npts, pts);
       for (vtkIdType k = 0; k < npts; ++k)
       {
-        if (pts[k] >= 0 && static_cast<std::size_t>(pts[k]) < firstCell.size() &&
-          firstCell[static_cast<std::size_t>(pts[k])] == kNoCell)
+        if (pts[k] >= 0 && static_cast<std::size_t>(pts[k]) < drawnCell.size())
         {
-          firstCell[static_cast<std::size_t>(pts[k])] = cellId;
+          drawnCell[static_cast<std::size_t>(pts[k])] = cellId;
         }
       }
     }
@@ -493,7 +494,7 @@ std::unique_ptr<Geometry> BuildScreenSpheres(
   std::vector<std::uint32_t> ids;
   for (std::size_t i = 0; i < all.size(); ++i)
   {
-    if (firstCell[i] != kNoCell)
+    if (drawnCell[i] != kNoCell)
     {
       centers.push_back(all[i]);
       ids.push_back(static_cast<std::uint32_t>(i));
@@ -509,12 +510,12 @@ std::unique_ptr<Geometry> BuildScreenSpheres(
     s.radius = 0.0f;
   }
   const bool cellsAreThePoints = std::all_of(
-    g->SphereIds.begin(), g->SphereIds.end(), [&](std::uint32_t point) { return firstCell[point] == point; });
+    g->SphereIds.begin(), g->SphereIds.end(), [&](std::uint32_t point) { return drawnCell[point] == point; });
   if (!cellsAreThePoints)
   {
     g->SphereCellIds.resize(g->SphereIds.size());
     std::transform(g->SphereIds.begin(), g->SphereIds.end(), g->SphereCellIds.begin(),
-      [&](std::uint32_t point) { return firstCell[point]; });
+      [&](std::uint32_t point) { return drawnCell[point]; });
     // What selection reports: its high-24-bit pass runs only past 2^24.
     g->MaximumId = *std::max_element(g->SphereCellIds.begin(), g->SphereCellIds.end());
   }

@@ -467,33 +467,39 @@ void TestCoincidentWires()
   actor->GetProperty()->LightingOff();
   scene.Renderer->AddActor(actor);
   scene.Renderer->ResetCamera();
-  vtkNew<vtkRayTracePass> pass;
-  scene.Renderer->SetPass(pass);
-  scene.Window->Render();
-  auto image = Grab(scene.Window);
-  double front[3];
-  mapper->GetLookupTable()->GetColor(5.0, front);
   // The middle of each front edge, in display coordinates.
   const double middles[4][3] = { { 0.0, 0.5, 0.5 }, { 0.0, -0.5, 0.5 }, { 0.5, 0.0, 0.5 }, { -0.5, 0.0, 0.5 } };
-  int frontColored = 0;
-  int dims[3];
-  image->GetDimensions(dims);
-  const auto* rgb = static_cast<const unsigned char*>(image->GetScalarPointer());
-  for (const auto& m : middles)
-  {
-    scene.Renderer->SetWorldPoint(m[0], m[1], m[2], 1.0);
-    scene.Renderer->WorldToDisplay();
-    double d[3];
-    scene.Renderer->GetDisplayPoint(d);
-    const int x = static_cast<int>(std::lround(d[0])), y = static_cast<int>(std::lround(d[1]));
-    const unsigned char* p = rgb + 3 * (static_cast<long>(y) * dims[0] + x);
-    bool match = true;
-    for (int k = 0; k < 3; ++k)
+  auto frontColoredEdges = [&]() {
+    scene.Window->Render();
+    auto image = Grab(scene.Window);
+    double front[3];
+    mapper->GetLookupTable()->GetColor(5.0, front); // its range is the mapper's once drawn
+    int frontColored = 0;
+    int dims[3];
+    image->GetDimensions(dims);
+    const auto* rgb = static_cast<const unsigned char*>(image->GetScalarPointer());
+    for (const auto& m : middles)
     {
-      match = match && std::abs(p[k] - 255.0 * front[k]) < 8.0;
+      scene.Renderer->SetWorldPoint(m[0], m[1], m[2], 1.0);
+      scene.Renderer->WorldToDisplay();
+      double d[3];
+      scene.Renderer->GetDisplayPoint(d);
+      const int x = static_cast<int>(std::lround(d[0])), y = static_cast<int>(std::lround(d[1]));
+      const unsigned char* p = rgb + 3 * (static_cast<long>(y) * dims[0] + x);
+      bool match = true;
+      for (int k = 0; k < 3; ++k)
+      {
+        match = match && std::abs(p[k] - 255.0 * front[k]) < 8.0;
+      }
+      frontColored += match ? 1 : 0;
     }
-    frontColored += match ? 1 : 0;
-  }
+    return frontColored;
+  };
+  const int rasterColored = frontColoredEdges();
+  Check(rasterColored == 4, "raster: the front face's color on " + std::to_string(rasterColored) + " of its 4 edges");
+  vtkNew<vtkRayTracePass> pass;
+  scene.Renderer->SetPass(pass);
+  const int frontColored = frontColoredEdges();
   Check(pass->GetNumberOfTracedProps() == 1 && frontColored == 4,
     "coincident wires: the front face's color on " + std::to_string(frontColored) +
       " of its 4 edges (the highest cell id wins, as raster's last drawn)");

@@ -472,6 +472,32 @@ void TestMultiSamples()
 }
 
 //------------------------------------------------------------------------------
+// Two actors of one cube in one place: raster draws them at equal depths,
+// and VTK's GL_LEQUAL depth test (VTK's X11 windows) shows the one drawn
+// last; a context left at GL_LESS shows the first.
+void TestCoincidentDrawnLast()
+{
+  const std::array<double, 3> red{ 1, 0, 0 }, bg{ 0.1, 0.2, 0.3 };
+  std::array<double, 3> blue{ 0, 0, 1 };
+  auto window = MakeWindow(160, 120);
+  Scene first(false, red, bg);
+  vtkNew<vtkActor> second;
+  second->SetMapper(first.Actor->GetMapper());
+  second->GetProperty()->DeepCopy(first.Actor->GetProperty());
+  second->GetProperty()->SetColor(blue.data());
+  first.Renderer->AddActor(second);
+  window->AddRenderer(first.Renderer);
+  for (int frame = 0; frame < 2; ++frame)
+  {
+    window->Render();
+    Pixels px;
+    Read(window, px);
+    CheckCubeFootprint(first.Renderer, px, blue, bg, "frame " + std::to_string(frame) + ": the actor drawn last");
+  }
+  NoVTKOutput("coincident actors");
+}
+
+//------------------------------------------------------------------------------
 // Teardown in every order: window before renderer, renderer before window,
 // never-rendered windows, Finalize then delete, a new window after the last
 // one (and its EGL display) went away.
@@ -655,6 +681,7 @@ int main(int argc, char* argv[])
     { "Description", TestDescription },
     { "MultiSamples", TestMultiSamples },
     { "Teardown", TestTeardown },
+    { "CoincidentDrawnLast", TestCoincidentDrawnLast },
     { "DeviceIndex", [] {} }, // run by main: may skip
     { "BadDeviceIndex", [] { TestFailure(true, "999"); } },
     { "BadDeviceFromEnv", [] { TestFailure(false, "VTKRT_EGL_DEVICE"); } },
