@@ -29,6 +29,7 @@
 
 #include "vtkCellLocator.h"
 #include "vtkGenericCell.h"
+#include "vtkCellArray.h"
 #include "vtkMath.h"
 #include "vtkMinimalStandardRandomSequence.h"
 #include "vtkModifiedBSPTree.h"
@@ -108,6 +109,44 @@ vtkSmartPointer<vtkPolyData> BumpySphere(int res)
   }
   pd->SetPoints(pts);
   pd->GetPointData()->Initialize();
+  return pd;
+}
+
+/// A closed torus of quads (n around the ring, n/2 around the tube), bumped
+/// as BumpySphere: the quad meshes of structured surfaces and CAD exports.
+vtkSmartPointer<vtkPolyData> BumpyQuadTorus(int n)
+{
+  const int m = std::max(3, n / 2);
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(static_cast<vtkIdType>(n) * m);
+  for (int i = 0; i < n; ++i)
+  {
+    const double u = 2.0 * vtkMath::Pi() * i / n;
+    for (int j = 0; j < m; ++j)
+    {
+      const double v = 2.0 * vtkMath::Pi() * j / m;
+      const double r = 0.35 * (1.0 + 0.15 * std::sin(7.0 * u) * std::cos(5.0 * v));
+      const double c = 1.0 + r * std::cos(v);
+      pts->SetPoint(static_cast<vtkIdType>(i) * m + j, c * std::cos(u), c * std::sin(u), r * std::sin(v));
+    }
+  }
+  vtkNew<vtkCellArray> quads;
+  quads->AllocateExact(static_cast<vtkIdType>(n) * m, 4 * static_cast<vtkIdType>(n) * m);
+  for (int i = 0; i < n; ++i)
+  {
+    for (int j = 0; j < m; ++j)
+    {
+      const vtkIdType a = static_cast<vtkIdType>(i) * m + j, b = static_cast<vtkIdType>((i + 1) % n) * m + j;
+      const vtkIdType c = static_cast<vtkIdType>((i + 1) % n) * m + (j + 1) % m;
+      const vtkIdType d = static_cast<vtkIdType>(i) * m + (j + 1) % m;
+      const vtkIdType quad[4] = { a, b, c, d };
+      quads->InsertNextCell(4, quad);
+    }
+  }
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->SetPoints(pts);
+  pd->SetPolys(quads);
   return pd;
 }
 
@@ -645,6 +684,13 @@ int main(int argc, char* argv[])
   if (wantMesh(smallMesh))
   {
     RunMesh(smallMesh, BumpySphere(quick ? 100 : 224), rays, quick);
+  }
+  // Quads: cells of two triangles each, whose bounds and hits the locator
+  // makes from its triangles.
+  const char* quadMesh = quick ? "generated 20k quads" : "generated 500k quads";
+  if (wantMesh(quadMesh))
+  {
+    RunMesh(quadMesh, BumpyQuadTorus(quick ? 200 : 1000), rays, quick);
   }
   if (!quick && wantMesh("generated 1M"))
   {

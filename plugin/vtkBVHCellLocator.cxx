@@ -680,9 +680,8 @@ void vtkBVHCellLocator::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Cells of several triangles: " << d.MultiTriangleCells.size();
   if (!d.MultiTriangleCells.empty())
   {
-    os << (d.QueriesLookByReach ? ", looked for within their reach of a query"
-                                : ", looked for in a tree over their bounds")
-       << " (reach " << d.ToWorldLength(d.MultiTriangleCellReach) << ")";
+    os << (d.OnlyMultiTriangleCells ? " (every cell)" : "") << ", found by their bounds in a tree "
+       << (d.MultiCells.Ready.load() ? "built" : "not built yet (the first FindCell or bounds query builds it)");
   }
   os << "\n";
   // PrintSelf does not build: the fast build makes the binary tree only

@@ -2,9 +2,8 @@
 // FindCellsAlongLine, and FindCell's candidates): VTK's locators answer them
 // from cell bounds, which for a cell of several triangles (a quad, polygon
 // or strip) can reach where none of its triangles' boxes does (a tilted
-// quad's corner, a star's notch). Such cells are looked for as far around
-// as they reach, or, where a few reach much farther than the mesh's
-// triangles, in a tree over their own bounds.
+// quad's corner, a star's notch). Such cells are looked for in a tree over
+// their own bounds, built by the first query that needs it.
 #include "vtkBVHCellLocatorInternals.h"
 #include "vtkBVHCellLocatorPickingScene.h"
 
@@ -14,13 +13,13 @@
 
 #include "vtkrt/core/BVHBuild.h"
 #include "vtkrt/core/BVHTraversal.h"
+#include "vtkrt/core/FloatRounding.h"
 #include "vtkrt/core/Ray.h"
 #include "vtkrt/core/SegmentQueries.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 namespace vtkrt
@@ -48,37 +47,12 @@ Box BVHCellLocatorData::CellBox(vtkDataSet* ds, vtkIdType cellId, vtkIdList* poi
 }
 
 //------------------------------------------------------------------------------
-bool BVHCellLocatorData::IsMultiTrianglePrimitive(std::uint32_t prim) const
+bool BVHCellLocatorData::InMultiTriangleCell(std::uint32_t prim) const
 {
-  // A one-triangle polygon counts too: its box is its cell's bounds.
+  // A one-triangle polygon is not: its box is its cell's bounds.
   return static_cast<vtkIdType>(prim) < this->NumberOfTriangles() &&
-    !(this->TriangleFlags(prim) & WholeTriangle);
-}
-
-//------------------------------------------------------------------------------
-void BVHCellLocatorData::AddCellsMeeting(std::vector<std::pair<vtkIdType, Box>>& nearby,
-  const std::function<bool(const Box&)>& meets, std::vector<vtkIdType>& cells)
-{
-  // A cell that meets the query lies within reach of it, so the walk met
-  // all its triangles: the union of their boxes is its bounds. A cell whose
-  // union does not meet the query does not meet it either.
-  std::sort(nearby.begin(), nearby.end(),
-    [](const std::pair<vtkIdType, Box>& x, const std::pair<vtkIdType, Box>& y) { return x.first < y.first; });
-  std::sort(cells.begin(), cells.end());
-  const std::size_t listed = cells.size();
-  for (std::size_t i = 0; i < nearby.size();)
-  {
-    const vtkIdType cellId = nearby[i].first;
-    Box bounds;
-    for (; i < nearby.size() && nearby[i].first == cellId; ++i)
-    {
-      bounds.extend(nearby[i].second);
-    }
-    if (!std::binary_search(cells.begin(), cells.begin() + listed, cellId) && meets(bounds))
-    {
-      cells.push_back(cellId);
-    }
-  }
+    !(this->TriangleFlags(prim) & WholeTriangle) &&
+    std::binary_search(this->MultiTriangleCells.begin(), this->MultiTriangleCells.end(), this->PrimitiveCell(prim));
 }
 
 //------------------------------------------------------------------------------
@@ -102,39 +76,20 @@ void BVHCellLocatorData::CellsInBox(
 {
   const Box q(this->ToLocal(Vec3d(bbox[0], bbox[2], bbox[4])),
     this->ToLocal(Vec3d(bbox[1], bbox[3], bbox[5])));
-  if (this->MultiTriangleCells.empty() || !ds)
+  if (!this->OnlyMultiTriangleCells || !ds)
   {
     this->CellsInLocalBox(q, cells);
-    return;
-  }
-  if (!this->QueriesLookByReach)
-  {
-    this->CellsInLocalBox(q, cells);
-    this->MultiCellsInLocalBox(ds, q, cells);
   }
   else
   {
-    // Triangles within reach of the box: their cells' own bounds decide.
-    const Vec3d reach(this->MultiTriangleCellReach);
-    const Box grown(q.min - reach, q.max + reach);
-    std::vector<std::pair<vtkIdType, Box>> nearby;
     cells.clear();
-    auto overlap = [&](std::uint32_t prim) {
-      const Box b = this->PrimitiveBox(prim);
-      if (b.overlaps(q))
-      {
-        cells.push_back(this->PrimitiveCell(prim));
-      }
-      else if (b.overlaps(grown) && this->IsMultiTrianglePrimitive(prim))
-      {
-        nearby.emplace_back(this->PrimitiveCell(prim), b);
-      }
-    };
-    PickingScene{ this }.forPrimitivesInBox(grown, overlap);
-    AddCellsMeeting(nearby, [&q](const Box& b) { return b.overlaps(q); }, cells);
   }
-  std::sort(cells.begin(), cells.end());
-  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  if (!this->MultiTriangleCells.empty() && ds)
+  {
+    this->MultiCellsInLocalBox(ds, q, cells);
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -157,34 +112,22 @@ void BVHCellLocatorData::CellsAlongLine(const double p1[3], const double p2[3], 
   const core::RayBoxPrecomputed<double> boxPre(ray);
   const core::RayTrianglePrecomputed<double> triPre(ray);
   const double localTol = this->ToLocalLength(tol);
-  // Cells of several triangles within reach of the segment: their own
-  // bounds decide (or MultiCells, where a few reach far).
-  const bool reaching = !this->MultiTriangleCells.empty() && ds && this->QueriesLookByReach;
-  const double walkTol = localTol + (reaching ? this->MultiTriangleCellReach : 0.0);
-  std::vector<std::pair<vtkIdType, Box>> nearby;
-  auto meets = [&](const Box& b, double grow, const core::Ray<double>& r) {
-    double tnear;
-    return core::intersectRayAABB(boxPre, b.min - Vec3d(grow), b.max + Vec3d(grow), r.tmin, r.tmax, tnear);
-  };
   auto isect = [&](std::uint32_t prim, const core::Ray<double>& r, core::Hit<double>&) {
     const Box b = this->PrimitiveBox(prim);
-    if (meets(b, localTol, r))
+    double tnear;
+    if (core::intersectRayAABB(boxPre, b.min - Vec3d(localTol), b.max + Vec3d(localTol), r.tmin, r.tmax, tnear))
     {
       cells.push_back(this->PrimitiveCell(prim));
     }
-    else if (reaching && meets(b, walkTol, r) && this->IsMultiTrianglePrimitive(prim))
-    {
-      nearby.emplace_back(this->PrimitiveCell(prim), b);
-    }
     return false;
   };
-  // Cells by their bounds: every triangle of a leaf the segment reaches.
-  core::allHitsSegment(PickingScene{ this }, ray, triPre, walkTol, false, isect);
-  if (reaching)
+  // Cells by their bounds: every triangle of a leaf the segment reaches,
+  // and the cells of several triangles by their own bounds.
+  if (!this->OnlyMultiTriangleCells || !ds)
   {
-    AddCellsMeeting(nearby, [&](const Box& b) { return meets(b, localTol, ray); }, cells);
+    core::allHitsSegment(PickingScene{ this }, ray, triPre, localTol, false, isect);
   }
-  else if (ds)
+  if (ds)
   {
     this->MultiCellsAlongSegment(ds, ray, localTol, cells);
   }
@@ -217,7 +160,31 @@ void BVHCellLocatorData::EnsureMultiCells(vtkDataSet* ds) const
   core::BuildOptions options = this->TreeOptions;
   options.parallelFor = nullptr;
   options.numThreads = 1;
+  options.maxLeafSize = 8; // a leaf's boxes lie side by side (below): larger leaves, a shallower walk
   m.Tree = core::buildBVH(m.Boxes.size(), [&m](std::size_t i) { return m.Boxes[i]; }, options);
+  std::vector<Box> leafBoxes(m.Boxes.size());
+  m.Cells.resize(m.Boxes.size());
+  for (std::size_t j = 0; j < m.Tree.primIndex.size(); ++j)
+  {
+    const std::uint32_t i = m.Tree.primIndex[j];
+    leafBoxes[j] = m.Boxes[i];
+    m.Cells[j] = this->MultiTriangleCells[i];
+    m.Tree.primIndex[j] = static_cast<std::uint32_t>(j);
+  }
+  m.Boxes.swap(leafBoxes);
+  m.Nodes.resize(m.Tree.nodes.size());
+  for (std::size_t j = 0; j < m.Nodes.size(); ++j)
+  {
+    const core::BVHNode& d = m.Tree.nodes[j];
+    MultiCellTree::FloatNode& f = m.Nodes[j];
+    for (int k = 0; k < 3; ++k)
+    {
+      f.Min[k] = core::detail::floorFloat(d.min[k]);
+      f.Max[k] = core::detail::ceilFloat(d.max[k]);
+    }
+    f.Index = d.index;
+    f.Count = d.count;
+  }
   m.Ready.store(true, std::memory_order_release);
 }
 
@@ -231,12 +198,50 @@ void BVHCellLocatorData::MultiCellsInLocalBox(
   {
     return;
   }
-  core::queryBox(m.Tree, q, [&](std::uint32_t i) {
-    if (m.Boxes[i].overlaps(q))
+  if (m.Nodes.empty() || q.isEmpty())
+  {
+    return;
+  }
+  // The float walk is conservative (nodes and query rounded outward); the
+  // leaves' double boxes decide.
+  float lo[3], hi[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    lo[k] = core::detail::floorFloat(q.min[k]);
+    hi[k] = core::detail::ceilFloat(q.max[k]);
+  }
+  auto overlaps = [&lo, &hi](const MultiCellTree::FloatNode& n) {
+    return n.Min[0] <= hi[0] && lo[0] <= n.Max[0] && n.Min[1] <= hi[1] && lo[1] <= n.Max[1] &&
+      n.Min[2] <= hi[2] && lo[2] <= n.Max[2];
+  };
+  std::uint32_t stack[core::kMaxStackSize];
+  std::uint32_t sp = 0;
+  if (overlaps(m.Nodes[0]))
+  {
+    stack[sp++] = 0;
+  }
+  while (sp > 0)
+  {
+    const MultiCellTree::FloatNode& n = m.Nodes[stack[--sp]];
+    if (n.Count > 0)
     {
-      cells.push_back(this->MultiTriangleCells[i]);
+      for (std::uint32_t i = n.Index; i < n.Index + n.Count; ++i) // leaf order: primIndex is the identity
+      {
+        if (m.Boxes[i].overlaps(q))
+        {
+          cells.push_back(m.Cells[i]);
+        }
+      }
+      continue;
     }
-  });
+    for (std::uint32_t c : { n.Index + 1, n.Index })
+    {
+      if (overlaps(m.Nodes[c]))
+      {
+        stack[sp++] = c;
+      }
+    }
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -256,7 +261,7 @@ void BVHCellLocatorData::MultiCellsAlongSegment(vtkDataSet* ds, const core::Ray<
     double tnear;
     if (core::intersectRayAABB(pre, m.Boxes[i].min - grow, m.Boxes[i].max + grow, r.tmin, r.tmax, tnear))
     {
-      cells.push_back(this->MultiTriangleCells[i]);
+      cells.push_back(m.Cells[i]);
     }
     return false; // listed here; the walk goes on over the whole segment
   };

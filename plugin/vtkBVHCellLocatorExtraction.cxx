@@ -87,32 +87,21 @@ void BVHCellLocatorData::Extract(vtkDataSet* ds)
 void BVHCellLocatorData::ListMultiTriangleCells()
 {
   this->MultiTriangleCells.clear();
-  this->MultiTriangleCellReach = 0.0;
-  this->QueriesLookByReach = true;
+  this->OnlyMultiTriangleCells = false;
   const vtkIdType n = this->NumberOfTriangles();
   if (this->UniformCellBase >= 0)
   {
     return; // one triangle a cell
   }
-  auto extentOf = [this](vtkIdType i) {
-    Box box;
-    for (int k = 0; k < 3; ++k)
-    {
-      box.extend(this->LocalPoint(this->SrcVerts[3 * static_cast<std::size_t>(i) + k]));
-    }
-    const Vec3d e = box.max - box.min;
-    return std::make_pair(box, std::max({ e.x, e.y, e.z }));
-  };
-  Box cell;
   int cellTriangles = 0;
+  vtkIdType multiCellTriangles = 0;
   auto endCell = [&]() {
     if (cellTriangles < 2)
     {
       this->MultiTriangleCells.pop_back(); // one triangle: its box is the cell's bounds
       return;
     }
-    const Vec3d e = cell.max - cell.min;
-    this->MultiTriangleCellReach = std::max({ this->MultiTriangleCellReach, e.x, e.y, e.z });
+    multiCellTriangles += cellTriangles;
   };
   for (vtkIdType i = 0; i < n; ++i)
   {
@@ -128,37 +117,15 @@ void BVHCellLocatorData::ListMultiTriangleCells()
         endCell();
       }
       this->MultiTriangleCells.push_back(cellId);
-      cell = Box();
       cellTriangles = 0;
     }
-    cell.extend(extentOf(i).first);
     ++cellTriangles;
   }
   if (cellTriangles > 0)
   {
     endCell();
   }
-  if (this->MultiTriangleCells.empty())
-  {
-    return;
-  }
-  // FindCell and the bounds queries look as far around as the largest such
-  // cell reaches while that is about the mesh's typical triangle size (a
-  // quad mesh); beyond (a large quad under a fine mesh) they would gather
-  // much of the mesh, and search MultiCells, a tree over these cells'
-  // bounds, instead. The typical size: the median over up to 4096
-  // triangles (a minority of large ones does not move it).
-  const vtkIdType step = std::max<vtkIdType>(1, n / 4096);
-  std::vector<double> extents;
-  for (vtkIdType i = 0; i < n; i += step)
-  {
-    extents.push_back(extentOf(i).second);
-  }
-  std::nth_element(extents.begin(), extents.begin() + extents.size() / 2, extents.end());
-  const double typical = extents[extents.size() / 2];
-  // Rounding of the extents and of the grown query: a few ulps more.
-  this->MultiTriangleCellReach *= 1.0 + 8.0 * std::numeric_limits<double>::epsilon();
-  this->QueriesLookByReach = this->MultiTriangleCellReach <= kReachOfTypicalSizes * typical;
+  this->OnlyMultiTriangleCells = n > 0 && multiCellTriangles == n && this->GenCell.empty();
   // Cells are extracted in id order; sorted anyway, as the queries assume.
   if (!std::is_sorted(this->MultiTriangleCells.begin(), this->MultiTriangleCells.end()))
   {

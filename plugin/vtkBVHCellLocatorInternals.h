@@ -216,17 +216,9 @@ public:
   /// box of their triangles meets, so FindCell and the bounds queries also
   /// search MultiCells, a tree over these cells' own bounds.
   std::vector<vtkIdType> MultiTriangleCells;
-  /// The largest extent (local units) of such a cell: a point its bounds
-  /// hold may lie that far from all its triangles' boxes.
-  double MultiTriangleCellReach = 0.0;
-  /// Whether FindCell and the bounds queries look MultiTriangleCellReach
-  /// around what they ask about (such cells no larger than a few typical
-  /// triangles) rather than in MultiCells (some much larger).
-  bool QueriesLookByReach = true;
-  /// How many typical triangle sizes a cell of several triangles may reach
-  /// for the queries to look that far around rather than build MultiCells:
-  /// a quad or a regular polygon spans about two of its triangles.
-  static constexpr double kReachOfTypicalSizes = 4.0;
+  /// Whether every cell is one of those (a quad mesh: no VTK_TRIANGLE and
+  /// no other cell): the queries by cell bounds then need only MultiCells.
+  bool OnlyMultiTriangleCells = false;
   /// The tree over MultiTriangleCells' bounds (local coordinates), built by
   /// the first query that needs it (EnsureMultiCells). Copying copies
   /// nothing: a copy builds its own on demand.
@@ -234,15 +226,30 @@ public:
   {
     std::atomic<bool> Ready{ false };
     std::mutex Mutex;
-    std::vector<Box> Boxes; ///< one per MultiTriangleCells entry
+    /// The cells' bounds and ids in the tree's leaf order (its primIndex is
+    /// then the identity), so a leaf reads them in one run.
+    std::vector<Box> Boxes;
+    std::vector<vtkIdType> Cells;
     core::BVH Tree;
+    /// Tree's nodes with float boxes rounded outward, a sibling pair in one
+    /// cache line: what point and box queries walk (segments walk Tree).
+    struct FloatNode
+    {
+      float Min[3];
+      std::uint32_t Index; ///< as core::BVHNode's
+      float Max[3];
+      std::uint32_t Count;
+    };
+    std::vector<FloatNode> Nodes;
     MultiCellTree() = default;
     MultiCellTree(const MultiCellTree&) {}
     MultiCellTree& operator=(const MultiCellTree&)
     {
       this->Ready.store(false);
       this->Boxes.clear();
+      this->Cells.clear();
       this->Tree = core::BVH();
+      this->Nodes.clear();
       return *this;
     }
   };
@@ -253,7 +260,9 @@ public:
     {
       return 0;
     }
-    return this->MultiCells.Boxes.capacity() * sizeof(Box) + this->MultiCells.Tree.memoryBytes();
+    return this->MultiCells.Boxes.capacity() * sizeof(Box) +
+      this->MultiCells.Cells.capacity() * sizeof(vtkIdType) + this->MultiCells.Tree.memoryBytes() +
+      this->MultiCells.Nodes.capacity() * sizeof(MultiCellTree::FloatNode);
   }
   /// Original cell id per triangle (in extraction order, sized but not
   /// written when UniformCellBase gives the ids).
@@ -579,12 +588,9 @@ private:
     std::vector<vtkIdType>& cells) const;
   /// The box (local) of the cell's finite points; `points` is scratch.
   Box CellBox(vtkDataSet* ds, vtkIdType cellId, vtkIdList* points) const;
-  /// Whether triangle prim is part of a cell that is not one VTK_TRIANGLE.
-  bool IsMultiTrianglePrimitive(std::uint32_t prim) const;
-  /// Appends the cells of `nearby` (a cell's triangles' boxes, any order) not
-  /// in `cells` whose union of boxes `meets` says so.
-  static void AddCellsMeeting(std::vector<std::pair<vtkIdType, Box>>& nearby,
-    const std::function<bool(const Box&)>& meets, std::vector<vtkIdType>& cells);
+  /// Whether triangle prim is part of a cell of several triangles (one of
+  /// MultiTriangleCells: MultiCells finds it by its bounds).
+  bool InMultiTriangleCell(std::uint32_t prim) const;
 
   // Builds
   void BuildDeferredTree() const;

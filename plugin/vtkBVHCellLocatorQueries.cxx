@@ -556,39 +556,37 @@ vtkIdType BVHCellLocatorData::FindCell(
 {
   const Vec3d x = this->ToLocal(xw);
   // VTK tests the cells' bounds in world coordinates: candidates are
-  // gathered with its rounding there allowed, then tested on those bounds;
-  // and cells of several triangles as far out as they reach beyond their
-  // triangles' boxes (a tilted quad's bounds hold points no box of its two
-  // triangles holds), or by their own bounds where a few reach far.
+  // gathered with its rounding there allowed, then tested on those bounds.
   double m = 0.0;
   for (int k = 0; k < 3; ++k)
   {
     m = std::max({ m, std::abs(xw[k]), std::abs(this->Origin[k]) });
   }
-  const bool reach = this->QueriesLookByReach;
-  const Vec3d slack(this->ToLocalLength(3e-6 * m) + (reach ? this->MultiTriangleCellReach : 0.0));
+  const Vec3d slack(this->ToLocalLength(3e-6 * m));
   const Box q(x - slack, x + slack);
   // Candidates (cell id, primitive) in cell id order: a VTK_TRIANGLE cell
-  // is filled from its kept point ids, not looked up in the dataset. The
-  // list is the thread's own, kept between queries (no allocation a query).
+  // is filled from its kept point ids, not looked up in the dataset; a cell
+  // of several triangles comes from MultiCells, by its own bounds (a tilted
+  // quad's bounds hold points no box of its two triangles holds). The list
+  // is the thread's own, kept between queries (no allocation a query).
   thread_local std::vector<std::pair<vtkIdType, std::uint32_t>> candidates;
   candidates.clear();
   auto overlap = [&](std::uint32_t prim) {
-    if (this->PrimitiveBox(prim).overlaps(q))
+    if (this->PrimitiveBox(prim).overlaps(q) && !this->InMultiTriangleCell(prim))
     {
       candidates.emplace_back(this->PrimitiveCell(prim), prim);
     }
   };
-  PickingScene{ this }.forPrimitivesInBox(q, overlap);
-  if (!reach)
+  if (!this->OnlyMultiTriangleCells || !ds)
   {
-    thread_local std::vector<vtkIdType> multi;
-    multi.clear();
-    this->MultiCellsInLocalBox(ds, q, multi);
-    for (const vtkIdType cellId : multi)
-    {
-      candidates.emplace_back(cellId, core::kInvalidIndex); // no triangle: the cell itself
-    }
+    PickingScene{ this }.forPrimitivesInBox(q, overlap);
+  }
+  thread_local std::vector<vtkIdType> multi;
+  multi.clear();
+  this->MultiCellsInLocalBox(ds, q, multi);
+  for (const vtkIdType cellId : multi)
+  {
+    candidates.emplace_back(cellId, core::kInvalidIndex); // no triangle: the cell itself
   }
   std::sort(candidates.begin(), candidates.end());
   double xx[3] = { xw[0], xw[1], xw[2] };

@@ -378,10 +378,9 @@ namespace
 {
 /// Planar cells of several triangles whose bounds reach where no box of
 /// their triangles does: tilted non-convex stars (8-point polygons), tilted
-/// quads and plain triangles (their ids interleaved), then zig-zag strips.
-/// A large tilted quad under them all makes the queries search the cells'
-/// bounds tree rather than around what they ask about.
-vtkSmartPointer<vtkPolyData> SeveralTriangleCells(Random& rng, bool largeQuad)
+/// quads and, with `triangles`, plain triangles (their ids interleaved),
+/// then zig-zag strips; a large tilted quad under them all with `largeQuad`.
+vtkSmartPointer<vtkPolyData> SeveralTriangleCells(Random& rng, bool largeQuad, bool triangles)
 {
   vtkNew<vtkPoints> pts;
   pts->SetDataTypeToDouble();
@@ -406,7 +405,10 @@ vtkSmartPointer<vtkPolyData> SeveralTriangleCells(Random& rng, bool largeQuad)
       polys->InsertNextCell(4, quad);
       const vtkIdType tri[3] = { tilted(cx, cy + 1.5, 0, 0, tx, ty), tilted(cx, cy + 1.5, 0.8, 0.1, tx, ty),
         tilted(cx, cy + 1.5, 0.3, 0.9, tx, ty) };
-      polys->InsertNextCell(3, tri);
+      if (triangles)
+      {
+        polys->InsertNextCell(3, tri);
+      }
       vtkIdType strip[7];
       for (int k = 0; k < 7; ++k)
       {
@@ -542,11 +544,12 @@ std::pair<int, int> CheckCellBounds(vtkPolyData* pd, vtkBVHCellLocator* loc, Ran
 
 /// FindCellsWithinBounds, FindCellsAlongLine and FindCell answer from the
 /// cells' own bounds, as VTK's locators do, for polygons, quads and strips
-/// whose bounds reach beyond their triangles' boxes: cells of about one
-/// size (looked for around the query), and a large quad under small stars
-/// or under a fine triangle mesh (looked for in the cells' bounds tree),
-/// for the fast build and the SAH build; then the same queries from four
-/// threads at once on a fresh locator, whose first queries build that tree.
+/// whose bounds reach beyond their triangles' boxes, found in a tree over
+/// those cells' bounds that the first such query builds: a mesh of such
+/// cells only (the triangles' tree then not asked), and a large quad under
+/// small stars or under a fine triangle mesh, for the fast build and the
+/// SAH build; then the same queries from four threads at once on a fresh
+/// locator.
 int TestQueriesCellsOfSeveralTriangles()
 {
   Random rng(5);
@@ -554,13 +557,11 @@ int TestQueriesCellsOfSeveralTriangles()
   {
     const char* Name;
     vtkSmartPointer<vtkPolyData> Data;
-    const char* How; ///< how PrintSelf says such cells are found
+    bool Only; ///< every cell of several triangles
   };
-  const char* reach = "looked for within their reach of a query";
-  const char* tree = "looked for in a tree over their bounds";
-  const Case cases[] = { { "stars, quads and strips", SeveralTriangleCells(rng, false), reach },
-    { "a large quad under them", SeveralTriangleCells(rng, true), tree },
-    { "a large quad under triangles", TrianglesOverLargeQuad(), tree } };
+  const Case cases[] = { { "stars, quads and strips", SeveralTriangleCells(rng, false, false), true },
+    { "with triangles, a large quad under them", SeveralTriangleCells(rng, true, true), false },
+    { "a large quad under triangles", TrianglesOverLargeQuad(), false } };
   for (const Case& c : cases)
   {
     for (int quality : { vtkBVHCellLocator::FAST, vtkBVHCellLocator::SAH })
@@ -569,10 +570,14 @@ int TestQueriesCellsOfSeveralTriangles()
       loc->SetBuildQuality(quality);
       loc->SetDataSet(c.Data);
       loc->BuildLocator();
-      std::ostringstream printed;
-      loc->Print(printed);
-      LT_CHECK_MSG(printed.str().find(c.How) != std::string::npos, c.Name << ": not " << c.How);
+      std::ostringstream before, after;
+      loc->Print(before);
+      const std::string only = "(every cell), found by their bounds in a tree ";
+      LT_CHECK_MSG((before.str().find(only) != std::string::npos) == c.Only, c.Name << ": " << before.str());
+      LT_CHECK(before.str().find("tree not built yet") != std::string::npos);
       const std::pair<int, int> found = CheckCellBounds(c.Data, loc, rng);
+      loc->Print(after);
+      LT_CHECK(after.str().find("in a tree built") != std::string::npos);
       LT_CHECK(found.first > 100 && found.second > 30);
       std::cout << c.Name << ", quality " << quality << ": " << found.first << " cells in 400 boxes, "
                 << found.second << " of 600 points located, as brute force" << std::endl;
