@@ -207,7 +207,7 @@ Colors* Scene::GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time
   vtkUnsignedCharArray* texels =
     texture ? vtkArrayDownCast<vtkUnsignedCharArray>(texture->GetPointData()->GetScalars()) : nullptr;
   if (!mapped && cellFlag == 0 && coordinates && texels &&
-    coordinates->GetNumberOfTuples() == data->GetNumberOfPoints() && data->GetNumberOfPoints() > 0)
+    coordinates->GetNumberOfTuples() >= data->GetNumberOfPoints() && data->GetNumberOfPoints() > 0)
   {
     // InterpolateScalarsBeforeMapping: VTK's raster interpolates these
     // coordinates over each triangle and samples the texture with its

@@ -143,12 +143,13 @@ std::uint8_t cellEdgesOf(const core::SurfaceTriangles& triangles, std::size_t t,
   return fanEdges(triangles, t, edges, edgeFlags, edgeFlagCount);
 }
 
-/// `normals` as GPU records when it holds `count` vectors (one per point, or
-/// per cell); else nothing.
+/// `normals`' first `count` vectors (one per point, or per cell) as GPU
+/// records, as raster reads them by point or cell id; nothing when it holds
+/// fewer.
 void readNormals(vtkDataArray* normals, std::size_t count, core::HugePageArray<core::gpu::Normal>& out)
 {
   if (!normals || normals->GetNumberOfComponents() != 3 ||
-    normals->GetNumberOfTuples() != static_cast<vtkIdType>(count))
+    normals->GetNumberOfTuples() < static_cast<vtkIdType>(count))
   {
     return;
   }

@@ -210,8 +210,9 @@ const TextureEntry* TextureCache::GetImage(vtkTexture* texture)
 const TextureEntry* TextureCache::GetCoordinates(vtkPolyData* poly)
 {
   vtkDataArray* tcoords = poly->GetPointData()->GetTCoords();
+  // The first coordinates, one a point, as raster reads them by point id.
   if (!tcoords || tcoords->GetNumberOfComponents() > 2 ||
-    tcoords->GetNumberOfTuples() != poly->GetNumberOfPoints())
+    tcoords->GetNumberOfTuples() < poly->GetNumberOfPoints())
   {
     return nullptr;
   }
@@ -221,7 +222,7 @@ const TextureEntry* TextureCache::GetCoordinates(vtkPolyData* poly)
     return entry;
   }
   auto entry = std::make_unique<TextureEntry>();
-  const vtkIdType n = tcoords->GetNumberOfTuples();
+  const vtkIdType n = poly->GetNumberOfPoints();
   const bool hasT = tcoords->GetNumberOfComponents() == 2;
   entry->Packed.resize(2 * static_cast<std::size_t>(n));
   for (vtkIdType i = 0; i < n; ++i)

@@ -298,6 +298,27 @@ void TestFlatInterpolation()
   CompareWithRaster("FlatPoints", MakeMeshes(true, false), VTK_FLAT);
   CompareWithRaster("FlatPointsAndCells", MakeMeshes(true, true), VTK_FLAT);
 }
+
+// Normals longer than the points or cells (a tuple appended): raster reads
+// the first ones by point or cell id, and so does the pass.
+void TestLongerArrays()
+{
+  auto lengthen = [](Meshes m) {
+    for (vtkPolyData* poly : { m.Tube.Get(), m.Superquadric.Get() })
+    {
+      for (vtkDataArray* normals : { poly->GetPointData()->GetNormals(), poly->GetCellData()->GetNormals() })
+      {
+        if (normals)
+        {
+          normals->InsertNextTuple3(0.0, 0.0, 1.0);
+        }
+      }
+    }
+    return m;
+  };
+  CompareWithRaster("LongerPointNormals", lengthen(MakeMeshes(true, false)), VTK_GOURAUD);
+  CompareWithRaster("LongerCellNormals", lengthen(MakeMeshes(false, true)), VTK_GOURAUD);
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -305,5 +326,5 @@ int main(int argc, char* argv[])
   Output = vtkrtTestOutputWindow::Install();
   return RunCase(argc, argv,
     { { "Cells", TestCellNormals }, { "Points", TestPointNormals }, { "None", TestNoNormals },
-      { "Flat", TestFlatInterpolation } });
+      { "Flat", TestFlatInterpolation }, { "LongerArrays", TestLongerArrays } });
 }

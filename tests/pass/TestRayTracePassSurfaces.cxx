@@ -230,6 +230,18 @@ void TestTextures()
     scene.View(30, 20);
     scene.Compare(scalars ? "sphere, texture x scalar colors" : "sphere, texture x lit color", 1, 3.0);
   }
+
+  // Texture coordinates longer than the points (a tuple appended): raster
+  // reads the first ones by point id, and so does the pass.
+  {
+    Scene scene;
+    auto poly = TexturedSphere();
+    poly->GetPointData()->GetTCoords()->InsertNextTuple2(0.5, 0.5);
+    scene.Renderer->AddActor(TexturedActor(poly, MakeTexture(image, vtkTexture::Repeat, true)));
+    scene.View(30, 20);
+    RasterAndTraced frames = scene.Compare("sphere, texture coordinates longer than its points", 1, 3.0);
+    Check(ShaderHasTextures(frames.Pass), "longer texture coordinates: the shader samples the texture");
+  }
   NoVTKOutput("textures");
 }
 
