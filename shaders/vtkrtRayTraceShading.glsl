@@ -252,6 +252,21 @@ vec3 shadingNormal(uint flags, vec3 n, vec3 ng, vec3 dir)
   return dot(given ? ng : n, dir) > 0.0 ? -n : n;
 }
 
+#ifdef VTKRT_SCREEN_SPHERES
+// VTK 9.1 lights a point drawn as a sphere as a sprite seen head-on: its
+// normal comes from the pixel's offset from the point in the view plane
+// through it, (x, y, sqrt(1 - x^2 - y^2)) in view coordinates. p is the
+// camera ray's hit on the sphere of center p - radius * n (n unit).
+vec3 spriteNormal(vec3 p, vec3 dir, vec3 n, float radius)
+{
+  vec3 center = p - radius * n;
+  vec3 inPlane = p + (dot(center - p, uViewBack) / dot(dir, uViewBack)) * dir - center;
+  vec3 xy = inPlane / radius;
+  xy -= dot(xy, uViewBack) * uViewBack;
+  return normalize(xy + sqrt(max(0.0, 1.0 - dot(xy, xy))) * uViewBack);
+}
+#endif
+
 // The lit color and alpha of a surface hit (alpha 1 unless translucent);
 // r0..r2: the instance's camera-to-local rows.
 vec4 shadeSurface(vec3 p, vec3 dir, int hitInstance, uint flags, HitSurface s, vec2 hitUV, int hitPrimitive,
@@ -262,6 +277,13 @@ vec4 shadeSurface(vec3 p, vec3 dir, int hitInstance, uint flags, HitSurface s, v
   mat3 cameraToLocal = mat3(r0.xyz, r1.xyz, r2.xyz); // columns = rows of the matrix
   vec3 ng = s.mirror * (cameraToLocal * s.geometricNormal);
   vec3 n = shadingNormal(flags, normalize(cameraToLocal * s.localNormal), ng, dir);
+#ifdef VTKRT_SCREEN_SPHERES
+  if ((flags & kInstanceScreenSpheres) != 0u)
+  {
+    // The actor's scale is uniform here: the rows' length is 1 / scale.
+    n = spriteNormal(p, dir, normalize(cameraToLocal * s.localNormal), length(s.localNormal) / length(r0.xyz));
+  }
+#endif
   // Raster's gl_FrontFacing: the ray meets the side its winding faces.
   bool frontFacing = dot(ng, dir) <= 0.0;
   HitMaterial m = hitMaterial(hitInstance, flags, s, frontFacing);

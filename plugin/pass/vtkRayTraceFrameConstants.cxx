@@ -28,7 +28,7 @@ std::vector<FrameConstant> FrameConstantsOf(const Features& f)
     out.push_back({ "vec4", "uRayDepth", 0, 1 });
   }
   // The headlight's direction, and the view wires face.
-  out.push_back({ "vec3", "uViewBack", 0, 1, f.LightComplexity == 1 || f.WireframeCode() });
+  out.push_back({ "vec3", "uViewBack", 0, 1, f.LightComplexity == 1 || f.WireframeCode() || f.ScreenSpheres });
   if (f.SingleInstance)
   {
     out.push_back({ "uvec4", "uRootNode", static_cast<int>(core::gpu::texelsOf<core::gpu::Node>()), 1 });

@@ -268,7 +268,8 @@ enum class Indexing
   X(SurfaceEdges, 65536u)                                                                          \
   X(Wireframe, 131072u)                                                                            \
   X(Tubes, 262144u)                                                                                \
-  X(SphereCellIds, 524288u)
+  X(SphereCellIds, 524288u)                                                                        \
+  X(ScreenSpheres, 1048576u)
 
 enum InstanceFlags : std::uint32_t
 {
