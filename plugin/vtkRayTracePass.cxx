@@ -20,15 +20,27 @@ vtkRayTracePass::vtkRayTracePass()
 vtkRayTracePass::~vtkRayTracePass()
 {
   this->States->Detach(nullptr);
-  this->SetDelegatePass(nullptr);
+  if (this->DelegatePass)
+  {
+    this->DelegatePass->UnRegister(this);
+  }
 }
 
 void vtkRayTracePass::SetDelegatePass(vtkRenderPass* pass)
 {
-  if (pass == this->DelegatePass)
+  // nullptr brings back the default, the renderer's own steps: a pass
+  // without a delegate would drop every prop it does not trace.
+  if (pass == this->DelegatePass ||
+    (!pass && vtkRayTraceRasterSteps::SafeDownCast(this->DelegatePass)))
   {
     return;
   }
+  vtkSmartPointer<vtkRenderPass> kept = pass;
+  if (!kept)
+  {
+    kept = vtkSmartPointer<vtkRayTraceRasterSteps>::New();
+  }
+  pass = kept;
   if (this->DelegatePass)
   {
     this->DelegatePass->UnRegister(this);

@@ -129,7 +129,8 @@ public:
    * UseDepthPeeling, MaximumNumberOfPeels, OcclusionRatio and
    * UseDepthPeelingForVolumes), volumes, overlays. A vtkRenderStepsPass
    * runs without its camera pass (which would clear the traced image) and
-   * post-processing; any other pass must not clear.
+   * post-processing; any other pass must not clear. nullptr restores the
+   * default.
    */
   void SetDelegatePass(vtkRenderPass* pass);
   vtkRenderPass* GetDelegatePass();

@@ -446,8 +446,13 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, const vtkR
     p.F.TileEntries = false;
     p.Lights.clear();
   }
-  p.OcclusionRadius =
-    pass.AmbientOcclusionRadius > 0.0 ? pass.AmbientOcclusionRadius : frame.DefaultOcclusionRadius();
+  // Occlusion rays start on traced props and meet only them, so nothing
+  // lies farther than the props' diagonal: a longer radius (up to
+  // VTK_DOUBLE_MAX, past float's range) is traced as that diagonal.
+  const double diagonal = frame.SceneDiagonal();
+  const double longest = diagonal > 0.0 && std::isfinite(diagonal) ? diagonal : 1e30;
+  p.OcclusionRadius = pass.AmbientOcclusionRadius > 0.0 ? std::min(pass.AmbientOcclusionRadius, longest)
+                                                         : frame.DefaultOcclusionRadius();
 
   const int compilesBefore = this->Counters.ShaderCompiles;
   const auto compileStart = std::chrono::steady_clock::now();

@@ -408,7 +408,7 @@ double ViewScale(vtkCamera* cam)
   return std::ldexp(1.0, std::max(-1008, std::min(1008, power)));
 }
 
-double FrameRecords::DefaultOcclusionRadius() const
+double FrameRecords::SceneDiagonal() const
 {
   core::AABB<double> all;
   for (const auto& b : this->WorldBoxes)
@@ -417,7 +417,12 @@ double FrameRecords::DefaultOcclusionRadius() const
     all.extend(b.max);
   }
   const auto diagonal = all.max - all.min;
-  return 0.1 * std::sqrt(diagonal.x * diagonal.x + diagonal.y * diagonal.y + diagonal.z * diagonal.z);
+  return std::sqrt(diagonal.x * diagonal.x + diagonal.y * diagonal.y + diagonal.z * diagonal.z);
+}
+
+double FrameRecords::DefaultOcclusionRadius() const
+{
+  return 0.1 * this->SceneDiagonal();
 }
 
 bool MakeFrameRecords(const std::vector<Instance>& instances, const ScenePlacements& places,

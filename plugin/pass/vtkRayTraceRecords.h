@@ -155,6 +155,8 @@ struct FrameRecords
 
   /// A tenth of the diagonal of the world boxes' union.
   double DefaultOcclusionRadius() const;
+  /// The diagonal of the traced props' world boxes.
+  double SceneDiagonal() const;
 };
 
 /// Fails (returns false) only when an instance's geometry or colors have no

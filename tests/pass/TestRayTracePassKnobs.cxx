@@ -481,6 +481,23 @@ void TestAmbientOcclusion()
   Check(vtkrtCompareWithBaseline(occluded, "pass_AmbientOcclusion", 20.0) == 1,
     "occlusion: matches its baseline");
 
+  // A radius past the scene's diagonal (under 10 here) occludes as
+  // the diagonal does, up to VTK_DOUBLE_MAX (an "unbounded" radius), which
+  // is past float's range.
+  std::vector<vtkSmartPointer<vtkImageData>> far;
+  for (const double radius : { 10.0, 1e38, VTK_DOUBLE_MAX })
+  {
+    pass->SetAmbientOcclusionRadius(radius);
+    win->Render();
+    far.push_back(Grab(win));
+  }
+  Check(RootMeanSquareError(far[0], far[1]) == 0.0 && RootMeanSquareError(far[0], far[2]) == 0.0 &&
+      RootMeanSquareError(far[0], occluded) > 0.5,
+    "radii 10, 1e38 and VTK_DOUBLE_MAX occlude alike (RMSE " + std::to_string(RootMeanSquareError(far[0], far[1])) +
+      ", " + std::to_string(RootMeanSquareError(far[0], far[2])) + "), unlike 0.5 (" +
+      std::to_string(RootMeanSquareError(far[0], occluded)) + ")");
+  pass->SetAmbientOcclusionRadius(0.5);
+
   // Progressive accumulation converges: the pixel-to-pixel noise of the
   // partly occluded floor in front of the cube falls with the frames.
   pass->SetSamplesPerPixel(1);

@@ -125,6 +125,12 @@ void TestRenderStepsDelegate()
   scene.Window->Render();
   Check(pass->GetNumberOfTracedProps() == 1, "RenderStepsDelegate: the opaque sphere is traced");
   CheckClose("RenderStepsDelegate", raster, Grab(scene.Window), 3.0);
+  // nullptr brings back the default delegate, which peels as the renderer says.
+  pass->SetDelegatePass(nullptr);
+  scene.Window->Render();
+  Check(pass->GetDelegatePass() && pass->GetDelegatePass()->IsA("vtkRayTraceRasterSteps"),
+    "RenderStepsDelegate: nullptr restores the default delegate");
+  CheckClose("RenderStepsDelegate, default restored", raster, Grab(scene.Window), 3.0);
   NoVTKOutput("RenderStepsDelegate");
 }
 /// The renderer's UseFXAA applies to the traced image as to raster's: with
