@@ -14,6 +14,7 @@
 #include <cctype>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -404,6 +405,44 @@ void CheckAsciiPlyData(
   }
 }
 } // namespace
+
+void CheckStlFile(const std::string& path)
+{
+  const uint64_t fileSize = vtksys::SystemTools::FileLength(path);
+  if (fileSize == 0)
+  {
+    Fail(path, "the file is empty");
+  }
+  std::ifstream file(path, std::ios::binary);
+  char header[84] = {};
+  file.read(header, sizeof(header));
+  std::size_t start = 0;
+  while (start < 80 && std::isspace(static_cast<unsigned char>(header[start])))
+  {
+    ++start;
+  }
+  if (std::strncmp(header + start, "solid", 5) == 0)
+  {
+    return; // ascii (vtkSTLReader reports a cut one itself)
+  }
+  if (fileSize < 84)
+  {
+    Fail(path, "a binary STL needs an 84-byte header, the file has " + std::to_string(fileSize) + " bytes");
+  }
+  // The triangle count: 32 bits, little endian, after the 80-byte header.
+  uint64_t triangles = 0;
+  for (int k = 3; k >= 0; --k)
+  {
+    triangles = (triangles << 8) | static_cast<unsigned char>(header[80 + k]);
+  }
+  const uint64_t needed = AddSaturated(84, MultiplySaturated(triangles, 50));
+  if (fileSize < needed)
+  {
+    Fail(path, "binary STL header declares " + std::to_string(triangles) + " triangles (" +
+        std::to_string(needed) + " bytes) but the file has " + std::to_string(fileSize) + " bytes (" +
+        std::to_string((fileSize - 84) / 50) + " whole triangles)");
+  }
+}
 
 void CheckPlyFile(const std::string& path)
 {

@@ -15,6 +15,11 @@ namespace vtkrtRender
 // short, a line with too few values).
 void CheckPlyFile(const std::string& path);
 
+// Throws Failure (runtime error) naming `path` when it is empty, or is a
+// binary STL (no "solid" at its start) shorter than its triangle count
+// says: vtkSTLReader reads such a file's first triangles without a word.
+void CheckStlFile(const std::string& path);
+
 // Throws Failure (runtime error) naming `path` when a cell of `data` (poly
 // data or an unstructured grid) refers to a point id outside
 // [0, number of points), or a polydata cell has fewer points than its kind

@@ -221,8 +221,8 @@ void DeclareCameraOptions(CLI::App& app, Words& w)
 void DeclareLookOptions(CLI::App& app, Words& w, Options& opt)
 {
   app.add_option("--color", w.Color, "surface colour (default 0.8,0.82,0.88)")->type_name("R,G,B");
-  app.add_option("--opacity", w.Opacity, "surface opacity (below 1: rasterized)")->type_name("A");
-  app.add_flag("--edges", opt.Look.Edges, "show cell edges (rasterized)");
+  app.add_option("--opacity", w.Opacity, "surface opacity (traced; with --edges: rasterized)")->type_name("A");
+  app.add_flag("--edges", opt.Look.Edges, "show cell edges (traced; with --opacity below 1: rasterized)");
   app.add_option("--point-size", w.PointSize, "size of points in pixels (point clouds)")
     ->type_name("PX");
   app.add_option("--bg-color", w.Background, "background colour")->type_name("R,G,B");

@@ -208,6 +208,10 @@ vtkSmartPointer<vtkDataObject> ReadData(const std::string& path, CapturingOutput
     // vtkPLYReader loops or aborts on data shorter than its header declares.
     CheckPlyFile(path);
   }
+  else if (ext == ".stl")
+  {
+    CheckStlFile(path);
+  }
   output->StartCapture();
   vtkSmartPointer<vtkDataObject> data = reader->second(path);
   output->StopCapture();

@@ -513,6 +513,27 @@ void TestBadFiles()
   WriteText(Tmp + "/short.ply", bytes.substr(0, bytes.size() - 5));
   CheckBadFile(Tmp + "/short.ply", "face ([0-9]+) of \\1 is cut short by the end of the file");
 
+  // A binary STL cut inside its triangles (vtkSTLReader reads the first
+  // ones without a word), and an empty STL.
+  {
+    vtkNew<vtkSphereSource> sphere;
+    vtkNew<vtkSTLWriter> writer;
+    writer->SetInputConnection(sphere->GetOutputPort());
+    writer->SetFileTypeToBinary();
+    writer->SetFileName((Tmp + "/sphere.stl").c_str());
+    writer->Write();
+    std::ifstream f(Tmp + "/sphere.stl", std::ios::binary);
+    const std::string stl((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    WriteText(Tmp + "/cut.stl", stl.substr(0, 84 + 50 * 10 + 7));
+    CheckBadFile(Tmp + "/cut.stl", "binary STL header declares [0-9]+ triangles \\([0-9]+ bytes\\) but the "
+                                   "file has 591 bytes \\(10 whole triangles\\)");
+    WriteText(Tmp + "/empty.stl", "");
+    CheckBadFile(Tmp + "/empty.stl", "the file is empty");
+    const Result r = RunApp("'" + Tmp + "/sphere.stl' --size 64x64 --frames 0 --output '" + Tmp + "/good.png'");
+    Check(r.Code == 0 && ReportNumber(r.Output, "triangles") == sphere->GetOutput()->GetNumberOfPolys(),
+      "sphere.stl whole: exit 0 and all its triangles");
+  }
+
   // An ascii PLY line with fewer values than its list length says.
   WriteText(Tmp + "/short-line.ply", plyHeader + triangle + "3 0 1\n");
   CheckBadFile(Tmp + "/short-line.ply", "face 1 of 1 has 3 values on its line but needs 4");
