@@ -552,18 +552,25 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
   }
   else
   {
-    // What the image is traced from: any change restarts accumulating.
+    // What the image is traced from: any change restarts accumulating, but
+    // a refined tree taken in place of a fast one (the same primitives,
+    // the same hits): its root moves, its upload is a repack.
     std::vector<float> signature(32);
     toGLSL(p.Camera.ClipToCamera, signature.data());
     toGLSL(p.Camera.CameraToClip, signature.data() + 16);
-    appendAsFloats(signature, p.Frame.Records);
+    std::vector<vtkrt::core::gpu::InstanceRecord> records = p.Frame.Records;
+    for (vtkrt::core::gpu::InstanceRecord& r : records)
+    {
+      r.root = 0;
+    }
+    appendAsFloats(signature, records);
     appendAsFloats(signature, p.Frame.ClipPlanes);
     appendAsFloats(signature, p.Lights);
     signature.push_back(static_cast<float>(p.OcclusionRadius));
-    const std::string& key = this->Programs.GetLastKey();
+    const std::string key = p.F.ImageKey();
     signature.insert(signature.end(), key.begin(), key.end());
-    const bool restart = !pass.ProgressiveAccumulation || this->Counters.GeometryBytesUploaded > 0 ||
-      this->Counters.ShaderCompiles > 0;
+    const bool restart = !pass.ProgressiveAccumulation ||
+      this->Counters.GeometryBytesUploaded > this->Counters.RetreeBytesUploaded;
     // The accumulation traces the footprint (or the viewport) into its own buffer.
     const int* size = p.Camera.ViewportSize;
     this->Counters.TracedPixels += narrowed ? static_cast<std::size_t>(footprint[2]) * footprint[3]

@@ -29,9 +29,15 @@ void vtkRayTracePass::Internals::Upload(const vtkRayTracePass& pass, vtkOpenGLRe
     (!this->ColorsValid || !vtkrt::pass::SceneBuffers::Fits(this->Places.Colors, limit, unused));
   if (this->Scene.GeometryChanged() || !this->GeometryOnGpu || geometryRecheck)
   {
+    const bool retree = this->Scene.OnlyTreesChanged() && this->GeometryOnGpu && !geometryRecheck;
+    const std::size_t before = this->Counters.GeometryBytesUploaded;
     if (!(this->GeometryOnGpu && this->GeometryValid && !limitChanged && this->AppendGeometry(limit)))
     {
       this->UploadGeometry(pass, win, limit);
+    }
+    if (retree)
+    {
+      this->Counters.RetreeBytesUploaded += this->Counters.GeometryBytesUploaded - before;
     }
     this->Scene.MarkGeometryPacked();
     this->GeometryOnGpu = true;

@@ -568,7 +568,7 @@ void Scene::AddGlyphSet(vtkActor* actor, vtkGlyph3DMapper* mapper, const GlyphSp
     entry->SourceTime = time;
     entry->Keep = mapper;
     entry->KeepData = input;
-    this->GeometryDirty = true;
+    this->MarkPrimitivesChanged();
   }
   entry->Used = true;
   // Id mode reports a hit as (prop index, point id within this set's

@@ -157,7 +157,7 @@ const std::shared_ptr<Geometry>& Scene::TriangleGeometry(vtkPolyData* poly, Fram
     entry->LeafSize = this->LeafSize;
     setBuiltFrom(*entry, source);
     entry->Keep = poly;
-    this->GeometryDirty = true;
+    this->MarkPrimitivesChanged();
     if (background && !entry->Empty())
     {
       this->Refinements.Start(poly, entry, std::move(refinement), BackgroundBuildOptions(options));
@@ -173,7 +173,7 @@ const std::shared_ptr<Geometry>& Scene::TriangleGeometry(vtkPolyData* poly, Fram
       entry = std::move(refined);
       ++counters.BackgroundBuildsTaken;
       ++this->BackgroundBuildsTaken;
-      this->GeometryDirty = true;
+      this->GeometryDirty = true; // the same primitives: PrimitivesDirty stays
     }
   }
   entry->Used = true;
@@ -269,7 +269,7 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
       setBuiltFrom(*entry, source);
       entry->SourceKey = key.str();
       entry->Keep = poly;
-      this->GeometryDirty = true;
+      this->MarkPrimitivesChanged();
     }
     entry->Used = true;
     if (!entry->Empty())
@@ -311,7 +311,7 @@ void Scene::AddTubes(
     entry->Quality = this->BuildQuality;
     entry->SourceTime = time;
     entry->Keep = poly;
-    this->GeometryDirty = true;
+    this->MarkPrimitivesChanged();
   }
   entry->Used = true;
   if (!entry->Empty())
@@ -525,7 +525,10 @@ void Scene::Extract(vtkRenderer* ren, vtkProp** props, int count, std::vector<vt
   }
   const bool trianglesDropped = !keep && dropUnused(this->TriangleCache);
   const bool spheresDropped = !keep && dropUnused(this->SphereCache);
-  this->GeometryDirty = this->GeometryDirty || trianglesDropped || spheresDropped;
+  if (trianglesDropped || spheresDropped)
+  {
+    this->MarkPrimitivesChanged();
+  }
   this->ColorsDirty = (!keep && dropUnused(this->ColorCache)) || this->ColorsDirty;
   dropUnused(this->GlyphSourceCache);
   this->Refinements.Tidy([this](const void* key) -> const Geometry* {
@@ -709,7 +712,7 @@ void Scene::Clear()
   this->GlyphSourceCache.clear();
   this->Textures.Clear();
   this->Instances.clear();
-  this->GeometryDirty = true;
+  this->MarkPrimitivesChanged();
   this->ColorsDirty = true;
 }
 

@@ -89,7 +89,14 @@ public:
   /// True when the cached geometry or colors changed since MarkPacked().
   bool GeometryChanged() const { return this->GeometryDirty; }
   bool ColorsChanged() const { return this->ColorsDirty; }
-  void MarkGeometryPacked() { this->GeometryDirty = false; }
+  /// True when the only geometry change is refined trees taken in place of
+  /// their fast trees: the same primitives, so the same hits.
+  bool OnlyTreesChanged() const { return this->GeometryDirty && !this->PrimitivesDirty; }
+  void MarkGeometryPacked()
+  {
+    this->GeometryDirty = false;
+    this->PrimitivesDirty = false;
+  }
   void MarkColorsPacked() { this->ColorsDirty = false; }
 
   /// Every cached, non-empty geometry (triangles first, then spheres), in
@@ -301,6 +308,12 @@ private:
   };
   std::vector<Instance> Instances;
   bool GeometryDirty = true;
+  bool PrimitivesDirty = true; ///< a geometry built, dropped or cleared, not only a tree taken
+  void MarkPrimitivesChanged()
+  {
+    this->GeometryDirty = true;
+    this->PrimitivesDirty = true;
+  }
   bool ColorsDirty = true;
   BackgroundBuilds Refinements; ///< waits for its builds when destroyed
   vtkIdType BackgroundBuildsTaken = 0;

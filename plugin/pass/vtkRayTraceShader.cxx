@@ -32,6 +32,16 @@ namespace vtkrt
 namespace pass
 {
 
+std::string Features::ImageKey() const
+{
+  Features f = *this;
+  f.StackSize = 0;
+  f.TileEntries = false;
+  f.LeafTrees = false;
+  f.PackedStackEntries = false;
+  return f.Key();
+}
+
 std::string Features::Key() const
 {
   std::ostringstream s;

@@ -239,6 +239,10 @@ struct Features
   bool PackedStackEntries = true;
 
   std::string Key() const;
+  /// Key() without how the walks go (stack size, entries, leaf trees, stack
+  /// entry layout): shaders of one image key trace the same hits, so a
+  /// refined tree's shader continues an accumulation.
+  std::string ImageKey() const;
   /// What of the edge code the shader holds: the surface edges' colors (not
   /// in shaders that write ids), the wires' hit test.
   bool SurfaceEdgeCode() const { return this->Triangles && this->SurfaceEdges && !this->IdMode && !this->SelectIds; }
@@ -253,6 +257,7 @@ struct FrameCounters
   int TopLevelBuilds = 0; ///< over the instances
   std::size_t GeometryBytesUploaded = 0;
   std::size_t GeometryBytesBorrowed = 0; ///< of those, taken from the cache as they are
+  std::size_t RetreeBytesUploaded = 0;   ///< of those, for refined trees taken, nothing else changed
   std::size_t FrameBytesUploaded = 0;
   int ShaderCompiles = 0;
   std::size_t TracedPrimitives = 0;

@@ -369,6 +369,31 @@ void TestBackgroundBuild()
   }
   win->Render();
   Check(pass->GetLastTracedPrimitives() > 0, "a pass deleted while it builds: the other pass traces on");
+
+  // Progressive accumulation goes on over a tree taken (the same hits, a
+  // repack and a shader with another stack): frames 1, 2, 3, and the image
+  // of a pass whose tree was built at once.
+  vtkSmartPointer<vtkImageData> accumulated[2];
+  for (const int threshold : { 1000, 0 })
+  {
+    vtkNew<vtkRayTracePass> progressive;
+    progressive->SetBackgroundBuildThreshold(threshold);
+    progressive->ProgressiveAccumulationOn();
+    ren->SetPass(progressive);
+    std::string frames;
+    for (int frame = 0; frame < 3; ++frame)
+    {
+      win->Render();
+      frames += std::to_string(progressive->GetAccumulatedFrames());
+      progressive->WaitForBackgroundBuilds();
+    }
+    accumulated[threshold == 0 ? 1 : 0] = Grab(win);
+    Check(frames == "123", "accumulating, background threshold " + std::to_string(threshold) +
+        ": frames " + frames + " (want 123)");
+  }
+  Check(RootMeanSquareError(accumulated[0], accumulated[1]) == 0.0,
+    "accumulated over a tree taken: the image of the tree built at once");
+  ren->SetPass(pass);
   NoGLError(win, "background build");
   NoVTKOutput("background build");
 }
