@@ -331,6 +331,14 @@ std::unique_ptr<Geometry> BuildTriangles(
   // Shared with vtkBVHCellLocator on the same polydata.
   const vtkSmartPointer<vtkSurfaceTriangulation> shared = vtkSurfaceTriangulation::Get(poly);
   const core::SurfaceTriangles& triangles = shared->GetTriangles();
+  if (shared->GetNumberOfInvalidPointIdCells() > 0)
+  {
+    // Once a build: the other cells are drawn (raster reads past the points).
+    vtkGenericWarningMacro("vtkRayTracePass: " << shared->GetNumberOfInvalidPointIdCells()
+                                               << " cell(s) of polydata " << poly
+                                               << " refer to point ids outside [0, " << poly->GetNumberOfPoints()
+                                               << "): not drawn");
+  }
   double bounds[6];
   shared->GetFinitePointBounds(bounds);
   const core::ScaledFrame frame = core::ScaledFrame::of(vtkMath::AreBoundsInitialized(bounds)

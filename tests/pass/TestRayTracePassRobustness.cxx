@@ -34,6 +34,7 @@
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
+#include "vtkCullerCollection.h"
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
 #include "vtkCubeSource.h"
@@ -207,6 +208,41 @@ void TestDegenerate()
   Check(pass->GetLastTracedPrimitives() == 2 + 1,
     "NaN scene: 2 valid triangles and 1 valid sphere traced (traced " +
       std::to_string(pass->GetLastTracedPrimitives()) + ")");
+
+  // A triangle whose point id lies past the points: the others drawn, with
+  // one warning a build (VTK 9.1's frustum culler crashes on such cells, so
+  // the renderer has none here).
+  {
+    auto badWin = MakeWindow(120, 100);
+    vtkNew<vtkRenderer> badRen;
+    badRen->GetCullers()->RemoveAllItems();
+    badWin->AddRenderer(badRen);
+    vtkNew<vtkPolyData> badIds;
+    badIds->SetPoints(points);
+    vtkNew<vtkCellArray> badPolys;
+    const vtkIdType good[3] = { 0, 1, 2 }, bad[3] = { 0, 2, 99 };
+    badPolys->InsertNextCell(3, good);
+    badPolys->InsertNextCell(3, bad);
+    badIds->SetPolys(badPolys);
+    vtkNew<vtkPolyDataMapper> badMapper;
+    badMapper->SetInputData(badIds);
+    vtkNew<vtkActor> badActor;
+    badActor->SetMapper(badMapper);
+    badRen->AddActor(badActor);
+    badRen->GetActiveCamera()->SetPosition(0, 0, 5);
+    badRen->GetActiveCamera()->SetClippingRange(1, 10);
+    vtkNew<vtkRayTracePass> badPass;
+    badRen->SetPass(badPass);
+    Output->Clear();
+    badWin->Render();
+    badWin->Render();
+    const bool warned = Output->GetNumberOfWarnings() == 1 && Output->GetNumberOfErrors() == 0 &&
+      Output->GetWarnings()[0].find("refer to point ids outside [0, 6)") != std::string::npos;
+    Check(badPass->GetLastTracedPrimitives() == 1 && warned,
+      "a cell past the points: 1 triangle traced (" + std::to_string(badPass->GetLastTracedPrimitives()) +
+        "), one warning over two frames");
+    Output->Clear();
+  }
 }
 
 void TestTooLarge()
