@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 #include <sstream>
 
 namespace vtkrtRender
@@ -234,6 +235,10 @@ void DeclareLookOptions(CLI::App& app, Words& w, Options& opt)
 
 void CheckImageWords(const CLI::App& app, const Words& w, Options& opt)
 {
+  if (app.count("--size") && app.count("--resolution"))
+  {
+    throw UsageError{ "--size and --resolution both give the image size: give one" };
+  }
   if (app.count("--size"))
   {
     SizeOf("--size", w.Size, 'x', opt);
@@ -318,6 +323,18 @@ void CheckRenderWords(const CLI::App& app, const Words& w, Options& opt)
     {
       throw UsageError{ "--precision expects camera or world (got '" + w.Precision + "')" };
     }
+  }
+  std::string ignored;
+  for (const char* traceOnly : { "--shadows", "--ao", "--progressive", "--preset", "--precision" })
+  {
+    if (opt.Mode == "raster" && app.count(traceOnly))
+    {
+      ignored += std::string(ignored.empty() ? "" : ", ") + traceOnly;
+    }
+  }
+  if (!ignored.empty())
+  {
+    std::cerr << "vtkrt-render: note: " << ignored << " apply to raytrace mode; ignored with --mode raster\n";
   }
 }
 

@@ -420,6 +420,7 @@ void TestBadArguments()
     { "", 2, "nothing to render" },
     { "--demo --size 0x100", 2, "--size expects WxH" },
     { "--demo --size big", 2, "--size expects WxH" },
+    { "--demo --size 64x64 --resolution 64,64", 2, "--size and --resolution both give the image size" },
     { "--demo --size", 2, "--size needs a value" },
     { "--demo --mode fancy", 2, "--mode expects raster or raytrace" },
     { "--demo --azimuth north", 2, "--azimuth expects a number" },
@@ -448,6 +449,12 @@ void TestBadArguments()
         !Contains(r.Output, "ERR\\|") && !Contains(r.Output, "WARN\\|"),
       "'" + c.Args + "': no raw VTK error text");
   }
+  // Raytrace knobs under --mode raster: rendered, with one note naming them.
+  const Result raster = RunApp("--demo --mode raster --shadows --ao 4 --size 64x64 --frames 0 --output '" + Tmp +
+    "/raster-note.png'");
+  Check(raster.Code == 0 &&
+      Contains(raster.Output, "vtkrt-render: note: --shadows, --ao apply to raytrace mode; ignored with --mode raster"),
+    "--mode raster --shadows --ao: exit 0 and a note that they are ignored");
   const Result help = RunApp("--help");
   Check(help.Code == 0 && Contains(help.Output, "usage: vtkrt-render") &&
       Contains(help.Output, "--pick X Y") &&
