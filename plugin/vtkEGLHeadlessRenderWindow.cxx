@@ -11,6 +11,7 @@
 // After VTK and GLEW, as the EGL headers above.
 #include "vtkEGLHeadlessDevices.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -450,6 +451,12 @@ int vtkEGLHeadlessRenderWindow::GetZbufferData(int x1, int y1, int x2, int y2, f
   if (!this->ContextReady)
   {
     this->WarnNotRendered("GetZbufferData");
+    // Defined values for callers that do not check: the far plane.
+    if (z)
+    {
+      const std::size_t n = static_cast<std::size_t>(std::abs(x2 - x1) + 1) * (std::abs(y2 - y1) + 1);
+      std::fill(z, z + n, 1.0f);
+    }
     return VTK_ERROR;
   }
   this->MakeCurrent();
@@ -463,6 +470,15 @@ int vtkEGLHeadlessRenderWindow::ReadPixels(
   if (!this->ContextReady)
   {
     this->WarnNotRendered("pixel readback");
+    // Defined pixels for callers that do not check (vtkWindowToImageFilter):
+    // black, transparent.
+    if (data && rect.GetWidth() > 0 && rect.GetHeight() > 0)
+    {
+      const std::size_t components = glFormat == GL_RGBA ? 4 : (glFormat == GL_RGB ? 3 : 1);
+      const std::size_t bytes = glType == GL_FLOAT ? sizeof(float) : 1;
+      std::memset(data, 0,
+        static_cast<std::size_t>(rect.GetWidth()) * rect.GetHeight() * components * bytes);
+    }
     return VTK_ERROR;
   }
   return this->Superclass::ReadPixels(rect, front, glFormat, glType, data, right);

@@ -636,9 +636,15 @@ void TestFailure(bool viaSetter, const std::string& expectedFragment)
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
   grab->Update();
+  // Filled beforehand, so that what a readback leaves in them shows.
   vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(64 * 64);
+  rgb->Fill(7);
   const int readRgb = window->GetPixelData(0, 0, 63, 63, 1, rgb.Get(), 0);
   vtkNew<vtkFloatArray> z;
+  z->SetNumberOfTuples(64 * 64);
+  z->Fill(0.5);
   const int readZ = window->GetZbufferData(0, 0, 63, 63, z.Get());
   Output->SetEcho(true);
   for (const auto& e : Output->GetErrors())
@@ -656,6 +662,18 @@ void TestFailure(bool viaSetter, const std::string& expectedFragment)
       Output->HasErrorContaining(expectedFragment),
     "the error says why (mentions '" + expectedFragment + "')");
   Check(readRgb == VTK_ERROR && readZ == VTK_ERROR, "readbacks on a failed window return VTK_ERROR");
+  // Callers that do not check (vtkWindowToImageFilter) get defined values:
+  // black pixels, far depths.
+  vtkImageData* grabbed = grab->GetOutput();
+  const auto* grabbedPixels = static_cast<const unsigned char*>(grabbed->GetScalarPointer());
+  const std::size_t grabbedBytes =
+    static_cast<std::size_t>(grabbed->GetNumberOfPoints()) * grabbed->GetNumberOfScalarComponents();
+  const bool black = grabbedPixels && grabbedBytes == 64 * 64 * 3 &&
+    std::all_of(grabbedPixels, grabbedPixels + grabbedBytes, [](unsigned char c) { return c == 0; }) &&
+    rgb->GetNumberOfValues() == 64 * 64 * 3 && rgb->GetValueRange()[1] == 0;
+  const bool far = z->GetNumberOfValues() == 64 * 64 && z->GetValueRange()[0] == 1.0f &&
+    z->GetValueRange()[1] == 1.0f;
+  Check(black && far, "readbacks on a failed window: black pixels and far depths");
   Output->Clear();
 
   if (viaSetter)
