@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace vtkrt
@@ -111,7 +112,17 @@ void BVHCellLocatorData::CellsAlongLine(const double p1[3], const double p2[3], 
   }
   const core::RayBoxPrecomputed<double> boxPre(ray);
   const core::RayTrianglePrecomputed<double> triPre(ray);
-  const double localTol = this->ToLocalLength(tol);
+  // The segment's end in local coordinates, and the slab test's t there,
+  // round by a few ulps: boxes grow by that much, so that a cell whose
+  // bounds hold p2 exactly (a mesh vertex) is not lost, as it would be
+  // from p1 alone.
+  double magnitude = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    magnitude = std::max({ magnitude, std::abs(ray.org[k]), std::abs(ray.org[k] + ray.dir[k]) });
+    magnitude += std::abs(ray.dir[k]);
+  }
+  const double localTol = this->ToLocalLength(tol) + 16.0 * std::numeric_limits<double>::epsilon() * magnitude;
   auto isect = [&](std::uint32_t prim, const core::Ray<double>& r, core::Hit<double>&) {
     const Box b = this->PrimitiveBox(prim);
     double tnear;
