@@ -370,7 +370,7 @@ std::uint32_t instanceFlags(const Instance& inst, bool mirrored)
   flags |= g.Ellipsoids ? kInstanceEllipsoids : 0u;
   flags |= g.Tubes ? kInstanceTubes : 0u;
   flags |= g.SphereCellIds.empty() ? 0u : kInstanceSphereCellIds;
-  flags |= g.Spheres && g.ScreenSized ? kInstanceScreenSpheres : 0u;
+  flags |= g.IsScreenSphereSet() ? kInstanceScreenSpheres : 0u;
   flags |= inst.Lit ? kInstanceLit : 0u;
   flags |= inst.UseVertexNormals ? kInstanceVertexNormals : 0u;
   flags |= inst.UseCellNormals ? kInstanceCellNormals : 0u;

@@ -556,7 +556,7 @@ bool Scene::HasSpheres() const
 bool Scene::HasScreenSpheres() const
 {
   return std::any_of(this->Instances.begin(), this->Instances.end(),
-    [](const Instance& i) { return i.Geom->ScreenSized && !i.Geom->Tubes; });
+    [](const Instance& i) { return i.Geom->IsScreenSphereSet(); });
 }
 bool Scene::HasSphereCellIds() const
 {

@@ -117,6 +117,9 @@ struct Geometry
   vtkSmartPointer<vtkObject> KeepData; ///< glyphs: the keyed dataset (key: mapper, dataset)
 
   bool Empty() const { return Nodes.empty(); }
+  /// Points drawn as spheres (tubes share their per-frame sizing, not their
+  /// shading).
+  bool IsScreenSphereSet() const { return this->Spheres && this->ScreenSized && !this->Tubes; }
 };
 
 /// Colors of one (mapper, data) pair: RGBA8 per point or per cell.

@@ -41,6 +41,7 @@
 #include "vtkTransform.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -247,6 +248,46 @@ void TestLitScreenSizedPoints()
       << " against raster (want <= 1.5), " << pass->GetLastTracedInstances() << " instance traced";
     Check(rmse <= 1.5 && pass->GetLastTracedInstances() == 1, s.str());
   }
+
+  // Lines drawn as tubes keep their own shading beside points drawn as
+  // spheres (the sprite normal is the points'): the tube's lower half of
+  // the image, traced without and then with the points above it.
+  vtkNew<vtkPoints> linePoints;
+  vtkNew<vtkCellArray> line;
+  line->InsertNextCell(8);
+  for (vtkIdType i = 0; i < 8; ++i)
+  {
+    linePoints->InsertNextPoint(-2.0 + 0.6 * static_cast<double>(i), -1.6 + 0.15 * std::sin(static_cast<double>(i)), 0.0);
+    line->InsertCellPoint(i);
+  }
+  vtkNew<vtkPolyData> polyline;
+  polyline->SetPoints(linePoints);
+  polyline->SetLines(line);
+  vtkNew<vtkPolyDataMapper> lineMapper;
+  lineMapper->SetInputData(polyline);
+  vtkNew<vtkActor> tube;
+  tube->SetMapper(lineMapper);
+  tube->GetProperty()->RenderLinesAsTubesOn();
+  tube->GetProperty()->SetLineWidth(12);
+  tube->GetProperty()->SetSpecular(0.4);
+  ren->AddActor(tube);
+  actor->SetPosition(0.0, 1.2, 0.0);
+  ren->ResetCameraClippingRange();
+  vtkNew<vtkRayTracePass> tubePass;
+  ren->SetPass(tubePass);
+  std::vector<unsigned char> lowerHalf[2];
+  for (int withPoints = 0; withPoints < 2; ++withPoints)
+  {
+    actor->SetVisibility(withPoints == 1);
+    win->Render();
+    auto image = Grab(win);
+    const auto* rgb = static_cast<const unsigned char*>(image->GetScalarPointer());
+    lowerHalf[withPoints].assign(rgb, rgb + 3 * 320 * 120);
+  }
+  const long tubePixels = std::count_if(lowerHalf[0].begin(), lowerHalf[0].end(), [](unsigned char c) { return c > 40; });
+  Check(lowerHalf[0] == lowerHalf[1] && tubePixels > 500,
+    "a tube beside points drawn as spheres: its half of the image unchanged (" + std::to_string(tubePixels) +
+      " lit channel values)");
   NoVTKOutput("lit screen-sized points");
 }
 
