@@ -231,8 +231,8 @@ public:
     std::vector<Box> Boxes;
     std::vector<vtkIdType> Cells;
     core::BVH Tree;
-    /// Tree's nodes with float boxes rounded outward, a sibling pair in one
-    /// cache line: what point and box queries walk (segments walk Tree).
+    /// Tree's nodes with float boxes rounded outward, half the bytes of its
+    /// double ones: what point and box queries walk (segments walk Tree).
     struct FloatNode
     {
       float Min[3];

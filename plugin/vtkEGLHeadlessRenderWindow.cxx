@@ -198,7 +198,9 @@ void vtkEGLHeadlessRenderWindow::Initialize()
     }
     // VTK's raster expects GL_LEQUAL, so that of two coincident surfaces or
     // lines the one drawn last shows, as in VTK's X11 windows; VTK 9.1's
-    // state initialisation leaves a fresh EGL context at GL_LESS.
+    // state initialisation leaves a fresh EGL context at GL_LESS (the
+    // cache is read first, so the call is never skipped as a repeat).
+    this->GetState()->ResetGLDepthFuncState();
     this->GetState()->vtkglDepthFunc(GL_LEQUAL);
   }
   this->ContextReady = true;
@@ -470,14 +472,23 @@ int vtkEGLHeadlessRenderWindow::ReadPixels(
   if (!this->ContextReady)
   {
     this->WarnNotRendered("pixel readback");
-    // Defined pixels for callers that do not check (vtkWindowToImageFilter):
-    // black, transparent.
+    // Defined values for callers that do not check (vtkWindowToImageFilter):
+    // black, transparent pixels; far depths.
     if (data && rect.GetWidth() > 0 && rect.GetHeight() > 0)
     {
-      const std::size_t components = glFormat == GL_RGBA ? 4 : (glFormat == GL_RGB ? 3 : 1);
-      const std::size_t bytes = glType == GL_FLOAT ? sizeof(float) : 1;
-      std::memset(data, 0,
-        static_cast<std::size_t>(rect.GetWidth()) * rect.GetHeight() * components * bytes);
+      const std::size_t values = static_cast<std::size_t>(rect.GetWidth()) * rect.GetHeight() *
+        (glFormat == GL_RGBA ? 4 : glFormat == GL_RGB ? 3 : glFormat == GL_RG ? 2 : 1);
+      if (glFormat == GL_DEPTH_COMPONENT && glType == GL_FLOAT)
+      {
+        std::fill_n(static_cast<float*>(data), values, 1.0f);
+      }
+      else
+      {
+        const std::size_t bytes = glType == GL_FLOAT || glType == GL_UNSIGNED_INT || glType == GL_INT ? 4
+          : glType == GL_UNSIGNED_SHORT || glType == GL_SHORT || glType == GL_HALF_FLOAT             ? 2
+                                                                                                      : 1;
+        std::memset(data, 0, values * bytes);
+      }
     }
     return VTK_ERROR;
   }

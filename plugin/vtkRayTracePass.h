@@ -129,8 +129,8 @@ public:
    * UseDepthPeeling, MaximumNumberOfPeels, OcclusionRatio and
    * UseDepthPeelingForVolumes), volumes, overlays. A vtkRenderStepsPass
    * runs without its camera pass (which would clear the traced image) and
-   * post-processing; any other pass must not clear. nullptr restores the
-   * default.
+   * post-processing; any other pass must not clear. nullptr gives back the
+   * renderer's own steps (keeping the current delegate when it is one).
    */
   void SetDelegatePass(vtkRenderPass* pass);
   vtkRenderPass* GetDelegatePass();

@@ -346,8 +346,8 @@ void vtkRayTracePass::Internals::SetUniforms(vtkShaderProgram* program, const Fe
   }
   if (f.AmbientOcclusionSamples > 0)
   {
-    program->SetUniformf(
-      "uAmbientOcclusionRadius", static_cast<float>(occlusionRadius * camera.Scale));
+    program->SetUniformf("uAmbientOcclusionRadius",
+      static_cast<float>(std::min(occlusionRadius * camera.Scale, 1e30))); // in float's range
   }
   if (f.TopLevel)
   {
@@ -554,7 +554,9 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
   {
     // What the image is traced from: any change restarts accumulating, but
     // a refined tree taken in place of a fast one (the same primitives,
-    // the same hits): its root moves, its upload is a repack.
+    // the same hits): its upload is a repack that moves where geometries
+    // lie, so the records' geometry offsets give way to what each instance
+    // traces (its source data, kept by the refined tree too).
     std::vector<float> signature(32);
     toGLSL(p.Camera.ClipToCamera, signature.data());
     toGLSL(p.Camera.CameraToClip, signature.data() + 16);
@@ -562,8 +564,17 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
     for (vtkrt::core::gpu::InstanceRecord& r : records)
     {
       r.root = 0;
+      r.normalBase = 0;
+      r.sphereCellIdBase = 0;
     }
     appendAsFloats(signature, records);
+    std::vector<const void*> sources;
+    for (const vtkrt::pass::Instance& inst : this->Scene.GetInstances())
+    {
+      sources.push_back(inst.Geom ? inst.Geom->Keep.Get() : nullptr);
+      sources.push_back(inst.Geom ? inst.Geom->KeepData.Get() : nullptr);
+    }
+    appendAsFloats(signature, sources);
     appendAsFloats(signature, p.Frame.ClipPlanes);
     appendAsFloats(signature, p.Lights);
     signature.push_back(static_cast<float>(p.OcclusionRadius));

@@ -413,18 +413,15 @@ void CheckStlFile(const std::string& path)
   {
     Fail(path, "the file is empty");
   }
+  // Ascii or binary as vtkSTLReader decides it, by content (many binary
+  // headers start with "solid" too).
+  if (vtksys::SystemTools::DetectFileType(path.c_str()) == vtksys::SystemTools::FileTypeText)
+  {
+    return; // vtkSTLReader reports a cut ascii STL itself
+  }
   std::ifstream file(path, std::ios::binary);
   char header[84] = {};
   file.read(header, sizeof(header));
-  std::size_t start = 0;
-  while (start < 80 && std::isspace(static_cast<unsigned char>(header[start])))
-  {
-    ++start;
-  }
-  if (std::strncmp(header + start, "solid", 5) == 0)
-  {
-    return; // ascii (vtkSTLReader reports a cut one itself)
-  }
   if (fileSize < 84)
   {
     Fail(path, "a binary STL needs an 84-byte header, the file has " + std::to_string(fileSize) + " bytes");

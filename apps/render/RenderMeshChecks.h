@@ -16,8 +16,9 @@ namespace vtkrtRender
 void CheckPlyFile(const std::string& path);
 
 // Throws Failure (runtime error) naming `path` when it is empty, or is a
-// binary STL (no "solid" at its start) shorter than its triangle count
-// says: vtkSTLReader reads such a file's first triangles without a word.
+// binary STL (by content, as vtkSTLReader decides) shorter than its
+// triangle count says: vtkSTLReader reads such a file's first triangles
+// without a word.
 void CheckStlFile(const std::string& path);
 
 // Throws Failure (runtime error) naming `path` when a cell of `data` (poly

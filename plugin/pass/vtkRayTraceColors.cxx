@@ -216,7 +216,7 @@ Colors* Scene::GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time
     int dims[3];
     texture->GetDimensions(dims);
     const int comps = coordinates->GetNumberOfComponents();
-    const vtkIdType n = coordinates->GetNumberOfTuples();
+    const vtkIdType n = data->GetNumberOfPoints(); // the first, one a point, as raster reads them
     const std::size_t texelCount = static_cast<std::size_t>(dims[0]) * dims[1];
     if (comps >= 1 && comps <= 2 && static_cast<std::size_t>(texels->GetNumberOfTuples()) >= texelCount)
     {

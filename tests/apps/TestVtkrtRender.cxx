@@ -534,6 +534,12 @@ void TestBadFiles()
     WriteText(Tmp + "/cut.stl", stl.substr(0, 84 + 50 * 10 + 7));
     CheckBadFile(Tmp + "/cut.stl", "binary STL header declares [0-9]+ triangles \\([0-9]+ bytes\\) but the "
                                    "file has 591 bytes \\(10 whole triangles\\)");
+    // A binary header may start with "solid" as an ascii file does.
+    std::string solid = stl.substr(0, 84 + 50 * 10 + 7);
+    solid.replace(0, 5, "solid");
+    WriteText(Tmp + "/cut-solid.stl", solid);
+    CheckBadFile(Tmp + "/cut-solid.stl", "binary STL header declares [0-9]+ triangles \\([0-9]+ bytes\\) but "
+                                         "the file has 591 bytes \\(10 whole triangles\\)");
     WriteText(Tmp + "/empty.stl", "");
     CheckBadFile(Tmp + "/empty.stl", "the file is empty");
     const Result r = RunApp("'" + Tmp + "/sphere.stl' --size 64x64 --frames 0 --output '" + Tmp + "/good.png'");
