@@ -13,7 +13,6 @@
 
 #include "vtkrt/core/BVHBuild.h"
 #include "vtkrt/core/BVHTraversal.h"
-#include "vtkrt/core/FloatRounding.h"
 #include "vtkrt/core/Ray.h"
 #include "vtkrt/core/SegmentQueries.h"
 
@@ -27,6 +26,15 @@ namespace vtkrt
 {
 namespace locator
 {
+namespace
+{
+/// Cell ids in order, each once (a cell is met through each of its triangles).
+void SortUnique(std::vector<vtkIdType>& cells)
+{
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+}
+} // namespace
 
 //------------------------------------------------------------------------------
 Box BVHCellLocatorData::CellBox(vtkDataSet* ds, vtkIdType cellId, vtkIdList* points) const
@@ -67,8 +75,7 @@ void BVHCellLocatorData::CellsInLocalBox(const Box& q, std::vector<vtkIdType>& c
     }
   };
   PickingScene{ this }.forPrimitivesInBox(q, overlap);
-  std::sort(cells.begin(), cells.end());
-  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  SortUnique(cells);
 }
 
 //------------------------------------------------------------------------------
@@ -88,8 +95,7 @@ void BVHCellLocatorData::CellsInBox(
   if (!this->MultiTriangleCells.empty() && ds)
   {
     this->MultiCellsInLocalBox(ds, q, cells);
-    std::sort(cells.begin(), cells.end());
-    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+    SortUnique(cells);
   }
 }
 
@@ -142,8 +148,7 @@ void BVHCellLocatorData::CellsAlongLine(const double p1[3], const double p2[3], 
   {
     this->MultiCellsAlongSegment(ds, ray, localTol, cells);
   }
-  std::sort(cells.begin(), cells.end());
-  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  SortUnique(cells);
 }
 
 //------------------------------------------------------------------------------
@@ -183,19 +188,7 @@ void BVHCellLocatorData::EnsureMultiCells(vtkDataSet* ds) const
     m.Tree.primIndex[j] = static_cast<std::uint32_t>(j);
   }
   m.Boxes.swap(leafBoxes);
-  m.Nodes.resize(m.Tree.nodes.size());
-  for (std::size_t j = 0; j < m.Nodes.size(); ++j)
-  {
-    const core::BVHNode& d = m.Tree.nodes[j];
-    MultiCellTree::FloatNode& f = m.Nodes[j];
-    for (int k = 0; k < 3; ++k)
-    {
-      f.Min[k] = core::detail::floorFloat(d.min[k]);
-      f.Max[k] = core::detail::ceilFloat(d.max[k]);
-    }
-    f.Index = d.index;
-    f.Count = d.count;
-  }
+  m.Nodes = core::packGpuNodes(m.Tree.nodes);
   m.Ready.store(true, std::memory_order_release);
 }
 
@@ -209,50 +202,12 @@ void BVHCellLocatorData::MultiCellsInLocalBox(
   {
     return;
   }
-  if (m.Nodes.empty() || q.isEmpty())
-  {
-    return;
-  }
-  // The float walk is conservative (nodes and query rounded outward); the
-  // leaves' double boxes decide.
-  float lo[3], hi[3];
-  for (int k = 0; k < 3; ++k)
-  {
-    lo[k] = core::detail::floorFloat(q.min[k]);
-    hi[k] = core::detail::ceilFloat(q.max[k]);
-  }
-  auto overlaps = [&lo, &hi](const MultiCellTree::FloatNode& n) {
-    return n.Min[0] <= hi[0] && lo[0] <= n.Max[0] && n.Min[1] <= hi[1] && lo[1] <= n.Max[1] &&
-      n.Min[2] <= hi[2] && lo[2] <= n.Max[2];
-  };
-  std::uint32_t stack[core::kMaxStackSize];
-  std::uint32_t sp = 0;
-  if (overlaps(m.Nodes[0]))
-  {
-    stack[sp++] = 0;
-  }
-  while (sp > 0)
-  {
-    const MultiCellTree::FloatNode& n = m.Nodes[stack[--sp]];
-    if (n.Count > 0)
+  core::queryBoxSlots(m.Nodes, q, [&](std::uint32_t i) { // leaf order: a slot is its box's index
+    if (m.Boxes[i].overlaps(q))
     {
-      for (std::uint32_t i = n.Index; i < n.Index + n.Count; ++i) // leaf order: primIndex is the identity
-      {
-        if (m.Boxes[i].overlaps(q))
-        {
-          cells.push_back(m.Cells[i]);
-        }
-      }
-      continue;
+      cells.push_back(m.Cells[i]);
     }
-    for (std::uint32_t c : { n.Index + 1, n.Index })
-    {
-      if (overlaps(m.Nodes[c]))
-      {
-        stack[sp++] = c;
-      }
-    }
-  }
+  });
 }
 
 //------------------------------------------------------------------------------

@@ -231,16 +231,9 @@ public:
     std::vector<Box> Boxes;
     std::vector<vtkIdType> Cells;
     core::BVH Tree;
-    /// Tree's nodes with float boxes rounded outward, half the bytes of its
-    /// double ones: what point and box queries walk (segments walk Tree).
-    struct FloatNode
-    {
-      float Min[3];
-      std::uint32_t Index; ///< as core::BVHNode's
-      float Max[3];
-      std::uint32_t Count;
-    };
-    std::vector<FloatNode> Nodes;
+    /// Tree's nodes in float, rounded outward (core::packGpuNodes): what
+    /// point and box queries walk (segments walk Tree).
+    std::vector<core::gpu::Node> Nodes;
     MultiCellTree() = default;
     MultiCellTree(const MultiCellTree&) {}
     MultiCellTree& operator=(const MultiCellTree&)
@@ -262,7 +255,7 @@ public:
     }
     return this->MultiCells.Boxes.capacity() * sizeof(Box) +
       this->MultiCells.Cells.capacity() * sizeof(vtkIdType) + this->MultiCells.Tree.memoryBytes() +
-      this->MultiCells.Nodes.capacity() * sizeof(MultiCellTree::FloatNode);
+      this->MultiCells.Nodes.capacity() * sizeof(core::gpu::Node);
   }
   /// Original cell id per triangle (in extraction order, sized but not
   /// written when UniformCellBase gives the ids).

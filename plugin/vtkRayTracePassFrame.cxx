@@ -449,10 +449,11 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, const vtkR
   // Occlusion rays start on traced props and meet only them, so nothing
   // lies farther than the props' diagonal: a longer radius (up to
   // VTK_DOUBLE_MAX, past float's range) is traced as that diagonal.
+  // (SetUniforms keeps what is left within float's range.)
   const double diagonal = frame.SceneDiagonal();
-  const double longest = diagonal > 0.0 && std::isfinite(diagonal) ? diagonal : 1e30;
-  p.OcclusionRadius = pass.AmbientOcclusionRadius > 0.0 ? std::min(pass.AmbientOcclusionRadius, longest)
-                                                         : frame.DefaultOcclusionRadius();
+  p.OcclusionRadius = pass.AmbientOcclusionRadius > 0.0 && diagonal > 0.0
+    ? std::min(pass.AmbientOcclusionRadius, diagonal)
+    : (pass.AmbientOcclusionRadius > 0.0 ? pass.AmbientOcclusionRadius : frame.DefaultOcclusionRadius());
 
   const int compilesBefore = this->Counters.ShaderCompiles;
   const auto compileStart = std::chrono::steady_clock::now();
@@ -491,6 +492,39 @@ void vtkRayTracePass::Internals::SetTileEntries(vtkOpenGLRenderer* ren, vtkOpenG
     this->LastTileEntries = lists.Words;
   }
   p.Tracer->Program->SetUniform4f("uTileGrid", lists.Grid);
+}
+
+/// What an accumulated image is traced from: any change restarts
+/// accumulating, but a refined tree taken in place of a fast one (the same
+/// primitives, the same hits), whose upload is a repack that moves where
+/// geometries lie: the records' geometry offsets give way to what each
+/// instance traces (its source data, kept by the refined tree too).
+std::vector<float> vtkRayTracePass::Internals::AccumulationSignature(const Prepared& p) const
+{
+  std::vector<float> signature(32);
+  toGLSL(p.Camera.ClipToCamera, signature.data());
+  toGLSL(p.Camera.CameraToClip, signature.data() + 16);
+  std::vector<vtkrt::core::gpu::InstanceRecord> records = p.Frame.Records;
+  for (vtkrt::core::gpu::InstanceRecord& r : records)
+  {
+    r.root = 0;
+    r.normalBase = 0;
+    r.sphereCellIdBase = 0;
+  }
+  appendAsFloats(signature, records);
+  std::vector<const void*> sources;
+  for (const vtkrt::pass::Instance& inst : this->Scene.GetInstances())
+  {
+    sources.push_back(inst.Geom ? inst.Geom->Keep.Get() : nullptr);
+    sources.push_back(inst.Geom ? inst.Geom->KeepData.Get() : nullptr);
+  }
+  appendAsFloats(signature, sources);
+  appendAsFloats(signature, p.Frame.ClipPlanes);
+  appendAsFloats(signature, p.Lights);
+  signature.push_back(static_cast<float>(p.OcclusionRadius));
+  const std::string key = p.F.ImageKey();
+  signature.insert(signature.end(), key.begin(), key.end());
+  return signature;
 }
 
 void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRenderState* s,
@@ -552,34 +586,7 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
   }
   else
   {
-    // What the image is traced from: any change restarts accumulating, but
-    // a refined tree taken in place of a fast one (the same primitives,
-    // the same hits): its upload is a repack that moves where geometries
-    // lie, so the records' geometry offsets give way to what each instance
-    // traces (its source data, kept by the refined tree too).
-    std::vector<float> signature(32);
-    toGLSL(p.Camera.ClipToCamera, signature.data());
-    toGLSL(p.Camera.CameraToClip, signature.data() + 16);
-    std::vector<vtkrt::core::gpu::InstanceRecord> records = p.Frame.Records;
-    for (vtkrt::core::gpu::InstanceRecord& r : records)
-    {
-      r.root = 0;
-      r.normalBase = 0;
-      r.sphereCellIdBase = 0;
-    }
-    appendAsFloats(signature, records);
-    std::vector<const void*> sources;
-    for (const vtkrt::pass::Instance& inst : this->Scene.GetInstances())
-    {
-      sources.push_back(inst.Geom ? inst.Geom->Keep.Get() : nullptr);
-      sources.push_back(inst.Geom ? inst.Geom->KeepData.Get() : nullptr);
-    }
-    appendAsFloats(signature, sources);
-    appendAsFloats(signature, p.Frame.ClipPlanes);
-    appendAsFloats(signature, p.Lights);
-    signature.push_back(static_cast<float>(p.OcclusionRadius));
-    const std::string key = p.F.ImageKey();
-    signature.insert(signature.end(), key.begin(), key.end());
+    std::vector<float> signature = this->AccumulationSignature(p);
     const bool restart = !pass.ProgressiveAccumulation ||
       this->Counters.GeometryBytesUploaded > this->Counters.RetreeBytesUploaded;
     // The accumulation traces the footprint (or the viewport) into its own buffer.

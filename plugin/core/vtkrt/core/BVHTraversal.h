@@ -20,6 +20,7 @@
 #define vtkrt_core_BVHTraversal_h
 
 #include "vtkrt/core/BVH.h"
+#include "vtkrt/core/FloatRounding.h"
 #include "vtkrt/core/Ray.h"
 
 #include <algorithm>
@@ -327,6 +328,40 @@ bool closestPoint(const BVH& bvh, const Vec3<T>& p, T maxDistance, PointFn&& fn,
   }
 }
 
+namespace detail
+{
+/// The box walk of queryBox and queryBoxSlots: onLeaf(index, count) for
+/// every leaf that overlaps(node) admits, its ancestors admitted too.
+template <class Node, class Overlaps, class OnLeaf>
+void walkOverlapping(const Node* nodes, std::size_t size, Overlaps&& overlaps, OnLeaf&& onLeaf)
+{
+  if (size == 0 || !overlaps(nodes[0]))
+  {
+    return;
+  }
+  std::uint32_t stack[kMaxStackSize];
+  std::uint32_t sp = 0;
+  stack[sp++] = 0;
+  while (sp > 0)
+  {
+    const Node& n = nodes[stack[--sp]];
+    if (n.count > 0)
+    {
+      onLeaf(n.index, n.count);
+      continue;
+    }
+    // Push right first so the left child is visited first.
+    for (std::uint32_t c : { n.index + 1, n.index })
+    {
+      if (overlaps(nodes[c]))
+      {
+        stack[sp++] = c;
+      }
+    }
+  }
+}
+} // namespace detail
+
 /// Calls fn(prim) for every primitive in a leaf whose box overlaps `box`
 /// (closed intervals). The leaf box is a superset of its primitives'
 /// bounds: fn does the exact test (see meshes' overlap helpers).
@@ -337,33 +372,45 @@ void queryBox(const BVH& bvh, const AABB<double>& box, Fn&& fn)
   {
     return;
   }
-  std::uint32_t stack[kMaxStackSize];
-  std::uint32_t sp = 0;
-  if (!bvh.nodes[0].bounds().overlaps(box))
+  detail::walkOverlapping(
+    bvh.nodes.data(), bvh.nodes.size(), [&box](const BVHNode& n) { return n.bounds().overlaps(box); },
+    [&](std::uint32_t index, std::uint32_t count) {
+      for (std::uint32_t k = 0; k < count; ++k)
+      {
+        fn(bvh.primIndex[index + k]);
+      }
+    });
+}
+
+/// Calls fn(slot) for every leaf slot (a primIndex position) of float
+/// nodes (packGpuNodes with origin 0: boxes rounded outward) whose box may
+/// overlap `box`, itself rounded outward: conservative, fn does the exact
+/// test. Half the bytes a step of queryBox's double nodes.
+template <class Fn>
+void queryBoxSlots(const std::vector<gpu::Node>& nodes, const AABB<double>& box, Fn&& fn)
+{
+  if (nodes.empty() || box.isEmpty())
   {
     return;
   }
-  stack[sp++] = 0;
-  while (sp > 0)
+  float lo[3], hi[3];
+  for (int k = 0; k < 3; ++k)
   {
-    const BVHNode& n = bvh.nodes[stack[--sp]];
-    if (n.isLeaf())
-    {
-      for (std::uint32_t k = 0; k < n.count; ++k)
-      {
-        fn(bvh.primIndex[n.index + k]);
-      }
-      continue;
-    }
-    // Push right first so the left child is visited first.
-    for (int c = 1; c >= 0; --c)
-    {
-      if (bvh.nodes[n.index + c].bounds().overlaps(box))
-      {
-        stack[sp++] = n.index + c;
-      }
-    }
+    lo[k] = detail::floorFloat(box.min[k]);
+    hi[k] = detail::ceilFloat(box.max[k]);
   }
+  detail::walkOverlapping(
+    nodes.data(), nodes.size(),
+    [&lo, &hi](const gpu::Node& n) {
+      return n.lo[0] <= hi[0] && lo[0] <= n.hi[0] && n.lo[1] <= hi[1] && lo[1] <= n.hi[1] &&
+        n.lo[2] <= hi[2] && lo[2] <= n.hi[2];
+    },
+    [&](std::uint32_t index, std::uint32_t count) {
+      for (std::uint32_t slot = index; slot < index + count; ++slot)
+      {
+        fn(slot);
+      }
+    });
 }
 
 } // namespace vtkrt::core
