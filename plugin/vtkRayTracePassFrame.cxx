@@ -98,6 +98,36 @@ bool Allowed(const char* variable)
   return !value || std::strcmp(value, "0") != 0;
 }
 
+/// Whether the renderer draws over the depth that the renderers before it
+/// left: VTK clears the depth only for a renderer that erases and does not
+/// preserve it (vtkOpenGLRenderer::Clear, called only when both the window
+/// and the renderer erase).
+bool KeepsDepthBelow(vtkRenderer* ren)
+{
+  return ren->GetPreserveDepthBuffer() || !(ren->GetRenderWindow()->GetErase() && ren->GetErase());
+}
+
+/// Copies the depth of the drawn viewport (size at origin in the framebuffer
+/// drawn to) into `depth`, a float depth texture of that size.
+void CopyDepthBelow(vtkOpenGLRenderWindow* win, vtkTextureObject* depth, const int size[2], const int origin[2])
+{
+  depth->SetContext(win);
+  const unsigned int width = static_cast<unsigned int>(std::max(size[0], 1));
+  const unsigned int height = static_cast<unsigned int>(std::max(size[1], 1));
+  if (!depth->GetHandle() || depth->GetWidth() != width || depth->GetHeight() != height)
+  {
+    depth->AllocateDepth(width, height, vtkTextureObject::Float32);
+  }
+  vtkOpenGLState* ostate = win->GetState();
+  GLint drawn = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawn);
+  ostate->PushReadFramebufferBinding();
+  ostate->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<unsigned int>(drawn));
+  depth->CopyFromFrameBuffer(origin[0], origin[1], 0, 0, static_cast<int>(width), static_cast<int>(height));
+  ostate->PopReadFramebufferBinding();
+  depth->Deactivate();
+}
+
 /// Whether a frame casts shadow rays: the pass's Shadows, or the renderer's
 /// UseShadows (raster's shadow maps) that an application turned on.
 bool ShadowsIn(bool passShadows, vtkRenderer* ren)
@@ -206,6 +236,8 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
 {
   Features f;
   f.FloatColors = floatColors && !pass.IdMode;
+  // Id mode clears the depth, and selection renders trace their ids alone.
+  f.DepthBelow = !pass.IdMode && !ren->GetSelector() && KeepsDepthBelow(ren);
   f.Triangles = this->Scene.HasTriangles();
   f.Spheres = this->Scene.HasSpheres();
   f.VertexNormals = this->Scene.HasVertexNormals();
@@ -544,8 +576,17 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
   ostate->vtkglEnable(GL_DEPTH_TEST);
   // A renderer that keeps the depth below it (a layer over another, say)
-  // hides what lies behind it there, as its raster geometry would be.
-  ostate->vtkglDepthFunc(ren->GetPreserveDepthBuffer() ? GL_LEQUAL : GL_ALWAYS);
+  // hides what lies behind it there, as its raster geometry would be: its
+  // camera rays end there (uDepthBelow) and write no depth behind it, so
+  // the depth test passes every traced fragment.
+  ostate->vtkglDepthFunc(GL_ALWAYS);
+  if (p.F.DepthBelow)
+  {
+    CopyDepthBelow(win, this->DepthBelow, p.Camera.ViewportSize, p.Camera.ViewportOrigin);
+    this->DepthBelow->Activate();
+    tracer->Program->SetUniformi("uDepthBelow", this->DepthBelow->GetTextureUnit());
+    p.Active.push_back(this->DepthBelow);
+  }
   ostate->vtkglDepthMask(GL_TRUE);
   ostate->vtkglDisable(GL_BLEND);
   if (p.F.Translucent && p.F.SamplesPerPixel == 0)
@@ -587,7 +628,8 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
   else
   {
     std::vector<float> signature = this->AccumulationSignature(p);
-    const bool restart = !pass.ProgressiveAccumulation ||
+    // The depth below may change with nothing of this renderer's scene.
+    const bool restart = !pass.ProgressiveAccumulation || p.F.DepthBelow ||
       this->Counters.GeometryBytesUploaded > this->Counters.RetreeBytesUploaded;
     // The accumulation traces the footprint (or the viewport) into its own buffer.
     const int* size = p.Camera.ViewportSize;

@@ -82,6 +82,9 @@ struct vtkRayTracePass::Internals
   vtkrt::pass::TopLevel Top;
   vtkrt::pass::Accumulation Accumulated;
   vtkrt::pass::Selection Selecting;
+  /// The depth below a renderer that keeps it (Features::DepthBelow),
+  /// copied from its viewport each frame.
+  vtkNew<vtkTextureObject> DepthBelow;
   /// GPU time of the tracing, one frame late, as vtkOpenGLPolyDataMapper
   /// times its draws (the props' render times, ReportRenderTimes).
   std::unique_ptr<vtkOpenGLRenderTimer> TraceTimer = std::make_unique<vtkOpenGLRenderTimer>();
@@ -110,6 +113,7 @@ struct vtkRayTracePass::Internals
   {
     this->Accumulated.Release(w);
     this->Selecting.Release(w);
+    this->DepthBelow->ReleaseGraphicsResources(w);
     this->TraceTimer->ReleaseGraphicsResources();
     this->Programs.Release(w);
     this->Buffers.Release(w);

@@ -118,6 +118,22 @@ float affineRayDepth(vec4 rayDepth, float t)
   return (rayDepth.x + t * rayDepth.y) / (rayDepth.z + t * rayDepth.w);
 }
 
+// core::gpu::affineRayT: affineRayDepth inverted, the t at which the camera
+// ray's normalized device depth is ndcDepth.
+float affineRayT(vec4 rayDepth, float ndcDepth)
+{
+  return (rayDepth.x - ndcDepth * rayDepth.z) / (ndcDepth * rayDepth.w - rayDepth.y);
+}
+
+// core::gpu::projectiveRayT: the t at which the camera ray (org, dir)
+// through ndc reaches normalized device depth ndcDepth, for any projective
+// clipToCamera matrix.
+float projectiveRayT(mat4 clipToCamera, vec2 ndc, float ndcDepth, vec3 org, vec3 dir)
+{
+  vec4 p = clipToCamera * vec4(ndc, ndcDepth, 1.0);
+  return dot(p.xyz / p.w - org, dir) / dot(dir, dir);
+}
+
 // core::clipRayByPlane (Plane.h): clips the ray's [tmin, tmax] to the
 // half-space n.p + d >= 0 of the plane (n, d) (what VTK keeps); a parallel
 // ray is kept or clipped whole by its origin's side. Returns false when

@@ -39,8 +39,42 @@ float windowDepth(vec3 org, vec3 dir, float t)
 }
 
 #ifdef VTKRT_TRANSLUCENT
-// Every layer along the camera ray, composited (vtkrtRayTraceTranslucent).
-bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, out float outDepth);
+// Every layer along the camera ray up to tEnd, composited
+// (vtkrtRayTraceTranslucent).
+bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, float tEnd, out vec4 outColor, out float outDepth);
+#endif
+
+#ifdef VTKRT_DEPTH_BELOW
+// The window depth that the renderers drawn before this one left in its
+// viewport (it keeps the depth buffer: PreserveDepthBuffer, or Erase off),
+// copied before tracing: a camera ray ends there, as this renderer's raster
+// geometry behind it would be hidden, translucent layers included.
+uniform sampler2D uDepthBelow;
+
+// The t of the camera ray through ndc at window depth `depth`
+// (core::gpu::affineRayT, core::gpu::projectiveRayT); 1 (the far plane) at
+// depth 1.
+float cameraRayEnd(vec2 ndc, vec3 org, vec3 dir, float depth)
+{
+  if (depth >= 1.0)
+  {
+    return 1.0;
+  }
+#ifdef VTKRT_PROJECTIVE_RAYS
+  return clamp(projectiveRayT(uClipToCamera, ndc, 2.0 * depth - 1.0, org, dir), 0.0, 1.0);
+#else
+  return clamp(affineRayT(uRayDepth, 2.0 * depth - 1.0), 0.0, 1.0);
+#endif
+}
+
+// The depth a hit writes over the depth below: never behind it (a layer of
+// translucent surfaces alone leaves the far plane's depth, a hit coincident
+// with it the depth pushed back by kCoincidentDepthBias), half a step of a
+// 24-bit depth buffer before it, which the buffer keeps as it was.
+float depthOverBelow(float depth, float depthBelow)
+{
+  return min(depth, depthBelow - 0.5 / 16777216.0);
+}
 #endif
 
 // Traces and shades the ray through a point of the viewport (normalized
@@ -63,10 +97,21 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 #ifdef VTKRT_TILE_ENTRIES
   gTileList = tileListOf(ndc);
 #endif
+  float tEnd = 1.0;
+#ifdef VTKRT_DEPTH_BELOW
+  // Surfaces coincident with what lies below are drawn over it, as raster's
+  // test (less or equal) draws the same triangles over themselves.
+  float depthBelow = texture(uDepthBelow, ndc * 0.5 + 0.5).r;
+  tEnd = cameraRayEnd(ndc, org, dir, min(depthBelow + kCoincidentDepthBias, 1.0));
+#endif
 #ifdef VTKRT_TRANSLUCENT
-  return traceTranslucentLayers(org, dir, invDir, outColor, outDepth);
+  bool hit = traceTranslucentLayers(org, dir, invDir, tEnd, outColor, outDepth);
+#ifdef VTKRT_DEPTH_BELOW
+  outDepth = depthOverBelow(outDepth, depthBelow);
+#endif
+  return hit;
 #else
-  float tBest = 1.0;
+  float tBest = tEnd;
   int hitInstance;
   int hitPrimitive;
   vec2 hitUV;
@@ -76,6 +121,9 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
     return false;
   }
   outDepth = windowDepth(org, dir, tBest);
+#ifdef VTKRT_DEPTH_BELOW
+  outDepth = depthOverBelow(outDepth, depthBelow);
+#endif
   outColor = shadeHit(org, dir, tBest, hitInstance, hitPrimitive, hitUV);
   return true;
 #endif

@@ -79,7 +79,8 @@ bool stepVisibilityRay(inout int ray, inout float transmittance, inout float tMi
 }
 #endif
 
-// Every hit of the camera ray in depth order, shaded and composited: the
+// Every hit of the camera ray in depth order up to tEnd (the far plane, or
+// the depth below: vtkrtRayTraceMain), shaded and composited: the
 // premultiplied color and, as VTK's translucent pass leaves the opaque depth
 // in the depth buffer, the depth of the layer that made the pixel opaque (the
 // far plane if the ray leaves the scene). False when the ray hits nothing.
@@ -88,7 +89,7 @@ bool stepVisibilityRay(inout int ray, inout float transmittance, inout float tMi
 // iteration walks one ray at the shader's one call of traceClosest; a layer
 // is shaded at one call of shadeHit, first recording its rays, then, once
 // the last is walked, with what they let through.
-bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, out float outDepth)
+bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, float tEnd, out vec4 outColor, out float outDepth)
 {
   vec4 accumulated = vec4(0.0);
   outDepth = 1.0;
@@ -113,7 +114,7 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, out vec4 outColor, 
     vec3 walkOrg = org;
     vec3 walkDir = dir;
     vec3 walkInvDir = invDir;
-    float t = 1.0;
+    float t = tEnd;
 #ifdef VTKRT_INTERLEAVED_WALKS
     if (ray >= 0)
     {

@@ -58,7 +58,7 @@ std::string Features::Key() const
     << this->Tubes << "i" << this->SingleInstance << "p"
     << this->ProjectiveRays << "e" << this->TileEntries << "l" << this->LeafTrees << "w"
     << this->PackedStackEntries << "h" << this->Specular << "n" << this->InterleavedWalks << "c" << this->SphereCellIds
-    << "f" << this->FloatColors;
+    << "f" << this->FloatColors << "b" << this->DepthBelow;
   return s.str();
 }
 
@@ -106,6 +106,7 @@ ShaderSources AssembleShaders(const Features& f, int flatSlots)
   define(f.Shadows, "VTKRT_SHADOWS");
   define(f.Specular, "VTKRT_SPECULAR");
   define(f.FloatColors, "VTKRT_FLOAT_COLORS");
+  define(f.DepthBelow, "VTKRT_DEPTH_BELOW");
   define(f.WorldCoordinates, "VTKRT_WORLD_COORDINATES");
   define(f.ScreenSpheres, "VTKRT_SCREEN_SPHERES");
   define(f.Spheres && f.SphereCellIds, "VTKRT_SPHERE_CELL_IDS");

@@ -226,6 +226,9 @@ struct Features
   /// The frame is drawn into float colors (a wrapping vtkToneMappingPass's
   /// buffer): colors above 1 are kept, as raster's fragments keep them.
   bool FloatColors = false;
+  /// The renderer keeps the depth that the renderers before it drew
+  /// (PreserveDepthBuffer, or Erase off): camera rays end at it.
+  bool DepthBelow = false;
   bool TextureCutOuts = false;   ///< some textures have fully transparent texels
   bool Translucent = false;      ///< some instances are translucent (layers composited)
   /// With translucency and shadow or occlusion rays (the frame sets it only

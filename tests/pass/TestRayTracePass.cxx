@@ -713,8 +713,17 @@ void TestCameraRays()
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     const glm::vec4 rayDepth(static_cast<float>(frame.RayDepth[0]), static_cast<float>(frame.RayDepth[1]),
       static_cast<float>(frame.RayDepth[2]), static_cast<float>(frame.RayDepth[3]));
+    glm::mat4 clipToCamera;
+    for (int r = 0; r < 4; ++r)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        clipToCamera[c][r] = static_cast<float>(frame.ClipToCamera->GetElement(r, c));
+      }
+    }
     double worst = 0.0;
     double worstDepth = 0.0;
+    double worstBack = 0.0;
     for (int i = 0; i < 100; ++i)
     {
       const double x = ndc(random), y = ndc(random);
@@ -729,15 +738,30 @@ void TestCameraRays()
       const float t = static_cast<float>(unit(random));
       double clip[4] = { org[0] + t * dir[0], org[1] + t * dir[1], org[2] + t * dir[2], 1.0 };
       frame.CameraToClip->MultiplyPoint(clip, clip);
-      worstDepth =
-        std::max(worstDepth, std::abs(vtkrt::core::gpu::affineRayDepth(rayDepth, t) - clip[2] / clip[3]));
+      const float depth = vtkrt::core::gpu::affineRayDepth(rayDepth, t);
+      worstDepth = std::max(worstDepth, std::abs(depth - clip[2] / clip[3]));
+      // A depth back to its t (the depth below a renderer: uDepthBelow), by
+      // the affine rays' formula and by unprojecting the point.
+      const float affineT = vtkrt::core::gpu::affineRayT(rayDepth, depth);
+      const float projectiveT = vtkrt::core::gpu::projectiveRayT(clipToCamera,
+        glm::vec2(static_cast<float>(x), static_cast<float>(y)), depth, glm::vec3(o[0], o[1], o[2]),
+        glm::vec3(d[0], d[1], d[2]));
+      for (const float back : { affineT, projectiveT })
+      {
+        worstBack =
+          std::max(worstBack, static_cast<double>(std::abs(vtkrt::core::gpu::affineRayDepth(rayDepth, back) - depth)));
+      }
     }
     std::ostringstream s;
     s << label << (world ? ", world" : ", camera-relative") << ": affine rays equal the unprojected ones "
       << "(worst relative difference " << worst << "), their float depth the projected one (worst "
-      << worstDepth << " in normalized device z)";
-    // Two steps of a 24-bit depth buffer (window depth is half of it).
-    Check(frame.AffineRays && worst <= 1e-12 && worstDepth <= 4.0 / 16777216.0, s.str());
+      << worstDepth << " in normalized device z), a depth's t gives it back (worst " << worstBack << ")";
+    // Two steps of a 24-bit depth buffer (window depth is half of it); a
+    // depth back from its t within eight, half the margin a camera ray's end
+    // at the depth below gets (kCoincidentDepthBias).
+    Check(frame.AffineRays && worst <= 1e-12 && worstDepth <= 4.0 / 16777216.0 &&
+        worstBack <= 16.0 / 16777216.0,
+      s.str());
   };
   const auto compare = [&](const std::string& label, const char* rays) {
     RasterAndTraced frames = CompareBlurred(win, ren, label, 2, 8.0, "CameraRays_" + label);

@@ -3,8 +3,10 @@
 //                     window, two windows): each keeps its scene, so frames
 //                     after the first build and upload nothing
 //   PreservedDepth    a renderer on a layer above another that keeps its
-//                     depth buffer (SetPreserveDepthBuffer): traced surfaces
-//                     behind the lower layer's stay hidden, as with raster
+//                     depth buffer (SetPreserveDepthBuffer), or on the same
+//                     layer with Erase off: traced surfaces and translucent
+//                     layers behind the lower renderer's stay hidden, as
+//                     with raster
 #include "vtkrtPassTestUtils.h"
 #include "vtkrtTestOutputWindow.h"
 
@@ -146,49 +148,98 @@ void TestSharedByRenderers()
 // both (one pass shared).
 void TestPreservedDepth()
 {
+  // A renderer drawn over the depth that the one before it left: on a layer
+  // above it with SetPreserveDepthBuffer, or on the same layer with Erase
+  // off. Its box, opaque or translucent (depth peeling), lies partly in
+  // front of the lower renderer's sphere and partly behind it. Coincident:
+  // the upper renderer also draws the lower one's sphere, in red, which
+  // raster's test (less or equal) draws over it.
+  struct Options
+  {
+    bool EraseOff = false;
+    bool Translucent = false;
+    bool Coincident = false;
+  };
   struct Layers
   {
     vtkSmartPointer<vtkEGLHeadlessRenderWindow> Window = MakeWindow(200, 160);
     vtkNew<vtkRenderer> Lower;
     vtkNew<vtkRenderer> Upper;
-    Layers()
+    explicit Layers(const Options& o)
     {
       this->Window->SetNumberOfLayers(2);
       this->Window->AddRenderer(this->Lower);
       this->Window->AddRenderer(this->Upper);
-      this->Upper->SetLayer(1);
-      this->Upper->SetPreserveDepthBuffer(true);
+      if (o.EraseOff)
+      {
+        this->Upper->SetErase(false);
+      }
+      else
+      {
+        this->Upper->SetLayer(1);
+        this->Upper->SetPreserveDepthBuffer(true);
+      }
       this->Upper->SetActiveCamera(this->Lower->GetActiveCamera());
       this->Lower->SetBackground(0.1, 0.1, 0.15);
-      this->Lower->AddActor(SphereActor(0.0, 0.0, 1.0, 0.8));
+      this->Lower->AddActor(SphereActor(0.0, 0.0, o.Translucent ? -0.6 : 1.0, 0.8));
       vtkNew<vtkCubeSource> cube;
       cube->SetXLength(2.0);
       cube->SetYLength(1.2);
       cube->Update();
       auto box = MeshActor(cube->GetOutput());
       box->GetProperty()->SetColor(0.2, 0.8, 0.3);
+      if (o.Translucent)
+      {
+        box->GetProperty()->SetOpacity(0.5);
+        this->Upper->SetUseDepthPeeling(true);
+      }
       this->Upper->AddActor(box);
-      this->Lower->ResetCamera(-1.0, 1.0, -0.6, 0.6, -0.5, 1.8);
+      if (o.Coincident)
+      {
+        auto sphere = SphereActor(0.0, 0.0, o.Translucent ? -0.6 : 1.0, 0.8);
+        sphere->GetProperty()->SetColor(0.9, 0.2, 0.2);
+        this->Upper->AddActor(sphere);
+      }
+      this->Lower->ResetCamera(-1.0, 1.0, -0.6, 0.6, -1.4, 1.8);
       this->Lower->GetActiveCamera()->Elevation(15.0);
-      this->Lower->ResetCameraClippingRange(-1.0, 1.0, -0.6, 0.6, -0.5, 1.8);
-      this->Upper->ResetCameraClippingRange(-1.0, 1.0, -0.6, 0.6, -0.5, 1.8);
+      this->Lower->ResetCameraClippingRange(-1.0, 1.0, -0.6, 0.6, -1.4, 1.8);
+      this->Upper->ResetCameraClippingRange(-1.0, 1.0, -0.6, 0.6, -1.4, 1.8);
     }
   };
-  Layers raster;
-  raster.Window->Render();
-  vtkSmartPointer<vtkImageData> expected = Grab(raster.Window);
-  const char* labels[4] = { "traced on the upper layer", "traced on the lower layer",
-    "traced on both (one pass)", "traced on the upper layer, 4 samples a pixel" };
-  for (int variant = 0; variant < 4; ++variant)
+  struct Variant
   {
-    Layers traced;
+    const char* Label;
+    Options Layout;
+    bool TraceUpper;
+    bool TraceLower;
+    int Samples;
+  };
+  const Variant variants[] = {
+    { "traced on the upper layer", {}, true, false, 1 },
+    { "traced on the lower layer", {}, false, true, 1 },
+    { "traced on both (one pass)", {}, true, true, 1 },
+    { "traced on the upper layer, 4 samples a pixel", {}, true, false, 4 },
+    { "translucent box traced on the upper layer", { false, true }, true, false, 1 },
+    { "translucent box traced on the upper layer, 4 samples a pixel", { false, true }, true, false, 4 },
+    { "erase off, traced over the other renderer", { true, false }, true, false, 1 },
+    { "erase off, translucent box traced over the other renderer", { true, true }, true, false, 1 },
+    { "the lower layer's sphere drawn again, traced on the upper layer", { false, false, true }, true, false, 1 },
+    { "the lower layer's sphere drawn again, traced on both", { false, false, true }, true, true, 1 },
+  };
+  int index = 0;
+  for (const Variant& v : variants)
+  {
+    Layers raster(v.Layout);
+    raster.Window->Render();
+    vtkSmartPointer<vtkImageData> expected = Grab(raster.Window);
+    Layers traced(v.Layout);
     vtkNew<vtkRayTracePass> pass;
-    pass->SetSamplesPerPixel(variant == 3 ? 4 : 1);
-    if (variant != 1)
+    pass->SetSamplesPerPixel(v.Samples);
+    if (v.TraceUpper)
     {
       traced.Upper->SetPass(pass);
     }
-    if (variant == 1 || variant == 2)
+    if (v.TraceLower)
     {
       traced.Lower->SetPass(pass);
     }
@@ -197,16 +248,17 @@ void TestPreservedDepth()
     // Samples smooth the silhouettes raster leaves hard: compared blurred.
     const long off = CountDifferingPixels(image, expected, 40);
     const double rmse = RootMeanSquareError(Blurred(image), Blurred(expected));
-    const bool ok = variant == 3 ? rmse <= 2.0 : off <= 20;
+    const bool ok = v.Samples > 1 ? rmse <= 2.0 : off <= 20;
     std::ostringstream s;
-    s << "preserved depth, " << labels[variant] << ": " << off
-      << " pixels off raster by more than 40, blurred RMSE " << rmse;
+    s << "preserved depth, " << v.Label << ": " << off << " pixels off raster by more than 40, blurred RMSE "
+      << rmse;
     Check(ok, s.str());
     if (!ok)
     {
-      WriteFailedImages("preserved-depth-" + std::to_string(variant), expected, image);
+      WriteFailedImages("preserved-depth-" + std::to_string(index), expected, image);
     }
-    NoGLError(traced.Window, labels[variant]);
+    NoGLError(traced.Window, v.Label);
+    ++index;
   }
   NoVTKOutput("preserved depth");
 }

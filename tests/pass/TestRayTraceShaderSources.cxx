@@ -59,6 +59,9 @@ std::vector<Variant> FeatureVariants()
     { "top level", [](Features& f) { f.TopLevel = true; } },
     { "single instance", [](Features& f) { f.SingleInstance = true; } },
     { "projective rays", [](Features& f) { f.ProjectiveRays = true; } },
+    { "depth below", [](Features& f) { f.DepthBelow = true; } },
+    { "depth below, projective rays, translucent",
+      [](Features& f) { f.DepthBelow = f.ProjectiveRays = f.Translucent = true; } },
     // As the frame sets them: one triangle instance's walks.
     { "tile entries", [](Features& f) { f.TileEntries = f.SingleInstance = f.Triangles = true; } },
     { "leaf trees", [](Features& f) { f.LeafTrees = true; } },
@@ -102,7 +105,7 @@ void EveryFeature(Features& f)
   f.LightComplexity = 3;
   f.TopLevel = f.Shadows = f.Ellipsoids = f.Tubes = f.Textures = f.TextureCutOuts = true;
   f.FaceCulling = f.BackfaceProperties = f.Specular = f.Translucent = true;
-  f.SurfaceEdges = f.Wireframe = true;
+  f.SurfaceEdges = f.Wireframe = f.DepthBelow = true;
   f.SamplesPerPixel = 4;
   f.AmbientOcclusionSamples = 4;
   f.MaximumTraversalSteps = 256;

@@ -110,6 +110,22 @@ inline float affineRayDepth(const vec4& rayDepth, float t)
   return (rayDepth.x + t * rayDepth.y) / (rayDepth.z + t * rayDepth.w);
 }
 
+/// affineRayDepth inverted: the t at which the camera ray's normalized
+/// device depth is ndcDepth.
+inline float affineRayT(const vec4& rayDepth, float ndcDepth)
+{
+  return (rayDepth.x - ndcDepth * rayDepth.z) / (ndcDepth * rayDepth.w - rayDepth.y);
+}
+
+/// The t at which the camera ray (org, dir) through ndc reaches normalized
+/// device depth ndcDepth, for a camera with any projective clipToCamera
+/// matrix: the unprojected point's position along the ray.
+inline float projectiveRayT(const glm::mat4& clipToCamera, const vec2& ndc, float ndcDepth, const vec3& org, const vec3& dir)
+{
+  const vec4 p = clipToCamera * vec4(ndc, ndcDepth, 1.0f);
+  return glm::dot(vec3(p) / p.w - org, dir) / glm::dot(dir, dir);
+}
+
 inline bool clipRayByPlane(const vec3& org, const vec3& dir, const vec4& plane, float& tmin, float& tmax)
 {
   return core::clipRayByPlane(org, dir, plane, tmin, tmax);
