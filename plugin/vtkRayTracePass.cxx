@@ -410,6 +410,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
   }
   // A selection render (above) leaves the accumulated image as it was.
   const int framesBefore = in.Accumulated.BeginFrame();
+  in.RenderOthersBelow(*this, s, ren);
   if (!in.Traced.empty())
   {
     in.TraceTimer->ReusableStart();

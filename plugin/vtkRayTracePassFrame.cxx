@@ -237,7 +237,7 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   Features f;
   f.FloatColors = floatColors && !pass.IdMode;
   // Id mode clears the depth, and selection renders trace their ids alone.
-  f.DepthBelow = !pass.IdMode && !ren->GetSelector() && KeepsDepthBelow(ren);
+  f.DepthBelow = !pass.IdMode && !ren->GetSelector() && (KeepsDepthBelow(ren) || !this->OthersBelow.empty());
   f.Triangles = this->Scene.HasTriangles();
   f.Spheres = this->Scene.HasSpheres();
   f.VertexNormals = this->Scene.HasVertexNormals();
@@ -551,6 +551,13 @@ std::vector<float> vtkRayTracePass::Internals::AccumulationSignature(const Prepa
     sources.push_back(inst.Geom ? inst.Geom->KeepData.Get() : nullptr);
   }
   appendAsFloats(signature, sources);
+  std::vector<vtkMTimeType> below;
+  for (vtkProp* prop : this->OthersBelow)
+  {
+    below.push_back(reinterpret_cast<vtkMTimeType>(prop));
+    below.push_back(prop->GetRedrawMTime());
+  }
+  appendAsFloats(signature, below);
   appendAsFloats(signature, p.Frame.ClipPlanes);
   appendAsFloats(signature, p.Lights);
   signature.push_back(static_cast<float>(p.OcclusionRadius));
@@ -628,8 +635,9 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
   else
   {
     std::vector<float> signature = this->AccumulationSignature(p);
-    // The depth below may change with nothing of this renderer's scene.
-    const bool restart = !pass.ProgressiveAccumulation || p.F.DepthBelow ||
+    // The depth that renderers before this one left may change with nothing
+    // of this renderer's scene (its own props below are in the signature).
+    const bool restart = !pass.ProgressiveAccumulation || KeepsDepthBelow(ren) ||
       this->Counters.GeometryBytesUploaded > this->Counters.RetreeBytesUploaded;
     // The accumulation traces the footprint (or the viewport) into its own buffer.
     const int* size = p.Camera.ViewportSize;
@@ -695,6 +703,36 @@ void vtkRayTracePass::Internals::Select(vtkRayTracePass& pass, const vtkRenderSt
     this->Selecting.RenderPass(win, ren, selector, props, selectable, this->Counters);
 }
 
+void vtkRayTracePass::Internals::RenderOthersBelow(
+  vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren)
+{
+  this->OthersBelow.clear();
+  auto* steps = vtkRayTraceRasterSteps::SafeDownCast(pass.DelegatePass);
+  if (pass.IdMode || !steps || this->Traced.empty() || !pass.TraceTranslucency ||
+    !this->Scene.HasTranslucency())
+  {
+    return;
+  }
+  // 3D props only: 2D ones draw their opaque parts over everything.
+  for (vtkProp* prop : this->Others)
+  {
+    if (prop->IsA("vtkProp3D") && prop->HasOpaqueGeometry())
+    {
+      this->OthersBelow.push_back(prop);
+    }
+  }
+  if (this->OthersBelow.empty())
+  {
+    return;
+  }
+  vtkRenderState below(ren);
+  below.SetPropArrayAndCount(this->OthersBelow.data(), static_cast<int>(this->OthersBelow.size()));
+  below.SetFrameBuffer(s->GetFrameBuffer());
+  below.SetRequiredKeys(s->GetRequiredKeys());
+  steps->RenderOpaque(&below);
+  pass.NumberOfRenderedProps += steps->GetNumberOfRenderedProps();
+}
+
 void vtkRayTracePass::Internals::RenderOthers(
   vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren)
 {
@@ -708,6 +746,29 @@ void vtkRayTracePass::Internals::RenderOthers(
   rest.SetPropArrayAndCount(this->Others.data(), static_cast<int>(this->Others.size()));
   rest.SetFrameBuffer(s->GetFrameBuffer());
   rest.SetRequiredKeys(s->GetRequiredKeys());
+  if (!this->OthersBelow.empty())
+  {
+    // The opaque parts of the props not drawn before the trace, then the
+    // rest of every prop.
+    auto* rasterSteps = vtkRayTraceRasterSteps::SafeDownCast(pass.DelegatePass);
+    std::vector<vtkProp*> above;
+    for (vtkProp* prop : this->Others)
+    {
+      if (std::find(this->OthersBelow.begin(), this->OthersBelow.end(), prop) == this->OthersBelow.end())
+      {
+        above.push_back(prop);
+      }
+    }
+    vtkRenderState over(ren);
+    over.SetPropArrayAndCount(above.data(), static_cast<int>(above.size()));
+    over.SetFrameBuffer(s->GetFrameBuffer());
+    over.SetRequiredKeys(s->GetRequiredKeys());
+    rasterSteps->RenderOpaque(&over);
+    pass.NumberOfRenderedProps += rasterSteps->GetNumberOfRenderedProps();
+    rasterSteps->RenderAfterOpaque(&rest);
+    pass.NumberOfRenderedProps += rasterSteps->GetNumberOfRenderedProps();
+    return;
+  }
   auto* steps = vtkRenderStepsPass::SafeDownCast(pass.DelegatePass);
   if (!steps)
   {

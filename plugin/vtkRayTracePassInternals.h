@@ -55,6 +55,9 @@ struct vtkRayTracePass::Internals
   vtkNew<vtkLightsPass> Lights;
   std::vector<vtkProp*> Traced;
   std::vector<vtkProp*> Others;
+  /// Of Others, the 3D props whose opaque geometry raster draws before the
+  /// trace (OpaqueOthersFirst): empty when it draws them after.
+  std::vector<vtkProp*> OthersBelow;
   vtkrt::pass::FrameCounters Counters;
   vtkrt::pass::ProgramCache Programs;
   /// The window whose context holds the pass's GL objects (none yet, or
@@ -212,7 +215,12 @@ struct vtkRayTracePass::Internals
   /// Where the camera rays' walks start (the shader's VTKRT_TILE_ENTRIES):
   /// the frame's tile lists, uploaded when they changed, and their grid.
   void SetTileEntries(vtkOpenGLRenderer* ren, vtkOpenGLRenderWindow* win, Prepared& p);
-  /// Draws what the pass did not trace through the delegate.
+  /// Where traced translucent layers may lie over raster's opaque 3D props,
+  /// draws those first (OthersBelow) through the default delegate, so the
+  /// trace ends its camera rays at their depth (Features::DepthBelow) and
+  /// its layers composite over them; else OthersBelow stays empty.
+  void RenderOthersBelow(vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren);
+  /// Draws the rest of what the pass did not trace through the delegate.
   void RenderOthers(vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren);
 };
 

@@ -88,6 +88,14 @@ void vtkRayTraceRasterSteps::FXAA(vtkOpenGLRenderer* ren)
 
 void vtkRayTraceRasterSteps::Render(const vtkRenderState* s)
 {
+  this->RenderOpaque(s);
+  const int opaque = this->NumberOfRenderedProps;
+  this->RenderAfterOpaque(s);
+  this->NumberOfRenderedProps += opaque;
+}
+
+void vtkRayTraceRasterSteps::RenderOpaque(const vtkRenderState* s)
+{
   this->NumberOfRenderedProps = 0;
   auto* ren = vtkOpenGLRenderer::SafeDownCast(s->GetRenderer());
   if (!ren)
@@ -108,6 +116,17 @@ void vtkRayTraceRasterSteps::Render(const vtkRenderState* s)
   else
   {
     this->Step(this->Opaque, s);
+  }
+}
+
+void vtkRayTraceRasterSteps::RenderAfterOpaque(const vtkRenderState* s)
+{
+  this->NumberOfRenderedProps = 0;
+  auto* ren = vtkOpenGLRenderer::SafeDownCast(s->GetRenderer());
+  if (!ren)
+  {
+    vtkErrorMacro("vtkRayTraceRasterSteps needs a vtkOpenGLRenderer.");
+    return;
   }
   bool translucent = false;
   for (int i = 0; i < s->GetPropArrayCount() && !translucent; ++i)

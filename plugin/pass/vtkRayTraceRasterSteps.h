@@ -3,7 +3,8 @@
  * @brief   private to vtkRayTracePass: its default delegate, which draws the
  *          props the pass does not trace as vtkOpenGLRenderer draws them.
  *
- * After the traced image and its depth are in place, the steps of
+ * After the traced image and its depth are in place (or the opaque steps
+ * before it, where traced translucent layers lie over raster's props), the steps of
  * vtkOpenGLRenderer::UpdateGeometry without a pass, minus its clear: lights,
  * opaque geometry (through vtkHiddenLineRemovalPass when the renderer's
  * UseHiddenLineRemoval is on and a wireframe is among the props, as the
@@ -34,6 +35,12 @@ public:
 
   void Render(const vtkRenderState* s) override;
   void ReleaseGraphicsResources(vtkWindow* w) override;
+
+  /// Render in two parts: lights and opaque geometry, then the rest.
+  /// vtkRayTracePass draws the first before its trace when traced
+  /// translucent layers must composite over raster's opaque props.
+  void RenderOpaque(const vtkRenderState* s);
+  void RenderAfterOpaque(const vtkRenderState* s);
 
 protected:
   vtkRayTraceRasterSteps();
