@@ -531,11 +531,13 @@ void vtkRayTracePass::Internals::SetTileEntries(vtkOpenGLRenderer* ren, vtkOpenG
 /// primitives, the same hits), whose upload is a repack that moves where
 /// geometries lie: the records' geometry offsets give way to what each
 /// instance traces (its source data, kept by the refined tree too).
-std::vector<float> vtkRayTracePass::Internals::AccumulationSignature(const Prepared& p) const
+vtkrt::pass::ImageSignature vtkRayTracePass::Internals::AccumulationSignature(const Prepared& p) const
 {
-  std::vector<float> signature(32);
-  toGLSL(p.Camera.ClipToCamera, signature.data());
-  toGLSL(p.Camera.CameraToClip, signature.data() + 16);
+  vtkrt::pass::ImageSignature out;
+  out.Camera.resize(32);
+  toGLSL(p.Camera.ClipToCamera, out.Camera.data());
+  toGLSL(p.Camera.CameraToClip, out.Camera.data() + 16);
+  std::vector<float>& signature = out.Scene;
   std::vector<vtkrt::core::gpu::InstanceRecord> records = p.Frame.Records;
   for (vtkrt::core::gpu::InstanceRecord& r : records)
   {
@@ -563,7 +565,7 @@ std::vector<float> vtkRayTracePass::Internals::AccumulationSignature(const Prepa
   signature.push_back(static_cast<float>(p.OcclusionRadius));
   const std::string key = p.F.ImageKey();
   signature.insert(signature.end(), key.begin(), key.end());
-  return signature;
+  return out;
 }
 
 void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRenderState* s,
@@ -634,7 +636,7 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
   }
   else
   {
-    std::vector<float> signature = this->AccumulationSignature(p);
+    vtkrt::pass::ImageSignature signature = this->AccumulationSignature(p);
     // The depth that renderers before this one left may change with nothing
     // of this renderer's scene (its own props below are in the signature).
     const bool restart = !pass.ProgressiveAccumulation || KeepsDepthBelow(ren) ||

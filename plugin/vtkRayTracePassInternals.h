@@ -198,7 +198,7 @@ struct vtkRayTracePass::Internals
     bool selectIds, Prepared& p);
   /// Prepare, then the trace (straight or accumulated).
   /// What an accumulated image is traced from (Accumulation's signature).
-  std::vector<float> AccumulationSignature(const Prepared& p) const;
+  vtkrt::pass::ImageSignature AccumulationSignature(const Prepared& p) const;
   void Trace(const vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren,
     vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam, int framesBefore);
   /// One pass of the renderer's vtkHardwareSelector instead of a frame.

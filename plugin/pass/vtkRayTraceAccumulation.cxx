@@ -12,11 +12,39 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
 
 namespace vtkrt
 {
 namespace pass
 {
+
+bool ImageSignature::Same(const ImageSignature& other) const
+{
+  if (this->Scene != other.Scene || this->Camera.size() != other.Camera.size())
+  {
+    return false;
+  }
+  for (std::size_t first = 0; first < this->Camera.size(); first += 16)
+  {
+    const std::size_t end = std::min(first + 16, this->Camera.size());
+    float largest = 0.0f;
+    for (std::size_t i = first; i < end; ++i)
+    {
+      largest = std::max({ largest, std::abs(this->Camera[i]), std::abs(other.Camera[i]) });
+    }
+    for (std::size_t i = first; i < end; ++i)
+    {
+      // Written so that a NaN entry is never the same.
+      if (!(std::abs(this->Camera[i] - other.Camera[i]) <= 1e-6f * largest))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
 
 Accumulation::Accumulation() = default;
 Accumulation::~Accumulation() = default;
@@ -46,20 +74,20 @@ void Accumulation::Allocate(vtkOpenGLRenderWindow* win, int width, int height)
 }
 
 void Accumulation::Trace(vtkOpenGLRenderWindow* win, const int viewportSize[2],
-  const int viewportOrigin[2], vtkOpenGLQuadHelper* tracer, std::vector<float> signature,
+  const int viewportOrigin[2], vtkOpenGLQuadHelper* tracer, ImageSignature signature,
   bool restart, int framesBefore, int samplesPerPixel, const int* footprint)
 {
   vtkOpenGLState* ostate = win->GetState();
   const int width = std::max(viewportSize[0], 1), height = std::max(viewportSize[1], 1);
   const int originX = viewportOrigin[0], originY = viewportOrigin[1];
   const bool resized = width != this->Size[0] || height != this->Size[1];
-  restart = restart || resized || framesBefore == 0 || signature != this->Signature;
+  restart = restart || resized || framesBefore == 0 || !signature.Same(this->Signature);
   if (resized)
   {
     this->Allocate(win, width, height);
   }
   this->Frames = restart ? 1 : framesBefore + 1;
-  this->Signature.swap(signature);
+  this->Signature = std::move(signature);
 
   ostate->PushFramebufferBindings();
   this->FBO->Bind();
@@ -129,7 +157,7 @@ void Accumulation::Release(vtkWindow* w)
   this->Color->ReleaseGraphicsResources(w);
   this->Depth->ReleaseGraphicsResources(w);
   this->Size[0] = this->Size[1] = 0;
-  this->Signature.clear();
+  this->Signature.Clear();
   this->Frames = 0;
 }
 

@@ -25,6 +25,23 @@ namespace vtkrt
 namespace pass
 {
 
+/// What an accumulated image is traced from: the camera's matrices, the
+/// same within a relative 1e-6 of each matrix's largest entry (a camera
+/// moved by float rounding alone, as vtkWindowToImageFilter leaves its
+/// view angle, is the same camera), and the rest bit for bit.
+struct ImageSignature
+{
+  std::vector<float> Camera;
+  std::vector<float> Scene;
+
+  bool Same(const ImageSignature& other) const;
+  void Clear()
+  {
+    this->Camera.clear();
+    this->Scene.clear();
+  }
+};
+
 class Accumulation
 {
 public:
@@ -44,7 +61,7 @@ public:
   /// traced: none outside it can hold a hit. The buffer covers the
   /// viewport (CameraFrame::ViewportSize, at ViewportOrigin in the target).
   void Trace(vtkOpenGLRenderWindow* win, const int viewportSize[2], const int viewportOrigin[2],
-    vtkOpenGLQuadHelper* tracer, std::vector<float> signature, bool restart, int framesBefore,
+    vtkOpenGLQuadHelper* tracer, ImageSignature signature, bool restart, int framesBefore,
     int samplesPerPixel, const int* footprint);
 
   /// Draws the average into the bound framebuffer; false when the resolve
@@ -64,7 +81,7 @@ private:
   vtkNew<vtkTextureObject> Depth;
   std::unique_ptr<vtkOpenGLQuadHelper> ResolveProgram;
   int Size[2] = { 0, 0 };
-  std::vector<float> Signature;
+  ImageSignature Signature;
   int Frames = 0;
 };
 

@@ -148,6 +148,24 @@ void TestSampling()
   ren->GetActiveCamera()->Azimuth(5.0);
   win->Render();
   Check(progressive->GetAccumulatedFrames() == 1, "camera moved: accumulation restarts");
+
+  // A screenshot as applications take it (vtkWindowToImageFilter renders
+  // again and leaves the camera's view angle rounded to float) continues
+  // the accumulation (it restarted before); a camera moved by a hundredth
+  // of a degree still restarts it.
+  win->Render();
+  vtkNew<vtkWindowToImageFilter> shot;
+  shot->SetInput(win);
+  shot->Update();
+  Check(progressive->GetAccumulatedFrames() == 3,
+    "a screenshot continues the accumulation (" + std::to_string(progressive->GetAccumulatedFrames()) +
+      " frames, 3 expected)");
+  win->Render();
+  Check(progressive->GetAccumulatedFrames() == 4,
+    "and the frame after it (" + std::to_string(progressive->GetAccumulatedFrames()) + " frames, 4 expected)");
+  ren->GetActiveCamera()->Azimuth(0.01);
+  win->Render();
+  Check(progressive->GetAccumulatedFrames() == 1, "camera moved by 0.01 degree: accumulation restarts");
   win->Render();
   Check(progressive->GetAccumulatedFrames() == 2, "unchanged after the move: 2 frames");
   actor->GetProperty()->SetColor(1.0, 0.5, 0.5);
