@@ -18,6 +18,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkProperty.h"
 #include "vtkQuaternion.h"
 #include "vtkSphereSource.h"
 
@@ -144,16 +145,30 @@ bool PolygonsCloseSphere(vtkPolyData* poly, const std::vector<vtkIdType>& merged
   return std::all_of(edges.begin(), edges.end(),
     [](const std::pair<const std::pair<vtkIdType, vtkIdType>, int>& e) { return e.second == 2; });
 }
+
+/// The fewest points of a glyph source traced as a sphere: those of VTK's
+/// default vtkSphereSource (8 by 8: 50 points). Coarser ones are polyhedral
+/// markers, which raster draws with their facets.
+constexpr vtkIdType kFewestSpherePoints = 50;
+
+/// Whether a vtkSphereSource makes a sphere the pass traces: all of it
+/// (a dome or a wedge is open), at VTK's default resolution or finer.
+bool WholeFineSphere(vtkSphereSource* source)
+{
+  return source->GetStartTheta() <= 0.0 && source->GetEndTheta() >= 360.0 &&
+    source->GetStartPhi() <= 0.0 && source->GetEndPhi() >= 180.0 && source->GetThetaResolution() >= 8 &&
+    source->GetPhiResolution() >= 8;
+}
 } // namespace
 
-/// Whether a glyph source is a closed sphere: every point within a small
-/// relative tolerance of one distance from its bounds' center, and every
-/// polygon edge shared by exactly two polygons (a cap, a wedge or an
-/// ellipsoid is not one).
+/// Whether a glyph source is a closed sphere: at least kFewestSpherePoints
+/// points, every point within a small relative tolerance of one distance
+/// from its bounds' center, and every polygon edge shared by exactly two
+/// polygons (a cap, a wedge or an ellipsoid is not one).
 bool SphereOfPolyData(vtkPolyData* poly, double center[3], double& radius)
 {
   const vtkIdType n = poly->GetNumberOfPoints();
-  if (n < 4 || poly->GetNumberOfPolys() == 0 || poly->GetNumberOfStrips() > 0 ||
+  if (n < kFewestSpherePoints || poly->GetNumberOfPolys() == 0 || poly->GetNumberOfStrips() > 0 ||
     poly->GetNumberOfLines() > 0 || poly->GetNumberOfVerts() > 0)
   {
     return false;
@@ -434,6 +449,10 @@ bool Scene::GetGlyphSphere(vtkGlyph3DMapper* mapper, GlyphSphere& sphere)
   }
   if (auto* source = vtkSphereSource::SafeDownCast(producer))
   {
+    if (!WholeFineSphere(source))
+    {
+      return false;
+    }
     sphere.Radius = source->GetRadius();
     source->GetCenter(sphere.Center.data());
     sphere.Time = source->GetMTime();
@@ -461,8 +480,9 @@ bool Scene::GetGlyphSphere(vtkGlyph3DMapper* mapper, GlyphSphere& sphere)
 
 bool Scene::AddGlyphs(vtkActor* actor, vtkGlyph3DMapper* mapper, int propIndex, FrameCounters& counters)
 {
+  // Flat shading shows the source's facets, which a traced sphere has not.
   GlyphSphere sphere;
-  if (!this->GetGlyphSphere(mapper, sphere))
+  if (actor->GetProperty()->GetInterpolation() == VTK_FLAT || !this->GetGlyphSphere(mapper, sphere))
   {
     return false;
   }
