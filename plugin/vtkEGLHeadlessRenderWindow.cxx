@@ -1,5 +1,6 @@
 #include "vtkEGLHeadlessRenderWindow.h"
 
+#include "vtkGenericRenderWindowInteractor.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLState.h"
@@ -365,6 +366,32 @@ vtkTypeBool vtkEGLHeadlessRenderWindow::IsDirect()
 void* vtkEGLHeadlessRenderWindow::GetGenericDisplayId()
 {
   return this->Internal->Display;
+}
+
+//------------------------------------------------------------------------------
+vtkRenderWindowInteractor* vtkEGLHeadlessRenderWindow::MakeRenderWindowInteractor()
+{
+  // As vtkRenderWindow's.
+  this->Interactor = vtkGenericRenderWindowInteractor::New();
+  this->Interactor->SetRenderWindow(this);
+  return this->Interactor;
+}
+
+//------------------------------------------------------------------------------
+void vtkEGLHeadlessRenderWindow::SetInteractor(vtkRenderWindowInteractor* interactor)
+{
+  if (interactor && interactor->IsA("vtkXRenderWindowInteractor"))
+  {
+    vtkErrorMacro("vtkEGLHeadlessRenderWindow has no X11 window for a vtkXRenderWindowInteractor "
+                  "(its Initialize() would crash): use vtkGenericRenderWindowInteractor, which "
+                  "MakeRenderWindowInteractor() gives. The interactor is not attached.");
+    if (interactor->GetRenderWindow() == this)
+    {
+      interactor->SetRenderWindow(nullptr);
+    }
+    return;
+  }
+  this->Superclass::SetInteractor(interactor);
 }
 
 //------------------------------------------------------------------------------

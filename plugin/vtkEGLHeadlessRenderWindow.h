@@ -114,6 +114,20 @@ public:
   void SetShowWindow(bool) override;
 
   /**
+   * A vtkGenericRenderWindowInteractor: widgets, pickers and interactor
+   * styles work through it, driven by the application's own events.
+   * (VTK's factory gives an X11 interactor in X11 builds, which needs an X
+   * window and crashes in Initialize() on this one.)
+   */
+  vtkRenderWindowInteractor* MakeRenderWindowInteractor() override;
+
+  /**
+   * Refuses a vtkXRenderWindowInteractor with a VTK error, and detaches it,
+   * so that its Initialize() reports no window instead of crashing.
+   */
+  void SetInteractor(vtkRenderWindowInteractor* interactor) override;
+
+  /**
    * Accepts GLEW's GLEW_ERROR_NO_GLX_DISPLAY (Debian's GLEW is a GLX build,
    * but it has loaded every entry point before failing), checks for GL 3.2
    * and marks the context initialised.
