@@ -128,6 +128,26 @@ void CopyDepthBelow(vtkOpenGLRenderWindow* win, vtkTextureObject* depth, const i
   depth->Deactivate();
 }
 
+/// Occlusion rays a sample when the pass's own knob is 0 and the
+/// application turned on the renderer's SSAO (raster's screen-space
+/// occlusion), which the pass traces instead.
+constexpr int kSSAOSamples = 4;
+
+/// The occlusion rays a sample: the pass's AmbientOcclusionSamples, or
+/// kSSAOSamples where only the renderer's UseSSAO asks for occlusion.
+int OcclusionSamplesIn(int passSamples, vtkRenderer* ren)
+{
+  return passSamples > 0 ? passSamples : (ren->GetUseSSAO() ? kSSAOSamples : 0);
+}
+
+/// The occlusion radius asked for (0: the default): the pass's, or the
+/// renderer's SSAORadius (world units, as the pass's) where UseSSAO alone
+/// turned occlusion on.
+double OcclusionRadiusIn(int passSamples, double passRadius, vtkRenderer* ren)
+{
+  return passSamples == 0 && ren->GetUseSSAO() ? ren->GetSSAORadius() : passRadius;
+}
+
 /// Whether a frame casts shadow rays: the pass's Shadows, or the renderer's
 /// UseShadows (raster's shadow maps) that an application turned on.
 bool ShadowsIn(bool passShadows, vtkRenderer* ren)
@@ -195,7 +215,7 @@ void vtkRayTracePass::Internals::Extract(
   // Hardware selection reports ids per prop: an actor's plain lines cannot
   // come from a stand-in of its own there.
   this->Scene.SetSplitRasterCells(ren->GetSelector() == nullptr || pass.IdMode);
-  if (pass.IdMode || (!ShadowsIn(pass.Shadows, ren) && pass.AmbientOcclusionSamples == 0))
+  if (pass.IdMode || (!ShadowsIn(pass.Shadows, ren) && OcclusionSamplesIn(pass.AmbientOcclusionSamples, ren) == 0))
   {
     this->Scene.Extract(
       ren, s->GetPropArray(), s->GetPropArrayCount(), this->Traced, this->Others, this->Counters);
@@ -259,7 +279,7 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   const bool shaded = !pass.IdMode && f.LightComplexity > 0;
   f.Shadows = shaded && ShadowsIn(pass.Shadows, ren);
   f.Specular = shaded && this->Scene.HasSpecular();
-  f.AmbientOcclusionSamples = shaded ? pass.AmbientOcclusionSamples : 0;
+  f.AmbientOcclusionSamples = shaded ? OcclusionSamplesIn(pass.AmbientOcclusionSamples, ren) : 0;
   f.MaximumTraversalSteps = pass.MaximumTraversalSteps;
   f.WorldCoordinates = pass.PrecisionMode == WORLD;
   f.ScreenSpheres = this->Scene.HasScreenSpheres();
@@ -483,9 +503,10 @@ bool vtkRayTracePass::Internals::Prepare(const vtkRayTracePass& pass, const vtkR
   // VTK_DOUBLE_MAX, past float's range) is traced as that diagonal.
   // (SetUniforms keeps what is left within float's range.)
   const double diagonal = frame.SceneDiagonal();
-  p.OcclusionRadius = pass.AmbientOcclusionRadius > 0.0 && diagonal > 0.0
-    ? std::min(pass.AmbientOcclusionRadius, diagonal)
-    : (pass.AmbientOcclusionRadius > 0.0 ? pass.AmbientOcclusionRadius : frame.DefaultOcclusionRadius());
+  const double radius = OcclusionRadiusIn(pass.AmbientOcclusionSamples, pass.AmbientOcclusionRadius, ren);
+  p.OcclusionRadius = radius > 0.0 && diagonal > 0.0
+    ? std::min(radius, diagonal)
+    : (radius > 0.0 ? radius : frame.DefaultOcclusionRadius());
 
   const int compilesBefore = this->Counters.ShaderCompiles;
   const auto compileStart = std::chrono::steady_clock::now();

@@ -549,6 +549,31 @@ void TestAmbientOcclusion()
     "accumulated occlusion converges: neighbor noise " + std::to_string(noisy) + " -> " +
       std::to_string(converged) + " after " + std::to_string(pass->GetAccumulatedFrames()) +
       " frames");
+
+  // The renderer's SSAO (raster's screen-space occlusion), with the pass's
+  // own occlusion off, is traced: 4 occlusion rays within SSAORadius (it
+  // was ignored).
+  pass->ProgressiveAccumulationOff();
+  pass->SetAmbientOcclusionSamples(0);
+  pass->SetSamplesPerPixel(4);
+  win->Render();
+  auto none = Grab(win);
+  ren->UseSSAOOn();
+  ren->SetSSAORadius(0.5);
+  win->Render();
+  Check(HasDefine(pass, "VTKRT_AMBIENT_OCCLUSION_SAMPLES 4"), "the renderer's SSAO: 4 occlusion rays compiled");
+  auto ssao = Grab(win);
+  const double ssaoCrease = MeanRedAround(ren, ssao, 0.0, 0.0, 0.62, 1);
+  const double ssaoOpen = MeanRedAround(ren, ssao, 1.2, 0.0, 1.5, 1);
+  Check(ssaoCrease < 0.85 * ssaoOpen,
+    "the renderer's SSAO: crease " + std::to_string(ssaoCrease) + " darker than open floor " +
+      std::to_string(ssaoOpen));
+  ren->SetSSAORadius(1e-6);
+  win->Render();
+  const double tiny = RootMeanSquareError(Grab(win), none);
+  Check(tiny <= 0.5 && RootMeanSquareError(ssao, none) > 1.0,
+    "its radius is SSAORadius: 1e-6 occludes nothing (RMSE " + std::to_string(tiny) + " from no occlusion)");
+  ren->UseSSAOOff();
   NoVTKOutput("AmbientOcclusion");
   ren->SetPass(nullptr);
 }
