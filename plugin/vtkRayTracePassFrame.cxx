@@ -101,10 +101,13 @@ bool Allowed(const char* variable)
 /// Whether the renderer draws over the depth that the renderers before it
 /// left: VTK clears the depth only for a renderer that erases and does not
 /// preserve it (vtkOpenGLRenderer::Clear, called only when both the window
-/// and the renderer erase).
-bool KeepsDepthBelow(vtkRenderer* ren)
+/// and the renderer erase), and raster tests it only where the depth test is
+/// on (a window that never erased has it off: raster draws in prop order,
+/// over a depth buffer that holds nothing).
+bool KeepsDepthBelow(vtkRenderer* ren, vtkOpenGLState* ostate)
 {
-  return ren->GetPreserveDepthBuffer() || !(ren->GetRenderWindow()->GetErase() && ren->GetErase());
+  return (ren->GetPreserveDepthBuffer() || !(ren->GetRenderWindow()->GetErase() && ren->GetErase())) &&
+    ostate->GetEnumState(GL_DEPTH_TEST);
 }
 
 /// Copies the depth of the drawn viewport (size at origin in the framebuffer
@@ -257,7 +260,7 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   Features f;
   f.FloatColors = floatColors && !pass.IdMode;
   // Id mode clears the depth, and selection renders trace their ids alone.
-  f.DepthBelow = !pass.IdMode && !ren->GetSelector() && (KeepsDepthBelow(ren) || !this->OthersBelow.empty());
+  f.DepthBelow = !pass.IdMode && !ren->GetSelector() && (KeepsDepthBelow(ren, static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow())->GetState()) || !this->OthersBelow.empty());
   f.Triangles = this->Scene.HasTriangles();
   f.Spheres = this->Scene.HasSpheres();
   f.VertexNormals = this->Scene.HasVertexNormals();
@@ -660,7 +663,7 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
     vtkrt::pass::ImageSignature signature = this->AccumulationSignature(p);
     // The depth that renderers before this one left may change with nothing
     // of this renderer's scene (its own props below are in the signature).
-    const bool restart = !pass.ProgressiveAccumulation || KeepsDepthBelow(ren) ||
+    const bool restart = !pass.ProgressiveAccumulation || (p.F.DepthBelow && this->OthersBelow.empty()) ||
       this->Counters.GeometryBytesUploaded > this->Counters.RetreeBytesUploaded;
     // The accumulation traces the footprint (or the viewport) into its own buffer.
     const int* size = p.Camera.ViewportSize;

@@ -261,6 +261,42 @@ void TestPreservedDepth()
     ++index;
   }
   NoVTKOutput("preserved depth");
+
+  // Erase off in a window that never erased: its depth holds nothing and
+  // raster has the depth test off there (it draws triangles in cell order,
+  // back over front), so the pass traces as over nothing, the image of a
+  // window that erases to black (it drew nothing at all before).
+  for (const bool onWindow : { false, true })
+  {
+    auto make = [&](bool erase, vtkRayTracePass* pass) {
+      auto win = MakeWindow(160, 120);
+      vtkNew<vtkRenderer> ren;
+      win->AddRenderer(ren);
+      ren->AddActor(SphereActor(0.0, 0.0, 0.0, 0.8));
+      ren->ResetCamera();
+      if (onWindow)
+      {
+        win->SetErase(erase);
+      }
+      else
+      {
+        ren->SetErase(erase);
+      }
+      ren->SetPass(pass);
+      win->Render();
+      return Grab(win);
+    };
+    vtkNew<vtkRayTracePass> erasing;
+    vtkSmartPointer<vtkImageData> expected = make(true, erasing);
+    vtkNew<vtkRayTracePass> pass;
+    vtkSmartPointer<vtkImageData> image = make(false, pass);
+    const long off = CountDifferingPixels(image, expected, 40);
+    std::ostringstream s;
+    s << "erase off (" << (onWindow ? "window" : "renderer") << ") in a window that never erased: " << off
+      << " pixels off the erasing window's image by more than 40";
+    Check(pass->GetNumberOfTracedProps() == 1 && off <= 20, s.str());
+  }
+  NoVTKOutput("never erased");
 }
 
 } // namespace
