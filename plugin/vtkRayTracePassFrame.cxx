@@ -5,6 +5,7 @@
 #include "vtkrt/core/GpuTraversal.h"
 
 #include <array>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 
@@ -108,27 +109,6 @@ bool KeepsDepthBelow(vtkRenderer* ren, vtkOpenGLState* ostate)
 {
   return (ren->GetPreserveDepthBuffer() || !(ren->GetRenderWindow()->GetErase() && ren->GetErase())) &&
     ostate->GetEnumState(GL_DEPTH_TEST);
-}
-
-/// Copies the depth of the drawn viewport (size at origin in the framebuffer
-/// drawn to) into `depth`, a float depth texture of that size.
-void CopyDepthBelow(vtkOpenGLRenderWindow* win, vtkTextureObject* depth, const int size[2], const int origin[2])
-{
-  depth->SetContext(win);
-  const unsigned int width = static_cast<unsigned int>(std::max(size[0], 1));
-  const unsigned int height = static_cast<unsigned int>(std::max(size[1], 1));
-  if (!depth->GetHandle() || depth->GetWidth() != width || depth->GetHeight() != height)
-  {
-    depth->AllocateDepth(width, height, vtkTextureObject::Float32);
-  }
-  vtkOpenGLState* ostate = win->GetState();
-  GLint drawn = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawn);
-  ostate->PushReadFramebufferBinding();
-  ostate->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<unsigned int>(drawn));
-  depth->CopyFromFrameBuffer(origin[0], origin[1], 0, 0, static_cast<int>(width), static_cast<int>(height));
-  ostate->PopReadFramebufferBinding();
-  depth->Deactivate();
 }
 
 /// Occlusion rays a sample when the pass's own knob is 0 and the
@@ -577,11 +557,15 @@ vtkrt::pass::ImageSignature vtkRayTracePass::Internals::AccumulationSignature(co
     sources.push_back(inst.Geom ? inst.Geom->KeepData.Get() : nullptr);
   }
   appendAsFloats(signature, sources);
-  std::vector<vtkMTimeType> below;
+  // The depth below moves with these props' geometry: their redraw times
+  // (an assembly's do not cover its parts' data) and bounds.
+  std::vector<double> below;
   for (vtkProp* prop : this->OthersBelow)
   {
-    below.push_back(reinterpret_cast<vtkMTimeType>(prop));
-    below.push_back(prop->GetRedrawMTime());
+    below.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(prop)));
+    below.push_back(static_cast<double>(prop->GetRedrawMTime()));
+    const double* bounds = prop->GetBounds();
+    below.insert(below.end(), bounds, bounds + (bounds ? 6 : 0));
   }
   appendAsFloats(signature, below);
   appendAsFloats(signature, p.Frame.ClipPlanes);
@@ -615,10 +599,15 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
   ostate->vtkglDepthFunc(GL_ALWAYS);
   if (p.F.DepthBelow)
   {
-    CopyDepthBelow(win, this->DepthBelow, p.Camera.ViewportSize, p.Camera.ViewportOrigin);
-    this->DepthBelow->Activate();
-    tracer->Program->SetUniformi("uDepthBelow", this->DepthBelow->GetTextureUnit());
-    p.Active.push_back(this->DepthBelow);
+    if (vtkTextureObject* below = this->Below.Take(win, p.Camera.ViewportSize, p.Camera.ViewportOrigin))
+    {
+      below->Activate();
+      tracer->Program->SetUniformi("uDepthBelow", below->GetTextureUnit());
+      // The shader's kCoincidentDepthBias, toward what decides coincidences.
+      const float bias = 16.0f / 16777216.0f;
+      tracer->Program->SetUniformf("uDepthBelowBias", this->OthersBelow.empty() ? bias : -bias);
+      p.Active.push_back(below);
+    }
   }
   ostate->vtkglDepthMask(GL_TRUE);
   ostate->vtkglDisable(GL_BLEND);
@@ -742,7 +731,7 @@ void vtkRayTracePass::Internals::RenderOthersBelow(
   // 3D props only: 2D ones draw their opaque parts over everything.
   for (vtkProp* prop : this->Others)
   {
-    if (prop->IsA("vtkProp3D") && prop->HasOpaqueGeometry())
+    if (prop->IsA("vtkProp3D") && !prop->IsA("vtkVolume") && prop->HasOpaqueGeometry())
     {
       this->OthersBelow.push_back(prop);
     }

@@ -8,6 +8,7 @@
 
 #include "pass/vtkRayTraceAccumulation.h"
 #include "pass/vtkRayTraceBuffers.h"
+#include "pass/vtkRayTraceDepthBelow.h"
 #include "pass/vtkRayTraceLights.h"
 #include "pass/vtkRayTracePacker.h"
 #include "pass/vtkRayTraceRasterSteps.h"
@@ -56,7 +57,7 @@ struct vtkRayTracePass::Internals
   std::vector<vtkProp*> Traced;
   std::vector<vtkProp*> Others;
   /// Of Others, the 3D props whose opaque geometry raster draws before the
-  /// trace (OpaqueOthersFirst): empty when it draws them after.
+  /// trace (RenderOthersBelow): empty when it draws them after.
   std::vector<vtkProp*> OthersBelow;
   vtkrt::pass::FrameCounters Counters;
   vtkrt::pass::ProgramCache Programs;
@@ -86,8 +87,8 @@ struct vtkRayTracePass::Internals
   vtkrt::pass::Accumulation Accumulated;
   vtkrt::pass::Selection Selecting;
   /// The depth below a renderer that keeps it (Features::DepthBelow),
-  /// copied from its viewport each frame.
-  vtkNew<vtkTextureObject> DepthBelow;
+  /// taken from its viewport each frame.
+  vtkrt::pass::DepthBelow Below;
   /// GPU time of the tracing, one frame late, as vtkOpenGLPolyDataMapper
   /// times its draws (the props' render times, ReportRenderTimes).
   std::unique_ptr<vtkOpenGLRenderTimer> TraceTimer = std::make_unique<vtkOpenGLRenderTimer>();
@@ -116,7 +117,7 @@ struct vtkRayTracePass::Internals
   {
     this->Accumulated.Release(w);
     this->Selecting.Release(w);
-    this->DepthBelow->ReleaseGraphicsResources(w);
+    this->Below.Release(w);
     this->TraceTimer->ReleaseGraphicsResources();
     this->Programs.Release(w);
     this->Buffers.Release(w);

@@ -45,11 +45,13 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, float tEnd, out vec
 #endif
 
 #ifdef VTKRT_DEPTH_BELOW
-// The window depth that the renderers drawn before this one left in its
-// viewport (it keeps the depth buffer: PreserveDepthBuffer, or Erase off),
-// copied before tracing: a camera ray ends there, as this renderer's raster
-// geometry behind it would be hidden, translucent layers included.
+// The window depth already in this renderer's viewport (that the renderers
+// before it left: PreserveDepthBuffer, or Erase off; or its own opaque
+// raster props, drawn before traced translucent layers), taken before
+// tracing: a camera ray ends there, as raster geometry behind it would be
+// hidden, translucent layers included.
 uniform sampler2D uDepthBelow;
+uniform float uDepthBelowBias;
 
 // The t of the camera ray through ndc at window depth `depth`
 // (core::gpu::affineRayT, core::gpu::projectiveRayT); 1 (the far plane) at
@@ -69,8 +71,9 @@ float cameraRayEnd(vec2 ndc, vec3 org, vec3 dir, float depth)
 
 // The depth a hit writes over the depth below: never behind it (a layer of
 // translucent surfaces alone leaves the far plane's depth, a hit coincident
-// with it the depth pushed back by kCoincidentDepthBias), half a step of a
-// 24-bit depth buffer before it, which the buffer keeps as it was.
+// with it the depth pushed back by kCoincidentDepthBias), at most about half
+// a step of a 24-bit depth buffer before it, so that the depth test passes
+// and the depth below changes by a step at most.
 float depthOverBelow(float depth, float depthBelow)
 {
   return min(depth, depthBelow - 0.5 / 16777216.0);
@@ -99,10 +102,14 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 #endif
   float tEnd = 1.0;
 #ifdef VTKRT_DEPTH_BELOW
-  // Surfaces coincident with what lies below are drawn over it, as raster's
-  // test (less or equal) draws the same triangles over themselves.
+  // uDepthBelowBias decides a surface coincident with what lies below:
+  // drawn over a renderer below (+, raster's less-or-equal test draws the
+  // same triangles over themselves), under this renderer's own raster props
+  // (-, as its lines and points pass the test over the traced depth when
+  // drawn after the trace).
   float depthBelow = texture(uDepthBelow, ndc * 0.5 + 0.5).r;
-  tEnd = cameraRayEnd(ndc, org, dir, min(depthBelow + kCoincidentDepthBias, 1.0));
+  tEnd = depthBelow >= 1.0 ? 1.0
+                           : cameraRayEnd(ndc, org, dir, clamp(depthBelow + uDepthBelowBias, 0.0, 1.0));
 #endif
 #ifdef VTKRT_TRANSLUCENT
   bool hit = traceTranslucentLayers(org, dir, invDir, tEnd, outColor, outDepth);

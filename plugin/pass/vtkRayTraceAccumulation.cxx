@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <utility>
 
 namespace vtkrt
@@ -22,7 +23,12 @@ namespace pass
 
 bool ImageSignature::Same(const ImageSignature& other) const
 {
-  if (this->Scene != other.Scene || this->Camera.size() != other.Camera.size())
+  // The scene's words hold pointers and counts as well as floats: compared
+  // as bytes (as floats, some are NaN patterns, never equal, or denormals
+  // that flush to zero).
+  if (this->Scene.size() != other.Scene.size() || this->Camera.size() != other.Camera.size() ||
+    (!this->Scene.empty() &&
+      std::memcmp(this->Scene.data(), other.Scene.data(), this->Scene.size() * sizeof(float)) != 0))
   {
     return false;
   }
@@ -36,8 +42,11 @@ bool ImageSignature::Same(const ImageSignature& other) const
     }
     for (std::size_t i = first; i < end; ++i)
     {
-      // Written so that a NaN entry is never the same.
-      if (!(std::abs(this->Camera[i] - other.Camera[i]) <= 1e-6f * largest))
+      // A non-finite entry (or largest) is the same only bit for bit.
+      const bool finite = std::isfinite(this->Camera[i]) && std::isfinite(other.Camera[i]) && std::isfinite(largest);
+      const bool same = finite ? std::abs(this->Camera[i] - other.Camera[i]) <= 1e-6f * largest
+                               : std::memcmp(&this->Camera[i], &other.Camera[i], sizeof(float)) == 0;
+      if (!same)
       {
         return false;
       }
@@ -87,7 +96,12 @@ void Accumulation::Trace(vtkOpenGLRenderWindow* win, const int viewportSize[2],
     this->Allocate(win, width, height);
   }
   this->Frames = restart ? 1 : framesBefore + 1;
-  this->Signature = std::move(signature);
+  // Kept from the restart on, so that a camera drifting by less than the
+  // tolerance each frame still restarts once it has moved.
+  if (restart)
+  {
+    this->Signature = std::move(signature);
+  }
 
   ostate->PushFramebufferBindings();
   this->FBO->Bind();

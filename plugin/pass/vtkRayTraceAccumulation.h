@@ -28,7 +28,9 @@ namespace pass
 /// What an accumulated image is traced from: the camera's matrices, the
 /// same within a relative 1e-6 of each matrix's largest entry (a camera
 /// moved by float rounding alone, as vtkWindowToImageFilter leaves its
-/// view angle, is the same camera), and the rest bit for bit.
+/// view angle, is the same camera; a non-finite entry only bit for bit),
+/// and the rest bit for bit. An accumulation compares with the signature of
+/// its first frame.
 struct ImageSignature
 {
   std::vector<float> Camera;

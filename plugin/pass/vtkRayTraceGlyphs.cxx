@@ -84,6 +84,11 @@ std::vector<vtkIdType> MergedPointIds(
   return merged;
 }
 
+/// The cosine of the widest angle a glyph source's polygon edge may subtend
+/// at its center to be traced as a sphere: 45 degrees (VTK's default
+/// vtkSphereSource, 8 around), and a little more for rounding.
+constexpr double kWidestEdgeCosine = 0.7009; // cos(45.5 degrees)
+
 /// Whether the polygons of poly (points merged by position, degenerate
 /// polygons skipped) stay near the sphere and close it: every edge shared
 /// by exactly two of them.
@@ -113,6 +118,21 @@ bool PolygonsCloseSphere(vtkPolyData* poly, const std::vector<vtkIdType>& merged
     if (count > 0 && vtkMath::Norm(centroid) < minimumCentroidDistance * radius)
     {
       return false;
+    }
+    // Facets no coarser than VTK's default sphere's: a polyhedral marker is
+    // drawn by raster, with its facets.
+    for (vtkIdType k = 0; k < count; ++k)
+    {
+      double a[3], b[3];
+      poly->GetPoint(ids[k], a);
+      poly->GetPoint(ids[(k + 1) % count], b);
+      vtkMath::Subtract(a, center, a);
+      vtkMath::Subtract(b, center, b);
+      const double lengths = vtkMath::Norm(a) * vtkMath::Norm(b);
+      if (lengths > 0.0 && vtkMath::Dot(a, b) < kWidestEdgeCosine * lengths)
+      {
+        return false;
+      }
     }
     cell.clear();
     for (vtkIdType k = 0; k < count; ++k)
@@ -146,29 +166,26 @@ bool PolygonsCloseSphere(vtkPolyData* poly, const std::vector<vtkIdType>& merged
     [](const std::pair<const std::pair<vtkIdType, vtkIdType>, int>& e) { return e.second == 2; });
 }
 
-/// The fewest points of a glyph source traced as a sphere: those of VTK's
-/// default vtkSphereSource (8 by 8: 50 points). Coarser ones are polyhedral
-/// markers, which raster draws with their facets.
-constexpr vtkIdType kFewestSpherePoints = 50;
-
 /// Whether a vtkSphereSource makes a sphere the pass traces: all of it
-/// (a dome or a wedge is open), at VTK's default resolution or finer.
+/// (a dome or a wedge is open), its edges subtending 45 degrees at most, as
+/// VTK's default resolution's (8 around; 5 or more from pole to pole).
 bool WholeFineSphere(vtkSphereSource* source)
 {
   return source->GetStartTheta() <= 0.0 && source->GetEndTheta() >= 360.0 &&
     source->GetStartPhi() <= 0.0 && source->GetEndPhi() >= 180.0 && source->GetThetaResolution() >= 8 &&
-    source->GetPhiResolution() >= 8;
+    source->GetPhiResolution() >= 5;
 }
 } // namespace
 
-/// Whether a glyph source is a closed sphere: at least kFewestSpherePoints
-/// points, every point within a small relative tolerance of one distance
-/// from its bounds' center, and every polygon edge shared by exactly two
-/// polygons (a cap, a wedge or an ellipsoid is not one).
+/// Whether a glyph source is a closed sphere: every point within a small
+/// relative tolerance of one distance from its bounds' center, no polygon
+/// edge subtending more than 45 degrees, and every polygon edge shared by
+/// exactly two polygons (a cap, a wedge, a polyhedron or an ellipsoid is
+/// not one).
 bool SphereOfPolyData(vtkPolyData* poly, double center[3], double& radius)
 {
   const vtkIdType n = poly->GetNumberOfPoints();
-  if (n < kFewestSpherePoints || poly->GetNumberOfPolys() == 0 || poly->GetNumberOfStrips() > 0 ||
+  if (n < 4 || poly->GetNumberOfPolys() == 0 || poly->GetNumberOfStrips() > 0 ||
     poly->GetNumberOfLines() > 0 || poly->GetNumberOfVerts() > 0)
   {
     return false;

@@ -226,8 +226,9 @@ struct Features
   /// The frame is drawn into float colors (a wrapping vtkToneMappingPass's
   /// buffer): colors above 1 are kept, as raster's fragments keep them.
   bool FloatColors = false;
-  /// The renderer keeps the depth that the renderers before it drew
-  /// (PreserveDepthBuffer, or Erase off): camera rays end at it.
+  /// Camera rays end at the depth already in the renderer's viewport: that of
+  /// the renderers before it (PreserveDepthBuffer, or Erase off), or of its
+  /// own opaque raster props drawn before traced translucent layers.
   bool DepthBelow = false;
   bool TextureCutOuts = false;   ///< some textures have fully transparent texels
   bool Translucent = false;      ///< some instances are translucent (layers composited)

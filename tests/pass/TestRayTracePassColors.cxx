@@ -471,6 +471,13 @@ void TestGlyphSources()
   coarse->SetThetaResolution(6);
   coarse->SetPhiResolution(4);
   auto fine = GlyphSphere();
+  auto lopsided = GlyphSphere(); // 62 points, a double cone
+  lopsided->SetThetaResolution(60);
+  lopsided->SetPhiResolution(3);
+  vtkNew<vtkTexturedSphereSource> coarseTextured; // 64 points with its seams, 7 around
+  coarseTextured->SetRadius(0.35);
+  coarseTextured->SetThetaResolution(7);
+  coarseTextured->SetPhiResolution(7);
   // Sources read directly (before, half and wedge spheres were traced
   // whole, RMSE 13.5 and 9.1 in a user trial) and a flat shaded sphere.
   for (const auto& c : { std::make_pair("half sphere source", half.Get()),
@@ -488,6 +495,8 @@ void TestGlyphSources()
   }
   for (const auto& c : { std::make_pair("cube", static_cast<vtkAlgorithm*>(cube)),
          std::make_pair("6 by 4 sphere", static_cast<vtkAlgorithm*>(coarse)),
+         std::make_pair("60 by 3 sphere", static_cast<vtkAlgorithm*>(lopsided)),
+         std::make_pair("7 by 7 textured sphere", static_cast<vtkAlgorithm*>(coarseTextured)),
          std::make_pair("octahedron", static_cast<vtkAlgorithm*>(octahedron)),
          std::make_pair("icosahedron", static_cast<vtkAlgorithm*>(icosahedron)),
          std::make_pair("cone", static_cast<vtkAlgorithm*>(cone)),

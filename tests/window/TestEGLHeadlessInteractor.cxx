@@ -70,7 +70,8 @@ struct Scene
 void TestGeneric()
 {
   Scene scene;
-  // The window holds the interactor it makes, as vtkRenderWindow's does.
+  // As vtkRenderWindow::MakeRenderWindowInteractor: the window points to the
+  // interactor it makes, whose reference the caller does not take.
   vtkRenderWindowInteractor* interactor = scene.Window->MakeRenderWindowInteractor();
   Check(interactor && interactor->IsA("vtkGenericRenderWindowInteractor") &&
       interactor->GetRenderWindow() == scene.Window.Get() && scene.Window->GetInteractor() == interactor,
