@@ -1,0 +1,90 @@
+// vtkRayTracePass: what raster draws around the trace, through the delegate:
+// the opaque 3D props under traced translucent layers before it, the rest
+// after it.
+#include "vtkRayTracePassInternals.h"
+
+void vtkRayTracePass::Internals::RenderOthersBelow(
+  vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren)
+{
+  this->OthersBelow.clear();
+  auto* steps = vtkRayTraceRasterSteps::SafeDownCast(pass.DelegatePass);
+  if (pass.IdMode || !steps || this->Traced.empty() || !pass.TraceTranslucency ||
+    !this->Scene.HasTranslucency())
+  {
+    return;
+  }
+  // 3D props only: 2D ones draw their opaque parts over everything.
+  for (vtkProp* prop : this->Others)
+  {
+    if (prop->IsA("vtkProp3D") && !prop->IsA("vtkVolume") && prop->HasOpaqueGeometry())
+    {
+      this->OthersBelow.push_back(prop);
+    }
+  }
+  if (this->OthersBelow.empty())
+  {
+    return;
+  }
+  vtkRenderState below(ren);
+  below.SetPropArrayAndCount(this->OthersBelow.data(), static_cast<int>(this->OthersBelow.size()));
+  below.SetFrameBuffer(s->GetFrameBuffer());
+  below.SetRequiredKeys(s->GetRequiredKeys());
+  steps->RenderOpaque(&below);
+  pass.NumberOfRenderedProps += steps->GetNumberOfRenderedProps();
+}
+
+void vtkRayTracePass::Internals::RenderOthers(
+  vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren)
+{
+  // With nothing left to raster the delegate still runs when it may apply
+  // the renderer's FXAA over the traced image.
+  if (pass.IdMode || !pass.DelegatePass || (this->Others.empty() && !ren->GetUseFXAA()))
+  {
+    return;
+  }
+  vtkRenderState rest(ren);
+  rest.SetPropArrayAndCount(this->Others.data(), static_cast<int>(this->Others.size()));
+  rest.SetFrameBuffer(s->GetFrameBuffer());
+  rest.SetRequiredKeys(s->GetRequiredKeys());
+  if (!this->OthersBelow.empty())
+  {
+    // The opaque parts of the props not drawn before the trace, then the
+    // rest of every prop.
+    auto* rasterSteps = vtkRayTraceRasterSteps::SafeDownCast(pass.DelegatePass);
+    std::vector<vtkProp*> above;
+    for (vtkProp* prop : this->Others)
+    {
+      if (std::find(this->OthersBelow.begin(), this->OthersBelow.end(), prop) == this->OthersBelow.end())
+      {
+        above.push_back(prop);
+      }
+    }
+    vtkRenderState over(ren);
+    over.SetPropArrayAndCount(above.data(), static_cast<int>(above.size()));
+    over.SetFrameBuffer(s->GetFrameBuffer());
+    over.SetRequiredKeys(s->GetRequiredKeys());
+    rasterSteps->RenderOpaque(&over);
+    pass.NumberOfRenderedProps += rasterSteps->GetNumberOfRenderedProps();
+    rasterSteps->RenderAfterOpaque(&rest);
+    pass.NumberOfRenderedProps += rasterSteps->GetNumberOfRenderedProps();
+    return;
+  }
+  auto* steps = vtkRenderStepsPass::SafeDownCast(pass.DelegatePass);
+  if (!steps)
+  {
+    pass.DelegatePass->Render(&rest);
+    pass.NumberOfRenderedProps += pass.DelegatePass->GetNumberOfRenderedProps();
+    return;
+  }
+  // A vtkRenderStepsPass: its steps after the camera pass, whose clear would
+  // wipe the traced image (and its post-processing, which wraps that pass).
+  for (vtkRenderPass* step : { steps->GetLightsPass(), steps->GetOpaquePass(),
+         steps->GetTranslucentPass(), steps->GetVolumetricPass(), steps->GetOverlayPass() })
+  {
+    if (step)
+    {
+      step->Render(&rest);
+      pass.NumberOfRenderedProps += step->GetNumberOfRenderedProps();
+    }
+  }
+}
