@@ -375,6 +375,7 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
   int size[2] = { 0, 0 }, origin[2] = { 0, 0 };
   Internals::DrawnViewport(s, ren, size, origin);
   BeginDrawing(s, ren, cam, size, origin);
+  in.KeepsBelow = Internals::KeepsDepthBelow(ren, win->GetState());
   // Lights follow the camera and VTK computes the lighting complexity.
   in.Lights->Render(s);
 

@@ -99,17 +99,16 @@ bool Allowed(const char* variable)
   return !value || std::strcmp(value, "0") != 0;
 }
 
-/// Whether the renderer draws over the depth that the renderers before it
-/// left: VTK clears the depth only for a renderer that erases and does not
-/// preserve it (vtkOpenGLRenderer::Clear, called only when both the window
-/// and the renderer erase), and raster tests it only where the depth test is
-/// on (a window that never erased has it off: raster draws in prop order,
-/// over a depth buffer that holds nothing).
-bool KeepsDepthBelow(vtkRenderer* ren, vtkOpenGLState* ostate)
+} // namespace
+
+bool vtkRayTracePass::Internals::KeepsDepthBelow(vtkRenderer* ren, vtkOpenGLState* ostate)
 {
   return (ren->GetPreserveDepthBuffer() || !(ren->GetRenderWindow()->GetErase() && ren->GetErase())) &&
     ostate->GetEnumState(GL_DEPTH_TEST);
 }
+
+namespace
+{
 
 /// Occlusion rays a sample when the pass's own knob is 0 and the
 /// application turned on the renderer's SSAO (raster's screen-space
@@ -240,7 +239,7 @@ Features vtkRayTracePass::Internals::FrameFeatures(const vtkRayTracePass& pass,
   Features f;
   f.FloatColors = floatColors && !pass.IdMode;
   // Id mode clears the depth, and selection renders trace their ids alone.
-  f.DepthBelow = !pass.IdMode && !ren->GetSelector() && (KeepsDepthBelow(ren, static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow())->GetState()) || !this->OthersBelow.empty());
+  f.DepthBelow = !pass.IdMode && !ren->GetSelector() && (this->KeepsBelow || !this->OthersBelow.empty());
   f.Triangles = this->Scene.HasTriangles();
   f.Spheres = this->Scene.HasSpheres();
   f.VertexNormals = this->Scene.HasVertexNormals();
@@ -599,15 +598,14 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
   ostate->vtkglDepthFunc(GL_ALWAYS);
   if (p.F.DepthBelow)
   {
-    if (vtkTextureObject* below = this->Below.Take(win, p.Camera.ViewportSize, p.Camera.ViewportOrigin))
-    {
-      below->Activate();
-      tracer->Program->SetUniformi("uDepthBelow", below->GetTextureUnit());
-      // The shader's kCoincidentDepthBias, toward what decides coincidences.
-      const float bias = 16.0f / 16777216.0f;
-      tracer->Program->SetUniformf("uDepthBelowBias", this->OthersBelow.empty() ? bias : -bias);
-      p.Active.push_back(below);
-    }
+    vtkTextureObject* below = this->Below.Take(win, p.Camera.ViewportSize, p.Camera.ViewportOrigin);
+    below->Activate();
+    tracer->Program->SetUniformi("uDepthBelow", below->GetTextureUnit());
+    // The shader's kCoincidentDepthBias, toward what decides coincidences:
+    // the renderers below where there are some, else this one's raster props.
+    const float bias = 16.0f / 16777216.0f;
+    tracer->Program->SetUniformf("uDepthBelowBias", this->KeepsBelow ? bias : -bias);
+    p.Active.push_back(below);
   }
   ostate->vtkglDepthMask(GL_TRUE);
   ostate->vtkglDisable(GL_BLEND);
@@ -652,7 +650,7 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
     vtkrt::pass::ImageSignature signature = this->AccumulationSignature(p);
     // The depth that renderers before this one left may change with nothing
     // of this renderer's scene (its own props below are in the signature).
-    const bool restart = !pass.ProgressiveAccumulation || (p.F.DepthBelow && this->OthersBelow.empty()) ||
+    const bool restart = !pass.ProgressiveAccumulation || (p.F.DepthBelow && this->KeepsBelow) ||
       this->Counters.GeometryBytesUploaded > this->Counters.RetreeBytesUploaded;
     // The accumulation traces the footprint (or the viewport) into its own buffer.
     const int* size = p.Camera.ViewportSize;

@@ -59,6 +59,9 @@ struct vtkRayTracePass::Internals
   /// Of Others, the 3D props whose opaque geometry raster draws before the
   /// trace (RenderOthersBelow): empty when it draws them after.
   std::vector<vtkProp*> OthersBelow;
+  /// The renderer draws over the depth of the renderers before it
+  /// (KeepsDepthBelow, taken at the frame's start).
+  bool KeepsBelow = false;
   vtkrt::pass::FrameCounters Counters;
   vtkrt::pass::ProgramCache Programs;
   /// The window whose context holds the pass's GL objects (none yet, or
@@ -216,6 +219,13 @@ struct vtkRayTracePass::Internals
   /// Where the camera rays' walks start (the shader's VTKRT_TILE_ENTRIES):
   /// the frame's tile lists, uploaded when they changed, and their grid.
   void SetTileEntries(vtkOpenGLRenderer* ren, vtkOpenGLRenderWindow* win, Prepared& p);
+  /// Whether the renderer draws over the depth that the renderers before it
+  /// left: VTK clears the depth only for a renderer that erases and does not
+  /// preserve it (vtkOpenGLRenderer::Clear, called only when both the window
+  /// and the renderer erase), and raster tests it only where the depth test
+  /// is on (a window that never erased has it off: raster draws in prop
+  /// order, over a depth buffer that holds nothing).
+  static bool KeepsDepthBelow(vtkRenderer* ren, vtkOpenGLState* ostate);
   /// Where traced translucent layers may lie over raster's opaque 3D props,
   /// draws those first (OthersBelow) through the default delegate, so the
   /// trace ends its camera rays at their depth (Features::DepthBelow) and

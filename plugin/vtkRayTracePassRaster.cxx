@@ -3,13 +3,18 @@
 // after it.
 #include "vtkRayTracePassInternals.h"
 
+#include <algorithm>
+
 void vtkRayTracePass::Internals::RenderOthersBelow(
   vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren)
 {
   this->OthersBelow.clear();
   auto* steps = vtkRayTraceRasterSteps::SafeDownCast(pass.DelegatePass);
+  // Without the depth test (a window that never erased) raster's props
+  // would leave no depth to end the rays at: they are drawn after.
+  auto* win = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
   if (pass.IdMode || !steps || this->Traced.empty() || !pass.TraceTranslucency ||
-    !this->Scene.HasTranslucency())
+    !this->Scene.HasTranslucency() || !win->GetState()->GetEnumState(GL_DEPTH_TEST))
   {
     return;
   }

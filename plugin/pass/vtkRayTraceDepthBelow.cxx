@@ -17,9 +17,16 @@ namespace pass
 namespace
 {
 /// The internal format of the depth attachment of the framebuffer bound for
-/// drawing (0 when it has none or it cannot be told).
+/// drawing (0 when it has none or it cannot be told, as for the default
+/// framebuffer's).
 GLint DrawnDepthFormat()
 {
+  GLint drawn = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawn);
+  if (drawn == 0)
+  {
+    return 0;
+  }
   GLint type = GL_NONE;
   GLint name = 0;
   glGetFramebufferAttachmentParameteriv(
@@ -115,6 +122,8 @@ vtkTextureObject* DepthBelow::Resolve(
   if (!depth->GetHandle() || depth->GetWidth() != width || depth->GetHeight() != height ||
     format != this->ResolvedFormat)
   {
+    // AllocateDepth keeps a format and type set before.
+    depth->ResetFormatAndType();
     if (!AllocateDepthOfFormat(depth, width, height, format))
     {
       if (format != this->WarnedFormat)
@@ -125,7 +134,7 @@ vtkTextureObject* DepthBelow::Resolve(
         this->WarnedFormat = format;
       }
       this->ResolvedFormat = 0;
-      return nullptr;
+      return this->Nothing(win);
     }
     this->ResolvedFormat = format;
     this->ResolveTarget->SetContext(win);
@@ -148,8 +157,20 @@ vtkTextureObject* DepthBelow::Resolve(
   return depth;
 }
 
+vtkTextureObject* DepthBelow::Nothing(vtkOpenGLRenderWindow* win)
+{
+  if (!this->Far->GetHandle())
+  {
+    this->Far->SetContext(win);
+    float farDepth = 1.0f;
+    this->Far->Create2DFromRaw(1, 1, 1, VTK_FLOAT, &farDepth);
+  }
+  return this->Far;
+}
+
 void DepthBelow::Release(vtkWindow* w)
 {
+  this->Far->ReleaseGraphicsResources(w);
   this->Copied->ReleaseGraphicsResources(w);
   this->Resolved->ReleaseGraphicsResources(w);
   this->ResolveTarget->ReleaseGraphicsResources(w);

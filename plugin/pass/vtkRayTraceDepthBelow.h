@@ -26,8 +26,9 @@ public:
   /// The depth of `size` pixels at `origin` in the framebuffer drawn to, as
   /// a texture of that size: copied from a single-sample framebuffer, or
   /// resolved by a blit into a texture of the same depth format from a
-  /// multisampled one (GL blits depth only between equal formats).
-  /// nullptr, with a VTK error, where it cannot be taken.
+  /// multisampled one (GL blits depth only between equal formats). Where
+  /// it cannot be taken (a depth format vtkTextureObject does not make), a
+  /// texture of the far plane's depth, with one VTK warning.
   vtkTextureObject* Take(vtkOpenGLRenderWindow* win, const int size[2], const int origin[2]);
 
   void Release(vtkWindow* w);
@@ -37,10 +38,13 @@ private:
     const int origin[2]);
   vtkTextureObject* Resolve(vtkOpenGLRenderWindow* win, unsigned int width, unsigned int height,
     const int origin[2]);
+  /// One texel of depth 1: nothing below.
+  vtkTextureObject* Nothing(vtkOpenGLRenderWindow* win);
 
   vtkNew<vtkTextureObject> Copied;
   vtkNew<vtkTextureObject> Resolved;
   vtkNew<vtkOpenGLFramebufferObject> ResolveTarget;
+  vtkNew<vtkTextureObject> Far;
   int ResolvedFormat = 0; ///< the GL internal format Resolved was allocated with
   int WarnedFormat = 0;   ///< the last format that could not be resolved (warned once)
 };

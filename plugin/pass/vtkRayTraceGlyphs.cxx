@@ -84,9 +84,10 @@ std::vector<vtkIdType> MergedPointIds(
   return merged;
 }
 
-/// The cosine of the widest angle a glyph source's polygon edge may subtend
-/// at its center to be traced as a sphere: 45 degrees (VTK's default
-/// vtkSphereSource, 8 around), and a little more for rounding.
+/// The cosine of the widest angle a glyph source's polygon edge (a
+/// triangle's diagonal aside) may subtend at its center to be traced as a
+/// sphere: 45 degrees (VTK's default vtkSphereSource, 8 around), and a
+/// little more for rounding.
 constexpr double kWidestEdgeCosine = 0.7009; // cos(45.5 degrees)
 
 /// Whether the polygons of poly (points merged by position, degenerate
@@ -120,7 +121,9 @@ bool PolygonsCloseSphere(vtkPolyData* poly, const std::vector<vtkIdType>& merged
       return false;
     }
     // Facets no coarser than VTK's default sphere's: a polyhedral marker is
-    // drawn by raster, with its facets.
+    // drawn by raster, with its facets. A triangle's widest edge is left
+    // out: the diagonal that splits a sphere source's quad.
+    std::vector<double> cosines;
     for (vtkIdType k = 0; k < count; ++k)
     {
       double a[3], b[3];
@@ -129,10 +132,13 @@ bool PolygonsCloseSphere(vtkPolyData* poly, const std::vector<vtkIdType>& merged
       vtkMath::Subtract(a, center, a);
       vtkMath::Subtract(b, center, b);
       const double lengths = vtkMath::Norm(a) * vtkMath::Norm(b);
-      if (lengths > 0.0 && vtkMath::Dot(a, b) < kWidestEdgeCosine * lengths)
-      {
-        return false;
-      }
+      cosines.push_back(lengths > 0.0 ? vtkMath::Dot(a, b) / lengths : 1.0);
+    }
+    std::sort(cosines.begin(), cosines.end());
+    const std::size_t widest = count == 3 ? 1 : 0;
+    if (cosines.size() > widest && cosines[widest] < kWidestEdgeCosine)
+    {
+      return false;
     }
     cell.clear();
     for (vtkIdType k = 0; k < count; ++k)

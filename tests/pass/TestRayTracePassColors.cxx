@@ -414,6 +414,13 @@ void TestGlyphSources()
   vtkNew<vtkSphereSource> byDefault;
   byDefault->SetRadius(0.35);
   Check(RenderGlyphs(byDefault, nullptr).TracedProps == 1, "default vtkSphereSource glyphs (8 by 8): traced");
+  vtkNew<vtkTriangleFilter> defaultFiltered;
+  defaultFiltered->SetInputConnection(byDefault->GetOutputPort());
+  Check(RenderGlyphs(defaultFiltered, nullptr).TracedProps == 1,
+    "default vtkSphereSource glyphs through a filter: traced (its quads' diagonals are wider than 45 degrees)");
+  vtkNew<vtkTexturedSphereSource> defaultTextured;
+  defaultTextured->SetRadius(0.35);
+  Check(RenderGlyphs(defaultTextured, nullptr).TracedProps == 1, "default vtkTexturedSphereSource glyphs: traced");
 
   vtkNew<vtkTriangleFilter> triangles;
   triangles->SetInputConnection(sphere->GetOutputPort());

@@ -16,6 +16,7 @@
 #include "vtkCubeSource.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkOutlineSource.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
@@ -271,13 +272,26 @@ void TestPreservedDepth()
   // raster has the depth test off there (it draws triangles in cell order,
   // back over front), so the pass traces as over nothing, the image of a
   // window that erases to black (it drew nothing at all before).
-  for (const bool onWindow : { false, true })
+  // Also a translucent sphere with an outline that raster draws (its opaque
+  // props go before the trace only where the depth test is on).
+  for (const int variant : { 0, 1, 2 })
   {
+    const bool onWindow = variant == 1;
+    const bool translucent = variant == 2;
     auto make = [&](bool erase, vtkRayTracePass* pass) {
       auto win = MakeWindow(160, 120);
       vtkNew<vtkRenderer> ren;
       win->AddRenderer(ren);
-      ren->AddActor(SphereActor(0.0, 0.0, 0.0, 0.8));
+      auto ball = SphereActor(0.0, 0.0, 0.0, 0.8);
+      ren->AddActor(ball);
+      if (translucent)
+      {
+        ball->GetProperty()->SetOpacity(0.5);
+        vtkNew<vtkOutlineSource> box;
+        box->SetBounds(-1.0, 1.0, -1.0, 1.0, -1.0, 1.0);
+        box->Update();
+        ren->AddActor(MeshActor(box->GetOutput()));
+      }
       ren->ResetCamera();
       if (onWindow)
       {
@@ -297,8 +311,8 @@ void TestPreservedDepth()
     vtkSmartPointer<vtkImageData> image = make(false, pass);
     const long off = CountDifferingPixels(image, expected, 40);
     std::ostringstream s;
-    s << "erase off (" << (onWindow ? "window" : "renderer") << ") in a window that never erased: " << off
-      << " pixels off the erasing window's image by more than 40";
+    s << "erase off (" << (onWindow ? "window" : "renderer") << (translucent ? ", translucent over an outline" : "")
+      << ") in a window that never erased: " << off << " pixels off the erasing window's image by more than 40";
     Check(pass->GetNumberOfTracedProps() == 1 && off <= 20, s.str());
   }
   NoVTKOutput("never erased");
