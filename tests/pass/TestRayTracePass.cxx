@@ -641,48 +641,6 @@ void TestCoincidentLines()
   NoVTKOutput("CoincidentLines");
 }
 
-// The specular term is compiled only for scenes with a specular color
-// (VTKRT_SPECULAR): a ball with VTK's default Specular 0 has none, one with
-// Specular 0.6 gets its highlight, under the headlight and under two scene
-// lights, each as raster draws it.
-void TestSpecular()
-{
-  auto win = MakeWindow(240, 200);
-  vtkNew<vtkRenderer> ren;
-  win->AddRenderer(ren);
-  auto actor = SphereActor(0.0, 0.0, 0.0, 0.5, 64);
-  actor->GetProperty()->SetColor(0.3, 0.5, 0.9);
-  actor->GetProperty()->SetSpecularPower(30.0);
-  ren->AddActor(actor);
-  ren->ResetCamera();
-  const std::string define = "#define VTKRT_SPECULAR\n";
-  const auto check = [&](const std::string& label, bool specular) {
-    RasterAndTraced frames = CompareBlurred(win, ren, label, 1, 4.0, "Specular_" + label);
-    const bool has = std::string(frames.Pass->GetLastFragmentShaderSource()).find(define) != std::string::npos;
-    Check(has == specular, label + (specular ? ": the shader has" : ": the shader has no") + " specular term");
-    ren->SetPass(nullptr);
-    return frames.Traced;
-  };
-  auto dull = check("headlight, Specular 0", false);
-  actor->GetProperty()->SetSpecular(0.6);
-  auto shiny = check("headlight, Specular 0.6", true);
-  const long lit = CountDifferingPixels(dull, shiny, 16);
-  Check(lit > 100, "the highlight changes " + std::to_string(lit) + " pixels by more than 16 levels");
-  vtkNew<vtkLight> key;
-  key->SetPosition(2.0, 3.0, 4.0);
-  key->SetFocalPoint(0.0, 0.0, 0.0);
-  vtkNew<vtkLight> fill;
-  fill->SetPosition(-3.0, 1.0, 2.0);
-  fill->SetFocalPoint(0.0, 0.0, 0.0);
-  fill->SetIntensity(0.5);
-  ren->AddLight(key);
-  ren->AddLight(fill);
-  check("two scene lights, Specular 0.6", true);
-  actor->GetProperty()->SetSpecular(0.0);
-  check("two scene lights, Specular 0", false);
-  NoVTKOutput("Specular");
-}
-
 // The camera rays of VTK's cameras are affine in the pixel ("p0" in the
 // feature key: the shader takes them from three uniforms each): a
 // perspective camera, an off-axis one (window center) and a parallel one,
@@ -817,7 +775,6 @@ int main(int argc, char* argv[])
     { "PointsAsSpheres", TestPointsAsSpheres },
     { "CoincidentLines", TestCoincidentLines },
     { "CameraRays", TestCameraRays },
-    { "Specular", TestSpecular },
   };
   return RunCase(argc, argv, cases);
 }
