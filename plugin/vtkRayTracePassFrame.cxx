@@ -601,10 +601,9 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
     vtkTextureObject* below = this->Below.Take(win, p.Camera.ViewportSize, p.Camera.ViewportOrigin);
     below->Activate();
     tracer->Program->SetUniformi("uDepthBelow", below->GetTextureUnit());
-    // The shader's kCoincidentDepthBias, toward what decides coincidences:
-    // the renderers below where there are some, else this one's raster props.
-    const float bias = 16.0f / 16777216.0f;
-    tracer->Program->SetUniformf("uDepthBelowBias", this->KeepsBelow ? bias : -bias);
+    // Coincidences go to the renderers below where there are some, else to
+    // this one's raster props.
+    tracer->Program->SetUniformf("uDepthBelowSide", this->KeepsBelow ? 1.0f : -1.0f);
     p.Active.push_back(below);
   }
   ostate->vtkglDepthMask(GL_TRUE);

@@ -4,6 +4,18 @@
 #include "vtkRayTracePassInternals.h"
 
 #include <algorithm>
+#include <iterator>
+
+namespace
+{
+/// `out` (of s's renderer) for `props`, with s's framebuffer and keys.
+void StateFor(vtkRenderState& out, const vtkRenderState* s, std::vector<vtkProp*>& props)
+{
+  out.SetPropArrayAndCount(props.data(), static_cast<int>(props.size()));
+  out.SetFrameBuffer(s->GetFrameBuffer());
+  out.SetRequiredKeys(s->GetRequiredKeys());
+}
+} // namespace
 
 void vtkRayTracePass::Internals::RenderOthersBelow(
   vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren)
@@ -31,9 +43,7 @@ void vtkRayTracePass::Internals::RenderOthersBelow(
     return;
   }
   vtkRenderState below(ren);
-  below.SetPropArrayAndCount(this->OthersBelow.data(), static_cast<int>(this->OthersBelow.size()));
-  below.SetFrameBuffer(s->GetFrameBuffer());
-  below.SetRequiredKeys(s->GetRequiredKeys());
+  StateFor(below, s, this->OthersBelow);
   steps->RenderOpaque(&below);
   pass.NumberOfRenderedProps += steps->GetNumberOfRenderedProps();
 }
@@ -48,26 +58,18 @@ void vtkRayTracePass::Internals::RenderOthers(
     return;
   }
   vtkRenderState rest(ren);
-  rest.SetPropArrayAndCount(this->Others.data(), static_cast<int>(this->Others.size()));
-  rest.SetFrameBuffer(s->GetFrameBuffer());
-  rest.SetRequiredKeys(s->GetRequiredKeys());
+  StateFor(rest, s, this->Others);
   if (!this->OthersBelow.empty())
   {
     // The opaque parts of the props not drawn before the trace, then the
     // rest of every prop.
     auto* rasterSteps = vtkRayTraceRasterSteps::SafeDownCast(pass.DelegatePass);
     std::vector<vtkProp*> above;
-    for (vtkProp* prop : this->Others)
-    {
-      if (std::find(this->OthersBelow.begin(), this->OthersBelow.end(), prop) == this->OthersBelow.end())
-      {
-        above.push_back(prop);
-      }
-    }
+    std::copy_if(this->Others.begin(), this->Others.end(), std::back_inserter(above), [this](vtkProp* prop) {
+      return std::find(this->OthersBelow.begin(), this->OthersBelow.end(), prop) == this->OthersBelow.end();
+    });
     vtkRenderState over(ren);
-    over.SetPropArrayAndCount(above.data(), static_cast<int>(above.size()));
-    over.SetFrameBuffer(s->GetFrameBuffer());
-    over.SetRequiredKeys(s->GetRequiredKeys());
+    StateFor(over, s, above);
     rasterSteps->RenderOpaque(&over);
     pass.NumberOfRenderedProps += rasterSteps->GetNumberOfRenderedProps();
     rasterSteps->RenderAfterOpaque(&rest);

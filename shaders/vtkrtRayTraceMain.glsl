@@ -51,7 +51,7 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, float tEnd, out vec
 // tracing: a camera ray ends there, as raster geometry behind it would be
 // hidden, translucent layers included.
 uniform sampler2D uDepthBelow;
-uniform float uDepthBelowBias;
+uniform float uDepthBelowSide;
 
 // The t of the camera ray through ndc at window depth `depth`
 // (core::gpu::affineRayT, core::gpu::projectiveRayT); 1 (the far plane) at
@@ -102,14 +102,14 @@ bool shadeRay(vec2 ndc, out vec4 outColor, out float outDepth)
 #endif
   float tEnd = 1.0;
 #ifdef VTKRT_DEPTH_BELOW
-  // uDepthBelowBias decides a surface coincident with what lies below:
-  // drawn over a renderer below (+, raster's less-or-equal test draws the
-  // same triangles over themselves), under this renderer's own raster props
-  // (-, as its lines and points pass the test over the traced depth when
-  // drawn after the trace).
+  // uDepthBelowSide (+1 or -1) decides a surface coincident with what lies
+  // below: drawn over a renderer below (+, raster's less-or-equal test draws
+  // the same triangles over themselves), under this renderer's own raster
+  // props (-, as its lines and points pass the test over the traced depth
+  // when drawn after the trace).
   float depthBelow = texture(uDepthBelow, ndc * 0.5 + 0.5).r;
   tEnd = depthBelow >= 1.0 ? 1.0
-                           : cameraRayEnd(ndc, org, dir, clamp(depthBelow + uDepthBelowBias, 0.0, 1.0));
+                           : cameraRayEnd(ndc, org, dir, clamp(depthBelow + uDepthBelowSide * kCoincidentDepthBias, 0.0, 1.0));
 #endif
 #ifdef VTKRT_TRANSLUCENT
   bool hit = traceTranslucentLayers(org, dir, invDir, tEnd, outColor, outDepth);

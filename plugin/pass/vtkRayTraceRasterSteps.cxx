@@ -94,13 +94,22 @@ void vtkRayTraceRasterSteps::Render(const vtkRenderState* s)
   this->NumberOfRenderedProps += opaque;
 }
 
-void vtkRayTraceRasterSteps::RenderOpaque(const vtkRenderState* s)
+vtkOpenGLRenderer* vtkRayTraceRasterSteps::Begin(const vtkRenderState* s)
 {
   this->NumberOfRenderedProps = 0;
   auto* ren = vtkOpenGLRenderer::SafeDownCast(s->GetRenderer());
   if (!ren)
   {
     vtkErrorMacro("vtkRayTraceRasterSteps needs a vtkOpenGLRenderer.");
+  }
+  return ren;
+}
+
+void vtkRayTraceRasterSteps::RenderOpaque(const vtkRenderState* s)
+{
+  vtkOpenGLRenderer* ren = this->Begin(s);
+  if (!ren)
+  {
     return;
   }
   this->Step(this->Lights, s);
@@ -121,11 +130,9 @@ void vtkRayTraceRasterSteps::RenderOpaque(const vtkRenderState* s)
 
 void vtkRayTraceRasterSteps::RenderAfterOpaque(const vtkRenderState* s)
 {
-  this->NumberOfRenderedProps = 0;
-  auto* ren = vtkOpenGLRenderer::SafeDownCast(s->GetRenderer());
+  vtkOpenGLRenderer* ren = this->Begin(s);
   if (!ren)
   {
-    vtkErrorMacro("vtkRayTraceRasterSteps needs a vtkOpenGLRenderer.");
     return;
   }
   bool translucent = false;

@@ -50,6 +50,8 @@ private:
   vtkRayTraceRasterSteps(const vtkRayTraceRasterSteps&) = delete;
   void operator=(const vtkRayTraceRasterSteps&) = delete;
 
+  /// Resets the count; the renderer of `s`, or nullptr with an error.
+  vtkOpenGLRenderer* Begin(const vtkRenderState* s);
   /// Renders `pass` over `s` and counts its props.
   void Step(vtkRenderPass* pass, const vtkRenderState* s);
   /// The translucent step; true when it peeled the volumes too.
