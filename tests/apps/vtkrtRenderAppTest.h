@@ -3,6 +3,7 @@
 #ifndef vtkrtRenderAppTest_h
 #define vtkrtRenderAppTest_h
 
+#include "vtkrtCheck.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPNGReader.h"
@@ -22,20 +23,13 @@
 
 namespace
 {
-int Failures = 0;
+using vtkrtTest::Failures;
 std::string App;
 // One directory per driver and case: CTest runs the cases at once, and some
 // write files of the same name with different contents.
 std::string Tmp;
 
-void Check(bool ok, const std::string& what)
-{
-  std::cout << (ok ? "ok   " : "FAIL ") << what << "\n";
-  if (!ok)
-  {
-    ++Failures;
-  }
-}
+using vtkrtTest::Check;
 
 struct Result
 {

@@ -1,6 +1,7 @@
 // Tests the image-regression harness itself: identical and slightly noisy
 // images pass, a perturbed image fails and leaves the actual and diff images,
 // a size change fails, a missing baseline fails (or is recorded on request).
+#include "vtkrtCheck.h"
 #include "vtkrtImageRegression.h"
 #include "vtkrtTestOutputWindow.h"
 
@@ -16,16 +17,9 @@
 
 namespace
 {
-int Failures = 0;
+using vtkrtTest::Failures;
 
-void Check(bool ok, const std::string& what)
-{
-  std::cout << (ok ? "ok   " : "FAIL ") << what << "\n";
-  if (!ok)
-  {
-    ++Failures;
-  }
-}
+using vtkrtTest::Check;
 
 // A deterministic RGB test card: gradients plus a disc.
 vtkSmartPointer<vtkImageData> MakeCard(int w, int h)

@@ -3,6 +3,7 @@
 #ifndef vtkrtPassTestUtils_h
 #define vtkrtPassTestUtils_h
 
+#include "vtkrtCheck.h"
 #include "vtkEGLHeadlessRenderWindow.h"
 #include "vtkRayTracePass.h"
 #include "vtkrtTestOutputWindow.h"
@@ -54,17 +55,9 @@ namespace vtkrtPassTest
 {
 /// Failed checks of this test program, and the output window that counts
 /// VTK errors and warnings (each test's main installs it).
-inline int Failures = 0;
+using vtkrtTest::Check;
+using vtkrtTest::Failures;
 inline vtkrtTestOutputWindow* Output = nullptr;
-
-inline void Check(bool ok, const std::string& what)
-{
-  std::cout << (ok ? "ok   " : "FAIL ") << what << "\n";
-  if (!ok)
-  {
-    ++Failures;
-  }
-}
 
 /// Runs the case named by argv[1] and reports the failures; an unknown or
 /// missing name prints the usage with the known cases.

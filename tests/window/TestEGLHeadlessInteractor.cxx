@@ -8,6 +8,7 @@
 //              this X11 build) is refused with a VTK error and left
 //              detached, so its Initialize() reports no window instead of
 //              crashing in Xlib (it crashed before)
+#include "vtkrtCheck.h"
 #include "vtkEGLHeadlessRenderWindow.h"
 #include "vtkrtTestOutputWindow.h"
 
@@ -33,17 +34,10 @@
 
 namespace
 {
-int Failures = 0;
+using vtkrtTest::Failures;
 vtkrtTestOutputWindow* Output = nullptr;
 
-void Check(bool ok, const std::string& what)
-{
-  std::cout << (ok ? "ok   " : "FAIL ") << what << "\n";
-  if (!ok)
-  {
-    ++Failures;
-  }
-}
+using vtkrtTest::Check;
 
 /// A window with a sphere in the middle.
 struct Scene

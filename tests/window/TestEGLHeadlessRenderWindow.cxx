@@ -1,5 +1,6 @@
 // Tests of vtkEGLHeadlessRenderWindow. One executable, one CTest entry per
 // case: TestEGLHeadlessRenderWindow <Case>.
+#include "vtkrtCheck.h"
 #include "vtkEGLHeadlessRenderWindow.h"
 #include "vtkrtImageRegression.h"
 #include "vtkrtTestOutputWindow.h"
@@ -36,17 +37,10 @@
 
 namespace
 {
-int Failures = 0;
+using vtkrtTest::Failures;
 vtkrtTestOutputWindow* Output = nullptr;
 
-void Check(bool ok, const std::string& what)
-{
-  std::cout << (ok ? "ok   " : "FAIL ") << what << "\n";
-  if (!ok)
-  {
-    ++Failures;
-  }
-}
+using vtkrtTest::Check;
 
 // A scene with a flat-coloured (ambient only) cube or sphere and a fixed camera.
 struct Scene
