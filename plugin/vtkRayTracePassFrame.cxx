@@ -146,6 +146,9 @@ constexpr std::uint32_t kTileEntriesMinimumDepth = 19;
 /// Traced tiles (TracedTiles) are this many pixels wide; more than
 /// kMaxFootprintDraws rectangles of them are traced as one rectangle.
 constexpr int kFootprintTile = 32;
+/// Most frames a tile of a scaled screenshot accumulates, so that an image
+/// left accumulating for hours does not make a screenshot take as long.
+constexpr int kMaxTileFrames = 256;
 constexpr std::size_t kMaxFootprintDraws = 64;
 
 /// Whether the translucent layers' walks are interleaved
@@ -655,8 +658,25 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
     const int* size = p.Camera.ViewportSize;
     this->Counters.TracedPixels += narrowed ? static_cast<std::size_t>(footprint[2]) * footprint[3]
                                             : static_cast<std::size_t>(size[0]) * size[1];
-    this->Accumulated.Trace(win, size, p.Camera.ViewportOrigin, tracer, std::move(signature),
-      restart, framesBefore, pass.SamplesPerPixel, narrowed ? footprint : nullptr);
+    // A scaled screenshot (vtkWindowToImageFilter::SetScale above 1) renders
+    // tiles with cameras of their own: each tile accumulates, in its one
+    // render, as many frames as the image on screen had.
+    const int* tileScale = win->GetTileScale();
+    const bool tile = tileScale[0] > 1 || tileScale[1] > 1;
+    const int frames =
+      tile && pass.ProgressiveAccumulation ? std::min(this->UntiledFrames, kMaxTileFrames) : 1;
+    for (int f = 0; f < frames; ++f)
+    {
+      vtkrt::pass::ImageSignature again = f + 1 < frames ? signature : vtkrt::pass::ImageSignature();
+      this->Accumulated.Trace(win, size, p.Camera.ViewportOrigin, tracer, std::move(signature),
+        restart && f == 0, f == 0 ? framesBefore : this->Accumulated.GetFrames(), pass.SamplesPerPixel,
+        narrowed ? footprint : nullptr);
+      signature = std::move(again);
+    }
+    if (!tile)
+    {
+      this->UntiledFrames = this->Accumulated.GetFrames();
+    }
     for (vtkTextureObject* t : p.Active)
     {
       t->Deactivate();

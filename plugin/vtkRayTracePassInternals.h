@@ -88,6 +88,9 @@ struct vtkRayTracePass::Internals
   std::size_t ColorsLastAppend = 0; ///< words
   vtkrt::pass::TopLevel Top;
   vtkrt::pass::Accumulation Accumulated;
+  /// Frames accumulated into the last image drawn at the window's own
+  /// scale: what each tile of a scaled screenshot accumulates.
+  int UntiledFrames = 1;
   vtkrt::pass::Selection Selecting;
   /// The depth below a renderer that keeps it (Features::DepthBelow),
   /// taken from its viewport each frame.

@@ -163,6 +163,19 @@ void TestSampling()
   win->Render();
   Check(progressive->GetAccumulatedFrames() == 4,
     "and the frame after it (" + std::to_string(progressive->GetAccumulatedFrames()) + " frames, 4 expected)");
+  // A screenshot at twice the size renders four tiles with cameras of their
+  // own: each tile accumulates as many frames as the image on screen had,
+  // so its silhouette is as soft (with one frame a tile it was hard).
+  vtkNew<vtkWindowToImageFilter> scaledShot;
+  scaledShot->SetInput(win);
+  scaledShot->SetScale(2);
+  scaledShot->Update();
+  const long scaledSoft = CountIntermediatePixels(scaledShot->GetOutput(), 16, 240);
+  const long scaledPerimeter = static_cast<long>(2.0 * 3.14159 * 2 * size / 3.5);
+  Check(progressive->GetAccumulatedFrames() == 4 && scaledSoft > scaledPerimeter / 2,
+    "a screenshot at scale 2: each tile accumulates the 4 frames on screen (" +
+      std::to_string(progressive->GetAccumulatedFrames()) + " frames, " + std::to_string(scaledSoft) +
+      " intermediate pixels > " + std::to_string(scaledPerimeter / 2) + ")");
   ren->GetActiveCamera()->Azimuth(0.01);
   win->Render();
   Check(progressive->GetAccumulatedFrames() == 1, "camera moved by 0.01 degree: accumulation restarts");
