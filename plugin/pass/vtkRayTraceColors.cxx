@@ -154,6 +154,36 @@ bool Scene::AddTexture(vtkActor* actor, vtkPolyData* poly, Instance& inst)
   return true;
 }
 
+namespace
+{
+/// True, with a warning, when the mapped colors (or the color texture
+/// coordinates) are fewer than the points or cells they color: the
+/// scalars array is shorter than its data set, raster reads past its end,
+/// and the prop is drawn in its property's color instead.
+bool ScalarsTooShort(vtkMapper* mapper, vtkPolyData* data, int cellFlag, vtkUnsignedCharArray* mapped,
+  vtkFloatArray* coordinates)
+{
+  if (cellFlag == 2 || (!mapped && !coordinates))
+  {
+    return false; // field data: its own rules
+  }
+  const vtkIdType needed = cellFlag == 1 ? data->GetNumberOfCells() : data->GetNumberOfPoints();
+  const vtkIdType given = mapped ? mapped->GetNumberOfTuples() : coordinates->GetNumberOfTuples();
+  if (given >= needed)
+  {
+    return false;
+  }
+  int ignored = 0;
+  vtkAbstractArray* scalars = vtkAbstractMapper::GetAbstractScalars(data, mapper->GetScalarMode(),
+    mapper->GetArrayAccessMode(), mapper->GetArrayId(), mapper->GetArrayName(), ignored);
+  const char* name = scalars && scalars->GetName() ? scalars->GetName() : "";
+  vtkGenericWarningMacro("vtkRayTracePass: the scalars '"
+    << name << "' of polydata " << data << " have " << given << " tuples for " << needed
+    << (cellFlag == 1 ? " cells" : " points") << ": drawn in the actor's color.");
+  return true;
+}
+} // namespace
+
 Colors* Scene::GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time)
 {
   if (!mapper->GetScalarVisibility())
@@ -204,6 +234,11 @@ Colors* Scene::GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time
   }
   vtkFloatArray* coordinates = helper->GetColorCoordinates();
   vtkImageData* texture = helper->GetColorTextureMap();
+  if (ScalarsTooShort(mapper, data, cellFlag, mapped, coordinates))
+  {
+    mapped = nullptr;
+    coordinates = nullptr;
+  }
   vtkUnsignedCharArray* texels =
     texture ? vtkArrayDownCast<vtkUnsignedCharArray>(texture->GetPointData()->GetScalars()) : nullptr;
   if (!mapped && cellFlag == 0 && coordinates && texels &&

@@ -144,21 +144,42 @@ std::uint8_t cellEdgesOf(const core::SurfaceTriangles& triangles, std::size_t t,
 }
 
 /// `normals`' first `count` vectors (one per point, or per cell) as GPU
-/// records, as raster reads them by point or cell id; nothing when it holds
-/// fewer.
-void readNormals(vtkDataArray* normals, std::size_t count, core::HugePageArray<core::gpu::Normal>& out)
+/// records, as raster reads them by point or cell id ("point", "cell": what
+/// they are of).
+/// Normals not of 3 components are left out; an array of too few tuples
+/// gives those past its end a zero normal (raster reads past the end). Both
+/// with a warning.
+void readNormals(vtkDataArray* normals, std::size_t count, const char* of,
+  core::HugePageArray<core::gpu::Normal>& out)
 {
-  if (!normals || normals->GetNumberOfComponents() != 3 ||
-    normals->GetNumberOfTuples() < static_cast<vtkIdType>(count))
+  if (!normals)
   {
     return;
   }
+  const std::size_t given = static_cast<std::size_t>(normals->GetNumberOfTuples());
+  const bool vectors = normals->GetNumberOfComponents() == 3;
+  if (!vectors || given < count)
+  {
+    vtkGenericWarningMacro("vtkRayTracePass: the " << of << " normals '"
+                                                   << (normals->GetName() ? normals->GetName() : "") << "' have "
+                                                   << given << " tuples of " << normals->GetNumberOfComponents()
+                                                   << " components for " << count << " " << of << "s: "
+                                                   << (vectors ? "the rest have none" : "shaded without them")
+                                                   << ".");
+    if (!vectors)
+    {
+      return;
+    }
+  }
   out.resize(count);
   smpFor(count, [&](std::size_t b, std::size_t e) {
-    double nv[3];
     for (std::size_t i = b; i < e; ++i)
     {
-      normals->GetTuple(static_cast<vtkIdType>(i), nv);
+      double nv[3] = { 0.0, 0.0, 0.0 };
+      if (i < given)
+      {
+        normals->GetTuple(static_cast<vtkIdType>(i), nv);
+      }
       out[i] = { { static_cast<float>(nv[0]), static_cast<float>(nv[1]), static_cast<float>(nv[2]) }, 0.0f };
     }
   });
@@ -402,9 +423,9 @@ std::unique_ptr<Geometry> BuildTriangles(
     }
   });
   g->MaximumId = maximumId.load();
-  readNormals(poly->GetPointData()->GetNormals(), points.size(), g->Normals);
+  readNormals(poly->GetPointData()->GetNormals(), points.size(), "point", g->Normals);
   readNormals(poly->GetCellData()->GetNormals(), static_cast<std::size_t>(poly->GetNumberOfCells()),
-    g->CellNormals);
+    "cell", g->CellNormals);
   if (refinement)
   {
     refinement->Triangulation = shared;

@@ -217,6 +217,90 @@ void TestCellScalarsUnaffected()
   NoVTKOutput("CellScalars");
 }
 
+/// The traced image of `scene` alone (no raster render first).
+vtkSmartPointer<vtkImageData> Traced(ScalarScene& scene)
+{
+  scene.Renderer->SetPass(scene.Pass);
+  scene.Window->Render();
+  return Grab(scene.Window);
+}
+
+/// One warning since Output->Clear(), containing `text`, and no error.
+bool WarnedOnce(const std::string& text)
+{
+  return Output->GetNumberOfErrors() == 0 && Output->GetNumberOfWarnings() == 1 &&
+    Output->GetWarnings()[0].find(text) != std::string::npos;
+}
+
+// Arrays shorter than their data set (raster reads past their ends, no
+// image to match): scalars give the actor's own color in every mode, and
+// point normals are kept for the points they cover (three unused points
+// appended), each with one warning. Before: black or white by the mode, a
+// faceted sphere, and no word.
+void TestShortArrays()
+{
+  const double origin[3] = { 0.0, 0.0, 0.0 };
+  auto poly = CoarseElevationSphere(origin, -0.4, -0.5, 0.4, 0.5);
+  ScalarScene scene(poly, FourColorTable(), false);
+  scene.Mapper->ScalarVisibilityOff();
+  auto plain = Traced(scene);
+  scene.Mapper->ScalarVisibilityOn();
+  const vtkIdType points = poly->GetNumberOfPoints(), cells = poly->GetNumberOfCells();
+  vtkNew<vtkFloatArray> few;
+  few->SetName("few");
+  for (int i = 0; i < 20; ++i)
+  {
+    few->InsertNextValue(static_cast<float>(i % 4) / 3.0f);
+  }
+  poly->GetPointData()->SetScalars(few);
+  for (bool before : { false, true })
+  {
+    scene.Mapper->SetInterpolateScalarsBeforeMapping(before);
+    Output->Clear();
+    auto traced = Traced(scene);
+    const long differing = CountDifferingPixels(traced, plain, 0);
+    Check(differing == 0 &&
+        WarnedOnce("scalars 'few' of polydata") && WarnedOnce("20 tuples for " + std::to_string(points) + " points"),
+      std::string("short point scalars, interpolated ") + (before ? "before" : "after") +
+        " mapping: the actor's color (" + std::to_string(differing) + " pixels differ) and one warning");
+  }
+  poly->GetPointData()->SetScalars(nullptr);
+  poly->GetCellData()->SetScalars(few);
+  scene.Mapper->SetScalarModeToUseCellData();
+  Output->Clear();
+  auto cellTraced = Traced(scene);
+  const long cellDiffering = CountDifferingPixels(cellTraced, plain, 0);
+  Check(cellDiffering == 0 && WarnedOnce("20 tuples for " + std::to_string(cells) + " cells"),
+    "short cell scalars: the actor's color (" + std::to_string(cellDiffering) + " pixels differ) and one warning");
+
+  // Normals: three unused points at the center, the normals not extended.
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(10);
+  sphere->SetPhiResolution(7);
+  sphere->Update();
+  auto normalsPoly = vtkSmartPointer<vtkPolyData>::New();
+  normalsPoly->DeepCopy(sphere->GetOutput());
+  for (int i = 0; i < 3; ++i)
+  {
+    normalsPoly->GetPoints()->InsertNextPoint(0.0, 0.0, 0.0);
+  }
+  ScalarScene normals(normalsPoly, FourColorTable(), false);
+  Output->Clear();
+  auto shortNormals = Traced(normals);
+  const bool warned = WarnedOnce("point normals 'Normals' have " + std::to_string(points) + " tuples");
+  for (int i = 0; i < 3; ++i)
+  {
+    normalsPoly->GetPointData()->GetNormals()->InsertNextTuple3(0.0, 0.0, 1.0);
+  }
+  normalsPoly->GetPointData()->GetNormals()->Modified();
+  auto fullNormals = Traced(normals);
+  const long normalsDiffering = CountDifferingPixels(shortNormals, fullNormals, 0);
+  Check(warned && normalsDiffering == 0,
+    "short point normals: kept for the points they cover (" + std::to_string(normalsDiffering) +
+      " pixels differ from the extended array) and one warning");
+  Output->Clear();
+}
+
 // vtkCompositePolyDataMapper2 (ParaView's mapper) with the option on over
 // blocks of the same size and different scalars: each block gets its own
 // texture coordinates.
@@ -534,5 +618,5 @@ int main(int argc, char* argv[])
       { "CellScalarsUnaffected", TestCellScalarsUnaffected },
       { "PointsInterpolateBeforeMapping", TestPointsInterpolateBeforeMapping },
       { "CompositeInterpolateBeforeMapping", TestCompositeInterpolateBeforeMapping },
-      { "GlyphSources", TestGlyphSources } });
+      { "GlyphSources", TestGlyphSources }, { "ShortArrays", TestShortArrays } });
 }
