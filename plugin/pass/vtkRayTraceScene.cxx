@@ -180,6 +180,15 @@ const std::shared_ptr<Geometry>& Scene::TriangleGeometry(vtkPolyData* poly, Fram
   return entry;
 }
 
+void Scene::KeepCachedForms(vtkMapper* mapper, vtkPolyData* poly)
+{
+  const void* data = poly;
+  markCached(this->TriangleCache, poly);
+  markCached(this->SphereCache, std::make_pair(data, static_cast<const void*>(nullptr)));
+  markCached(this->SphereCache, std::make_pair(data, static_cast<const void*>(&kTubesKey)));
+  markCached(this->ColorCache, std::make_pair(static_cast<const void*>(mapper), data));
+}
+
 bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
   FrameCounters& counters, const double* blockColor, double blockOpacity)
 {
@@ -286,6 +295,9 @@ bool Scene::AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, i
   {
     this->AddTubes(poly, colors, inst, property->GetLineWidth(), counters);
   }
+  // After the forms drawn now, whose first use in a frame may take a tree
+  // built in the background.
+  this->KeepCachedForms(mapper, poly);
   return true;
 }
 
@@ -365,6 +377,11 @@ bool Scene::AddPolyDataMapper(const PropPart& part, vtkMapper* mapper, int propI
     if (!piece.Visible)
     {
       continue;
+    }
+    if (this->Keeping)
+    {
+      // Kept whatever raster draws it with now (translucent spheres, say).
+      this->KeepCachedForms(mapper, piece.Poly);
     }
     const RasterCellKinds kinds = rasterCellKinds(piece.Poly, pointsAsSpheres, linesAsTubes);
     ok = ok && (!kinds.Any() || splittable) &&

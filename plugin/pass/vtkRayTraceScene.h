@@ -208,6 +208,11 @@ private:
   const std::shared_ptr<Geometry>& TriangleGeometry(vtkPolyData* poly, FrameCounters& counters);
   /// One polydata of `actor`; a composite block's color and opacity
   /// (negative: none) replace the property's.
+  /// Marks what `poly` has cached in any form (triangles, points as
+  /// spheres, lines as tubes, `mapper`'s colors) used, building nothing:
+  /// a prop drawn in another form for now, or left to raster, keeps them,
+  /// as raster keeps its buffers.
+  void KeepCachedForms(vtkMapper* mapper, vtkPolyData* poly);
   bool AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
     FrameCounters& counters, const double* blockColor = nullptr, double blockOpacity = -1.0);
   /// Whether a lone actor, or an assembly's part, would be traced.
