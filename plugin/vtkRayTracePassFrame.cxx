@@ -656,8 +656,6 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
       this->Counters.GeometryBytesUploaded > this->Counters.RetreeBytesUploaded;
     // The accumulation traces the footprint (or the viewport) into its own buffer.
     const int* size = p.Camera.ViewportSize;
-    this->Counters.TracedPixels += narrowed ? static_cast<std::size_t>(footprint[2]) * footprint[3]
-                                            : static_cast<std::size_t>(size[0]) * size[1];
     // A scaled screenshot (vtkWindowToImageFilter::SetScale above 1) renders
     // tiles with cameras of their own: each tile accumulates, in its one
     // render, as many frames as the image on screen had.
@@ -665,6 +663,9 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
     const bool tile = tileScale[0] > 1 || tileScale[1] > 1;
     const int frames =
       tile && pass.ProgressiveAccumulation ? std::min(this->UntiledFrames, kMaxTileFrames) : 1;
+    this->Counters.TracedPixels += static_cast<std::size_t>(frames) *
+      (narrowed ? static_cast<std::size_t>(footprint[2]) * footprint[3]
+                : static_cast<std::size_t>(size[0]) * size[1]);
     for (int f = 0; f < frames; ++f)
     {
       vtkrt::pass::ImageSignature again = f + 1 < frames ? signature : vtkrt::pass::ImageSignature();
