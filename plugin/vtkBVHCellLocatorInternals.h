@@ -602,6 +602,7 @@ private:
   inline bool IntersectTriangle(std::uint32_t prim, const core::RayTrianglePrecomputed<double>& pre,
     const core::Ray<double>& ray, double tol, double& t, double& u, double& v) const;
   inline bool ProjectsInside(std::uint32_t prim, const Vec3d& x) const;
+  inline bool MayLieInPlane(std::uint32_t prim, const core::Ray<double>& ray) const;
 
   // Extraction
   void ComputeOrigin(vtkDataSet* ds);

@@ -174,6 +174,23 @@ inline bool BVHCellLocatorData::IntersectTriangle(std::uint32_t prim, const core
 }
 
 //------------------------------------------------------------------------------
+/// Whether the segment may lie in the triangle's plane, which the watertight
+/// test never hits: VTK's cells then hit where the segment enters them
+/// (vtkTriangle's coplanar case, decided by its own exact test), so such a
+/// triangle's cell is asked. A superset: parallel and on the plane within
+/// rounding of the local frame.
+inline bool BVHCellLocatorData::MayLieInPlane(std::uint32_t prim, const core::Ray<double>& ray) const
+{
+  constexpr double kRelative = 1e-9;
+  const Vec3d v0 = this->Vertex(prim, 0);
+  const Vec3d n = glm::cross(this->Vertex(prim, 1) - v0, this->Vertex(prim, 2) - v0);
+  const double scale = glm::length(n);
+  const Vec3d toOrigin = ray.org - v0;
+  return scale > 0.0 && std::abs(glm::dot(n, ray.dir)) <= kRelative * scale * glm::length(ray.dir) &&
+    std::abs(glm::dot(n, toOrigin)) <= kRelative * scale * (glm::length(toOrigin) + glm::length(v0));
+}
+
+//------------------------------------------------------------------------------
 /// Whether x projects into the triangle (vtkTriangle::EvaluatePosition == 1).
 inline bool BVHCellLocatorData::ProjectsInside(std::uint32_t prim, const Vec3d& x) const
 {
@@ -241,26 +258,32 @@ bool BVHCellLocatorData::IntersectWithLine(const double p1[3], const double p2[3
   // on the traversal order.
   auto isect = [&](std::uint32_t prim, const core::Ray<double>& r, core::Hit<double>& hit) {
     const bool haveBest = hit.found();
-    if (static_cast<vtkIdType>(prim) < nTri)
+    const bool triangle = static_cast<vtkIdType>(prim) < nTri;
+    if (triangle)
     {
       double t, u, v;
-      if (!this->IntersectTriangle(prim, triPre, r, localTol, t, u, v))
+      if (this->IntersectTriangle(prim, triPre, r, localTol, t, u, v))
+      {
+        const vtkIdType cellId = this->TriCell[prim];
+        if (haveBest && t == hit.t && cellId > bestCell)
+        {
+          return false;
+        }
+        hit.t = t;
+        hit.u = u;
+        hit.v = v;
+        bestCell = cellId;
+        generalBest = false;
+        return true;
+      }
+      if (!this->MayLieInPlane(prim, r))
       {
         return false;
       }
-      const vtkIdType cellId = this->TriCell[prim];
-      if (haveBest && t == hit.t && cellId > bestCell)
-      {
-        return false;
-      }
-      hit.t = t;
-      hit.u = u;
-      hit.v = v;
-      bestCell = cellId;
-      generalBest = false;
-      return true;
     }
-    const vtkIdType cellId = this->GenCell[prim - nTri];
+    // A general cell, or a triangle's cell in whose plane the segment lies:
+    // the cell's own test.
+    const vtkIdType cellId = triangle ? this->TriCell[prim] : this->GenCell[prim - nTri];
     double t, x[3], pc[3];
     int sub;
     if (!IntersectCell(ds, cellId, cell.Get(), p1, p2, tol, r, t, x, pc, sub))
@@ -336,13 +359,10 @@ void BVHCellLocatorData::AllHits(const double p1[3], const double p2[3], double 
   const vtkIdType nTri = this->NumberOfTriangles();
   auto isect = [&](std::uint32_t prim, const core::Ray<double>& r, core::Hit<double>&) {
     LineHit h;
-    if (static_cast<vtkIdType>(prim) < nTri)
+    double t, u, v;
+    const bool triangle = static_cast<vtkIdType>(prim) < nTri;
+    if (triangle && this->IntersectTriangle(prim, triPre, r, localTol, t, u, v))
     {
-      double t, u, v;
-      if (!this->IntersectTriangle(prim, triPre, r, localTol, t, u, v))
-      {
-        return false;
-      }
       h.T = t;
       h.CellId = this->TriCell[prim];
       for (int k = 0; k < 3; ++k)
@@ -361,8 +381,14 @@ void BVHCellLocatorData::AllHits(const double p1[3], const double p2[3], double 
     }
     else
     {
-      const vtkIdType cellId = this->GenCell[prim - nTri];
-      double t, x[3], pc[3];
+      // A general cell, or a triangle's cell in whose plane the segment
+      // lies: the cell's own test.
+      if (triangle && !this->MayLieInPlane(prim, r))
+      {
+        return false;
+      }
+      const vtkIdType cellId = triangle ? this->TriCell[prim] : this->GenCell[prim - nTri];
+      double x[3], pc[3];
       int sub;
       if (!IntersectCell(ds, cellId, cell.Get(), p1, p2, tol, r, t, x, pc, sub))
       {

@@ -33,6 +33,7 @@ int TestQueriesFirstQueryBuildsNothing();
 int TestQueriesAxisParallelSegments();
 int TestQueriesBlankedCells();
 int TestQueriesCellsOfSeveralTriangles();
+int TestQueriesSegmentsInPlane();
 
 int main(int argc, char* argv[])
 {
@@ -64,7 +65,8 @@ int main(int argc, char* argv[])
     { "QueriesFirstQueryBuildsNothing", TestQueriesFirstQueryBuildsNothing },
     { "QueriesAxisParallelSegments", TestQueriesAxisParallelSegments },
     { "QueriesBlankedCells", TestQueriesBlankedCells },
-    { "QueriesCellsOfSeveralTriangles", TestQueriesCellsOfSeveralTriangles } };
+    { "QueriesCellsOfSeveralTriangles", TestQueriesCellsOfSeveralTriangles },
+    { "QueriesSegmentsInPlane", TestQueriesSegmentsInPlane } };
   if (argc < 2)
   {
     std::cerr << "usage: " << argv[0] << " CASE" << std::endl;
