@@ -3,6 +3,9 @@
 // after it.
 #include "vtkRayTracePassInternals.h"
 
+#include "vtkPropAssembly.h"
+#include "vtkPropCollection.h"
+
 #include <algorithm>
 #include <iterator>
 
@@ -14,6 +17,40 @@ void StateFor(vtkRenderState& out, const vtkRenderState* s, std::vector<vtkProp*
   out.SetPropArrayAndCount(props.data(), static_cast<int>(props.size()));
   out.SetFrameBuffer(s->GetFrameBuffer());
   out.SetRequiredKeys(s->GetRequiredKeys());
+}
+/// Whether `prop` draws 3D geometry only, so that raster may draw its opaque
+/// parts before the trace (their depth ends the rays): 3D props but
+/// volumes, assemblies of such props, and other props with 3D bounds (3D
+/// widgets' representations). 2D props draw their opaque parts over
+/// everything, which the trace would cover.
+bool DrawsOnly3D(vtkProp* prop)
+{
+  if (prop->IsA("vtkVolume") || prop->IsA("vtkActor2D"))
+  {
+    return false;
+  }
+  if (prop->IsA("vtkProp3D"))
+  {
+    return true;
+  }
+  if (auto* assembly = vtkPropAssembly::SafeDownCast(prop))
+  {
+    vtkPropCollection* parts = assembly->GetParts();
+    vtkCollectionSimpleIterator it;
+    parts->InitTraversal(it);
+    bool any = false;
+    while (vtkProp* part = parts->GetNextProp(it))
+    {
+      if (!DrawsOnly3D(part))
+      {
+        return false;
+      }
+      any = true;
+    }
+    return any;
+  }
+  const double* b = prop->GetBounds();
+  return b && b[0] <= b[1] && b[2] <= b[3] && b[4] <= b[5];
 }
 } // namespace
 
@@ -30,10 +67,9 @@ void vtkRayTracePass::Internals::RenderOthersBelow(
   {
     return;
   }
-  // 3D props only: 2D ones draw their opaque parts over everything.
   for (vtkProp* prop : this->Others)
   {
-    if (prop->IsA("vtkProp3D") && !prop->IsA("vtkVolume") && prop->HasOpaqueGeometry())
+    if (DrawsOnly3D(prop) && prop->HasOpaqueGeometry())
     {
       this->OthersBelow.push_back(prop);
     }

@@ -7,8 +7,12 @@
 #include "vtkrtPassTestUtils.h"
 
 #include "vtkActorCollection.h"
+#include "vtkCubeSource.h"
 #include "vtkDualDepthPeelingPass.h"
+#include "vtkPropAssembly.h"
 #include "vtkRenderStepsPass.h"
+#include "vtkSliderRepresentation2D.h"
+#include "vtkSphereRepresentation.h"
 #include "vtkTranslucentPass.h"
 #include "vtkrtImageRegression.h"
 
@@ -179,6 +183,63 @@ void TestFXAA()
     NoVTKOutput(name);
   }
 }
+/// Opaque props raster draws that are not vtkProp3Ds, inside a traced
+/// translucent shell: a 3D widget's representation and a vtkPropAssembly of
+/// an actor show through the shell as under raster's peeling (they were
+/// drawn over it); a 2D widget's representation stays over everything.
+void TestOpaqueWidgetsInside()
+{
+  auto win = MakeWindow(320, 240);
+  vtkNew<vtkRenderer> ren;
+  SetUpDepthPeeling(win, ren);
+  vtkSmartPointer<vtkActor> shell = SphereActor(0.0, 0.0, 0.0, 1.0, 64);
+  shell->GetProperty()->SetColor(0.3, 0.5, 1.0);
+  shell->GetProperty()->SetOpacity(0.4);
+  ren->AddActor(shell);
+  vtkNew<vtkSphereRepresentation> handle;
+  handle->SetRenderer(ren);
+  double handleBounds[6] = { -0.6, -0.1, -0.25, 0.25, -0.25, 0.25 };
+  handle->PlaceWidget(handleBounds);
+  handle->SetRepresentationToSurface();
+  ren->AddViewProp(handle);
+  vtkNew<vtkCubeSource> cube;
+  cube->SetCenter(0.4, 0.0, 0.0);
+  cube->SetXLength(0.35);
+  cube->SetYLength(0.35);
+  cube->SetZLength(0.35);
+  cube->Update();
+  vtkSmartPointer<vtkActor> cubeActor = MeshActor(cube->GetOutput());
+  cubeActor->GetProperty()->SetColor(1.0, 0.8, 0.2);
+  cubeActor->GetProperty()->SetInterpolationToPBR(); // left to raster, and its assembly with it
+  vtkNew<vtkPropAssembly> group;
+  group->AddPart(cubeActor);
+  ren->AddViewProp(group);
+  vtkNew<vtkSliderRepresentation2D> slider;
+  slider->SetRenderer(ren);
+  slider->GetPoint1Coordinate()->SetCoordinateSystemToNormalizedDisplay();
+  slider->GetPoint1Coordinate()->SetValue(0.2, 0.5);
+  slider->GetPoint2Coordinate()->SetCoordinateSystemToNormalizedDisplay();
+  slider->GetPoint2Coordinate()->SetValue(0.8, 0.5);
+  slider->SetValue(0.6);
+  ren->AddViewProp(slider);
+  ren->ResetCamera();
+  ren->GetActiveCamera()->Azimuth(20);
+  ren->GetActiveCamera()->Elevation(15);
+  ren->ResetCameraClippingRange();
+  RasterAndTraced frames = RenderRasterThenTraced(win, ren);
+  const double rmse = RootMeanSquareError(frames.Raster, frames.Traced);
+  const long differing = CountDifferingPixels(frames.Raster, frames.Traced, 40);
+  std::ostringstream what;
+  what << "opaque widget and prop assembly inside a traced shell: " << frames.Pass->GetNumberOfTracedProps()
+       << " prop traced (1), RGB RMSE " << rmse << " (<= 3), " << differing << " pixels off by > 40";
+  const bool ok = frames.Pass->GetNumberOfTracedProps() == 1 && rmse <= 3.0;
+  Check(ok, what.str());
+  if (!ok)
+  {
+    WriteFailedImages("Translucency_OpaqueWidgetsInside", frames.Raster, frames.Traced);
+  }
+  NoVTKOutput("OpaqueWidgetsInside");
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -187,5 +248,5 @@ int main(int argc, char* argv[])
   return RunCase(argc, argv,
     { { "DepthPeeling", TestDepthPeeling }, { "Blended", TestBlended },
       { "PeelCount", TestPeelCount }, { "RenderStepsDelegate", TestRenderStepsDelegate },
-      { "FXAA", TestFXAA } });
+      { "FXAA", TestFXAA }, { "OpaqueWidgetsInside", TestOpaqueWidgetsInside } });
 }
