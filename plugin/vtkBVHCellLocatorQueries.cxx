@@ -6,11 +6,14 @@
 #include "vtkBVHCellLocatorInternals.h"
 #include "vtkBVHCellLocatorPickingScene.h"
 
+#include "vtkCellArray.h"
+#include "vtkCellType.h"
 #include "vtkDataSet.h"
 #include "vtkDoubleArray.h"
 #include "vtkGenericCell.h"
 #include "vtkIdList.h"
 #include "vtkPoints.h"
+#include "vtkUnstructuredGrid.h"
 
 #include "vtkrt/core/BVHTraversal.h"
 #include "vtkrt/core/Ray.h"
@@ -64,6 +67,50 @@ inline void Barycentric(
   }
   u = (d22 * w1 - d12 * w2) / det;
   v = (d11 * w2 - d12 * w1) / det;
+}
+
+/// Whether world point x lies clearly outside tetrahedron cellId of `grid`
+/// (`coords`: its points' x y z): a barycentric coordinate below -0.01 or
+/// above 1.01, ten times vtkTetra::EvaluatePosition's tolerance, so that
+/// VTK's test rejects it too. False when it cannot tell cheaply (storage
+/// not shared, a nearly flat tetrahedron): then VTK's test decides. Spares
+/// the cell's GetCell and EvaluatePosition, whose outside branch computes a
+/// closest point on every face.
+inline bool TetraClearlyMisses(vtkUnstructuredGrid* grid, vtkIdType cellId, const double* coords, const double x[3])
+{
+  vtkCellArray* cells = grid->GetCells();
+  if (!cells->IsStorageShareable() || grid->GetCellType(cellId) != VTK_TETRA)
+  {
+    return false;
+  }
+  vtkIdType n = 0;
+  const vtkIdType* ids = nullptr;
+  cells->GetCellAtId(cellId, n, ids); // a pointer into shared storage: thread safe
+  if (n != 4)
+  {
+    return false;
+  }
+  const Vec3d p0(coords[3 * ids[0]], coords[3 * ids[0] + 1], coords[3 * ids[0] + 2]);
+  Vec3d e[3];
+  double longest = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double* p = coords + 3 * ids[k + 1];
+    e[k] = Vec3d(p[0], p[1], p[2]) - p0;
+    longest = std::max(longest, glm::length(e[k]));
+  }
+  const Vec3d r = Vec3d(x[0], x[1], x[2]) - p0;
+  const double det = glm::dot(e[0], glm::cross(e[1], e[2]));
+  if (!(std::abs(det) > 1e-6 * longest * longest * longest))
+  {
+    return false;
+  }
+  const double b1 = glm::dot(r, glm::cross(e[1], e[2])) / det;
+  const double b2 = glm::dot(e[0], glm::cross(r, e[2])) / det;
+  const double b3 = glm::dot(e[0], glm::cross(e[1], r)) / det;
+  const double b0 = 1.0 - b1 - b2 - b3;
+  const double lo = std::min({ b0, b1, b2, b3 }), hi = std::max({ b0, b1, b2, b3 });
+  return lo < -0.01 || hi > 1.01;
 }
 
 /// The weights EvaluatePosition writes for a cell: on the stack for cells
@@ -616,6 +663,8 @@ vtkIdType BVHCellLocatorData::FindCell(
   }
   std::sort(candidates.begin(), candidates.end());
   double xx[3] = { xw[0], xw[1], xw[2] };
+  auto* grid = vtkUnstructuredGrid::SafeDownCast(ds);
+  const double* coords = grid ? this->WorldCoords() : nullptr;
   CellWeights ownWeights;
   const vtkIdType nTri = this->NumberOfTriangles();
   for (size_t k = 0; k < candidates.size(); ++k)
@@ -629,6 +678,10 @@ vtkIdType BVHCellLocatorData::FindCell(
     if (static_cast<vtkIdType>(prim) < nTri && (this->TriangleFlags(prim) & WholeTriangle))
     {
       FillTriangleCell(cell, this->TriIds.data() + 3 * static_cast<std::size_t>(prim), this->WorldCoords());
+    }
+    else if (coords && TetraClearlyMisses(grid, cellId, coords, xx))
+    {
+      continue;
     }
     else
     {

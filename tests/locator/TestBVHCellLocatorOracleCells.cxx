@@ -166,10 +166,64 @@ void CheckVolume(vtkUnstructuredGrid* ug, const char* name)
 }
 } // namespace
 
+/// FindCell at points just off and just inside tetrahedra's faces (0.1%
+/// to 2% of the tet's size: around vtkTetra::EvaluatePosition's tolerance
+/// of 0.001 and the locator's cheap rejection at 0.01): the cell and
+/// pcoords of the first cell in id order whose bounds hold the point and
+/// whose EvaluatePosition accepts it, as brute force finds them.
+void CheckFindCellNearFaces(vtkUnstructuredGrid* ug, const char* name)
+{
+  vtkNew<vtkBVHCellLocator> bvh;
+  bvh->SetDataSet(ug);
+  bvh->BuildLocator();
+  Random rng(57);
+  vtkNew<vtkGenericCell> cell, refCell;
+  std::vector<double> w(static_cast<size_t>(ug->GetMaxCellSize())), refW(w.size());
+  int located = 0, probes = 0;
+  for (int i = 0; i < 150; ++i)
+  {
+    const vtkIdType c = static_cast<vtkIdType>(rng.Next(0, 0.999) * ug->GetNumberOfCells());
+    ug->GetCell(c, cell);
+    double p[4][3];
+    for (int k = 0; k < 4; ++k)
+    {
+      cell->GetPoints()->GetPoint(k, p[k]);
+    }
+    // A point of face (0, 1, 2), pushed along the direction from the
+    // opposite vertex by a fraction of the tet's extent.
+    const double a = rng.Next(0.05, 0.9), b = rng.Next(0.05, 0.9) * (1 - a);
+    for (double push : { -0.02, -0.008, -0.002, -0.0005, 0.0005, 0.002, 0.008, 0.02 })
+    {
+      double x[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        const double onFace = (1 - a - b) * p[0][k] + a * p[1][k] + b * p[2][k];
+        x[k] = onFace + push * (onFace - p[3][k]);
+      }
+      double pc[3], refPc[3] = { 0, 0, 0 };
+      const vtkIdType ours = bvh->FindCell(x, 0.0, cell, pc, w.data());
+      const vtkIdType ref = BruteForceFindCell(ug, x, refCell, refW.data());
+      if (ref >= 0)
+      {
+        double cp[3], d2;
+        int sub;
+        refCell->EvaluatePosition(x, cp, sub, refPc, d2, refW.data());
+      }
+      ++probes;
+      located += ours >= 0 ? 1 : 0;
+      LT_CHECK_MSG(ours == ref && (ours < 0 || (pc[0] == refPc[0] && pc[1] == refPc[1] && pc[2] == refPc[2])),
+        name << " near a face: FindCell " << ours << ", brute force " << ref);
+    }
+  }
+  std::cout << name << ": FindCell near faces located " << located << "/" << probes << std::endl;
+  LT_CHECK(located > probes / 4 && located < probes);
+}
+
 int TestOracleUnstructuredGrid()
 {
   CheckVolume(MakeHexGrid(8), "hexahedra");
   CheckVolume(MakeTetMesh(300), "tetrahedra");
+  CheckFindCellNearFaces(MakeTetMesh(300), "tetrahedra");
   // Mixed: hexahedra and tetrahedra appended into one grid.
   vtkNew<vtkAppendFilter> append;
   auto tets = MakeTetMesh(200);
