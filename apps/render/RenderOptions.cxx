@@ -13,7 +13,7 @@ namespace vtkrtRender
 namespace
 {
 const char* const Description =
-  R"(Renders meshes (.vtp .vtu .vti .vts .vtr .vtk .ply .obj .stl .gltf .glb .g),
+  R"(Renders meshes (.vtp .vtu .vti .vts .vtr .vtm .vtk .ply .obj .stl .gltf .glb .g),
 several in one scene, or the built-in demo scene (a mesh plus sphere glyphs):
 ray traced by vtkRayTracePass (or rasterized by VTK with --mode raster)
 headless through EGL into an image (.png .jpg .tif .bmp), or, with a display
@@ -195,7 +195,7 @@ void DeclareScalarOptions(CLI::App& app, Words& w, Options& opt)
   app.add_flag("--cells", opt.Scalars.Cells, "--scalars takes cell arrays");
   app.add_option("--comp", w.Comp, "component to colour by (default -1: magnitude)")
     ->type_name("N");
-  app.add_option("--range", w.Range, "scalar range (default: the array's)")->type_name("MIN,MAX");
+  app.add_option("--range", w.Range, "scalar range (default: the union of the files' ranges)")->type_name("MIN,MAX");
   std::string names;
   for (const std::string& n : ColormapNames())
   {

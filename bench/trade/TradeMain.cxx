@@ -83,7 +83,7 @@ bool ParseArgs(int argc, char* argv[], Options& opt)
     {
       std::cerr << "usage: vtkrtBenchTrade [--quick] [--out DIR] [--size PIXELS] "
                    "[--mesh FILE.ply|.obj|.stl|.vtp|generated] [--triangles N] [--frames N] "
-                   "[--sections builder,passbuilder,knobs,shadows,accumulation,lod,precision]\n";
+                   "[--sections presets,builder,passbuilder,knobs,shadows,accumulation,lod,precision]\n";
       return false;
     }
   }
