@@ -289,7 +289,8 @@ void CheckRenderWords(const CLI::App& app, const Words& w, Options& opt)
   }
   if (app.count("--samples"))
   {
-    opt.Samples = IntIn("--samples", w.Samples, 0, 256);
+    // Raster's 0 is no MSAA; a traced pixel needs a ray.
+    opt.Samples = IntIn("--samples", w.Samples, opt.Mode == "raster" ? 0 : 1, 256);
   }
   if (app.count("--frames"))
   {

@@ -425,6 +425,7 @@ void TestBadArguments()
     { "--demo --mode fancy", 2, "--mode expects raster or raytrace" },
     { "--demo --azimuth north", 2, "--azimuth expects a number" },
     { "--demo --samples -1", 2, "--samples expects an integer" },
+    { "--demo --samples 0", 2, "--samples expects an integer in \\[1, 256\\]" },
     { "--demo --pick 5", 2, "--pick needs a value" },
     { "--demo --size 100x100 --pick 100 5", 2, "--pick 100 5 is outside the 100x100 image" },
     { "--demo --frobnicate", 2, "unknown option '--frobnicate'" },
