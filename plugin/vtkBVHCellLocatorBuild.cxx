@@ -205,20 +205,6 @@ void BVHCellLocatorData::Reorder(size_t nTri)
       }
     });
   }
-  else if (builtTri == 0)
-  {
-    // General cells only (a volume mesh, an image): slot j is general cell
-    // j, so this gather runs in parallel too.
-    vtkSMPTools::For(0, static_cast<vtkIdType>(order.size()), [&](vtkIdType b, vtkIdType e) {
-      for (vtkIdType j = b; j < e; ++j)
-      {
-        const std::uint32_t p = order[j] - static_cast<std::uint32_t>(nTri);
-        genCell[j] = this->GenCell[p];
-        genBox[j] = this->GenBox[p];
-        order[j] = static_cast<std::uint32_t>(j);
-      }
-    });
-  }
   else
   {
     for (std::uint32_t& p : order)
