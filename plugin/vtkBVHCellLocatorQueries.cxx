@@ -86,9 +86,10 @@ inline bool TetraClearlyMisses(vtkUnstructuredGrid* grid, vtkIdType cellId, cons
   vtkIdType n = 0;
   const vtkIdType* ids = nullptr;
   cells->GetCellAtId(cellId, n, ids); // a pointer into shared storage: thread safe
-  if (n != 4)
+  const vtkIdType points = grid->GetNumberOfPoints();
+  if (n != 4 || std::any_of(ids, ids + 4, [points](vtkIdType id) { return id < 0 || id >= points; }))
   {
-    return false;
+    return false; // VTK's own test reports what it makes of such a cell
   }
   const Vec3d p0(coords[3 * ids[0]], coords[3 * ids[0] + 1], coords[3 * ids[0] + 2]);
   Vec3d e[3];
@@ -323,7 +324,7 @@ bool BVHCellLocatorData::IntersectWithLine(const double p1[3], const double p2[3
         generalBest = false;
         return true;
       }
-      if (!this->MayLieInPlane(prim, r))
+      if (!ds || !this->MayLieInPlane(prim, r))
       {
         return false;
       }
@@ -430,7 +431,7 @@ void BVHCellLocatorData::AllHits(const double p1[3], const double p2[3], double 
     {
       // A general cell, or a triangle's cell in whose plane the segment
       // lies: the cell's own test.
-      if (triangle && !this->MayLieInPlane(prim, r))
+      if (triangle && (!ds || !this->MayLieInPlane(prim, r)))
       {
         return false;
       }

@@ -1,6 +1,8 @@
 #include "vtkRayTracePassInternals.h"
 
 #include "vtkOpenGLFramebufferObject.h"
+#include "vtkPropAssembly.h"
+#include "vtkPropCollection.h"
 
 #include "vtkrt/core/GpuTraversal.h"
 
@@ -537,6 +539,26 @@ void vtkRayTracePass::Internals::SetTileEntries(vtkOpenGLRenderer* ren, vtkOpenG
 /// primitives, the same hits), whose upload is a repack that moves where
 /// geometries lie: the records' geometry offsets give way to what each
 /// instance traces (its source data, kept by the refined tree too).
+namespace
+{
+/// A prop's redraw time, and a vtkPropAssembly's parts' (its own covers
+/// their MTimes only, not their data).
+void AppendRedrawTimes(vtkProp* prop, std::vector<double>& out)
+{
+  out.push_back(static_cast<double>(prop->GetRedrawMTime()));
+  if (auto* assembly = vtkPropAssembly::SafeDownCast(prop))
+  {
+    vtkPropCollection* parts = assembly->GetParts();
+    vtkCollectionSimpleIterator it;
+    parts->InitTraversal(it);
+    while (vtkProp* part = parts->GetNextProp(it))
+    {
+      AppendRedrawTimes(part, out);
+    }
+  }
+}
+} // namespace
+
 vtkrt::pass::ImageSignature vtkRayTracePass::Internals::AccumulationSignature(const Prepared& p) const
 {
   vtkrt::pass::ImageSignature out;
@@ -565,7 +587,7 @@ vtkrt::pass::ImageSignature vtkRayTracePass::Internals::AccumulationSignature(co
   for (vtkProp* prop : this->OthersBelow)
   {
     below.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(prop)));
-    below.push_back(static_cast<double>(prop->GetRedrawMTime()));
+    AppendRedrawTimes(prop, below);
     const double* bounds = prop->GetBounds();
     below.insert(below.end(), bounds, bounds + (bounds ? 6 : 0));
   }

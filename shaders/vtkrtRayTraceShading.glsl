@@ -276,7 +276,11 @@ vec4 shadeSurface(vec3 p, vec3 dir, int hitInstance, uint flags, HitSurface s, v
   // matrix (the inverse transpose of local-to-camera).
   mat3 cameraToLocal = mat3(r0.xyz, r1.xyz, r2.xyz); // columns = rows of the matrix
   vec3 ng = s.mirror * (cameraToLocal * s.geometricNormal);
-  vec3 n = shadingNormal(flags, normalize(cameraToLocal * s.localNormal), ng, dir);
+  // A zero normal (given so, or past a short normals array) shades as the
+  // geometric one instead of normalize's NaN.
+  vec3 given = cameraToLocal * s.localNormal;
+  vec3 unitGiven = dot(given, given) > 0.0 ? normalize(given) : normalize(ng);
+  vec3 n = shadingNormal(flags, unitGiven, ng, dir);
 #ifdef VTKRT_SCREEN_SPHERES
   if ((flags & kInstanceScreenSpheres) != 0u)
   {
@@ -306,7 +310,7 @@ vec4 shadeSurface(vec3 p, vec3 dir, int hitInstance, uint flags, HitSurface s, v
     // Lines are front facing: normals are never flipped; without any, VTK's
     // line normal.
     n = (flags & (kInstanceVertexNormals | kInstanceCellNormals)) != 0u
-      ? normalize(cameraToLocal * s.localNormal)
+      ? unitGiven
       : wireNormal(hitInstance, fetchTriangle(uTriangles, hitPrimitive), localHit, uViewBack);
   }
 #endif

@@ -378,14 +378,11 @@ bool Scene::AddPolyDataMapper(const PropPart& part, vtkMapper* mapper, int propI
     {
       continue;
     }
-    if (this->Keeping)
-    {
-      // Kept whatever raster draws it with now (translucent spheres, say).
-      this->KeepCachedForms(mapper, piece.Poly);
-    }
     const RasterCellKinds kinds = rasterCellKinds(piece.Poly, pointsAsSpheres, linesAsTubes);
-    ok = ok && (!kinds.Any() || splittable) &&
-      !hasUntraceableCells(piece.Poly, actor, pointsAsSpheres, linesAsTubes);
+    // Kept (its cached forms marked below) whatever raster draws it with now:
+    // translucent spheres or tubes, say.
+    ok = ok && (this->Keeping || ((!kinds.Any() || splittable) &&
+      !hasUntraceableCells(piece.Poly, actor, pointsAsSpheres, linesAsTubes)));
     if (ok && kinds.Any())
     {
       standIns.push_back(

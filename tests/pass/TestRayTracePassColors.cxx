@@ -284,10 +284,11 @@ void TestShortArrays()
   {
     normalsPoly->GetPoints()->InsertNextPoint(0.0, 0.0, 0.0);
   }
+  const vtkIdType spherePoints = sphere->GetOutput()->GetNumberOfPoints();
   ScalarScene normals(normalsPoly, FourColorTable(), false);
   Output->Clear();
   auto shortNormals = Traced(normals);
-  const bool warned = WarnedOnce("point normals 'Normals' have " + std::to_string(points) + " tuples");
+  const bool warned = WarnedOnce("point normals 'Normals' have " + std::to_string(spherePoints) + " tuples");
   for (int i = 0; i < 3; ++i)
   {
     normalsPoly->GetPointData()->GetNormals()->InsertNextTuple3(0.0, 0.0, 1.0);
@@ -298,6 +299,20 @@ void TestShortArrays()
   Check(warned && normalsDiffering == 0,
     "short point normals: kept for the points they cover (" + std::to_string(normalsDiffering) +
       " pixels differ from the extended array) and one warning");
+
+  // Normals for none of the points: every triangle shades as with no
+  // normals at all (zero normals were normalized to NaN before).
+  normalsPoly->GetPointData()->GetNormals()->SetNumberOfTuples(0);
+  normalsPoly->GetPointData()->GetNormals()->Modified();
+  Output->Clear();
+  auto noneCovered = Traced(normals);
+  const bool warnedNone = WarnedOnce("have 0 tuples");
+  normalsPoly->GetPointData()->SetNormals(nullptr);
+  auto withoutNormals = Traced(normals);
+  const long noneDiffering = CountDifferingPixels(noneCovered, withoutNormals, 2);
+  Check(warnedNone && noneDiffering == 0,
+    "point normals of 0 tuples: shaded as without normals (" + std::to_string(noneDiffering) +
+      " pixels differ by more than 2) and one warning");
   Output->Clear();
 }
 

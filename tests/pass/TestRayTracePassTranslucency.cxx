@@ -8,10 +8,11 @@
 
 #include "vtkActorCollection.h"
 #include "vtkCubeSource.h"
+#include "vtkLookupTable.h"
 #include "vtkDualDepthPeelingPass.h"
 #include "vtkPropAssembly.h"
 #include "vtkRenderStepsPass.h"
-#include "vtkSliderRepresentation2D.h"
+#include "vtkScalarBarActor.h"
 #include "vtkSphereRepresentation.h"
 #include "vtkTranslucentPass.h"
 #include "vtkrtImageRegression.h"
@@ -186,7 +187,7 @@ void TestFXAA()
 /// Opaque props raster draws that are not vtkProp3Ds, inside a traced
 /// translucent shell: a 3D widget's representation and a vtkPropAssembly of
 /// an actor show through the shell as under raster's peeling (they were
-/// drawn over it); a 2D widget's representation stays over everything.
+/// drawn over it); a scalar bar, 2D, stays over everything.
 void TestOpaqueWidgetsInside()
 {
   auto win = MakeWindow(320, 240);
@@ -214,14 +215,16 @@ void TestOpaqueWidgetsInside()
   vtkNew<vtkPropAssembly> group;
   group->AddPart(cubeActor);
   ren->AddViewProp(group);
-  vtkNew<vtkSliderRepresentation2D> slider;
-  slider->SetRenderer(ren);
-  slider->GetPoint1Coordinate()->SetCoordinateSystemToNormalizedDisplay();
-  slider->GetPoint1Coordinate()->SetValue(0.2, 0.5);
-  slider->GetPoint2Coordinate()->SetCoordinateSystemToNormalizedDisplay();
-  slider->GetPoint2Coordinate()->SetValue(0.8, 0.5);
-  slider->SetValue(0.6);
-  ren->AddViewProp(slider);
+  // A 2D prop that draws in the opaque pass, over the shell: the trace
+  // would cover it if it were drawn before.
+  vtkNew<vtkScalarBarActor> bar;
+  vtkNew<vtkLookupTable> table;
+  table->Build();
+  bar->SetLookupTable(table);
+  bar->SetPosition(0.4, 0.2);
+  bar->SetWidth(0.15);
+  bar->SetHeight(0.6);
+  ren->AddViewProp(bar);
   ren->ResetCamera();
   ren->GetActiveCamera()->Azimuth(20);
   ren->GetActiveCamera()->Elevation(15);
