@@ -1,8 +1,6 @@
 #include "vtkRayTracePassInternals.h"
 
 #include "vtkOpenGLFramebufferObject.h"
-#include "vtkPropAssembly.h"
-#include "vtkPropCollection.h"
 
 #include "vtkrt/core/GpuTraversal.h"
 
@@ -148,10 +146,10 @@ constexpr std::uint32_t kTileEntriesMinimumDepth = 19;
 /// Traced tiles (TracedTiles) are this many pixels wide; more than
 /// kMaxFootprintDraws rectangles of them are traced as one rectangle.
 constexpr int kFootprintTile = 32;
+constexpr std::size_t kMaxFootprintDraws = 64;
 /// Most frames a tile of a scaled screenshot accumulates, so that an image
 /// left accumulating for hours does not make a screenshot take as long.
 constexpr int kMaxTileFrames = 256;
-constexpr std::size_t kMaxFootprintDraws = 64;
 
 /// Whether the translucent layers' walks are interleaved
 /// (Features::InterleavedWalks): VTKRT_INTERLEAVED_WALKS=1 or 0 says, so that
@@ -534,11 +532,6 @@ void vtkRayTracePass::Internals::SetTileEntries(vtkOpenGLRenderer* ren, vtkOpenG
   p.Tracer->Program->SetUniform4f("uTileGrid", lists.Grid);
 }
 
-/// What an accumulated image is traced from: any change restarts
-/// accumulating, but a refined tree taken in place of a fast one (the same
-/// primitives, the same hits), whose upload is a repack that moves where
-/// geometries lie: the records' geometry offsets give way to what each
-/// instance traces (its source data, kept by the refined tree too).
 namespace
 {
 /// A prop's redraw time, and a vtkPropAssembly's parts' (its own covers
@@ -546,19 +539,18 @@ namespace
 void AppendRedrawTimes(vtkProp* prop, std::vector<double>& out)
 {
   out.push_back(static_cast<double>(prop->GetRedrawMTime()));
-  if (auto* assembly = vtkPropAssembly::SafeDownCast(prop))
+  for (vtkProp* part : PropAssemblyParts(prop))
   {
-    vtkPropCollection* parts = assembly->GetParts();
-    vtkCollectionSimpleIterator it;
-    parts->InitTraversal(it);
-    while (vtkProp* part = parts->GetNextProp(it))
-    {
-      AppendRedrawTimes(part, out);
-    }
+    AppendRedrawTimes(part, out);
   }
 }
 } // namespace
 
+/// What an accumulated image is traced from: any change restarts
+/// accumulating, but a refined tree taken in place of a fast one (the same
+/// primitives, the same hits), whose upload is a repack that moves where
+/// geometries lie: the records' geometry offsets give way to what each
+/// instance traces (its source data, kept by the refined tree too).
 vtkrt::pass::ImageSignature vtkRayTracePass::Internals::AccumulationSignature(const Prepared& p) const
 {
   vtkrt::pass::ImageSignature out;
@@ -690,11 +682,10 @@ void vtkRayTracePass::Internals::Trace(const vtkRayTracePass& pass, const vtkRen
                 : static_cast<std::size_t>(size[0]) * size[1]);
     for (int f = 0; f < frames; ++f)
     {
-      vtkrt::pass::ImageSignature again = f + 1 < frames ? signature : vtkrt::pass::ImageSignature();
-      this->Accumulated.Trace(win, size, p.Camera.ViewportOrigin, tracer, std::move(signature),
-        restart && f == 0, f == 0 ? framesBefore : this->Accumulated.GetFrames(), pass.SamplesPerPixel,
+      this->Accumulated.Trace(win, size, p.Camera.ViewportOrigin, tracer,
+        f + 1 < frames ? vtkrt::pass::ImageSignature(signature) : std::move(signature), restart && f == 0,
+        f == 0 ? framesBefore : this->Accumulated.GetFrames(), pass.SamplesPerPixel,
         narrowed ? footprint : nullptr);
-      signature = std::move(again);
     }
     if (!tile)
     {

@@ -33,6 +33,7 @@
 #include "vtkOpenGLRenderer.h"
 #include "vtkOpenGLState.h"
 #include "vtkProp.h"
+#include "vtkPropAssembly.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderState.h"
 #include "vtkRenderStepsPass.h"
@@ -48,6 +49,22 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+/// The parts of a vtkPropAssembly, in its order; none for another prop.
+inline std::vector<vtkProp*> PropAssemblyParts(vtkProp* prop)
+{
+  std::vector<vtkProp*> parts;
+  if (auto* assembly = vtkPropAssembly::SafeDownCast(prop))
+  {
+    vtkCollectionSimpleIterator it;
+    assembly->GetParts()->InitTraversal(it);
+    while (vtkProp* part = assembly->GetParts()->GetNextProp(it))
+    {
+      parts.push_back(part);
+    }
+  }
+  return parts;
+}
 
 /// The pass's state and the named steps of a frame.
 struct vtkRayTracePass::Internals

@@ -3,9 +3,6 @@
 // after it.
 #include "vtkRayTracePassInternals.h"
 
-#include "vtkPropAssembly.h"
-#include "vtkPropCollection.h"
-
 #include <algorithm>
 #include <iterator>
 
@@ -33,21 +30,10 @@ bool DrawsOnly3D(vtkProp* prop)
   {
     return true;
   }
-  if (auto* assembly = vtkPropAssembly::SafeDownCast(prop))
+  if (prop->IsA("vtkPropAssembly"))
   {
-    vtkPropCollection* parts = assembly->GetParts();
-    vtkCollectionSimpleIterator it;
-    parts->InitTraversal(it);
-    bool any = false;
-    while (vtkProp* part = parts->GetNextProp(it))
-    {
-      if (!DrawsOnly3D(part))
-      {
-        return false;
-      }
-      any = true;
-    }
-    return any;
+    const std::vector<vtkProp*> parts = PropAssemblyParts(prop);
+    return !parts.empty() && std::all_of(parts.begin(), parts.end(), DrawsOnly3D);
   }
   const double* b = prop->GetBounds();
   return b && b[0] <= b[1] && b[2] <= b[3] && b[4] <= b[5];

@@ -143,12 +143,11 @@ std::uint8_t cellEdgesOf(const core::SurfaceTriangles& triangles, std::size_t t,
   return fanEdges(triangles, t, edges, edgeFlags, edgeFlagCount);
 }
 
-/// `normals`' first `count` vectors (one per point, or per cell) as GPU
-/// records, as raster reads them by point or cell id ("point", "cell": what
-/// they are of).
-/// Normals not of 3 components are left out; an array of too few tuples
-/// gives those past its end a zero normal (raster reads past the end). Both
-/// with a warning.
+/// `normals`' first `count` vectors (one per point, or per cell; `of` says
+/// which) as GPU records, as raster reads them by point or cell id. Normals
+/// not of 3 components are left out; an array of too few tuples gives those
+/// past its end a zero normal (raster reads past the end). Both with a
+/// warning.
 void readNormals(vtkDataArray* normals, std::size_t count, const char* of,
   core::HugePageArray<core::gpu::Normal>& out)
 {
@@ -166,10 +165,10 @@ void readNormals(vtkDataArray* normals, std::size_t count, const char* of,
                                                    << " components for " << count << " " << of << "s: "
                                                    << (vectors ? "the rest have none" : "shaded without them")
                                                    << ".");
-    if (!vectors)
-    {
-      return;
-    }
+  }
+  if (!vectors)
+  {
+    return;
   }
   out.resize(count);
   smpFor(count, [&](std::size_t b, std::size_t e) {

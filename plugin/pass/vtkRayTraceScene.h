@@ -206,13 +206,13 @@ private:
   /// poly's triangles, from the cache when they are current (with the tree
   /// built in the background once it is done), else built; marked used.
   const std::shared_ptr<Geometry>& TriangleGeometry(vtkPolyData* poly, FrameCounters& counters);
-  /// One polydata of `actor`; a composite block's color and opacity
-  /// (negative: none) replace the property's.
   /// Marks what `poly` has cached in any form (triangles, points as
   /// spheres, lines as tubes, `mapper`'s colors) used, building nothing:
   /// a prop drawn in another form for now, or left to raster, keeps them,
   /// as raster keeps its buffers.
   void KeepCachedForms(vtkMapper* mapper, vtkPolyData* poly);
+  /// One polydata of `actor`; a composite block's color and opacity
+  /// (negative: none) replace the property's.
   bool AddPolyData(vtkActor* actor, vtkMapper* mapper, vtkPolyData* poly, int propIndex,
     FrameCounters& counters, const double* blockColor = nullptr, double blockOpacity = -1.0);
   /// Whether a lone actor, or an assembly's part, would be traced.
