@@ -247,7 +247,7 @@ struct vtkRayTracePass::Internals
   /// order, over a depth buffer that holds nothing).
   static bool KeepsDepthBelow(vtkRenderer* ren, vtkOpenGLState* ostate);
   /// Where traced translucent layers may lie over raster's opaque 3D props,
-  /// draws those first (OthersBelow) through the default delegate, so the
+  /// draws those first (OthersBelow) through the delegate, so the
   /// trace ends its camera rays at their depth (Features::DepthBelow) and
   /// its layers composite over them; else OthersBelow stays empty.
   void RenderOthersBelow(vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren);

@@ -1,6 +1,7 @@
 // vtkRayTracePass: what raster draws around the trace, through the delegate:
 // the opaque 3D props under traced translucent layers before it, the rest
-// after it.
+// after it (split by steps for the default delegate and a
+// vtkRenderStepsPass, by props for a delegate of another kind).
 #include "vtkRayTracePassInternals.h"
 
 #include <algorithm>
@@ -38,24 +39,40 @@ bool DrawsOnly3D(vtkProp* prop)
   const double* b = prop->GetBounds();
   return b && b[0] <= b[1] && b[2] <= b[3] && b[4] <= b[5];
 }
+
+/// Runs `step` (a vtkRenderStepsPass's, maybe unset) for `state`; the
+/// number of props it rendered.
+int RunStep(vtkRenderPass* step, const vtkRenderState* state)
+{
+  if (!step)
+  {
+    return 0;
+  }
+  step->Render(state);
+  return step->GetNumberOfRenderedProps();
+}
 } // namespace
 
 void vtkRayTracePass::Internals::RenderOthersBelow(
   vtkRayTracePass& pass, const vtkRenderState* s, vtkOpenGLRenderer* ren)
 {
   this->OthersBelow.clear();
-  auto* steps = vtkRayTraceRasterSteps::SafeDownCast(pass.DelegatePass);
   // Without the depth test (a window that never erased) raster's props
   // would leave no depth to end the rays at: they are drawn after.
   auto* win = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
-  if (pass.IdMode || !steps || this->Traced.empty() || !pass.TraceTranslucency ||
+  if (pass.IdMode || !pass.DelegatePass || this->Traced.empty() || !pass.TraceTranslucency ||
     !this->Scene.HasTranslucency() || !win->GetState()->GetEnumState(GL_DEPTH_TEST))
   {
     return;
   }
+  auto* rasterSteps = vtkRayTraceRasterSteps::SafeDownCast(pass.DelegatePass);
+  auto* steps = vtkRenderStepsPass::SafeDownCast(pass.DelegatePass);
   for (vtkProp* prop : this->Others)
   {
-    if (DrawsOnly3D(prop) && prop->HasOpaqueGeometry())
+    // A delegate of another kind draws a prop whole, translucent parts
+    // included, so only props without those go before the trace.
+    if (DrawsOnly3D(prop) && prop->HasOpaqueGeometry() &&
+      (rasterSteps || steps || !prop->HasTranslucentPolygonalGeometry()))
     {
       this->OthersBelow.push_back(prop);
     }
@@ -66,8 +83,21 @@ void vtkRayTracePass::Internals::RenderOthersBelow(
   }
   vtkRenderState below(ren);
   StateFor(below, s, this->OthersBelow);
-  steps->RenderOpaque(&below);
-  pass.NumberOfRenderedProps += steps->GetNumberOfRenderedProps();
+  if (rasterSteps)
+  {
+    rasterSteps->RenderOpaque(&below);
+    pass.NumberOfRenderedProps += rasterSteps->GetNumberOfRenderedProps();
+  }
+  else if (steps)
+  {
+    pass.NumberOfRenderedProps += RunStep(steps->GetLightsPass(), &below);
+    pass.NumberOfRenderedProps += RunStep(steps->GetOpaquePass(), &below);
+  }
+  else
+  {
+    pass.DelegatePass->Render(&below);
+    pass.NumberOfRenderedProps += pass.DelegatePass->GetNumberOfRenderedProps();
+  }
 }
 
 void vtkRayTracePass::Internals::RenderOthers(
@@ -81,17 +111,17 @@ void vtkRayTracePass::Internals::RenderOthers(
   }
   vtkRenderState rest(ren);
   StateFor(rest, s, this->Others);
-  if (!this->OthersBelow.empty())
+  // The props not drawn before the trace: their opaque parts are still to
+  // draw (a delegate of another kind drew the ones before it whole).
+  std::vector<vtkProp*> above;
+  std::copy_if(this->Others.begin(), this->Others.end(), std::back_inserter(above), [this](vtkProp* prop) {
+    return std::find(this->OthersBelow.begin(), this->OthersBelow.end(), prop) == this->OthersBelow.end();
+  });
+  vtkRenderState over(ren);
+  StateFor(over, s, above);
+  auto* rasterSteps = vtkRayTraceRasterSteps::SafeDownCast(pass.DelegatePass);
+  if (rasterSteps && !this->OthersBelow.empty())
   {
-    // The opaque parts of the props not drawn before the trace, then the
-    // rest of every prop.
-    auto* rasterSteps = vtkRayTraceRasterSteps::SafeDownCast(pass.DelegatePass);
-    std::vector<vtkProp*> above;
-    std::copy_if(this->Others.begin(), this->Others.end(), std::back_inserter(above), [this](vtkProp* prop) {
-      return std::find(this->OthersBelow.begin(), this->OthersBelow.end(), prop) == this->OthersBelow.end();
-    });
-    vtkRenderState over(ren);
-    StateFor(over, s, above);
     rasterSteps->RenderOpaque(&over);
     pass.NumberOfRenderedProps += rasterSteps->GetNumberOfRenderedProps();
     rasterSteps->RenderAfterOpaque(&rest);
@@ -101,19 +131,16 @@ void vtkRayTracePass::Internals::RenderOthers(
   auto* steps = vtkRenderStepsPass::SafeDownCast(pass.DelegatePass);
   if (!steps)
   {
-    pass.DelegatePass->Render(&rest);
+    pass.DelegatePass->Render(&over);
     pass.NumberOfRenderedProps += pass.DelegatePass->GetNumberOfRenderedProps();
     return;
   }
   // A vtkRenderStepsPass: its steps after the camera pass, whose clear would
   // wipe the traced image (and its post-processing, which wraps that pass).
-  for (vtkRenderPass* step : { steps->GetLightsPass(), steps->GetOpaquePass(),
-         steps->GetTranslucentPass(), steps->GetVolumetricPass(), steps->GetOverlayPass() })
+  pass.NumberOfRenderedProps += RunStep(steps->GetLightsPass(), &rest);
+  pass.NumberOfRenderedProps += RunStep(steps->GetOpaquePass(), &over);
+  for (vtkRenderPass* step : { steps->GetTranslucentPass(), steps->GetVolumetricPass(), steps->GetOverlayPass() })
   {
-    if (step)
-    {
-      step->Render(&rest);
-      pass.NumberOfRenderedProps += step->GetNumberOfRenderedProps();
-    }
+    pass.NumberOfRenderedProps += RunStep(step, &rest);
   }
 }
