@@ -121,7 +121,11 @@ public:
   ///@{
   /**
    * The pass that renders the props this pass does not trace, after the
-   * traced image (and its depth) is in place, composited by depth. By
+   * traced image (and its depth) is in place, composited by depth; under
+   * traced translucent layers, the opaque 3D props go before the trace so
+   * the layers cover them (a pass that is neither the default nor a
+   * vtkRenderStepsPass is then called twice a frame: first with those of
+   * them that have no translucent part, then with the rest). By
    * default the renderer's own steps: lights, opaque (through VTK's hidden
    * line removal pass under the renderer's UseHiddenLineRemoval, which
    * then takes lone wireframe actors from the tracer), translucent geometry
