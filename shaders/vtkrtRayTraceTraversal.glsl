@@ -113,11 +113,36 @@ void traceInstance(int instance, vec3 org, vec3 dir, vec3 invDir, float tMin, in
 uniform usamplerBuffer uTopNodes;
 uniform vec3 uCameraToAnchor;
 
+// The top-level walk's stack: pushed nodes and the distances at which the
+// ray enters them (depth <= kMaxDepth < VTKRT_STACK_SIZE, which is
+// kMaxStackSize with a top level, core/BVH.h: it never overflows).
+int topStackNode[VTKRT_STACK_SIZE];
+float topStackNear[VTKRT_STACK_SIZE];
+
+// OrderedWalk::pop: the nearest pushed node the ray may still meet before
+// tBest becomes `next`. False when none is left.
+bool topLevelPop(inout int sp, float tBest, out int next)
+{
+  next = 0;
+  while (sp > 0)
+  {
+    --sp;
+    if (topStackNear[sp] <= tBest)
+    {
+      next = topStackNode[sp];
+      return true;
+    }
+  }
+  return false;
+}
+
 // The walk is core's nearer-first walk (core::detail::OrderedWalk: descend,
 // pop) with the node at hand carried as its Node; its C++ twin is
-// core::gpu::traceTopLevel (core/GpuTraversal.h). The stack never overflows
-// (depth <= kMaxDepth < VTKRT_STACK_SIZE, which is kMaxStackSize with a top
-// level, core/BVH.h).
+// core::gpu::traceTopLevel (core/GpuTraversal.h). Organised as the bottom
+// walks are ("while-while"): interior steps until every ray of the group
+// holds a leaf or is done, then the leaves' instances, so that the group
+// runs an instance's walk (masked for the rays elsewhere) once a leaf, not
+// once a step.
 void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, float tMin, inout float tBest,
   inout int hitInstance, inout int hitPrimitive, inout vec2 hitUV, bool stopAtFirstHit)
 {
@@ -128,71 +153,63 @@ void traceTopLevel(vec3 org, vec3 dir, vec3 invDir, float tMin, inout float tBes
   {
     return;
   }
-  int stackNode[VTKRT_STACK_SIZE];
-  float stackNear[VTKRT_STACK_SIZE];
   int sp = 0;
+  int next;
   for (;;)
   {
+    // A do-while with the step guarded: see bvhDescend.
+    bool walking = true;
+    do
+    {
+      if (node.count == 0u)
+      {
+        int index = int(node.index);
+        Node n0 = fetchNode(uTopNodes, index);
+        Node n1 = fetchNode(uTopNodes, index + 1);
+        float t0, t1;
+        bool h0 = intersectRayAABB(anchorOrg, invDir, n0.lo, n0.hi, 0.0, tBest, t0);
+        bool h1 = intersectRayAABB(anchorOrg, invDir, n1.lo, n1.hi, 0.0, tBest, t1);
+        // OrderedWalk::descend, or pop at a dead end.
+        if (h0 && h1)
+        {
+          bool firstNear = t0 <= t1;
+          topStackNode[sp] = firstNear ? index + 1 : index;
+          topStackNear[sp] = firstNear ? t1 : t0;
+          ++sp;
+          node = firstNear ? n0 : n1;
+        }
+        else if (h0 || h1)
+        {
+          node = h0 ? n0 : n1;
+        }
+        else
+        {
+          walking = topLevelPop(sp, tBest, next);
+          node = walking ? fetchNode(uTopNodes, next) : node;
+        }
+      }
+    } while (walking && node.count == 0u);
+    if (!walking)
+    {
+      break;
+    }
+    // A leaf: its instances (count >= 1; a do-while: see bvhDescend).
     int index = int(node.index);
     int count = int(node.count);
-    bool descended = false;
-    if (count > 0)
+    int i = index;
+    do
     {
-      // A do-while (count >= 1): see bvhDescend.
-      int i = index;
-      do
+      traceInstance(i, org, dir, invDir, tMin, tBest, hitInstance, hitPrimitive, hitUV, stopAtFirstHit);
+      if (stopAtFirstHit && hitInstance >= 0)
       {
-        traceInstance(i, org, dir, invDir, tMin, tBest, hitInstance, hitPrimitive, hitUV, stopAtFirstHit);
-        if (stopAtFirstHit && hitInstance >= 0)
-        {
-          return;
-        }
-      } while (++i < index + count);
-    }
-    else
+        return;
+      }
+    } while (++i < index + count);
+    if (!topLevelPop(sp, tBest, next))
     {
-      Node n0 = fetchNode(uTopNodes, index);
-      Node n1 = fetchNode(uTopNodes, index + 1);
-      float t0, t1;
-      bool h0 = intersectRayAABB(anchorOrg, invDir, n0.lo, n0.hi, 0.0, tBest, t0);
-      bool h1 = intersectRayAABB(anchorOrg, invDir, n1.lo, n1.hi, 0.0, tBest, t1);
-      // OrderedWalk::descend
-      if (h0 && h1)
-      {
-        bool firstNear = t0 <= t1;
-        stackNode[sp] = firstNear ? index + 1 : index;
-        stackNear[sp] = firstNear ? t1 : t0;
-        ++sp;
-        node = firstNear ? n0 : n1;
-        descended = true;
-      }
-      else if (h0 || h1)
-      {
-        node = h0 ? n0 : n1;
-        descended = true;
-      }
+      break;
     }
-    if (!descended)
-    {
-      // OrderedWalk::pop
-      bool found = false;
-      int next = 0;
-      while (sp > 0)
-      {
-        --sp;
-        if (stackNear[sp] <= tBest)
-        {
-          next = stackNode[sp];
-          found = true;
-          break;
-        }
-      }
-      if (!found)
-      {
-        break;
-      }
-      node = fetchNode(uTopNodes, next);
-    }
+    node = fetchNode(uTopNodes, next);
   }
 }
 #endif
