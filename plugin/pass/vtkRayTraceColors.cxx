@@ -160,7 +160,7 @@ namespace
 /// coordinates) are fewer than the points or cells they color: the
 /// scalars array is shorter than its data set, raster reads past its end,
 /// and the prop is drawn in its property's color instead.
-bool ScalarsTooShort(vtkMapper* mapper, vtkPolyData* data, int cellFlag, vtkUnsignedCharArray* mapped,
+bool ScalarsTooShort(vtkMapper* mapper, vtkDataSet* data, int cellFlag, vtkUnsignedCharArray* mapped,
   vtkFloatArray* coordinates)
 {
   if (cellFlag == 2 || (!mapped && !coordinates))
@@ -178,13 +178,13 @@ bool ScalarsTooShort(vtkMapper* mapper, vtkPolyData* data, int cellFlag, vtkUnsi
     mapper->GetArrayAccessMode(), mapper->GetArrayId(), mapper->GetArrayName(), ignored);
   const char* name = scalars && scalars->GetName() ? scalars->GetName() : "";
   vtkGenericWarningMacro("vtkRayTracePass: the scalars '"
-    << name << "' of polydata " << data << " have " << given << " tuples for " << needed
+    << name << "' of " << data->GetClassName() << " " << data << " have " << given << " tuples for " << needed
     << (cellFlag == 1 ? " cells" : " points") << ": drawn in the actor's color.");
   return true;
 }
 } // namespace
 
-Colors* Scene::GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time)
+Colors* Scene::GetColors(vtkMapper* mapper, vtkDataSet* data, vtkMTimeType time)
 {
   if (!mapper->GetScalarVisibility())
   {
@@ -223,7 +223,12 @@ Colors* Scene::GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time
   helper->SetArrayAccessMode(mapper->GetArrayAccessMode());
   helper->SetArrayComponent(mapper->GetArrayComponent());
   helper->SetFieldDataTupleId(mapper->GetFieldDataTupleId());
-  helper->SetInputData(data);
+  // MapScalars reads `data`; the helper's input is set where it can be (a
+  // glyph mapper's points may be any data set).
+  if (auto* poly = vtkPolyData::SafeDownCast(data))
+  {
+    helper->SetInputData(poly);
+  }
   int cellFlag = 0;
   vtkUnsignedCharArray* mapped = helper->MapScalars(data, 1.0, cellFlag);
   // Mapping sets the shared table's range to the mapper's: that is what

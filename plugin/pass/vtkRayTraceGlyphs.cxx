@@ -591,10 +591,7 @@ void Scene::AddGlyphSet(vtkActor* actor, vtkGlyph3DMapper* mapper, const GlyphSp
   {
     if (markCached(this->SphereCache, key))
     {
-      if (auto* asPoly = vtkPolyData::SafeDownCast(input))
-      {
-        this->GetColors(mapper, asPoly, input->GetMTime());
-      }
+      this->GetColors(mapper, input, input->GetMTime());
     }
     return;
   }
@@ -627,12 +624,7 @@ void Scene::AddGlyphSet(vtkActor* actor, vtkGlyph3DMapper* mapper, const GlyphSp
   if (!entry->Empty())
   {
     inst.Geom = entry.get();
-    vtkPolyData* asPoly = vtkPolyData::SafeDownCast(input);
-    Colors* colors = nullptr;
-    if (asPoly)
-    {
-      colors = this->GetColors(mapper, asPoly, input->GetMTime());
-    }
+    Colors* colors = this->GetColors(mapper, input, input->GetMTime());
     // With InterpolateScalarsBeforeMapping (a color texture) VTK 9.1's
     // glyph mapper gets no colors and draws the property's color: so do we.
     inst.Color = colors && !colors->CellColors && !colors->Texture ? colors : nullptr;

@@ -256,7 +256,7 @@ private:
   /// `colors`.
   void AddTubes(
     vtkPolyData* poly, Colors* colors, const Instance& inst, double lineWidth, FrameCounters& counters);
-  Colors* GetColors(vtkMapper* mapper, vtkPolyData* data, vtkMTimeType time);
+  Colors* GetColors(vtkMapper* mapper, vtkDataSet* data, vtkMTimeType time);
   void FillMaterial(vtkActor* actor, vtkMapper* mapper, Instance& inst) const;
   /// The actor's texture on a triangle instance; false (left to raster)
   /// when raster samples it in a way the shader does not.

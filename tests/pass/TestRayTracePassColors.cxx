@@ -8,6 +8,7 @@
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
+#include "vtkAppendFilter.h"
 #include "vtkCellData.h"
 #include "vtkConeSource.h"
 #include "vtkCompositePolyDataMapper2.h"
@@ -15,6 +16,7 @@
 #include "vtkElevationFilter.h"
 #include "vtkFloatArray.h"
 #include "vtkGlyph3DMapper.h"
+#include "vtkImageData.h"
 #include "vtkLookupTable.h"
 #include "vtkMath.h"
 #include "vtkMultiBlockDataSet.h"
@@ -29,6 +31,7 @@
 #include "vtkTransform.h"
 #include "vtkTransformPolyDataFilter.h"
 #include "vtkTriangleFilter.h"
+#include "vtkUnstructuredGrid.h"
 
 #include <array>
 #include <sstream>
@@ -623,6 +626,56 @@ void TestGlyphSources()
   }
   NoVTKOutput("GlyphSources");
 }
+// Sphere glyphs colored by point scalars over any data set, as
+// vtkGlyph3DMapper colors them: an image and an unstructured grid take the
+// lookup table's colors as polydata does (they drew in the property's
+// color, RMSE 52 against raster in a user trial).
+void TestGlyphDataSets()
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(3, 3, 3);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("values");
+  for (vtkIdType i = 0; i < 27; ++i)
+  {
+    values->InsertNextValue(static_cast<float>(i));
+  }
+  image->GetPointData()->SetScalars(values);
+  vtkNew<vtkAppendFilter> toGrid;
+  toGrid->SetInputData(image);
+  toGrid->Update();
+  auto poly = GlyphPoints();
+  poly->GetPointData()->SetScalars(values);
+  vtkSmartPointer<vtkDataSet> inputs[3] = { image.Get(), toGrid->GetOutput(), poly };
+  const char* names[3] = { "vtkImageData", "vtkUnstructuredGrid", "vtkPolyData" };
+  auto lut = FourColorTable();
+  auto sphere = GlyphSphere();
+  for (int k = 0; k < 3; ++k)
+  {
+    auto win = MakeWindow(kSize, kSize);
+    vtkNew<vtkRenderer> ren;
+    win->AddRenderer(ren);
+    vtkNew<vtkGlyph3DMapper> mapper;
+    mapper->SetInputData(inputs[k]);
+    mapper->SetSourceConnection(sphere->GetOutputPort());
+    mapper->ScalingOff();
+    mapper->SetLookupTable(lut);
+    mapper->SetScalarRange(0.0, 26.0);
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    ren->AddActor(actor);
+    ren->SetBackground(0.1, 0.1, 0.15);
+    ren->GetActiveCamera()->SetPosition(5, 4, 7);
+    ren->GetActiveCamera()->SetFocalPoint(1, 1, 1);
+    ren->ResetCamera(-0.5, 2.5, -0.5, 2.5, -0.5, 2.5);
+    auto [raster, traced, pass] = RenderRasterThenTraced(win, ren);
+    std::ostringstream what;
+    what << names[k] << " sphere glyphs by scalars: " << pass->GetLastTracedPrimitives() << " spheres traced (27)";
+    Check(pass->GetNumberOfTracedProps() == 1 && pass->GetLastTracedPrimitives() == 27, what.str());
+    CheckClose(std::string("GlyphDataSet") + names[k], traced, raster, 5.0);
+    NoVTKOutput(std::string("GlyphDataSets ") + names[k]);
+  }
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -633,5 +686,6 @@ int main(int argc, char* argv[])
       { "CellScalarsUnaffected", TestCellScalarsUnaffected },
       { "PointsInterpolateBeforeMapping", TestPointsInterpolateBeforeMapping },
       { "CompositeInterpolateBeforeMapping", TestCompositeInterpolateBeforeMapping },
-      { "GlyphSources", TestGlyphSources }, { "ShortArrays", TestShortArrays } });
+      { "GlyphSources", TestGlyphSources }, { "ShortArrays", TestShortArrays },
+      { "GlyphDataSets", TestGlyphDataSets } });
 }
