@@ -191,9 +191,12 @@ public:
   int GetLastTracedInstances() const;
   /**
    * Pixels given camera rays in the last frame (once each, whatever the
-   * samples per pixel; 0 after a selection render): those where a traced
-   * instance can be (the tiles that the projections of the upper boxes of
-   * its BVH touch, or the rectangle around its box), not the whole viewport.
+   * samples per pixel): those where a traced instance can be (the tiles
+   * that the projections of the upper boxes of its BVH touch, or the
+   * rectangle around its box), not the whole viewport. After a selection
+   * render, the pixels of the selector's area in the viewport, traced by
+   * the first pass of its capture (0 after its later passes, which read
+   * that trace again).
    */
   vtkTypeInt64 GetLastTracedPixels() const;
   /**

@@ -127,7 +127,30 @@ void Selection::Allocate(vtkOpenGLRenderWindow* win, int width, int height)
   this->Size[1] = height;
 }
 
-void Selection::TraceIds(vtkOpenGLRenderWindow* win, const int viewportSize[2], vtkOpenGLQuadHelper* tracer)
+std::array<int, 4> Selection::AreaInViewport(
+  vtkHardwareSelector* selector, const int viewportOrigin[2], const int viewportSize[2])
+{
+  const unsigned int* area = selector->GetArea();
+  // Inclusive display pixels, clamped to the viewport.
+  const long x0 = std::max<long>(static_cast<long>(area[0]) - viewportOrigin[0], 0);
+  const long y0 = std::max<long>(static_cast<long>(area[1]) - viewportOrigin[1], 0);
+  const long x1 = std::min<long>(static_cast<long>(area[2]) - viewportOrigin[0], viewportSize[0] - 1L);
+  const long y1 = std::min<long>(static_cast<long>(area[3]) - viewportOrigin[1], viewportSize[1] - 1L);
+  if (x1 < x0 || y1 < y0)
+  {
+    return { 0, 0, 0, 0 };
+  }
+  return { static_cast<int>(x0), static_cast<int>(y0), static_cast<int>(x1 - x0 + 1),
+    static_cast<int>(y1 - y0 + 1) };
+}
+
+bool Selection::Holds(const ImageSignature& signature, const std::array<int, 4>& area) const
+{
+  return this->Traced && area == this->TracedArea && signature.Same(this->TracedSignature);
+}
+
+void Selection::TraceIds(vtkOpenGLRenderWindow* win, const int viewportOrigin[2], const int viewportSize[2],
+  const std::array<int, 4>& area, vtkOpenGLQuadHelper* tracer, ImageSignature signature)
 {
   vtkOpenGLState* ostate = win->GetState();
   const int width = std::max(viewportSize[0], 1), height = std::max(viewportSize[1], 1);
@@ -139,7 +162,8 @@ void Selection::TraceIds(vtkOpenGLRenderWindow* win, const int viewportSize[2], 
   this->FBO->Bind();
   this->FBO->ActivateDrawBuffers(1);
   vtkOpenGLState::ScopedglViewport viewport(ostate);
-  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglEnableDisable scissorTest(ostate, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglScissor scissor(ostate);
   vtkOpenGLState::ScopedglClearColor clearColor(ostate);
   vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
   vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
@@ -152,9 +176,19 @@ void Selection::TraceIds(vtkOpenGLRenderWindow* win, const int viewportSize[2], 
   ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
   ostate->vtkglDepthMask(GL_TRUE);
   ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  tracer->Render();
+  // Only the pixels the selection reads are traced.
+  if (area[2] > 0 && area[3] > 0)
+  {
+    ostate->vtkglEnable(GL_SCISSOR_TEST);
+    ostate->vtkglScissor(area[0], area[1], area[2], area[3]);
+    tracer->Render();
+  }
   ostate->PopFramebufferBindings();
   this->Traced = true;
+  this->TracedSignature = std::move(signature);
+  this->TracedArea = area;
+  this->TracedOrigin[0] = viewportOrigin[0];
+  this->TracedOrigin[1] = viewportOrigin[1];
 }
 
 int Selection::RenderPass(vtkOpenGLRenderWindow* win, vtkRenderer* ren,
@@ -196,7 +230,6 @@ int Selection::RenderPass(vtkOpenGLRenderWindow* win, vtkRenderer* ren,
   this->Props = nullptr;
   this->Window = nullptr;
   this->Counters = nullptr;
-  this->Traced = false;
   return rendered;
 }
 
@@ -235,6 +268,12 @@ void Selection::DrawProp(vtkHardwareSelector* selector, int index)
   vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
   vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable scissorTest(ostate, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglScissor scissor(ostate);
+  // The traced area (the selection's) in window pixels: the rest holds no hit.
+  ostate->vtkglEnable(GL_SCISSOR_TEST);
+  ostate->vtkglScissor(this->TracedOrigin[0] + this->TracedArea[0], this->TracedOrigin[1] + this->TracedArea[1],
+    this->TracedArea[2], this->TracedArea[3]);
   ostate->vtkglEnable(GL_DEPTH_TEST);
   ostate->vtkglDepthFunc(GL_LEQUAL);
   ostate->vtkglDepthMask(GL_TRUE);
@@ -264,6 +303,7 @@ void Selection::Release(vtkWindow* w)
   this->Depth->ReleaseGraphicsResources(w);
   this->Size[0] = this->Size[1] = 0;
   this->Traced = false;
+  this->TracedSignature.Clear();
 }
 
 } // namespace pass

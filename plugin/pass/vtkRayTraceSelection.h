@@ -1,6 +1,8 @@
 // Private to vtkRayTracePass: vtkHardwareSelector passes answered from the
-// pass's own rays. For each selector pass the pass traces, per pixel, the
-// hit prop, VTK id and composite index into a float buffer; then the
+// pass's own rays. The first pass of a selector's capture traces, per pixel
+// of the selection's area, the hit prop, VTK id and composite index into a
+// float buffer, which its later passes (and later selections of the same
+// pixels while nothing changes) read again; then the
 // selector renders the props as it does for raster (its prop ids, its
 // colors, its pixel bookkeeping), the traced ones through stand-in mappers
 // (vtkRayTraceSelectionMapper) that copy their own pixels out of that
@@ -9,11 +11,13 @@
 #ifndef vtkRayTraceSelection_h
 #define vtkRayTraceSelection_h
 
+#include "vtkRayTraceAccumulation.h"
 #include "vtkRayTraceTypes.h"
 
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -59,10 +63,24 @@ public:
   Selection();
   ~Selection();
 
-  /// Traces the id buffer over the frame's viewport (CameraFrame::
-  /// ViewportSize) with `tracer` (built with Features::SelectIds, current,
-  /// its samplers bound).
-  void TraceIds(vtkOpenGLRenderWindow* win, const int viewportSize[2], vtkOpenGLQuadHelper* tracer);
+  /// The part of `selector`'s area (display pixels) inside the viewport of
+  /// size `viewportSize` at `viewportOrigin`, as (x, y, width, height)
+  /// from the viewport's corner: the pixels a selection reads.
+  static std::array<int, 4> AreaInViewport(
+    vtkHardwareSelector* selector, const int viewportOrigin[2], const int viewportSize[2]);
+
+  /// Whether the id buffer holds a trace over `area` of the scene and
+  /// camera that `signature` describes: the passes of one capture, and
+  /// later selections of the same pixels while nothing changes, read it
+  /// again.
+  bool Holds(const ImageSignature& signature, const std::array<int, 4>& area) const;
+
+  /// Traces the id buffer over `area` of the frame's viewport (CameraFrame::
+  /// ViewportSize, at ViewportOrigin) with `tracer` (built with
+  /// Features::SelectIds, current, its samplers bound), for the scene and
+  /// camera of `signature`; the rest of the buffer holds no hit.
+  void TraceIds(vtkOpenGLRenderWindow* win, const int viewportOrigin[2], const int viewportSize[2],
+    const std::array<int, 4>& area, vtkOpenGLQuadHelper* tracer, ImageSignature signature);
 
   /// Renders the selector's current pass over `props` through
   /// vtkHardwareSelector::Render, traced prop i (traced[i]) drawn from the
@@ -95,7 +113,12 @@ private:
   const std::vector<SelectableProp>* Props = nullptr; ///< during RenderPass
   vtkOpenGLRenderWindow* Window = nullptr; ///< during RenderPass
   FrameCounters* Counters = nullptr;       ///< during RenderPass
-  bool Traced = false;                     ///< the id buffer holds this pass's trace
+  bool Traced = false; ///< the id buffer holds a trace
+  /// What it traced: the scene and camera, the area (viewport pixels),
+  /// the viewport's corner in the window.
+  ImageSignature TracedSignature;
+  std::array<int, 4> TracedArea = { 0, 0, 0, 0 };
+  int TracedOrigin[2] = { 0, 0 };
   int Size[2] = { 0, 0 };
 };
 
