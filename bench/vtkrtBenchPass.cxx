@@ -18,13 +18,16 @@
 // (every llvmpipe thread counted), steadier than wall time on a shared machine.
 //   dynamic (--dynamic N,..): a mesh of N triangles beside a small ball that
 //              moves every frame, camera still, pass vs vtkPolyDataMapper
+//   actors (--actors N,..): N actors sharing one vtkCubeSource (12
+//              triangles), each placed and colored at random, pass (a
+//              top-level tree over N instances) vs vtkPolyDataMapper
 //   translucent (--translucent N,..): an opaque mesh of N triangles inside a
 //              translucent shell of N triangles, pass vs vtkPolyDataMapper
 //              with depth peeling (100 peels, occlusion ratio 0), and the pass
 //              with the shell opaque (what compositing the layers costs)
 // usage: vtkrtBenchPass [--large] [--frames N] [--sizes 512,1024] [--edges]
 //          [--meshes quad,N,..] [--spheres N,..] [--peers glyphs,points,impostors]
-//          [--translucent N,..] [--tubes N,..] [--dynamic N,..]
+//          [--translucent N,..] [--tubes N,..] [--dynamic N,..] [--actors N,..]
 // (--meshes / --spheres replace the default counts, 0 skips that kind,
 // "quad" in --meshes keeps the quad; the pass's first frame is also printed
 // by phase: extraction, triangulation, BVH build, packing, upload, compile,
@@ -41,6 +44,7 @@
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
+#include "vtkCubeSource.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkGlyph3DMapper.h"
@@ -269,6 +273,7 @@ struct Options
   bool Quad = true; ///< the full-screen quad (off with --meshes not naming it)
   std::vector<long> Translucent; ///< triangle counts of the translucent scene (none by default)
   std::vector<long> Dynamic;     ///< triangle counts of the moving-ball scene (none by default)
+  std::vector<long> Actors;      ///< actor counts of the many-cubes scene (none by default)
   bool Edges = false; ///< meshes also with edge visibility and as wireframes
 };
 
@@ -327,6 +332,10 @@ bool ParseArgs(int argc, char* argv[], Options& opt)
     {
       opt.Dynamic = ParseList(argv[++i]);
     }
+    else if (a == "--actors" && i + 1 < argc)
+    {
+      opt.Actors = ParseList(argv[++i]);
+    }
     else if (a == "--tubes" && i + 1 < argc)
     {
       opt.TubeSegments = ParseList(argv[++i]);
@@ -350,7 +359,8 @@ bool ParseArgs(int argc, char* argv[], Options& opt)
       std::cerr << "usage: " << argv[0]
                 << " [--large] [--frames N] [--sizes 512,1024] [--edges] [--meshes quad,N,..] "
                    "[--spheres N,..]"
-                   " [--peers glyphs,points,impostors] [--translucent N,..] [--tubes N,..]\n";
+                   " [--peers glyphs,points,impostors] [--translucent N,..] [--tubes N,..] [--dynamic N,..]"
+                   " [--actors N,..]\n";
       return false;
     }
   }
@@ -555,6 +565,37 @@ void RunDynamic(vtkRenderWindow* win, int size, const Options& opt)
   }
 }
 
+/// n actors sharing one cube (12 triangles) scattered in a box, each in a
+/// color of its own: the pass's walk through a top-level tree of n
+/// instances, raster's n draw calls.
+void RunActors(vtkRenderWindow* win, int size, const Options& opt)
+{
+  for (long n : opt.Actors)
+  {
+    vtkNew<vtkCubeSource> cube;
+    cube->Update();
+    auto setup = [&](vtkRenderer* ren) {
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputData(cube->GetOutput());
+      vtkNew<vtkMinimalStandardRandomSequence> random;
+      random->SetSeed(1);
+      const auto next = [&random](double lo, double hi) {
+        random->Next();
+        return random->GetRangeValue(lo, hi);
+      };
+      for (long i = 0; i < n; ++i)
+      {
+        vtkActor* actor = AddActor(ren, mapper);
+        actor->SetPosition(next(-20.0, 20.0), next(-20.0, 20.0), next(-20.0, 20.0));
+        actor->GetProperty()->SetColor(next(0.2, 1.0), next(0.2, 1.0), next(0.2, 1.0));
+      }
+    };
+    const Timing pass = Measure(win, setup, true, opt.Frames);
+    const Timing raster = Measure(win, setup, false, opt.Frames);
+    Row(std::to_string(n) + " cube actors", size, "vtkPolyDataMapper", pass, raster);
+  }
+}
+
 /// An opaque mesh inside a translucent shell (opacity 0.4, both of n
 /// triangles): the pass against raster with depth peeling, and against the
 /// pass with the shell opaque.
@@ -707,6 +748,7 @@ int main(int argc, char* argv[])
     RunTranslucent(win, size, opt, phases);
     RunTubes(win, size, opt, phases);
     RunDynamic(win, size, opt);
+    RunActors(win, size, opt);
     if (!phases.str().empty())
     {
       std::cout << "\nfirst frame by phase, ms (pass; rest: drawing and what VTK does around it; "
