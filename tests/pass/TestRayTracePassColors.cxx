@@ -263,7 +263,7 @@ void TestShortArrays()
     auto traced = Traced(scene);
     const long differing = CountDifferingPixels(traced, plain, 0);
     Check(differing == 0 &&
-        WarnedOnce("scalars 'few' of polydata") && WarnedOnce("20 tuples for " + std::to_string(points) + " points"),
+        WarnedOnce("scalars 'few' of vtkPolyData") && WarnedOnce("20 tuples for " + std::to_string(points) + " points"),
       std::string("short point scalars, interpolated ") + (before ? "before" : "after") +
         " mapping: the actor's color (" + std::to_string(differing) + " pixels differ) and one warning");
   }
