@@ -82,8 +82,11 @@ bool stepVisibilityRay(inout int ray, inout float transmittance, inout float tMi
 // Every hit of the camera ray in depth order up to tEnd (the far plane, or
 // the depth below: vtkrtRayTraceMain), shaded and composited: the
 // premultiplied color and, as VTK's translucent pass leaves the opaque depth
-// in the depth buffer, the depth of the layer that made the pixel opaque (the
-// far plane if the ray leaves the scene). False when the ray hits nothing.
+// in the depth buffer, the depth of the nearest hit of an opaque instance
+// (the far plane if there is none: translucent layers write no depth, even
+// where their composite is opaque). Once the composite is opaque, the
+// layers behind are walked unshaded, only to find that depth. False when
+// the ray hits nothing.
 // With interleaved walks, the loop also walks each layer's visibility rays,
 // each through every layer it crosses (the product of 1 - alpha): an
 // iteration walks one ray at the shader's one call of traceClosest; a layer
@@ -109,6 +112,7 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, float tEnd, out vec
 #else
   const int ray = -1;
 #endif
+  bool saturated = false; // the composite is opaque: only the opaque depth is left to find
   for (;;)
   {
     vec3 walkOrg = org;
@@ -151,6 +155,16 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, float tEnd, out vec
       layerInstance = hitInstance;
       layerPrimitive = hitPrimitive;
       layerUV = hitUV;
+      if (saturated)
+      {
+        if ((instanceFlags(layerInstance) & kInstanceTranslucent) == 0u)
+        {
+          outDepth = windowDepth(org, dir, tLayer);
+          break;
+        }
+        tMin = nextLayerTMin(tLayer);
+        continue;
+      }
 #ifdef VTKRT_INTERLEAVED_WALKS
       for (int i = 0; i < kVisibilityRays; ++i)
       {
@@ -178,11 +192,12 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, float tEnd, out vec
     ray = -1;
 #endif
     compositeLayer(accumulated, layer.rgb, layer.a);
-    if (accumulated.a >= kOpaqueAlpha)
+    if ((instanceFlags(layerInstance) & kInstanceTranslucent) == 0u)
     {
       outDepth = windowDepth(org, dir, tLayer);
       break;
     }
+    saturated = accumulated.a >= kOpaqueAlpha;
     tMin = nextLayerTMin(tLayer);
   }
 #ifdef VTKRT_FLOAT_COLORS

@@ -745,6 +745,44 @@ void TestOverRasterProps()
   Check(frames.Pass->GetAccumulatedFrames() == 1, again.str());
   NoVTKOutput("OverRasterProps");
 }
+/// Translucent layers write no depth, even where their composite is opaque
+/// (a sphere forced translucent at opacity 1, and two layers at 0.98), as
+/// VTK's translucent pass: the depth stays an opaque plane's behind them, or
+/// the far plane (both wrote their own depth before, over whole spheres).
+void TestOpaqueCompositeDepth()
+{
+  Scene scene;
+  auto forced = SphereActor(-0.6, 0.0, 0.0, 0.5, 48);
+  forced->ForceTranslucentOn();
+  auto dense = SphereActor(0.6, 0.0, 0.0, 0.5, 48);
+  dense->GetProperty()->SetOpacity(0.98);
+  vtkNew<vtkPlaneSource> wall;
+  wall->SetOrigin(-1.5, -1.0, -0.8);
+  wall->SetPoint1(0.3, -1.0, -0.8);
+  wall->SetPoint2(-1.5, 1.0, -0.8);
+  wall->Update();
+  auto back = MeshActor(wall->GetOutput());
+  for (vtkActor* a : { forced.Get(), dense.Get(), back.Get() })
+  {
+    scene.Renderer->AddActor(a);
+  }
+  scene.Frame(0, 1.2);
+  scene.Window->Render();
+  auto rasterZ = ZBuffer(scene.Window);
+  Compare("OpaqueCompositeDepth", scene, 3, 3.0);
+  auto tracedZ = ZBuffer(scene.Window);
+  long differ = 0, near = 0;
+  for (vtkIdType i = 0; i < rasterZ->GetNumberOfValues(); ++i)
+  {
+    differ += std::abs(rasterZ->GetValue(i) - tracedZ->GetValue(i)) > 1e-3f;
+    near += tracedZ->GetValue(i) < 1.0f;
+  }
+  std::ostringstream s;
+  s << "OpaqueCompositeDepth: depth as raster's at all but " << differ << " pixels (<= 0.5%), " << near
+    << " pixels nearer than the far plane (the plane's)";
+  Check(differ <= W * H / 200 && near > 0, s.str());
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
@@ -755,5 +793,5 @@ int main(int argc, char* argv[])
       { "Glyphs", TestGlyphs }, { "ManyActors", TestManyActors }, { "Blocks", TestBlocks },
       { "Shadow", TestShadow }, { "InterleavedWalks", TestInterleavedWalks }, { "Feature", TestFeature },
       { "BadOpacity", TestBadOpacity }, { "Selection", TestSelection },
-      { "OverRasterProps", TestOverRasterProps } });
+      { "OverRasterProps", TestOverRasterProps }, { "OpaqueCompositeDepth", TestOpaqueCompositeDepth } });
 }
