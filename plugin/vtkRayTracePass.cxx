@@ -3,6 +3,9 @@
 
 #include "vtkDataObject.h"
 
+#include <algorithm>
+#include <cmath>
+
 using vtkrt::pass::FrameCounters;
 
 vtkStandardNewMacro(vtkRayTracePass);
@@ -138,6 +141,37 @@ const PresetKnobs Presets[] = {
   { vtkRayTracePass::BALANCED, "Balanced", 1, 8, 1, true, true, 2 },
   { vtkRayTracePass::EXACT, "Exact", 1, 8, 4, true, true, 4 },
 };
+}
+
+void vtkRayTracePass::SetMaximumTextureBufferTexels(vtkTypeInt64 texels)
+{
+  if (texels < 0)
+  {
+    vtkErrorMacro("SetMaximumTextureBufferTexels(" << texels
+                                                   << "): a texel count is 0 (the GL limit) or more; unchanged.");
+    return;
+  }
+  if (this->MaximumTextureBufferTexels != texels)
+  {
+    this->MaximumTextureBufferTexels = texels;
+    this->Modified();
+  }
+}
+
+void vtkRayTracePass::SetAmbientOcclusionRadius(double radius)
+{
+  if (std::isnan(radius))
+  {
+    vtkErrorMacro("SetAmbientOcclusionRadius(nan): a radius is a length (0: a tenth of the "
+                  "traced bounds' diagonal); unchanged.");
+    return;
+  }
+  radius = std::min(std::max(radius, 0.0), VTK_DOUBLE_MAX);
+  if (this->AmbientOcclusionRadius != radius)
+  {
+    this->AmbientOcclusionRadius = radius;
+    this->Modified();
+  }
 }
 
 void vtkRayTracePass::SetQualityPreset(int preset)

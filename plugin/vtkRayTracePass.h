@@ -238,9 +238,10 @@ public:
   /**
    * Largest texture buffer (texels) the pass may use; 0 (default) means
    * GL_MAX_TEXTURE_BUFFER_SIZE. A scene that needs more fails with an error
-   * instead of drawing garbage.
+   * instead of drawing garbage. A negative value is an error and changes
+   * nothing.
    */
-  vtkSetMacro(MaximumTextureBufferTexels, vtkTypeInt64);
+  void SetMaximumTextureBufferTexels(vtkTypeInt64 texels);
   vtkGetMacro(MaximumTextureBufferTexels, vtkTypeInt64);
 
   ///@{
@@ -366,9 +367,10 @@ public:
   ///@{
   /**
    * Length of the ambient occlusion rays in world units; 0 (default) means
-   * a tenth of the diagonal of the traced props' bounds.
+   * a tenth of the diagonal of the traced props' bounds. Clamped to
+   * [0, VTK_DOUBLE_MAX]; NaN is an error and changes nothing.
    */
-  vtkSetClampMacro(AmbientOcclusionRadius, double, 0.0, VTK_DOUBLE_MAX);
+  void SetAmbientOcclusionRadius(double radius);
   vtkGetMacro(AmbientOcclusionRadius, double);
   ///@}
 

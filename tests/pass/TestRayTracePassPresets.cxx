@@ -10,6 +10,7 @@
 #include "vtkNew.h"
 #include "vtkRenderer.h"
 
+#include <cmath>
 #include <functional>
 #include <map>
 #include <string>
@@ -95,6 +96,21 @@ void TestPresetKnobs()
   Check(Output->GetNumberOfErrors() == 1 && Output->HasErrorContaining("No quality preset 42"),
     "an unknown preset is an error");
   Check(Holds(pass, Presets[2]), "an unknown preset changes nothing");
+  Output->Clear();
+  // Values no clamp can place: an error each, the knob as it was.
+  pass->SetAmbientOcclusionRadius(0.25);
+  pass->SetMaximumTextureBufferTexels(5000);
+  const vtkMTimeType kept = pass->GetMTime();
+  pass->SetAmbientOcclusionRadius(std::nan(""));
+  pass->SetMaximumTextureBufferTexels(-1);
+  Check(Output->GetNumberOfErrors() == 2 && Output->HasErrorContaining("SetAmbientOcclusionRadius(nan)") &&
+      Output->HasErrorContaining("SetMaximumTextureBufferTexels(-1)"),
+    "a NaN occlusion radius and a negative texel limit are errors");
+  Check(pass->GetAmbientOcclusionRadius() == 0.25 && pass->GetMaximumTextureBufferTexels() == 5000 &&
+      pass->GetMTime() == kept,
+    "a NaN occlusion radius and a negative texel limit change nothing");
+  pass->SetAmbientOcclusionRadius(-3.0);
+  Check(pass->GetAmbientOcclusionRadius() == 0.0, "a negative occlusion radius clamps to 0");
   Output->Clear();
   NoVTKOutput("PresetKnobs");
 }
