@@ -427,6 +427,13 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
     ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   }
   in.Upload(*this, win);
+  // A trace of selection ids made before this frame rebuilt or uploaded
+  // geometry would report the old cells.
+  const FrameCounters& c = in.Counters;
+  if (c.BVHBuilds > 0 || c.TopLevelBuilds > 0 || c.BackgroundBuildsTaken > 0 || c.GeometryBytesUploaded > 0)
+  {
+    in.Selecting.Invalidate();
+  }
   if (!in.GeometryValid || !in.ColorsValid || !in.TexturesValid)
   {
     in.LeaveTracedToRaster(s);

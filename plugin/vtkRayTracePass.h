@@ -124,8 +124,9 @@ public:
    * traced image (and its depth) is in place, composited by depth; under
    * traced translucent layers, the opaque 3D props go before the trace so
    * the layers cover them (a pass that is neither the default nor a
-   * vtkRenderStepsPass is then called twice a frame: first with those of
-   * them that have no translucent part, then with the rest). By
+   * vtkRenderStepsPass is then called twice a frame: first with the actors
+   * and image slices among them that have no translucent part, then with
+   * the rest). By
    * default the renderer's own steps: lights, opaque (through VTK's hidden
    * line removal pass under the renderer's UseHiddenLineRemoval, which
    * then takes lone wireframe actors from the tracer), translucent geometry
@@ -241,7 +242,7 @@ public:
    * instead of drawing garbage. A negative value is an error and changes
    * nothing.
    */
-  void SetMaximumTextureBufferTexels(vtkTypeInt64 texels);
+  virtual void SetMaximumTextureBufferTexels(vtkTypeInt64 texels);
   vtkGetMacro(MaximumTextureBufferTexels, vtkTypeInt64);
 
   ///@{
@@ -370,7 +371,7 @@ public:
    * a tenth of the diagonal of the traced props' bounds. Clamped to
    * [0, VTK_DOUBLE_MAX]; NaN is an error and changes nothing.
    */
-  void SetAmbientOcclusionRadius(double radius);
+  virtual void SetAmbientOcclusionRadius(double radius);
   vtkGetMacro(AmbientOcclusionRadius, double);
   ///@}
 

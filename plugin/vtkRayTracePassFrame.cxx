@@ -716,6 +716,9 @@ void vtkRayTracePass::Internals::Select(vtkRayTracePass& pass, const vtkRenderSt
   vtkOpenGLRenderer* ren, vtkOpenGLRenderWindow* win, vtkOpenGLCamera* cam,
   vtkHardwareSelector* selector)
 {
+  // Selection renders draw no raster props below the trace, and the list
+  // of the last frame's may hold props deleted since.
+  this->OthersBelow.clear();
   std::vector<vtkProp*> props =
     vtkrt::pass::SelectionProps(ren, s->GetPropArray(), s->GetPropArrayCount());
   if (selector->GetFieldAssociation() == vtkDataObject::FIELD_ASSOCIATION_POINTS)
@@ -736,25 +739,28 @@ void vtkRayTracePass::Internals::Select(vtkRayTracePass& pass, const vtkRenderSt
     traced[i] = this->Traced[i]->GetPickable() &&
       std::find(props.begin(), props.end(), this->Traced[i]) != props.end();
   }
-  int size[2], origin[2];
-  ren->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
-  const std::array<int, 4> area = vtkrt::pass::Selection::AreaInViewport(selector, origin, size);
   Prepared p;
-  if (!this->Traced.empty() && this->Prepare(pass, s, ren, win, cam, &traced, true, p))
+  if (this->Traced.empty() || !this->Prepare(pass, s, ren, win, cam, &traced, true, p))
   {
+    // Nothing traced for this capture: no earlier trace may stand in.
+    this->Selecting.Invalidate();
+  }
+  else
+  {
+    const int* origin = p.Camera.ViewportOrigin;
+    const int* size = p.Camera.ViewportSize;
+    const std::array<int, 4> area = vtkrt::pass::Selection::AreaInViewport(selector, origin, size);
     // What the ids depend on: the scene and camera, which props are
-    // selectable, the viewport; a rebuilt tree may order ties anew.
+    // selectable, the viewport (frames that rebuild or upload geometry
+    // invalidate the trace: Render).
     vtkrt::pass::ImageSignature signature = this->AccumulationSignature(p);
     std::vector<float> key(traced.begin(), traced.end());
-    key.insert(key.end(), { static_cast<float>(size[0]), static_cast<float>(size[1]) });
+    key.insert(key.end(), { static_cast<float>(size[0]), static_cast<float>(size[1]),
+                            static_cast<float>(origin[0]), static_cast<float>(origin[1]) });
     signature.Scene.insert(signature.Scene.end(), key.begin(), key.end());
-    const vtkrt::pass::FrameCounters& c = this->Counters;
-    const bool rebuilt = c.BVHBuilds > 0 || c.TopLevelBuilds > 0 || c.BackgroundBuildsTaken > 0 ||
-      c.GeometryBytesUploaded > 0;
-    if (rebuilt || !this->Selecting.Holds(signature, area))
+    if (!this->Selecting.Holds(signature, area))
     {
-      this->Selecting.TraceIds(
-        win, p.Camera.ViewportOrigin, p.Camera.ViewportSize, area, p.Tracer, std::move(signature));
+      this->Selecting.TraceIds(win, origin, size, area, p.Tracer, std::move(signature));
       this->Counters.TracedPixels += static_cast<std::size_t>(area[2]) * static_cast<std::size_t>(area[3]);
     }
     for (vtkTextureObject* t : p.Active)

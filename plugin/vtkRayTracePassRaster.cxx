@@ -69,10 +69,12 @@ void vtkRayTracePass::Internals::RenderOthersBelow(
   auto* steps = vtkRenderStepsPass::SafeDownCast(pass.DelegatePass);
   for (vtkProp* prop : this->Others)
   {
-    // A delegate of another kind draws a prop whole, translucent parts
-    // included, so only props without those go before the trace.
-    if (DrawsOnly3D(prop) && prop->HasOpaqueGeometry() &&
-      (rasterSteps || steps || !prop->HasTranslucentPolygonalGeometry()))
+    // A delegate of another kind draws a prop whole (translucent parts,
+    // overlays, volumes included), so only actors and image slices without
+    // translucent parts go before the trace.
+    const bool drawnWholeBelow = (prop->IsA("vtkActor") || prop->IsA("vtkImageSlice")) &&
+      !prop->HasTranslucentPolygonalGeometry();
+    if (DrawsOnly3D(prop) && prop->HasOpaqueGeometry() && (rasterSteps || steps || drawnWholeBelow))
     {
       this->OthersBelow.push_back(prop);
     }

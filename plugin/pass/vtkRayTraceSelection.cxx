@@ -149,6 +149,12 @@ bool Selection::Holds(const ImageSignature& signature, const std::array<int, 4>&
   return this->Traced && area == this->TracedArea && signature.Same(this->TracedSignature);
 }
 
+void Selection::Invalidate()
+{
+  this->Traced = false;
+  this->TracedSignature.Clear();
+}
+
 void Selection::TraceIds(vtkOpenGLRenderWindow* win, const int viewportOrigin[2], const int viewportSize[2],
   const std::array<int, 4>& area, vtkOpenGLQuadHelper* tracer, ImageSignature signature)
 {
@@ -302,8 +308,7 @@ void Selection::Release(vtkWindow* w)
   this->Ids->ReleaseGraphicsResources(w);
   this->Depth->ReleaseGraphicsResources(w);
   this->Size[0] = this->Size[1] = 0;
-  this->Traced = false;
-  this->TracedSignature.Clear();
+  this->Invalidate();
 }
 
 } // namespace pass

@@ -75,6 +75,9 @@ public:
   /// again.
   bool Holds(const ImageSignature& signature, const std::array<int, 4>& area) const;
 
+  /// Forgets the trace: the next selection pass traces again.
+  void Invalidate();
+
   /// Traces the id buffer over `area` of the frame's viewport (CameraFrame::
   /// ViewportSize, at ViewportOrigin) with `tracer` (built with
   /// Features::SelectIds, current, its samplers bound), for the scene and

@@ -771,16 +771,17 @@ void TestOpaqueCompositeDepth()
   auto rasterZ = ZBuffer(scene.Window);
   Compare("OpaqueCompositeDepth", scene, 3, 3.0);
   auto tracedZ = ZBuffer(scene.Window);
-  long differ = 0, near = 0;
+  long differ = 0, spheres = 0;
   for (vtkIdType i = 0; i < rasterZ->GetNumberOfValues(); ++i)
   {
     differ += std::abs(rasterZ->GetValue(i) - tracedZ->GetValue(i)) > 1e-3f;
-    near += tracedZ->GetValue(i) < 1.0f;
+    // Where the spheres alone cover the pixel raster leaves the far plane.
+    spheres += rasterZ->GetValue(i) == 1.0f;
   }
   std::ostringstream s;
-  s << "OpaqueCompositeDepth: depth as raster's at all but " << differ << " pixels (<= 0.5%), " << near
-    << " pixels nearer than the far plane (the plane's)";
-  Check(differ <= W * H / 200 && near > 0, s.str());
+  s << "OpaqueCompositeDepth: depth as raster's at all but " << differ << " pixels (<= 0.5%; "
+    << spheres << " far pixels in raster's)";
+  Check(differ <= W * H / 200 && spheres > W * H / 10, s.str());
 }
 
 } // namespace
