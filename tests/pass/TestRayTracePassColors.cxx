@@ -351,6 +351,16 @@ void TestCompositeInterpolateBeforeMapping()
   NoVTKOutput("CompositeInterpolateBeforeMapping");
 }
 
+/// The view the point and glyph cases share: points on a grid in [0, 2]^3
+/// (GlyphPoints), spheres of radius up to 0.5 about them.
+void ViewGlyphGrid(vtkRenderer* ren)
+{
+  ren->SetBackground(0.1, 0.1, 0.15);
+  ren->GetActiveCamera()->SetPosition(5, 4, 7);
+  ren->GetActiveCamera()->SetFocalPoint(1, 1, 1);
+  ren->ResetCamera(-0.5, 2.5, -0.5, 2.5, -0.5, 2.5);
+}
+
 // Points drawn as spheres with the option on: each sphere takes its point's
 // texel (the same color as with the option off), as raster colors it. Sphere
 // glyphs: VTK 9.1's glyph mapper ignores the scalars with the option on (it
@@ -406,10 +416,7 @@ void TestPointsInterpolateBeforeMapping()
     mapper->InterpolateScalarsBeforeMappingOn();
     actor->SetMapper(mapper);
     ren->AddActor(actor);
-    ren->SetBackground(0.1, 0.1, 0.15);
-    ren->GetActiveCamera()->SetPosition(5, 4, 7);
-    ren->GetActiveCamera()->SetFocalPoint(1, 1, 1);
-    ren->ResetCamera(-0.5, 2.5, -0.5, 2.5, -0.5, 2.5);
+    ViewGlyphGrid(ren);
     auto [raster, traced, pass] = RenderRasterThenTraced(win, ren);
     Check(pass->GetLastTracedInstances() == 1 && HasColorTexture(pass) == !glyphs,
       name + (glyphs ? ": traced without scalar colors" : ": traced with the color texture"));
@@ -476,10 +483,7 @@ GlyphResult RenderGlyphs(vtkAlgorithm* source, vtkPolyData* sourceData, bool fla
     actor->GetProperty()->SetInterpolationToFlat();
   }
   ren->AddActor(actor);
-  ren->SetBackground(0.1, 0.1, 0.15);
-  ren->GetActiveCamera()->SetPosition(5, 4, 7);
-  ren->GetActiveCamera()->SetFocalPoint(1, 1, 1);
-  ren->ResetCamera(-0.5, 2.5, -0.5, 2.5, -0.5, 2.5);
+  ViewGlyphGrid(ren);
   auto [raster, traced, pass] = RenderRasterThenTraced(win, ren);
   GlyphResult r;
   r.Raster = raster;
@@ -664,10 +668,7 @@ void TestGlyphDataSets()
     vtkNew<vtkActor> actor;
     actor->SetMapper(mapper);
     ren->AddActor(actor);
-    ren->SetBackground(0.1, 0.1, 0.15);
-    ren->GetActiveCamera()->SetPosition(5, 4, 7);
-    ren->GetActiveCamera()->SetFocalPoint(1, 1, 1);
-    ren->ResetCamera(-0.5, 2.5, -0.5, 2.5, -0.5, 2.5);
+    ViewGlyphGrid(ren);
     auto [raster, traced, pass] = RenderRasterThenTraced(win, ren);
     std::ostringstream what;
     what << names[k] << " sphere glyphs by scalars: " << pass->GetLastTracedPrimitives() << " spheres traced (27)";

@@ -192,6 +192,15 @@ void TestFXAA()
     NoVTKOutput(name);
   }
 }
+/// A translucent blue unit sphere (opacity 0.4, traced) about the origin.
+void AddShell(vtkRenderer* ren)
+{
+  vtkSmartPointer<vtkActor> shell = SphereActor(0.0, 0.0, 0.0, 1.0, 64);
+  shell->GetProperty()->SetColor(0.3, 0.5, 1.0);
+  shell->GetProperty()->SetOpacity(0.4);
+  ren->AddActor(shell);
+}
+
 /// Opaque props raster draws that are not vtkProp3Ds, inside a traced
 /// translucent shell: a 3D widget's representation and a vtkPropAssembly of
 /// an actor show through the shell as under raster's peeling (they were
@@ -201,10 +210,7 @@ void TestOpaqueWidgetsInside()
   auto win = MakeWindow(320, 240);
   vtkNew<vtkRenderer> ren;
   SetUpDepthPeeling(win, ren);
-  vtkSmartPointer<vtkActor> shell = SphereActor(0.0, 0.0, 0.0, 1.0, 64);
-  shell->GetProperty()->SetColor(0.3, 0.5, 1.0);
-  shell->GetProperty()->SetOpacity(0.4);
-  ren->AddActor(shell);
+  AddShell(ren);
   vtkNew<vtkSphereRepresentation> handle;
   handle->SetRenderer(ren);
   double handleBounds[6] = { -0.6, -0.1, -0.25, 0.25, -0.25, 0.25 };
@@ -290,10 +296,7 @@ void TestUserDelegateBelow()
     auto win = MakeWindow(320, 240);
     vtkNew<vtkRenderer> ren;
     SetUpDepthPeeling(win, ren);
-    vtkSmartPointer<vtkActor> shell = SphereActor(0.0, 0.0, 0.0, 1.0, 64);
-    shell->GetProperty()->SetColor(0.3, 0.5, 1.0);
-    shell->GetProperty()->SetOpacity(0.4);
-    ren->AddActor(shell);
+    AddShell(ren);
     vtkNew<vtkPoints> points;
     vtkNew<vtkCellArray> verts;
     for (int i = 0; i < 40; ++i)
