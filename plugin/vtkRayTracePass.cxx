@@ -2,11 +2,33 @@
 #include "vtkRayTracePassInternals.h"
 
 #include "vtkDataObject.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
 
 #include <algorithm>
 #include <cmath>
 
 using vtkrt::pass::FrameCounters;
+
+namespace
+{
+/// Whether the camera's view transform maps every point onto one line of
+/// the view (a view up parallel to the direction of projection, not
+/// orthogonalized): raster's triangles then all have no area, and it draws
+/// nothing.
+bool ViewCollapses(vtkCamera* cam)
+{
+  vtkMatrix4x4* view = cam->GetViewTransformMatrix();
+  double x[3], y[3], normal[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    x[k] = view->GetElement(0, k);
+    y[k] = view->GetElement(1, k);
+  }
+  vtkMath::Cross(x, y, normal);
+  return vtkMath::Norm(normal) == 0.0;
+}
+} // namespace
 
 vtkStandardNewMacro(vtkRayTracePass);
 
@@ -434,7 +456,9 @@ void vtkRayTracePass::Render(const vtkRenderState* s)
   {
     in.Selecting.Invalidate();
   }
-  if (!in.GeometryValid || !in.ColorsValid || !in.TexturesValid)
+  // A collapsed view: raster draws what it draws of those props (nothing),
+  // where rays from it would draw garbage at depth 0.
+  if (!in.GeometryValid || !in.ColorsValid || !in.TexturesValid || ViewCollapses(cam))
   {
     in.LeaveTracedToRaster(s);
   }

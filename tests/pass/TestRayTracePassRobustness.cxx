@@ -23,6 +23,7 @@
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkGlyph3DMapper.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
@@ -742,6 +743,42 @@ void TestFlatFrameConstants()
   NoVTKOutput("flat frame constants");
 }
 
+/// A camera whose view up ends parallel to its direction of projection
+/// (Pitch 90, then Azimuth and Elevation, not orthogonalized): its view
+/// transform collapses the scene onto a line, and raster draws nothing; so
+/// does the pass (it drew a few pixels at depth 0, a user trial).
+void TestCollapsedView()
+{
+  auto win = MakeWindow(300, 300);
+  vtkNew<vtkRenderer> ren;
+  win->AddRenderer(ren);
+  ren->AddActor(MeshActor(ReadPolyData("bunny.vtp")));
+  ren->AddActor(SphereActor(0.05, 0.15, 0.0, 0.03, 32));
+  ren->ResetCamera();
+  win->Render();
+  vtkCamera* cam = ren->GetActiveCamera();
+  for (int step = 0; step < 3; ++step)
+  {
+    step == 0 ? cam->Pitch(90) : step == 1 ? cam->Azimuth(30) : cam->Elevation(-20);
+    ren->ResetCameraClippingRange();
+    win->Render();
+  }
+  RasterAndTraced frames = RenderRasterThenTraced(win, ren);
+  vtkNew<vtkFloatArray> z;
+  win->GetZbufferData(0, 0, 299, 299, z);
+  long nearer = 0;
+  for (vtkIdType i = 0; i < z->GetNumberOfValues(); ++i)
+  {
+    nearer += z->GetValue(i) < 1.0f;
+  }
+  const long differing = CountDifferingPixels(frames.Raster, frames.Traced, 0);
+  std::ostringstream s;
+  s << "collapsed view: " << differing << " pixels differ from raster's (0), " << nearer
+    << " pixels of depth under 1 (0), " << frames.Pass->GetNumberOfTracedProps() << " props traced (0)";
+  Check(differing == 0 && nearer == 0 && frames.Pass->GetNumberOfTracedProps() == 0, s.str());
+  NoVTKOutput("collapsed view");
+}
+
 int main(int argc, char* argv[])
 {
   Output = vtkrtTestOutputWindow::Install();
@@ -755,6 +792,7 @@ int main(int argc, char* argv[])
     { "LeafTrees", TestLeafTrees },
     { "PackedStackEntries", TestPackedStackEntries },
     { "FlatFrameConstants", TestFlatFrameConstants },
+    { "CollapsedView", TestCollapsedView },
   };
   return RunCase(argc, argv, cases);
 }
