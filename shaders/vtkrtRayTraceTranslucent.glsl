@@ -79,6 +79,13 @@ bool stepVisibilityRay(inout int ray, inout float transmittance, inout float tMi
 }
 #endif
 
+// Whether the instance is traced opaque: its hits end the camera ray and
+// give the pixel its depth.
+bool isOpaqueInstance(int instance)
+{
+  return (instanceFlags(instance) & kInstanceTranslucent) == 0u;
+}
+
 // Every hit of the camera ray in depth order up to tEnd (the far plane, or
 // the depth below: vtkrtRayTraceMain), shaded and composited: the
 // premultiplied color and, as VTK's translucent pass leaves the opaque depth
@@ -157,7 +164,7 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, float tEnd, out vec
       layerUV = hitUV;
       if (saturated)
       {
-        if ((instanceFlags(layerInstance) & kInstanceTranslucent) == 0u)
+        if (isOpaqueInstance(layerInstance))
         {
           outDepth = windowDepth(org, dir, tLayer);
           break;
@@ -192,7 +199,7 @@ bool traceTranslucentLayers(vec3 org, vec3 dir, vec3 invDir, float tEnd, out vec
     ray = -1;
 #endif
     compositeLayer(accumulated, layer.rgb, layer.a);
-    if ((instanceFlags(layerInstance) & kInstanceTranslucent) == 0u)
+    if (isOpaqueInstance(layerInstance))
     {
       outDepth = windowDepth(org, dir, tLayer);
       break;

@@ -7,12 +7,10 @@
 #include "vtkrtPassTestUtils.h"
 
 #include "vtkActorCollection.h"
-#include "vtkCellArray.h"
 #include "vtkLightsPass.h"
 #include "vtkOpaquePass.h"
 #include "vtkOutlineSource.h"
 #include "vtkOverlayPass.h"
-#include "vtkPoints.h"
 #include "vtkRenderPassCollection.h"
 #include "vtkSequencePass.h"
 #include "vtkCubeSource.h"
@@ -297,20 +295,7 @@ void TestUserDelegateBelow()
     vtkNew<vtkRenderer> ren;
     SetUpDepthPeeling(win, ren);
     AddShell(ren);
-    vtkNew<vtkPoints> points;
-    vtkNew<vtkCellArray> verts;
-    for (int i = 0; i < 40; ++i)
-    {
-      verts->InsertNextCell(1);
-      verts->InsertCellPoint(points->InsertNextPoint(-0.7 + 0.035 * i, 0.3 * std::sin(0.3 * i), 0.2));
-    }
-    vtkNew<vtkPolyData> cloud;
-    cloud->SetPoints(points);
-    cloud->SetVerts(verts);
-    vtkSmartPointer<vtkActor> dots = MeshActor(cloud);
-    dots->GetProperty()->SetPointSize(6.0);
-    dots->GetProperty()->SetColor(1.0, 0.9, 0.1);
-    ren->AddActor(dots);
+    ren->AddActor(PointCloudActor(-0.7, 0.035, 0.2, 6.0));
     vtkNew<vtkOutlineSource> outline;
     outline->SetBounds(-0.45, 0.45, -0.45, 0.45, -0.45, 0.45);
     outline->Update();

@@ -97,6 +97,28 @@ vtkSmartPointer<vtkFloatArray> ZBuffer(vtkRenderWindow* win)
   return z;
 }
 
+/// Pixels whose depths differ by more than 1e-3.
+long DepthsDiffering(vtkFloatArray* a, vtkFloatArray* b)
+{
+  long n = 0;
+  for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
+  {
+    n += std::abs(a->GetValue(i) - b->GetValue(i)) > 1e-3f;
+  }
+  return n;
+}
+
+/// Pixels at the far plane.
+long FarPixels(vtkFloatArray* z)
+{
+  long n = 0;
+  for (vtkIdType i = 0; i < z->GetNumberOfValues(); ++i)
+  {
+    n += z->GetValue(i) == 1.0f;
+  }
+  return n;
+}
+
 /// An opaque sphere inside a translucent specular shell, cut by a second
 /// translucent sphere: up to six layers. The depth the pass leaves is the
 /// opaque depth (the far plane where only translucent layers are), as
@@ -123,12 +145,8 @@ void TestShell()
   auto rasterZ = ZBuffer(scene.Window);
   RasterAndTraced frames = Compare("Shell", scene, 3, 3.0);
   auto tracedZ = ZBuffer(scene.Window);
-  long differ = 0, far = 0;
-  for (vtkIdType i = 0; i < rasterZ->GetNumberOfValues(); ++i)
-  {
-    differ += std::abs(rasterZ->GetValue(i) - tracedZ->GetValue(i)) > 1e-3f;
-    far += tracedZ->GetValue(i) == 1.0f;
-  }
+  const long differ = DepthsDiffering(rasterZ, tracedZ);
+  const long far = FarPixels(tracedZ);
   std::ostringstream s;
   s << "Shell: depth as raster's (the opaque depth) at all but " << differ << " pixels, "
     << far << " far";
@@ -663,19 +681,7 @@ void TestOverRasterProps()
   vtkNew<vtkImageSlice> slice;
   slice->SetMapper(sliceMapper);
   scene.Renderer->AddViewProp(slice);
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkCellArray> verts;
-  for (int i = 0; i < 40; ++i)
-  {
-    verts->InsertNextCell(1);
-    verts->InsertCellPoint(points->InsertNextPoint(-0.9 + 0.045 * i, 0.3 * std::sin(0.3 * i), 0.4));
-  }
-  vtkNew<vtkPolyData> cloud;
-  cloud->SetPoints(points);
-  cloud->SetVerts(verts);
-  auto dots = MeshActor(cloud);
-  dots->GetProperty()->SetPointSize(5.0);
-  dots->GetProperty()->SetColor(1.0, 0.9, 0.1);
+  auto dots = PointCloudActor(-0.9, 0.045, 0.4, 5.0);
   scene.Renderer->AddActor(dots);
   vtkNew<vtkOutlineSource> box;
   box->SetBounds(-1.2, 1.2, -1.2, 1.2, -0.6, 0.6);
@@ -771,13 +777,9 @@ void TestOpaqueCompositeDepth()
   auto rasterZ = ZBuffer(scene.Window);
   Compare("OpaqueCompositeDepth", scene, 3, 3.0);
   auto tracedZ = ZBuffer(scene.Window);
-  long differ = 0, spheres = 0;
-  for (vtkIdType i = 0; i < rasterZ->GetNumberOfValues(); ++i)
-  {
-    differ += std::abs(rasterZ->GetValue(i) - tracedZ->GetValue(i)) > 1e-3f;
-    // Where the spheres alone cover the pixel raster leaves the far plane.
-    spheres += rasterZ->GetValue(i) == 1.0f;
-  }
+  const long differ = DepthsDiffering(rasterZ, tracedZ);
+  // Where the spheres alone cover the pixel raster leaves the far plane.
+  const long spheres = FarPixels(rasterZ);
   std::ostringstream s;
   s << "OpaqueCompositeDepth: depth as raster's at all but " << differ << " pixels (<= 0.5%; "
     << spheres << " far pixels in raster's)";

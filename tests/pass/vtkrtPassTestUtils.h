@@ -13,6 +13,7 @@
 #include "vtkActor.h"
 #include "vtkAppendPolyData.h"
 #include "vtkCamera.h"
+#include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkGlyph3DMapper.h"
 #include "vtkHardwareSelector.h"
@@ -413,6 +414,26 @@ inline vtkSmartPointer<vtkActor> MeshActor(vtkPolyData* poly)
   actor->GetProperty()->SetSpecular(0.4);
   actor->GetProperty()->SetSpecularPower(20);
   return actor;
+}
+
+/// Forty yellow vertices along a sine, from x0 in steps of dx at height z,
+/// drawn as points of `pointSize` (raster draws them beside traced props).
+inline vtkSmartPointer<vtkActor> PointCloudActor(double x0, double dx, double z, double pointSize)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> verts;
+  for (int i = 0; i < 40; ++i)
+  {
+    verts->InsertNextCell(1);
+    verts->InsertCellPoint(points->InsertNextPoint(x0 + dx * i, 0.3 * std::sin(0.3 * i), z));
+  }
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(points);
+  cloud->SetVerts(verts);
+  vtkSmartPointer<vtkActor> dots = MeshActor(cloud);
+  dots->GetProperty()->SetPointSize(pointSize);
+  dots->GetProperty()->SetColor(1.0, 0.9, 0.1);
+  return dots;
 }
 
 /// The cell ids a vtkHardwareSelector cell selection of the pixels
